@@ -1,0 +1,87 @@
+// Bump arenas: every buffer of a pipeline run comes from one block fixed at
+// init. Arena is the non-owning allocator over a caller block; StaticArena<N>
+// owns a compile-time block. Exhaustion is an Error naming the request, and the
+// high-water mark tells how much of the budget a run really used.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <new>
+#include <span>
+#include <type_traits>
+
+#include "algo/core/result.hpp"
+
+namespace petra {
+
+class Arena {
+ public:
+  Arena() = default;
+  explicit Arena(std::span<std::byte> block) : base_(block.data()), capacity_(block.size()) {}
+
+  // Uninitialised-free: elements are value-initialised (trivial types only,
+  // so a reset never needs destructors).
+  template <class T>
+  Result<std::span<T>> allocate(std::size_t count, const char* what = "buffer") {
+    static_assert(std::is_trivially_destructible_v<T>, "arena holds trivially destructible types");
+    const std::size_t align = alignof(T);
+    const std::size_t start = (used_ + align - 1) / align * align;
+    if (count > (SIZE_MAX - start) / sizeof(T) || start + count * sizeof(T) > capacity_) {
+      return Error::make(Errc::capacity_exceeded, "arena: %s needs %zu bytes, %zu of %zu free",
+                         what, count * sizeof(T), capacity_ - used_, capacity_);
+    }
+    T* p = reinterpret_cast<T*>(base_ + start);  // NOLINT: storage reuse is the point
+    for (std::size_t i = 0; i < count; ++i) new (p + i) T{};
+    used_ = start + count * sizeof(T);
+    if (used_ > high_water_) high_water_ = used_;
+    return std::span<T>(p, count);
+  }
+
+  // A mark to roll back to: scratch memory of one step is released after it.
+  std::size_t mark() const { return used_; }
+  void release_to(std::size_t mark) {
+    PETRA_ASSERT(mark <= used_);
+    used_ = mark;
+  }
+  void reset() { used_ = 0; }
+
+  std::size_t used() const { return used_; }
+  std::size_t capacity() const { return capacity_; }
+  std::size_t remaining() const { return capacity_ - used_; }
+  std::size_t high_water() const { return high_water_; }
+
+ private:
+  std::byte* base_ = nullptr;
+  std::size_t capacity_ = 0;
+  std::size_t used_ = 0;
+  std::size_t high_water_ = 0;
+};
+
+// Scoped scratch: releases everything allocated after construction.
+class ArenaScope {
+ public:
+  explicit ArenaScope(Arena& arena) : arena_(arena), mark_(arena.mark()) {}
+  ~ArenaScope() { arena_.release_to(mark_); }
+  ArenaScope(const ArenaScope&) = delete;
+  ArenaScope& operator=(const ArenaScope&) = delete;
+
+ private:
+  Arena& arena_;
+  std::size_t mark_;
+};
+
+template <std::size_t N>
+class StaticArena {
+ public:
+  StaticArena() : arena_(std::span<std::byte>(block_, N)) {}
+  StaticArena(const StaticArena&) = delete;
+  StaticArena& operator=(const StaticArena&) = delete;
+  Arena& arena() { return arena_; }
+  static constexpr std::size_t capacity() { return N; }
+
+ private:
+  alignas(std::max_align_t) std::byte block_[N];
+  Arena arena_;
+};
+
+}  // namespace petra

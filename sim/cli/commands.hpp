@@ -1,0 +1,20 @@
+// The `petra` ground CLI: one file per subcommand, each registering itself on
+// the app. A subcommand reports failure by printing one line on stderr and
+// setting a non-zero exit code (docs/icd.md: command lines).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace petra::cli {
+
+// Set by a subcommand's callback; main returns it.
+struct Outcome {
+  int exit_code = 0;
+};
+
+void add_info(CLI::App& app, Outcome& outcome);
+
+// Prints "petra <cmd>: <message>" on stderr and returns the exit code 1.
+int fail(const char* cmd, const char* message);
+
+}  // namespace petra::cli

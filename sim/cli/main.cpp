@@ -1,0 +1,27 @@
+// petra: the ground CLI (sim, stereo, eval, score, calib, cmd, tlm, demo, ...).
+#include <cstdio>
+
+#include "sim/cli/commands.hpp"
+
+namespace petra::cli {
+
+int fail(const char* cmd, const char* message) {
+  std::fprintf(stderr, "petra %s: %s\n", cmd, message);
+  return 1;
+}
+
+}  // namespace petra::cli
+
+int main(int argc, char** argv) {
+  CLI::App app{"petra: ground tools for the Petra rock-sampling arm"};
+  app.require_subcommand(1);
+  petra::cli::Outcome outcome;
+  // One line per subcommand, each defined in its own cmd_<name>.cpp.
+  petra::cli::add_info(app, outcome);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  return outcome.exit_code;
+}

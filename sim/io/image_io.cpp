@@ -1,0 +1,289 @@
+#include "sim/io/image_io.hpp"
+
+#include <png.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <sstream>
+
+namespace petra::io {
+
+namespace {
+
+using FilePtr = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+
+FilePtr open_file(const std::string& path, const char* mode) {
+  return FilePtr(std::fopen(path.c_str(), mode), &std::fclose);
+}
+
+Error file_error(const std::string& path, const char* what) {
+  return Error::make(Errc::io_error, "%s: %s", path.c_str(), what);
+}
+
+Error format_error(const std::string& path, const char* what) {
+  return Error::make(Errc::parse_error, "%s: %s", path.c_str(), what);
+}
+
+// Raw decoded image: channels 1..4, 8-bit samples.
+struct Decoded {
+  int width = 0, height = 0, channels = 0;
+  std::vector<std::uint8_t> samples;
+};
+
+// --- PNM (PGM/PPM) -----------------------------------------------------------
+
+bool pnm_token(const std::string& data, std::size_t& pos, std::string& out) {
+  out.clear();
+  while (pos < data.size()) {
+    const char c = data[pos];
+    if (c == '#') {
+      while (pos < data.size() && data[pos] != '\n') ++pos;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      ++pos;
+    } else {
+      break;
+    }
+  }
+  while (pos < data.size() && !std::isspace(static_cast<unsigned char>(data[pos]))) out += data[pos++];
+  return !out.empty();
+}
+
+bool parse_uint(const std::string& s, long max, long& v) {
+  if (s.empty() || s.size() > 9) return false;
+  for (char c : s)
+    if (c < '0' || c > '9') return false;
+  v = std::stol(s);
+  return v <= max;
+}
+
+bool parse_positive(const std::string& s, long max, long& v) { return parse_uint(s, max, v) && v > 0; }
+
+Result<Decoded> decode_pnm(const std::string& path, const std::string& data) {
+  std::size_t pos = 0;
+  std::string magic, tok;
+  if (!pnm_token(data, pos, magic)) return format_error(path, "empty file");
+  const bool ascii = magic == "P2" || magic == "P3";
+  const bool gray = magic == "P2" || magic == "P5";
+  if (magic != "P2" && magic != "P3" && magic != "P5" && magic != "P6")
+    return format_error(path, "not a PGM/PPM (magic)");
+  long w = 0, h = 0, maxval = 0;
+  if (!pnm_token(data, pos, tok) || !parse_positive(tok, 1 << 15, w))
+    return format_error(path, "bad width");
+  if (!pnm_token(data, pos, tok) || !parse_positive(tok, 1 << 15, h))
+    return format_error(path, "bad height");
+  if (!pnm_token(data, pos, tok) || !parse_positive(tok, 65535, maxval))
+    return format_error(path, "bad maxval");
+  ++pos;  // the single whitespace after maxval
+  Decoded d;
+  d.width = static_cast<int>(w);
+  d.height = static_cast<int>(h);
+  d.channels = gray ? 1 : 3;
+  const std::size_t n = static_cast<std::size_t>(w) * h * d.channels;
+  d.samples.resize(n);
+  auto scale = [&](long v) {
+    return static_cast<std::uint8_t>(maxval == 255 ? v : (v * 255 + maxval / 2) / maxval);
+  };
+  if (ascii) {
+    for (std::size_t i = 0; i < n; ++i) {
+      long v = 0;
+      if (!pnm_token(data, pos, tok) || !parse_uint(tok, 65535, v))
+        return format_error(path, "truncated or bad sample");
+      if (v > maxval) return format_error(path, "sample above maxval");
+      d.samples[i] = scale(v);
+    }
+  } else {
+    const std::size_t bytes = maxval > 255 ? 2 : 1;
+    if (data.size() < pos || data.size() - pos < n * bytes) return format_error(path, "truncated pixel data");
+    for (std::size_t i = 0; i < n; ++i) {
+      long v = bytes == 1 ? static_cast<unsigned char>(data[pos + i])
+                          : (static_cast<unsigned char>(data[pos + 2 * i]) << 8) |
+                                static_cast<unsigned char>(data[pos + 2 * i + 1]);
+      if (v > maxval) return format_error(path, "sample above maxval");
+      d.samples[i] = scale(v);
+    }
+  }
+  return d;
+}
+
+// --- PNG -----------------------------------------------------------------------
+
+Result<Decoded> decode_png(const std::string& path) {
+  png_image img;
+  std::memset(&img, 0, sizeof img);
+  img.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&img, path.c_str()))
+    return format_error(path, img.message[0] ? img.message : "unreadable PNG");
+  Decoded d;
+  const bool colour = (img.format & PNG_FORMAT_FLAG_COLOR) != 0;
+  img.format = colour ? PNG_FORMAT_RGB : PNG_FORMAT_GRAY;  // alpha dropped, 16-bit reduced
+  d.width = static_cast<int>(img.width);
+  d.height = static_cast<int>(img.height);
+  d.channels = colour ? 3 : 1;
+  if (img.width == 0 || img.height == 0 || img.width > (1u << 15) || img.height > (1u << 15)) {
+    png_image_free(&img);
+    return format_error(path, "PNG size out of range");
+  }
+  d.samples.resize(PNG_IMAGE_SIZE(img));
+  if (!png_image_finish_read(&img, nullptr, d.samples.data(), 0, nullptr)) {
+    std::string msg = img.message;
+    png_image_free(&img);
+    return format_error(path, msg.empty() ? "corrupt PNG" : msg.c_str());
+  }
+  return d;
+}
+
+Result<Decoded> decode_any(const std::string& path) {
+  auto data = read_text_file(path);
+  if (!data) return data.error();
+  if (data->size() >= 8 && std::memcmp(data->data(), "\x89PNG\r\n\x1a\n", 8) == 0)
+    return decode_png(path);
+  if (data->size() >= 2 && (*data)[0] == 'P') return decode_pnm(path, *data);
+  return format_error(path, "unknown image format (expected PGM, PPM or PNG)");
+}
+
+Status write_png_raw(const std::string& path, int w, int h, bool colour, const std::uint8_t* data,
+                     std::ptrdiff_t row_stride) {
+  png_image img;
+  std::memset(&img, 0, sizeof img);
+  img.version = PNG_IMAGE_VERSION;
+  img.width = static_cast<png_uint_32>(w);
+  img.height = static_cast<png_uint_32>(h);
+  img.format = colour ? PNG_FORMAT_RGB : PNG_FORMAT_GRAY;
+  if (!png_image_write_to_file(&img, path.c_str(), 0, data, static_cast<png_int_32>(row_stride), nullptr))
+    return file_error(path, img.message[0] ? img.message : "cannot write PNG");
+  return {};
+}
+
+}  // namespace
+
+Result<GrayImage> read_gray_image(const std::string& path) {
+  auto d = decode_any(path);
+  if (!d) return d.error();
+  GrayImage g(d->width, d->height);
+  const std::size_t n = g.pixels.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (d->channels == 1) {
+      g.pixels[i] = d->samples[i];
+    } else {
+      const std::uint8_t* p = &d->samples[i * 3];
+      g.pixels[i] = rgb_to_gray(p[0], p[1], p[2]);
+    }
+  }
+  return g;
+}
+
+Result<RgbImage> read_rgb_image(const std::string& path) {
+  auto d = decode_any(path);
+  if (!d) return d.error();
+  RgbImage out(d->width, d->height);
+  const std::size_t n = static_cast<std::size_t>(d->width) * d->height;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c)
+      out.rgb[i * 3 + c] = d->channels == 1 ? d->samples[i] : d->samples[i * 3 + c];
+  return out;
+}
+
+Status write_pgm(const std::string& path, ConstGray8View image) {
+  auto f = open_file(path, "wb");
+  if (!f) return file_error(path, std::strerror(errno));
+  std::fprintf(f.get(), "P5\n%d %d\n255\n", image.width(), image.height());
+  for (int y = 0; y < image.height(); ++y)
+    if (std::fwrite(image.row(y), 1, static_cast<std::size_t>(image.width()), f.get()) !=
+        static_cast<std::size_t>(image.width()))
+      return file_error(path, "short write");
+  if (std::fflush(f.get()) != 0) return file_error(path, "flush failed");
+  return {};
+}
+
+Status write_png(const std::string& path, ConstGray8View image) {
+  return write_png_raw(path, image.width(), image.height(), false, image.data(), image.stride());
+}
+
+Status write_png(const std::string& path, const RgbImage& image) {
+  return write_png_raw(path, image.width, image.height, true, image.rgb.data(), image.width * 3);
+}
+
+Result<FloatImage> read_pfm(const std::string& path) {
+  auto data = read_text_file(path);
+  if (!data) return data.error();
+  std::size_t pos = 0;
+  std::string magic, tok;
+  if (!pnm_token(*data, pos, magic) || magic != "Pf") return format_error(path, "not a gray PFM (Pf)");
+  long w = 0, h = 0;
+  if (!pnm_token(*data, pos, tok) || !parse_positive(tok, 1 << 15, w)) return format_error(path, "bad width");
+  if (!pnm_token(*data, pos, tok) || !parse_positive(tok, 1 << 15, h)) return format_error(path, "bad height");
+  if (!pnm_token(*data, pos, tok)) return format_error(path, "missing scale");
+  double scale = 0;
+  try {
+    scale = std::stod(tok);
+  } catch (...) {
+    return format_error(path, "bad scale");
+  }
+  if (scale == 0 || !std::isfinite(scale)) return format_error(path, "bad scale");
+  ++pos;
+  const bool little = scale < 0;
+  const std::size_t n = static_cast<std::size_t>(w) * h;
+  if (data->size() < pos || data->size() - pos < n * 4) return format_error(path, "truncated pixel data");
+  FloatImage img(static_cast<int>(w), static_cast<int>(h));
+  for (long y = 0; y < h; ++y)
+    for (long x = 0; x < w; ++x) {
+      const unsigned char* b = reinterpret_cast<const unsigned char*>(data->data()) + pos +
+                               (static_cast<std::size_t>(h - 1 - y) * w + x) * 4;
+      std::uint32_t u = little ? (b[0] | b[1] << 8 | b[2] << 16 | static_cast<std::uint32_t>(b[3]) << 24)
+                               : (b[3] | b[2] << 8 | b[1] << 16 | static_cast<std::uint32_t>(b[0]) << 24);
+      float v;
+      std::memcpy(&v, &u, 4);
+      img.data[static_cast<std::size_t>(y) * w + x] = v;
+    }
+  return img;
+}
+
+Status write_pfm(const std::string& path, ImageView<const float> image) {
+  auto f = open_file(path, "wb");
+  if (!f) return file_error(path, std::strerror(errno));
+  std::fprintf(f.get(), "Pf\n%d %d\n-1\n", image.width(), image.height());
+  std::vector<unsigned char> row(static_cast<std::size_t>(image.width()) * 4);
+  for (int y = image.height() - 1; y >= 0; --y) {
+    for (int x = 0; x < image.width(); ++x) {
+      std::uint32_t u;
+      std::memcpy(&u, &image(x, y), 4);
+      for (int k = 0; k < 4; ++k) row[static_cast<std::size_t>(x) * 4 + k] = static_cast<unsigned char>(u >> (8 * k));
+    }
+    if (std::fwrite(row.data(), 1, row.size(), f.get()) != row.size()) return file_error(path, "short write");
+  }
+  if (std::fflush(f.get()) != 0) return file_error(path, "flush failed");
+  return {};
+}
+
+Result<std::string> read_text_file(const std::string& path, std::size_t max_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return file_error(path, "cannot open");
+  std::string s;
+  in.seekg(0, std::ios::end);
+  const auto size = in.tellg();
+  if (size < 0) return file_error(path, "cannot read");
+  if (static_cast<std::size_t>(size) > max_bytes) return file_error(path, "file too large");
+  s.resize(static_cast<std::size_t>(size));
+  in.seekg(0);
+  in.read(s.data(), size);
+  if (!in) return file_error(path, "read failed");
+  return s;
+}
+
+Status write_text_file(const std::string& path, std::string_view text) {
+  return write_binary_file(path, text.data(), text.size());
+}
+
+Status write_binary_file(const std::string& path, const void* data, std::size_t bytes) {
+  auto f = open_file(path, "wb");
+  if (!f) return file_error(path, std::strerror(errno));
+  if (bytes > 0 && std::fwrite(data, 1, bytes, f.get()) != bytes) return file_error(path, "short write");
+  if (std::fflush(f.get()) != 0) return file_error(path, "flush failed");
+  return {};
+}
+
+}  // namespace petra::io

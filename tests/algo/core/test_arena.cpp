@@ -1,0 +1,83 @@
+#include "algo/core/arena.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "tests/support/heap_counter.hpp"
+
+namespace petra {
+namespace {
+
+TEST(Arena, AllocatesAlignedAndTracksHighWater) {
+  StaticArena<1024> storage;
+  Arena& a = storage.arena();
+  auto bytes = a.allocate<std::uint8_t>(3);
+  ASSERT_TRUE(bytes.ok());
+  auto doubles = a.allocate<double>(4);
+  ASSERT_TRUE(doubles.ok());
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(doubles->data()) % alignof(double), 0u);
+  EXPECT_EQ(a.used(), 8u + 32u);
+  EXPECT_EQ(a.high_water(), 40u);
+  a.reset();
+  EXPECT_EQ(a.used(), 0u);
+  EXPECT_EQ(a.high_water(), 40u);
+}
+
+TEST(Arena, ZeroInitialisesEveryAllocation) {
+  StaticArena<256> storage;
+  Arena& a = storage.arena();
+  auto s = a.allocate<int>(16);
+  ASSERT_TRUE(s.ok());
+  for (int& v : *s) v = 99;
+  a.reset();
+  auto t = a.allocate<int>(16);
+  ASSERT_TRUE(t.ok());
+  for (int v : *t) EXPECT_EQ(v, 0);
+}
+
+TEST(Arena, ExhaustionIsAnErrorNamingTheRequest) {
+  StaticArena<64> storage;
+  Arena& a = storage.arena();
+  ASSERT_TRUE(a.allocate<std::uint8_t>(60).ok());
+  auto r = a.allocate<std::uint32_t>(4, "disparity row");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.code(), Errc::capacity_exceeded);
+  EXPECT_NE(std::strstr(r.error().message, "disparity row"), nullptr);
+  EXPECT_EQ(a.used(), 60u);  // a failed request changes nothing
+}
+
+TEST(Arena, HugeCountDoesNotOverflow) {
+  StaticArena<64> storage;
+  auto r = storage.arena().allocate<double>(SIZE_MAX / 4);
+  EXPECT_EQ(r.code(), Errc::capacity_exceeded);
+}
+
+TEST(Arena, ScopeReleasesScratch) {
+  StaticArena<256> storage;
+  Arena& a = storage.arena();
+  ASSERT_TRUE(a.allocate<int>(4).ok());
+  {
+    ArenaScope scratch(a);
+    ASSERT_TRUE(a.allocate<int>(32).ok());
+    EXPECT_EQ(a.used(), 16u + 128u);
+  }
+  EXPECT_EQ(a.used(), 16u);
+  EXPECT_EQ(a.high_water(), 144u);
+}
+
+TEST(Arena, NoHeapInSteadyState) {
+  static StaticArena<1 << 16> storage;
+  Arena& a = storage.arena();
+  test::HeapScope scope;
+  for (int i = 0; i < 1000; ++i) {
+    ArenaScope s(a);
+    auto r = a.allocate<float>(1000);
+    ASSERT_TRUE(r.ok());
+    (*r)[999] = 1.0f;
+  }
+  EXPECT_EQ(scope.allocations(), 0u);
+}
+
+}  // namespace
+}  // namespace petra

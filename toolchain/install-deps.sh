@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs what Petra needs on Debian 12 (as root), skipping what is present.
+# Usage: toolchain/install-deps.sh [build|test]
+#   build: compilers, CMake, Eigen, CLI11, libsodium, libpng (enough for the demo)
+#   test:  build + GoogleTest, Google Benchmark, the aarch64 cross toolchain and
+#          qemu user emulation, and the peers/oracles tests use.
+set -euo pipefail
+kind=${1:-build}
+here=$(cd "$(dirname "$0")" && pwd)
+
+mapfile -t wanted < <(grep -v '^#' "$here/packages-build.txt" | sed '/^$/d')
+if [ "$kind" = test ]; then
+  mapfile -t -O "${#wanted[@]}" wanted < <(grep -v '^#' "$here/packages-test.txt" | sed '/^$/d')
+fi
+
+missing=()
+for p in "${wanted[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "install-deps: all ${#wanted[@]} packages present"
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO=sudo
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"
