@@ -1,17 +1,22 @@
 #!/usr/bin/env bash
 # Installs what Petra needs on Debian 12 (as root), skipping what is present.
-# Usage: toolchain/install-deps.sh [build|test]
+# Usage: toolchain/install-deps.sh [build|test|bench]
 #   build: compilers, CMake, Eigen, CLI11, libsodium, libpng (enough for the demo)
 #   test:  build + GoogleTest, Google Benchmark, the aarch64 cross toolchain and
 #          qemu user emulation, and the peers/oracles tests use.
+#   bench: test + OpenCV and hyperfine (the peers benchmarks measure against).
 set -euo pipefail
 kind=${1:-build}
 here=$(cd "$(dirname "$0")" && pwd)
 
 mapfile -t wanted < <(grep -v '^#' "$here/packages-build.txt" | sed '/^$/d')
-if [ "$kind" = test ]; then
-  mapfile -t -O "${#wanted[@]}" wanted < <(grep -v '^#' "$here/packages-test.txt" | sed '/^$/d')
-fi
+add_list() { mapfile -t -O "${#wanted[@]}" wanted < <(grep -v '^#' "$here/$1" | sed '/^$/d'); }
+case "$kind" in
+  build) ;;
+  test) add_list packages-test.txt ;;
+  bench) add_list packages-test.txt; add_list packages-bench.txt ;;
+  *) echo "install-deps: unknown kind '$kind' (build|test|bench)" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${wanted[@]}"; do
