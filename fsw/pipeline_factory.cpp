@@ -1,0 +1,7 @@
+#include "fsw/pipeline_factory.hpp"
+
+namespace petra::fsw {
+
+PipelineJob* flight_pipeline() { return nullptr; }
+
+}  // namespace petra::fsw
