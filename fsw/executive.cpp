@@ -4,7 +4,6 @@
 #include <time.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 
 #include "algo/calib_json.hpp"
@@ -68,27 +67,9 @@ Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
   return runner_.init(deps_.job, {arena, arena_bytes}, b.worker_stack_bytes, &health_, deps_.clock);
 }
 
-Status Executive::load_counter(const char* path) {
-  char text[32];
-  auto n = hal::read_small_file(path, text);
-  if (!n) return {};  // no file yet: counting starts at 0
-  if (*n == 0 || *n >= sizeof(text))
-    return Error::make(Errc::parse_error, "counter file %s: empty or too long", path);
-  text[*n] = '\0';
-  char* end = nullptr;
-  const unsigned long v = std::strtoul(text, &end, 10);
-  if (end == text || v > 0xFFFFFFFFul)
-    return Error::make(Errc::parse_error, "counter file %s: not a counter", path);
-  cmd_.last_counter = static_cast<std::uint32_t>(v);
-  return {};
-}
-
 void Executive::store_counter() {
-  if (config_.counter_file[0] == '\0') return;
-  char text[16];
-  const int n = std::snprintf(text, sizeof(text), "%u\n", cmd_.last_counter);
-  const Status s = hal::write_small_file(config_.counter_file.data(),
-                                         std::span<const char>(text, static_cast<std::size_t>(n)));
+  if (!counter_store_.is_open()) return;
+  const Status s = counter_store_.store(cmd_.last_counter);
   if (!s && !counter_store_failed_) {
     counter_store_failed_ = true;  // one event, not one per command
     events_.raise(EventId::COUNTER_STORE_FAILED, static_cast<std::int32_t>(s.code()));
@@ -111,7 +92,11 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
   auto key = cmd::load_key_file(config.key_file.data());
   if (!key) return key.error();
   key_ = *key;
-  if (config.counter_file[0] != '\0') PETRA_TRY(load_counter(config.counter_file.data()));
+  if (config.counter_file[0] != '\0') {
+    auto last = counter_store_.open(config.counter_file.data());
+    if (!last) return last.error();
+    cmd_.last_counter = *last;
+  }
 
   int params_loaded = 0;
   if (config.param_file[0] != '\0') {

@@ -21,6 +21,7 @@
 #include "cmd/validator.hpp"
 #include "fsw/arm_port.hpp"
 #include "fsw/config.hpp"
+#include "fsw/counter_store.hpp"
 #include "fsw/event_log.hpp"
 #include "fsw/health.hpp"
 #include "fsw/mode_manager.hpp"
@@ -107,7 +108,6 @@ class Executive {
   };
 
   Status allocate(const FswConfig& config, std::size_t arena_bytes);
-  Status load_counter(const char* path);
   void store_counter();
   void update_periods();
 
@@ -156,6 +156,7 @@ class Executive {
   tlm::TlmQueue queue_;
   hal::UdpLink uplink_;
   hal::UdpLink downlink_;
+  CounterStore counter_store_;
 
   std::unique_ptr<std::byte[]> memory_;  // every buffer, allocated once in init()
   std::size_t memory_bytes_ = 0;

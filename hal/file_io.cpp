@@ -41,7 +41,7 @@ Status write_small_file(const char* path, std::span<const char> data) {
   const int fd = ::open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
   if (fd < 0) return Error::make(Errc::io_error, "%s: cannot create", tmp);
   const ssize_t n = ::write(fd, data.data(), data.size());
-  const bool ok = n == static_cast<ssize_t>(data.size()) && ::fsync(fd) == 0;
+  const bool ok = n == static_cast<ssize_t>(data.size());
   ::close(fd);
   if (!ok || ::rename(tmp, path) != 0) return Error::make(Errc::io_error, "%s: write failed", path);
   return {};

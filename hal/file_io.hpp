@@ -13,6 +13,8 @@ namespace petra::hal {
 Result<std::size_t> read_small_file(const char* path, std::span<char> buf);
 
 // Replaces the file's content (write to path.tmp, then rename: never half-written).
+// No fsync: it costs milliseconds per call in the loop; the rename keeps the
+// file whole across a process crash (a power loss may lose the last update).
 Status write_small_file(const char* path, std::span<const char> data);
 
 // dir/name into out (NUL-terminated); name as is when absolute or dir empty.
