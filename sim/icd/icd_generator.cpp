@@ -37,6 +37,13 @@ std::string modes_of(std::uint32_t mask) {
   return s;
 }
 
+// A description as the start of a sentence.
+std::string sentence(const char* text) {
+  std::string s = text;
+  if (!s.empty() && s[0] >= 'a' && s[0] <= 'z') s[0] = static_cast<char>(s[0] - 'a' + 'A');
+  return s;
+}
+
 std::string type_cell(const wire::FieldDesc& f) {
   std::string t = wire::type_name(f.type);
   if (f.count > 1) t += "[" + std::to_string(f.count) + "]";
@@ -98,7 +105,7 @@ std::string markdown_section() {
   o << "### Telecommands\n\n";
   for (const cmd::CommandDesc& c : cmd::command_table()) {
     o << "#### " << c.name << " (function code " << hex(c.code, 2) << ")\n\n"
-      << c.description << ". Allowed in: " << modes_of(c.allowed_modes) << ". Packet "
+      << sentence(c.description) << ". Allowed in: " << modes_of(c.allowed_modes) << ". Packet "
       << cmd::kTcOverheadBytes + c.arg_bytes << " bytes.\n\n";
     field_table(o, c.fields, cmd::kTcHeaderBytes);
   }
@@ -113,7 +120,7 @@ std::string markdown_section() {
 
   o << "### Telemetry packets\n\n";
   for (const tlm::TmDesc& t : tlm::telemetry_table()) {
-    o << "#### " << t.name << " (APID " << hex(t.apid, 3) << ")\n\n" << t.description << ". Packet "
+    o << "#### " << t.name << " (APID " << hex(t.apid, 3) << ")\n\n" << sentence(t.description) << ". Packet "
       << tlm::kTmHeaderBytes + t.payload_bytes + tlm::kTmCrcBytes << " bytes.\n\n";
     field_table(o, t.fields, tlm::kTmHeaderBytes);
   }
