@@ -10,7 +10,7 @@
 
 #define PETRA_EVENTS(X)                                                                              \
   X(BOOT_COMPLETE, 1, INFO, "boot complete: {0} bytes allocated at init, arena {1} bytes, {2} parameters from the defaults file") \
-  X(MODE_CHANGED, 2, INFO, "mode {0:mode} -> {1:mode} (cause: command {2:fc}, or 0 for the executive)") \
+  X(MODE_CHANGED, 2, INFO, "mode {0:mode} -> {1:mode} (by {2:fc})") \
   X(COUNTERS_RESET, 3, INFO, "command, telemetry and fault counters reset")                           \
   X(PARAM_CHANGED, 4, INFO, "parameter {0:param} changed (value in PARAM_VALUE)")                     \
   X(ROI_SELECTED, 5, INFO, "ROI x {0}, y {1}, {2} x {3} px selected")                                  \

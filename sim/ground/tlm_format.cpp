@@ -28,6 +28,7 @@ std::string value_text(const T& v) {
 }
 
 std::string fc_name(long v) {
+  if (v == 0) return "the executive";
   const cmd::CommandDesc* d = cmd::find_command(static_cast<std::uint8_t>(v));
   return d != nullptr ? d->name : "fc " + std::to_string(v);
 }

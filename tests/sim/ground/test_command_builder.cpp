@@ -52,7 +52,7 @@ TEST(TlmFormat, EventTextNamesItsArguments) {
   tlm::Event e;
   e.event_id = static_cast<std::uint16_t>(EventId::MODE_CHANGED);
   e.args = {1, 5, 0x31, 0};
-  EXPECT_EQ(event_text(e), "mode IDLE -> SAFE (cause: command SET_MODE, or 0 for the executive)");
+  EXPECT_EQ(event_text(e), "mode IDLE -> SAFE (by SET_MODE)");
   e.event_id = rejection_event(Reason::BAD_AUTH);
   e.args = {0x10, 0, 0, 0};
   EXPECT_NE(event_text(e).find("SELECT_ROI rejected: HMAC-SHA256 does not verify"), std::string::npos);
