@@ -124,6 +124,7 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
     PETRA_TRY(get_int(r, loop, "loop", "cycle_ms", 1, 1000, c.cycle_ms));
     PETRA_TRY(get_int(r, loop, "loop", "commands_per_cycle", 1, 256, c.commands_per_cycle));
     PETRA_TRY(get_int(r, loop, "loop", "health_period_ms", 10, 60000, c.health_period_ms));
+    PETRA_TRY(r.text(loop, "loop", "watchdog_device", c.watchdog_device, false, true));
     const std::uint32_t lock = doc->find(loop, "lock_memory");
     if (lock != 0) {
       if (doc->token(lock).type != Type::boolean)

@@ -34,6 +34,7 @@ struct FswConfig {
   Path param_file{};    // parameter defaults; optional
   Path calib_file{};    // calib.json for the pipeline; optional
   Path camera_dir{};    // file camera folder; required
+  Path watchdog_device{};  // e.g. /dev/watchdog; optional (none on development hosts)
   std::uint32_t cycle_ms = 10;           // minor frame
   std::uint32_t commands_per_cycle = 8;  // uplink datagrams serviced per cycle at most
   std::uint32_t health_period_ms = 500;

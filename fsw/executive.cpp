@@ -21,6 +21,7 @@ std::size_t align_up(std::size_t n) { return (n + 63) / 64 * 64; }
 Executive::~Executive() { shutdown(); }
 
 void Executive::shutdown() {
+  if (initialised_) watchdog_.disarm();  // a deliberate stop is not a hang
   runner_.shutdown();
   uplink_.close();
   downlink_.close();
@@ -130,6 +131,7 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
   PETRA_TRY(downlink_.set_peer(config.tlm_host.data(), config.tlm_port));
   downlink_.set_send_buffer(1 << 20);
 
+  if (config.watchdog_device[0] != '\0') PETRA_TRY(watchdog_.open(config.watchdog_device.data()));
   events_.init(&queue_, deps.clock);
   modes_.init(&events_);
   health_.reset(deps.clock->monotonic_ns());
@@ -172,6 +174,7 @@ void Executive::run_cycle() {
     if (g.component != Component::WORKER) health_.beat(g.component, deps_.clock->monotonic_ns());
   }
   ++loop_.cycles;
+  watchdog_.kick();  // the loop came round: a hung loop stops kicking
   const std::int64_t end = deps_.clock->monotonic_ns();
   const auto us = static_cast<std::uint32_t>((end - start) / 1000);
   if (us > loop_.max_cycle_us) loop_.max_cycle_us = us;

@@ -31,6 +31,7 @@
 #include "hal/clock.hpp"
 #include "hal/stereo_camera.hpp"
 #include "hal/udp_link.hpp"
+#include "hal/watchdog.hpp"
 #include "tlm/tlm_queue.hpp"
 
 namespace petra::fsw {
@@ -85,6 +86,7 @@ class Executive {
   const tlm::TlmQueue& downlink_queue() const { return queue_; }
   std::size_t memory_bytes() const { return memory_bytes_; }
   std::uint16_t command_port() const { return uplink_.local_port(); }
+  unsigned watchdog_kicks() const { return watchdog_.kicks(); }
   bool evaluation_running() const { return runner_.busy(); }
 
  private:
@@ -156,6 +158,7 @@ class Executive {
   tlm::TlmQueue queue_;
   hal::UdpLink uplink_;
   hal::UdpLink downlink_;
+  hal::LinuxWatchdog watchdog_;
   CounterStore counter_store_;
 
   std::unique_ptr<std::byte[]> memory_;  // every buffer, allocated once in init()

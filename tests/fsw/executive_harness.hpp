@@ -59,7 +59,7 @@ class ExecutiveHarness {
   Status boot() {
     const std::string cfg = R"({"uplink":{"host":"127.0.0.1","port":0,"key_file":"key.hex","counter_file":"counter.txt"},
       "downlink":{"host":"127.0.0.1","port":)" + std::to_string(ground_.local_port()) +
-                            R"(},"loop":{"cycle_ms":10},
+                            R"(},"loop":)" + loop + R"(,
       "budget":{"image_width":320,"image_height":240,"arena_mb":1,"tlm_queue_packets":)" +
                             std::to_string(queue_packets) + R"(,"worker_stack_kb":256,"cloud_points":100},
       "camera":{"kind":"file","dir":"camera"})" + extra_ + "}";
@@ -149,6 +149,7 @@ class ExecutiveHarness {
   ScriptedPipelineJob job;
   std::uint32_t counter = 0;
   std::size_t queue_packets = 256;
+  std::string loop = R"({"cycle_ms":10})";
   std::vector<tlm::TmPacket> received;
   hal::UdpLink ground_;  // telemetry receiver
 
