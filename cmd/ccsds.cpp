@@ -3,12 +3,10 @@
 namespace petra::wire {
 
 void write_primary_header(const PrimaryHeader& h, std::span<std::uint8_t> out) {
-  const unsigned word0 = (static_cast<unsigned>(h.version & 0x7u) << 13) |
-                         (static_cast<unsigned>(h.type) << 12) |
-                         (static_cast<unsigned>(h.secondary_header ? 1u : 0u) << 11) |
-                         (h.apid & kMaxApid);
-  const unsigned word1 =
-      (static_cast<unsigned>(h.seq_flags) << 14) | (h.seq_count & kSeqCountMask);
+  const unsigned word0 =
+      (static_cast<unsigned>(h.version & 0x7u) << 13) | (static_cast<unsigned>(h.type) << 12) |
+      (static_cast<unsigned>(h.secondary_header ? 1u : 0u) << 11) | (h.apid & kMaxApid);
+  const unsigned word1 = (static_cast<unsigned>(h.seq_flags) << 14) | (h.seq_count & kSeqCountMask);
   out[0] = static_cast<std::uint8_t>(word0 >> 8);
   out[1] = static_cast<std::uint8_t>(word0);
   out[2] = static_cast<std::uint8_t>(word1 >> 8);

@@ -35,7 +35,8 @@ enum class FunctionCode : std::uint8_t {
 #undef PETRA_CMD_ENUM
 };
 
-#define PETRA_CMD_STRUCT(Name, NAME, code, modes, desc, FIELDS) PETRA_WIRE_STRUCT(Name##Args, FIELDS)
+#define PETRA_CMD_STRUCT(Name, NAME, code, modes, desc, FIELDS) \
+  PETRA_WIRE_STRUCT(Name##Args, FIELDS)
 PETRA_COMMANDS(PETRA_CMD_STRUCT)
 #undef PETRA_CMD_STRUCT
 

@@ -118,33 +118,29 @@ constexpr bool in_range(const std::array<T, N>& a, double lo, double hi) {
 // Declares the struct `Name` with its members, codec, range check and field
 // table from the list FIELDS. out_of_range() gives the index of the first bad
 // field, or -1 when every field is within its range.
-#define PETRA_WIRE_STRUCT(Name, FIELDS)                                           \
-  struct Name {                                                                   \
-    FIELDS(PETRA_WIRE_MEMBER)                                                     \
-    void write([[maybe_unused]] ::petra::wire::ByteWriter& w) const {             \
-      FIELDS(PETRA_WIRE_WRITE)                                                    \
-    }                                                                             \
-    void read([[maybe_unused]] ::petra::wire::ByteReader& r) { FIELDS(PETRA_WIRE_READ) } \
-    int out_of_range() const {                                                    \
-      [[maybe_unused]] int index = 0;                                             \
-      FIELDS(PETRA_WIRE_RANGE)                                                    \
-      return -1;                                                                  \
-    }                                                                             \
-    /* Calls fn(name, member) for each field in wire order (ground tools). */     \
-    template <class Fn>                                                           \
-    void each([[maybe_unused]] Fn&& fn) const {                                   \
-      FIELDS(PETRA_WIRE_EACH)                                                     \
-    }                                                                             \
-    template <class Fn>                                                           \
-    void each([[maybe_unused]] Fn&& fn) {                                         \
-      FIELDS(PETRA_WIRE_EACH)                                                     \
-    }                                                                             \
-    static constexpr ::petra::wire::FieldDesc kFieldTable[] = {                   \
-        FIELDS(PETRA_WIRE_DESC)::petra::wire::FieldDesc{}};                       \
-    static constexpr std::span<const ::petra::wire::FieldDesc> fields() {         \
-      return {kFieldTable, sizeof(kFieldTable) / sizeof(kFieldTable[0]) - 1};     \
-    }                                                                             \
-    static constexpr std::size_t wire_bytes() {                                   \
-      return ::petra::wire::fields_bytes(fields());                               \
-    }                                                                             \
+#define PETRA_WIRE_STRUCT(Name, FIELDS)                                                          \
+  struct Name {                                                                                  \
+    FIELDS(PETRA_WIRE_MEMBER)                                                                    \
+    void write([[maybe_unused]] ::petra::wire::ByteWriter& w) const { FIELDS(PETRA_WIRE_WRITE) } \
+    void read([[maybe_unused]] ::petra::wire::ByteReader& r) { FIELDS(PETRA_WIRE_READ) }         \
+    int out_of_range() const {                                                                   \
+      [[maybe_unused]] int index = 0;                                                            \
+      FIELDS(PETRA_WIRE_RANGE)                                                                   \
+      return -1;                                                                                 \
+    }                                                                                            \
+    /* Calls fn(name, member) for each field in wire order (ground tools). */                    \
+    template <class Fn>                                                                          \
+    void each([[maybe_unused]] Fn&& fn) const {                                                  \
+      FIELDS(PETRA_WIRE_EACH)                                                                    \
+    }                                                                                            \
+    template <class Fn>                                                                          \
+    void each([[maybe_unused]] Fn&& fn) {                                                        \
+      FIELDS(PETRA_WIRE_EACH)                                                                    \
+    }                                                                                            \
+    static constexpr ::petra::wire::FieldDesc kFieldTable[] = {                                  \
+        FIELDS(PETRA_WIRE_DESC)::petra::wire::FieldDesc{}};                                      \
+    static constexpr std::span<const ::petra::wire::FieldDesc> fields() {                        \
+      return {kFieldTable, sizeof(kFieldTable) / sizeof(kFieldTable[0]) - 1};                    \
+    }                                                                                            \
+    static constexpr std::size_t wire_bytes() { return ::petra::wire::fields_bytes(fields()); }  \
   };

@@ -5,12 +5,12 @@
 
 #include <cstdint>
 
-#define PETRA_MODES(X)                                                                  \
-  X(BOOT, 0, "initialising: loading configuration, allocating, opening devices")        \
-  X(IDLE, 1, "ready: commands accepted, nothing running")                               \
-  X(ACQUIRE, 2, "taking a stereo pair")                                                 \
-  X(EVALUATE, 3, "the pipeline is running on the selected ROI (worker thread)")         \
-  X(ARM_MOVING, 4, "the arm is moving")                                                 \
+#define PETRA_MODES(X)                                                           \
+  X(BOOT, 0, "initialising: loading configuration, allocating, opening devices") \
+  X(IDLE, 1, "ready: commands accepted, nothing running")                        \
+  X(ACQUIRE, 2, "taking a stereo pair")                                          \
+  X(EVALUATE, 3, "the pipeline is running on the selected ROI (worker thread)")  \
+  X(ARM_MOVING, 4, "the arm is moving")                                          \
   X(SAFE, 5, "a fault or the ground stopped operations; only housekeeping commands")
 
 namespace petra {
@@ -34,10 +34,14 @@ constexpr const char* mode_name(Mode m) {
   return "?";
 }
 
-constexpr bool mode_valid(unsigned v) { return v < static_cast<unsigned>(kModeCount); }
+constexpr bool mode_valid(unsigned v) {
+  return v < static_cast<unsigned>(kModeCount);
+}
 
 // Sets of modes as bit masks (bit n = Mode value n).
-constexpr std::uint32_t mode_bit(Mode m) { return 1u << static_cast<unsigned>(m); }
+constexpr std::uint32_t mode_bit(Mode m) {
+  return 1u << static_cast<unsigned>(m);
+}
 inline constexpr std::uint32_t kInIdle = 1u << 1;
 inline constexpr std::uint32_t kInIdleOrSafe = (1u << 1) | (1u << 5);
 // Every mode in which commands are serviced (all but BOOT).

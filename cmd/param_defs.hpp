@@ -8,19 +8,22 @@
 #include <cstdint>
 #include <span>
 
-#define PETRA_PARAMS(X)                                                                          \
-  X(HK_PERIOD_MS, 1, "ms", 100, 60000, 1000, true, "housekeeping packet period")                 \
+#define PETRA_PARAMS(X)                                                                           \
+  X(HK_PERIOD_MS, 1, "ms", 100, 60000, 1000, true, "housekeeping packet period")                  \
   X(MATCH_METHOD, 2, "enum", 0, 1, 0, true, "stereo matcher: 0 dynamic programming, 1 graph cut") \
-  X(DISP_MIN_PX, 3, "px", -512, 512, -32, true, "smallest disparity searched")                  \
-  X(DISP_MAX_PX, 4, "px", -512, 512, 32, true, "largest disparity searched")                    \
+  X(DISP_MIN_PX, 3, "px", -512, 512, -32, true, "smallest disparity searched")                    \
+  X(DISP_MAX_PX, 4, "px", -512, 512, 32, true, "largest disparity searched")                      \
   X(SHADOW_FRACTION, 5, "1", 0, 0.9, 0.1, false, "expected fraction of shadow pixels in the ROI") \
-  X(MIN_PLANE_AREA_MM2, 6, "mm2", 0, 1e6, 100, false, "grind planes smaller than this are refused") \
-  X(PRODUCT_CHUNKS_PER_CYCLE, 7, "1", 1, 64, 8, true, "product packets queued per loop cycle")  \
-  X(THUMB_DECIMATION, 8, "1", 1, 16, 4, true, "thumbnail = image subsampled by this factor")    \
-  X(SEND_LEFT_IMAGE, 9, "bool", 0, 1, 1, true, "downlink the left image after each acquisition") \
-  X(LEFT_IMAGE_DECIMATION, 10, "1", 1, 16, 1, true, "downlinked left image subsampling factor") \
-  X(CLOUD_MAX_POINTS, 11, "1", 0, 65535, 4096, true, "point cloud product: at most this many points") \
-  X(HEARTBEAT_TIMEOUT_MS, 12, "ms", 100, 600000, 5000, true, "a component silent this long is a fault (SAFE)") \
+  X(MIN_PLANE_AREA_MM2, 6, "mm2", 0, 1e6, 100, false,                                             \
+    "grind planes smaller than this are refused")                                                 \
+  X(PRODUCT_CHUNKS_PER_CYCLE, 7, "1", 1, 64, 8, true, "product packets queued per loop cycle")    \
+  X(THUMB_DECIMATION, 8, "1", 1, 16, 4, true, "thumbnail = image subsampled by this factor")      \
+  X(SEND_LEFT_IMAGE, 9, "bool", 0, 1, 1, true, "downlink the left image after each acquisition")  \
+  X(LEFT_IMAGE_DECIMATION, 10, "1", 1, 16, 1, true, "downlinked left image subsampling factor")   \
+  X(CLOUD_MAX_POINTS, 11, "1", 0, 65535, 4096, true,                                              \
+    "point cloud product: at most this many points")                                              \
+  X(HEARTBEAT_TIMEOUT_MS, 12, "ms", 100, 600000, 5000, true,                                      \
+    "a component silent this long is a fault (SAFE)")                                             \
   X(EVAL_TIMEOUT_S, 13, "s", 1, 3600, 600, true, "an evaluation running longer is aborted (fault)")
 
 namespace petra {
@@ -51,7 +54,9 @@ inline constexpr ParamDesc kParamTable[] = {
 
 inline constexpr std::size_t kParamCount = sizeof(kParamTable) / sizeof(kParamTable[0]);
 
-constexpr std::span<const ParamDesc> param_table() { return {kParamTable, kParamCount}; }
+constexpr std::span<const ParamDesc> param_table() {
+  return {kParamTable, kParamCount};
+}
 
 // Row of a parameter id, or nullptr when unknown.
 constexpr const ParamDesc* find_param(std::uint16_t id) {

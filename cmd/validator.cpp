@@ -52,7 +52,8 @@ Verdict validate_command(std::span<const std::uint8_t> datagram, const Validatio
     return reject(v, Reason::BAD_HEADER);
   if (wire::packet_bytes(h) != size) return reject(v, Reason::LENGTH_MISMATCH);
 
-  const std::uint16_t crc = static_cast<std::uint16_t>((datagram[size - 2] << 8) | datagram[size - 1]);
+  const std::uint16_t crc =
+      static_cast<std::uint16_t>((datagram[size - 2] << 8) | datagram[size - 1]);
   if (wire::crc16_ccitt(datagram.first(size - kCrcBytes)) != crc) return reject(v, Reason::BAD_CRC);
 
   if (ctx.key == nullptr) return reject(v, Reason::BAD_AUTH);

@@ -19,10 +19,6 @@ struct Reader {
   const Document& doc;
   const char* base_dir;
 
-  std::uint32_t member(std::uint32_t obj, const char* key) const {
-    return obj == 0 && key == nullptr ? 0 : doc.find(obj, key);
-  }
-
   Status number(std::uint32_t obj, const char* section, const char* key, double lo, double hi,
                 double& out, bool required = false) const {
     const std::uint32_t t = doc.find(obj, key);
@@ -58,8 +54,9 @@ struct Reader {
     raw[s.size()] = '\0';
     if (is_path) {
       const Status st = hal::join_path(base_dir, raw, out);
-      if (!st) return Error::make(Errc::invalid_argument, "config: %s.%s: %s", section, key,
-                                  st.error().message);
+      if (!st)
+        return Error::make(Errc::invalid_argument, "config: %s.%s: %s", section, key,
+                           st.error().message);
     } else {
       if (s.size() >= N)
         return Error::make(Errc::invalid_argument, "config: %s.%s: too long", section, key);
@@ -75,7 +72,8 @@ Status get_int(const Reader& r, std::uint32_t obj, const char* section, const ch
   double v = static_cast<double>(out);
   PETRA_TRY(r.number(obj, section, key, lo, hi, v));
   if (v != static_cast<double>(static_cast<long long>(v)))
-    return Error::make(Errc::invalid_argument, "config: %s.%s: must be a whole number", section, key);
+    return Error::make(Errc::invalid_argument, "config: %s.%s: must be a whole number", section,
+                       key);
   out = static_cast<T>(v);
   return {};
 }
@@ -90,7 +88,8 @@ Status object_or_absent(const Document& doc, std::uint32_t t, const char* name) 
 
 Result<FswConfig> parse_config(const char* text, std::size_t size, const char* base_dir) {
   auto tokens = std::make_unique<json::Token[]>(4096);  // init only
-  auto doc = Document::parse(std::string_view(text, size), std::span<json::Token>(tokens.get(), 4096));
+  auto doc =
+      Document::parse(std::string_view(text, size), std::span<json::Token>(tokens.get(), 4096));
   if (!doc) return Error::make(Errc::parse_error, "config: %s", doc.error().message);
   if (doc->token(0).type != Type::object)
     return Error::make(Errc::wrong_type, "config: top level must be an object");
@@ -150,7 +149,8 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
   PETRA_TRY(r.text(camera, "camera", "kind", kind_field, false, false));
   if (kind_field[0] != '\0') std::snprintf(kind, sizeof(kind), "%s", kind_field.data());
   if (std::strcmp(kind, "file") != 0)
-    return Error::make(Errc::invalid_argument, "config: camera.kind '%s': this build has 'file'", kind);
+    return Error::make(Errc::invalid_argument, "config: camera.kind '%s': this build has 'file'",
+                       kind);
   PETRA_TRY(r.text(camera, "camera", "dir", c.camera_dir, true, true));
   PETRA_TRY(r.text(0, "", "calib", c.calib_file, false, true));
   PETRA_TRY(r.text(0, "", "params", c.param_file, false, true));

@@ -21,7 +21,8 @@ Result<std::uint32_t> CounterStore::open(const char* path) {
   ssize_t i = 0;
   while (i < n && text[i] == ' ') ++i;
   const ssize_t digits_from = i;
-  for (; i < n && text[i] >= '0' && text[i] <= '9'; ++i) v = v * 10 + static_cast<unsigned>(text[i] - '0');
+  for (; i < n && text[i] >= '0' && text[i] <= '9'; ++i)
+    v = v * 10 + static_cast<unsigned>(text[i] - '0');
   if (i == digits_from || v > 0xFFFFFFFFull || (i < n && text[i] != '\n'))
     return Error::make(Errc::parse_error, "counter file %s: not a counter", path);
   return static_cast<std::uint32_t>(v);
@@ -31,7 +32,8 @@ Status CounterStore::store(std::uint32_t counter) {
   if (fd_ < 0) return Error::make(Errc::not_ready, "counter file not open");
   char text[16];
   std::snprintf(text, sizeof(text), "%010u\n", counter);
-  if (::pwrite(fd_, text, 11, 0) != 11) return Error::make(Errc::io_error, "counter file: write failed");
+  if (::pwrite(fd_, text, 11, 0) != 11)
+    return Error::make(Errc::io_error, "counter file: write failed");
   return {};
 }
 

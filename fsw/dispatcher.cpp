@@ -9,7 +9,9 @@ namespace petra::fsw {
 
 namespace {
 constexpr std::int64_t kMs = 1000000;
-std::uint8_t fc_of(const cmd::Command& c) { return static_cast<std::uint8_t>(c.code); }
+std::uint8_t fc_of(const cmd::Command& c) {
+  return static_cast<std::uint8_t>(c.code);
+}
 }  // namespace
 
 void Executive::ack(std::uint8_t fc, std::uint32_t counter, AckStage stage, Reason reason,
@@ -70,8 +72,8 @@ void Executive::handle_datagram(std::span<const std::uint8_t> datagram) {
 
 void Executive::dispatch(const cmd::Command& c) {
   // Rejections a handler can still make, before anything changes.
-  const bool needs_worker = c.code == cmd::FunctionCode::ACQUIRE ||
-                            c.code == cmd::FunctionCode::EVALUATE;
+  const bool needs_worker =
+      c.code == cmd::FunctionCode::ACQUIRE || c.code == cmd::FunctionCode::EVALUATE;
   if (needs_worker && runner_.busy()) {  // an aborted run is still unwinding
     handler_rejects(c, Reason::BUSY, 0);
     return;
@@ -113,7 +115,8 @@ void Executive::dispatch(const cmd::Command& c) {
       return;
     case FC::SELECT_ROI: {
       const auto& a = std::get<cmd::SelectRoiArgs>(c.args);
-      selection_ = {true, Rect{a.x_px, a.y_px, a.w_px, a.h_px}, a.planes, a.has_click != 0,
+      selection_ = {true,         Rect{a.x_px, a.y_px, a.w_px, a.h_px},
+                    a.planes,     a.has_click != 0,
                     a.click_u_px, a.click_v_px};
       events_.raise(EventId::ROI_SELECTED, a.x_px, a.y_px, a.w_px, a.h_px);
       complete(fc_of(c), c.counter);
@@ -255,8 +258,9 @@ void Executive::publish_evaluation() {
   tlm::EvalResult r;
   r.eval_id = eval_id_;
   r.frame = frame_seq_;
-  r.roi_px = {static_cast<std::uint16_t>(selection_.roi.x), static_cast<std::uint16_t>(selection_.roi.y),
-              static_cast<std::uint16_t>(selection_.roi.w), static_cast<std::uint16_t>(selection_.roi.h)};
+  r.roi_px = {
+      static_cast<std::uint16_t>(selection_.roi.x), static_cast<std::uint16_t>(selection_.roi.y),
+      static_cast<std::uint16_t>(selection_.roi.w), static_cast<std::uint16_t>(selection_.roi.h)};
   r.planes_requested = static_cast<std::uint8_t>(selection_.planes);
   r.total_ms = eval_elapsed_ms_;
   r.step_us = step_us_;

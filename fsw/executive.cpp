@@ -15,10 +15,14 @@ namespace {
 constexpr std::int64_t kMs = 1000000;
 constexpr std::size_t kQueueReserve = 16;  // slots products leave free for events and HK
 
-std::size_t align_up(std::size_t n) { return (n + 63) / 64 * 64; }
+std::size_t align_up(std::size_t n) {
+  return (n + 63) / 64 * 64;
+}
 }  // namespace
 
-Executive::~Executive() { shutdown(); }
+Executive::~Executive() {
+  shutdown();
+}
 
 void Executive::shutdown() {
   if (initialised_) watchdog_.disarm();  // a deliberate stop is not a hang
@@ -27,12 +31,16 @@ void Executive::shutdown() {
   downlink_.close();
 }
 
-tlm::TmTime Executive::now_tm() const { return tm_time(deps_.clock->realtime_ns()); }
+tlm::TmTime Executive::now_tm() const {
+  return tm_time(deps_.clock->realtime_ns());
+}
 
 Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
   const Budget& b = config.budget;
-  const auto frame = static_cast<std::size_t>(b.image_width) * static_cast<std::size_t>(b.image_height);
-  const auto product_sizes = ProductStreamer::bytes_needed(b.image_width, b.image_height, b.cloud_points);
+  const auto frame =
+      static_cast<std::size_t>(b.image_width) * static_cast<std::size_t>(b.image_height);
+  const auto product_sizes =
+      ProductStreamer::bytes_needed(b.image_width, b.image_height, b.cloud_points);
   const std::size_t queue_bytes = tlm::TlmQueue::bytes_for(b.tlm_queue_packets);
   const std::size_t rx_bytes = cmd::kMaxCommandBytes + 1;  // one more: oversize shows as TOO_LONG
   std::size_t total = 2 * align_up(frame) + align_up(queue_bytes) +
@@ -41,7 +49,8 @@ Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
   for (std::size_t s : product_sizes) total += align_up(s);
 
   memory_.reset(new (std::nothrow) std::byte[total]);
-  if (!memory_) return Error::make(Errc::capacity_exceeded, "init: cannot allocate %zu bytes", total);
+  if (!memory_)
+    return Error::make(Errc::capacity_exceeded, "init: cannot allocate %zu bytes", total);
   std::memset(memory_.get(), 0, total);  // touch every page now: resident memory stays flat
   memory_bytes_ = total;
 
@@ -56,7 +65,8 @@ Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
   right_ = Gray8View(reinterpret_cast<std::uint8_t*>(take(frame)), deps_.camera->width(),
                      deps_.camera->height());
   auto* queue_mem = reinterpret_cast<std::uint8_t*>(take(queue_bytes));
-  auto* lengths = reinterpret_cast<std::uint16_t*>(take(b.tlm_queue_packets * sizeof(std::uint16_t)));
+  auto* lengths =
+      reinterpret_cast<std::uint16_t*>(take(b.tlm_queue_packets * sizeof(std::uint16_t)));
   queue_.init({queue_mem, queue_bytes}, {lengths, b.tlm_queue_packets});
   rx_ = {reinterpret_cast<std::uint8_t*>(take(rx_bytes)), rx_bytes};
   std::array<std::span<std::uint8_t>, kProductKinds> product_mem{};
@@ -114,7 +124,8 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
     auto n = hal::read_small_file(config.calib_file.data(), {text.get(), 65536});
     if (!n) return n.error();
     auto rig = parse_calib_json(std::string_view(text.get(), *n));
-    if (!rig) return Error::make(rig.code(), "%s: %s", config.calib_file.data(), rig.error().message);
+    if (!rig)
+      return Error::make(rig.code(), "%s: %s", config.calib_file.data(), rig.error().message);
     rig_ = *rig;
     has_rig_ = true;
   }
@@ -122,7 +133,8 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
   const PipelineBudget pb{b.image_width, b.image_height, b.cloud_points};
   const std::size_t arena_bytes = deps.job != nullptr ? deps.job->arena_bytes(pb) : 0;
   if (arena_bytes > b.arena_bytes)
-    return Error::make(Errc::capacity_exceeded, "init: pipeline '%s' needs %zu arena bytes, budget.arena_mb gives %zu",
+    return Error::make(Errc::capacity_exceeded,
+                       "init: pipeline '%s' needs %zu arena bytes, budget.arena_mb gives %zu",
                        deps.job->name(), arena_bytes, b.arena_bytes);
   PETRA_TRY(allocate(config, deps.job != nullptr ? b.arena_bytes : 0));
 
@@ -262,9 +274,10 @@ void Executive::send_housekeeping() {
   hk.frames = loop_.frames;
   hk.evaluations = loop_.evaluations;
   hk.eval_running = runner_.busy() ? 1 : 0;
-  hk.eval_elapsed_ms = runner_.busy() && pending_eval_.active
-                           ? static_cast<std::uint32_t>((deps_.clock->monotonic_ns() - eval_started_ns_) / kMs)
-                           : eval_elapsed_ms_;
+  hk.eval_elapsed_ms =
+      runner_.busy() && pending_eval_.active
+          ? static_cast<std::uint32_t>((deps_.clock->monotonic_ns() - eval_started_ns_) / kMs)
+          : eval_elapsed_ms_;
   hk.step_us = step_us_;
   queue_.push(hk, now_tm());
 }

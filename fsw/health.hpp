@@ -10,8 +10,15 @@
 namespace petra::fsw {
 
 // Component ids (the {n:component} argument of HEARTBEAT_LOST).
-enum class Component : std::uint8_t { UPLINK = 0, PIPELINE = 1, PRODUCTS = 2, HOUSEKEEPING = 3,
-                                      DOWNLINK = 4, WORKER = 5, ARM = 6 };
+enum class Component : std::uint8_t {
+  UPLINK = 0,
+  PIPELINE = 1,
+  PRODUCTS = 2,
+  HOUSEKEEPING = 3,
+  DOWNLINK = 4,
+  WORKER = 5,
+  ARM = 6
+};
 inline constexpr std::size_t kComponentCount = 7;
 const char* component_name(Component c);
 

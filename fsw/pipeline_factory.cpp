@@ -2,6 +2,8 @@
 
 namespace petra::fsw {
 
-PipelineJob* flight_pipeline() { return nullptr; }
+PipelineJob* flight_pipeline() {
+  return nullptr;
+}
 
 }  // namespace petra::fsw

@@ -79,9 +79,9 @@ struct EvalOutput {
   std::array<std::uint32_t, kStepSlots> step_us{};
   Step failed_step = Step::ACQUIRE;  // meaningful when run() fails
   // Products, pointing into the arena (valid until the next run); empty when absent.
-  ConstGray8View disparity_gray;        // disparity as 8-bit gray, ROI-sized
+  ConstGray8View disparity_gray;              // disparity as 8-bit gray, ROI-sized
   ImageView<const std::uint8_t> overlay_rgb;  // width = 3 * pixels, interleaved RGB
-  std::span<const float> cloud_xyz_mm;  // x, y, z per point
+  std::span<const float> cloud_xyz_mm;        // x, y, z per point
 };
 
 class PipelineJob {

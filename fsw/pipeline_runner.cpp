@@ -4,7 +4,9 @@
 
 namespace petra::fsw {
 
-PipelineRunner::~PipelineRunner() { shutdown(); }
+PipelineRunner::~PipelineRunner() {
+  shutdown();
+}
 
 Status PipelineRunner::init(PipelineJob* job, std::span<std::byte> arena_memory,
                             std::size_t stack_bytes, Health* health, const hal::Clock* clock) {

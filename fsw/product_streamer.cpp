@@ -13,8 +13,7 @@ void ProductStreamer::init(std::array<std::span<std::uint8_t>, kProductKinds> me
   for (std::size_t k = 0; k < kProductKinds; ++k) streams_[k] = Stream{memory[k]};
 }
 
-std::array<std::size_t, kProductKinds> ProductStreamer::bytes_needed(int max_width,
-                                                                     int max_height,
+std::array<std::size_t, kProductKinds> ProductStreamer::bytes_needed(int max_width, int max_height,
                                                                      std::size_t cloud_points) {
   const auto pixels = static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height);
   return {pixels, pixels, 3 * pixels, 12 * cloud_points};
@@ -58,7 +57,8 @@ bool ProductStreamer::stage_cloud(std::uint32_t id, std::span<const float> xyz,
   for (std::size_t i = 0; i < keep; ++i) {
     const std::size_t src = i * points / keep;  // uniform subsampling
     for (int c = 0; c < 3; ++c) {
-      const std::uint32_t b = std::bit_cast<std::uint32_t>(xyz[3 * src + static_cast<std::size_t>(c)]);
+      const std::uint32_t b =
+          std::bit_cast<std::uint32_t>(xyz[3 * src + static_cast<std::size_t>(c)]);
       s.buffer[o++] = static_cast<std::uint8_t>(b >> 24);
       s.buffer[o++] = static_cast<std::uint8_t>(b >> 16);
       s.buffer[o++] = static_cast<std::uint8_t>(b >> 8);

@@ -15,7 +15,12 @@
 
 namespace petra::fsw {
 
-enum class ProductKind : std::uint8_t { LEFT_IMAGE = 1, DISPARITY = 2, OVERLAY = 3, POINT_CLOUD = 4 };
+enum class ProductKind : std::uint8_t {
+  LEFT_IMAGE = 1,
+  DISPARITY = 2,
+  OVERLAY = 3,
+  POINT_CLOUD = 4
+};
 enum class ProductFormat : std::uint8_t { GRAY8 = 1, RGB8 = 2, XYZ_F32 = 3 };
 inline constexpr std::size_t kProductKinds = 4;
 

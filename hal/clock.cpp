@@ -12,7 +12,11 @@ std::int64_t read(clockid_t id) {
 }
 }  // namespace
 
-std::int64_t SystemClock::monotonic_ns() const { return read(CLOCK_MONOTONIC); }
-std::int64_t SystemClock::realtime_ns() const { return read(CLOCK_REALTIME); }
+std::int64_t SystemClock::monotonic_ns() const {
+  return read(CLOCK_MONOTONIC);
+}
+std::int64_t SystemClock::realtime_ns() const {
+  return read(CLOCK_REALTIME);
+}
 
 }  // namespace petra::hal

@@ -11,7 +11,8 @@ namespace petra::hal {
 
 Result<std::size_t> read_small_file(const char* path, std::span<char> buf) {
   const int fd = ::open(path, O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return Error::make(Errc::io_error, "%s: cannot open (%s)", path, std::strerror(errno));
+  if (fd < 0)
+    return Error::make(Errc::io_error, "%s: cannot open (%s)", path, std::strerror(errno));
   std::size_t used = 0;
   for (;;) {  // bounded by the buffer size
     const ssize_t n = ::read(fd, buf.data() + used, buf.size() - used);

@@ -48,7 +48,8 @@ Status FileStereoCamera::open(const char* dir) {
                        "camera folder %s: no left*.pgm with a matching right*.pgm", dir);
   // Name order, so a folder plays back the same sequence every time (insertion sort: n <= 64).
   for (std::size_t i = 1; i < pairs_.size(); ++i)
-    for (std::size_t j = i; j > 0 && std::strcmp(pairs_[j - 1].left.data(), pairs_[j].left.data()) > 0; --j) {
+    for (std::size_t j = i;
+         j > 0 && std::strcmp(pairs_[j - 1].left.data(), pairs_[j].left.data()) > 0; --j) {
       const Pair t = pairs_[j];
       pairs_[j] = pairs_[j - 1];
       pairs_[j - 1] = t;

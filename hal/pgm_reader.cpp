@@ -21,7 +21,9 @@ class Fd {
   int fd_;
 };
 
-bool is_space(char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\n' || c == '\r' || c == '\t';
+}
 
 // Reads the next header integer from text[pos...], skipping blanks and # comments.
 bool next_int(const char* text, std::size_t n, std::size_t& pos, int& value) {

@@ -19,7 +19,9 @@ Result<in_addr> parse_ipv4(const char* host) {
   return a;
 }
 
-UdpLink::~UdpLink() { close(); }
+UdpLink::~UdpLink() {
+  close();
+}
 
 void UdpLink::close() {
   if (fd_ >= 0) ::close(fd_);
@@ -73,7 +75,8 @@ Result<std::size_t> UdpLink::receive_wait(std::span<std::uint8_t> buf, int timeo
   if (fd_ < 0) return Error::make(Errc::not_ready, "udp: not open");
   pollfd p{fd_, POLLIN, 0};
   const int r = ::poll(&p, 1, timeout_ms);
-  if (r < 0 && errno != EINTR) return Error::make(Errc::io_error, "udp: poll: %s", std::strerror(errno));
+  if (r < 0 && errno != EINTR)
+    return Error::make(Errc::io_error, "udp: poll: %s", std::strerror(errno));
   if (r <= 0) return std::size_t{0};
   return receive(buf);
 }

@@ -45,7 +45,8 @@ Result<TmPacket> decode_tm(std::span<const std::uint8_t> datagram) {
   if (h.version != 0 || h.type != wire::PacketType::telemetry || !h.secondary_header)
     return Error::make(Errc::parse_error, "telemetry: primary header is not a TM packet");
   if (wire::packet_bytes(h) != size)
-    return Error::make(Errc::parse_error, "telemetry: length field says %zu bytes, datagram has %zu",
+    return Error::make(Errc::parse_error,
+                       "telemetry: length field says %zu bytes, datagram has %zu",
                        wire::packet_bytes(h), size);
   const std::uint16_t crc =
       static_cast<std::uint16_t>((datagram[size - 2] << 8) | datagram[size - 1]);

@@ -14,7 +14,9 @@
 namespace {
 
 volatile std::sig_atomic_t g_stop = 0;
-void on_signal(int) { g_stop = 1; }
+void on_signal(int) {
+  g_stop = 1;
+}
 
 int usage() {
   std::fprintf(stderr, "usage: petra-fsw --config FILE\n");

@@ -65,7 +65,8 @@ void add_cmd(CLI::App& app, Outcome& outcome) {
       command->counter = *next;
     }
     std::vector<std::uint8_t> packet(cmd::kMaxCommandBytes);
-    auto n = cmd::encode_command_packet(*command, static_cast<std::uint16_t>(command->counter & 0x3FFF), *key, packet);
+    auto n = cmd::encode_command_packet(
+        *command, static_cast<std::uint16_t>(command->counter & 0x3FFF), *key, packet);
     if (!n) {
       outcome.exit_code = fail("cmd", n.error().message);
       return;

@@ -21,7 +21,8 @@ std::string slurp(const std::string& path) {
 }  // namespace
 
 void add_icd(CLI::App& app, Outcome& outcome) {
-  auto* sub = app.add_subcommand("icd", "Regenerate (or --check) docs/icd.md packets and docs/petra.xtce.xml");
+  auto* sub = app.add_subcommand(
+      "icd", "Regenerate (or --check) docs/icd.md packets and docs/petra.xtce.xml");
   static std::string docs = "docs";
   static bool check = false;
   sub->add_option("--docs", docs, "docs folder")->capture_default_str();
@@ -38,7 +39,8 @@ void add_icd(CLI::App& app, Outcome& outcome) {
       if (!md_ok) std::fprintf(stderr, "petra icd: %s is out of date\n", md_path.c_str());
       if (!xtce_ok) std::fprintf(stderr, "petra icd: %s is out of date\n", xtce_path.c_str());
       outcome.exit_code = md_ok && xtce_ok ? 0 : 1;
-      if (outcome.exit_code == 0) std::printf("%s and %s match the packet definitions\n", md_path.c_str(), xtce_path.c_str());
+      if (outcome.exit_code == 0)
+        std::printf("%s and %s match the packet definitions\n", md_path.c_str(), xtce_path.c_str());
       return;
     }
     std::ofstream(md_path, std::ios::trunc) << new_md;

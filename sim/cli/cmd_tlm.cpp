@@ -28,7 +28,8 @@ void add_tlm(CLI::App& app, Outcome& outcome) {
   sub->add_option("--port", port, "telemetry port")->capture_default_str();
   sub->add_flag("--follow,-f", follow, "keep receiving until interrupted");
   sub->add_flag("--json", json, "one JSON object per line");
-  sub->add_option("--timeout-ms", timeout_ms, "without --follow: stop after this long without packets")
+  sub->add_option("--timeout-ms", timeout_ms,
+                  "without --follow: stop after this long without packets")
       ->capture_default_str();
   sub->add_option("--count", count, "stop after this many packets");
   sub->add_flag("--no-product-chunks", quiet_products, "do not print PRODUCT chunks");
@@ -50,7 +51,8 @@ void add_tlm(CLI::App& app, Outcome& outcome) {
         return;
       }
       if (*n == 0) {
-        if (!follow && std::chrono::steady_clock::now() - idle_since > std::chrono::milliseconds(timeout_ms))
+        if (!follow &&
+            std::chrono::steady_clock::now() - idle_since > std::chrono::milliseconds(timeout_ms))
           return;
         continue;
       }

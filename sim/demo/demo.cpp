@@ -55,21 +55,28 @@ Result<Scene> load_scene(const fs::path& dir) {
   Scene s;
   auto l = find_image(dir, "left");
   auto r = find_image(dir, "right");
-  if (!l || !r) return Error::make(Errc::missing_field, "scene %s: needs left and right images (.png/.pgm/.ppm)", dir.c_str());
+  if (!l || !r)
+    return Error::make(Errc::missing_field,
+                       "scene %s: needs left and right images (.png/.pgm/.ppm)", dir.c_str());
   s.left = *l;
   s.right = *r;
   if (fs::exists(dir / "calib.json")) s.calib = dir / "calib.json";
   const std::string truth = read_all(dir / "truth.json");
-  if (truth.empty()) return Error::make(Errc::missing_field, "scene %s: truth.json with roi and planes needed", dir.c_str());
+  if (truth.empty())
+    return Error::make(Errc::missing_field, "scene %s: truth.json with roi and planes needed",
+                       dir.c_str());
   std::vector<json::Token> tokens(4096);
   auto doc = json::Document::parse(truth, tokens);
   if (!doc) return Error::make(Errc::parse_error, "truth.json: %s", doc.error().message);
   const std::uint32_t roi = doc->find(0, "roi");
-  if (roi == 0 || doc->token(roi).count != 4) return Error::make(Errc::missing_field, "truth.json: roi [x,y,w,h] missing");
+  if (roi == 0 || doc->token(roi).count != 4)
+    return Error::make(Errc::missing_field, "truth.json: roi [x,y,w,h] missing");
   int v[4];
-  for (std::uint32_t i = 0; i < 4; ++i) v[i] = static_cast<int>(doc->token(doc->element(roi, i)).number);
+  for (std::uint32_t i = 0; i < 4; ++i)
+    v[i] = static_cast<int>(doc->token(doc->element(roi, i)).number);
   s.roi = Rect{v[0], v[1], v[2], v[3]};
-  if (const std::uint32_t c = doc->find(0, "planes"); c != 0 && doc->token(c).type == json::Type::number)
+  if (const std::uint32_t c = doc->find(0, "planes");
+      c != 0 && doc->token(c).type == json::Type::number)
     s.planes = static_cast<int>(doc->token(c).number);
   if (const std::uint32_t k = doc->find(0, "click"); k != 0 && doc->token(k).count == 2) {
     s.has_click = true;
@@ -82,7 +89,8 @@ Result<Scene> load_scene(const fs::path& dir) {
 std::string find_fsw(const Options& o) {
   if (!o.fsw_binary.empty()) return o.fsw_binary;
   const fs::path self = fs::canonical("/proc/self/exe");
-  for (const fs::path& p : {self.parent_path().parent_path() / "fsw" / "petra-fsw", self.parent_path() / "petra-fsw"})
+  for (const fs::path& p :
+       {self.parent_path().parent_path() / "fsw" / "petra-fsw", self.parent_path() / "petra-fsw"})
     if (fs::exists(p)) return p.string();
   return "petra-fsw";
 }
@@ -99,7 +107,8 @@ class Session {
   bool start(const std::string& fsw, const fs::path& config, const fs::path& log) {
     pid_ = fork();
     if (pid_ == 0) {
-      const std::string cmd = "exec '" + fsw + "' --config '" + config.string() + "' 2>'" + log.string() + "'";
+      const std::string cmd =
+          "exec '" + fsw + "' --config '" + config.string() + "' 2>'" + log.string() + "'";
       execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
       _exit(127);
     }
@@ -131,11 +140,12 @@ int run(const Options& o, std::FILE* out) {
   fs::path scene_dir = o.scene_dir;
   if (scene_dir.empty()) {
     scene_dir = dir / "scene";
-    const std::string sim = "'" + o.self_binary + "' sim scene --seed " + std::to_string(o.seed) + " --out '" +
-                            scene_dir.string() + "' >/dev/null 2>&1";
+    const std::string sim = "'" + o.self_binary + "' sim scene --seed " + std::to_string(o.seed) +
+                            " --out '" + scene_dir.string() + "' >/dev/null 2>&1";
     if (std::system(sim.c_str()) != 0)
-      return fail("no scene: the scene simulator (`petra sim scene`) is not in this build; give a scene "
-                  "folder with --scene DIR (left.png, right.png, calib.json, truth.json)");
+      return fail(
+          "no scene: the scene simulator (`petra sim scene`) is not in this build; give a scene "
+          "folder with --scene DIR (left.png, right.png, calib.json, truth.json)");
     std::fprintf(out, "1. scene: simulated with seed %d in %s\n", o.seed, scene_dir.c_str());
   } else {
     std::fprintf(out, "1. scene: %s\n", scene_dir.c_str());
@@ -174,12 +184,14 @@ int run(const Options& o, std::FILE* out) {
   }
   Session fsw;
   const std::string fsw_bin = find_fsw(o);
-  if (!fsw.start(fsw_bin, dir / "fsw.json", dir / "fsw.log")) return fail("cannot start " + fsw_bin);
+  if (!fsw.start(fsw_bin, dir / "fsw.json", dir / "fsw.log"))
+    return fail("cannot start " + fsw_bin);
   std::fprintf(out, "2. petra-fsw started (%s): commands on udp %u, telemetry on udp %u, log %s\n",
                fsw_bin.c_str(), cmd_port, tlm_port, (dir / "fsw.log").c_str());
 
   hal::UdpLink up;
-  if (!up.open("127.0.0.1", 0) || !up.set_peer("127.0.0.1", cmd_port)) return fail("cannot open the uplink");
+  if (!up.open("127.0.0.1", 0) || !up.set_peer("127.0.0.1", cmd_port))
+    return fail("cannot open the uplink");
   std::uint32_t counter = 0;
   auto send = [&](cmd::Command c) {
     c.counter = ++counter;
@@ -217,12 +229,15 @@ int run(const Options& o, std::FILE* out) {
       } else if (const auto* gp = std::get_if<tlm::GroundPlane>(&p->body)) {
         ground = *gp;
       } else if (const auto* c = std::get_if<tlm::Product>(&p->body)) {
-        if (auto done = assembler.add(*c)) pictures.push_back(ground::write_product(*done, dir.string()));
+        if (auto done = assembler.add(*c))
+          pictures.push_back(ground::write_product(*done, dir.string()));
       }
     }
   };
   for (int i = 0; i < 50 && !booted && fsw.alive(); ++i) pump(100);
-  if (!booted) return fail("petra-fsw did not boot; see " + (dir / "fsw.log").string() + ": " + read_all(dir / "fsw.log"));
+  if (!booted)
+    return fail("petra-fsw did not boot; see " + (dir / "fsw.log").string() + ": " +
+                read_all(dir / "fsw.log"));
 
   // 3. The operator's commands.
   cmd::SelectRoiArgs sel;
@@ -234,35 +249,44 @@ int run(const Options& o, std::FILE* out) {
   sel.has_click = scene->has_click ? 1 : 0;
   sel.click_u_px = static_cast<std::uint16_t>(scene->click_u);
   sel.click_v_px = static_cast<std::uint16_t>(scene->click_v);
-  std::fprintf(out, "3. sent SELECT_ROI x %d, y %d, %d x %d px, c = %d (signed, counter %u)\n", scene->roi.x,
-               scene->roi.y, scene->roi.w, scene->roi.h, scene->planes, counter + 1);
+  std::fprintf(out, "3. sent SELECT_ROI x %d, y %d, %d x %d px, c = %d (signed, counter %u)\n",
+               scene->roi.x, scene->roi.y, scene->roi.w, scene->roi.h, scene->planes, counter + 1);
   const std::uint32_t sel_counter = send({cmd::FunctionCode::SELECT_ROI, 0, sel});
   const std::uint32_t eval_counter = send({cmd::FunctionCode::EVALUATE, 0, cmd::EvaluateArgs{1}});
   std::fprintf(out, "4. sent EVALUATE (take a new pair first); waiting for the grind planes...\n");
   const auto deadline = Clock::now() + std::chrono::seconds(o.timeout_s);
   while (!final_ack.count(eval_counter) && Clock::now() < deadline && fsw.alive()) pump(200);
-  if (final_ack.count(sel_counter) && final_ack[sel_counter].stage != static_cast<std::uint8_t>(AckStage::COMPLETED))
-    return fail(std::string("SELECT_ROI refused: ") + reason_name(static_cast<Reason>(final_ack[sel_counter].reason)));
-  if (!final_ack.count(eval_counter)) return fail("no answer to EVALUATE within " + std::to_string(o.timeout_s) + " s");
+  if (final_ack.count(sel_counter) &&
+      final_ack[sel_counter].stage != static_cast<std::uint8_t>(AckStage::COMPLETED))
+    return fail(std::string("SELECT_ROI refused: ") +
+                reason_name(static_cast<Reason>(final_ack[sel_counter].reason)));
+  if (!final_ack.count(eval_counter))
+    return fail("no answer to EVALUATE within " + std::to_string(o.timeout_s) + " s");
   const tlm::Ack ack = final_ack[eval_counter];
   if (ack.stage != static_cast<std::uint8_t>(AckStage::COMPLETED)) {
     const Reason why = static_cast<Reason>(ack.reason);
     return fail(std::string("EVALUATE ") + ack_stage_name(static_cast<AckStage>(ack.stage)) + ": " +
-                reason_name(why) + (why == Reason::NO_PIPELINE ? " (this build has no evaluation pipeline yet)" : ""));
+                reason_name(why) +
+                (why == Reason::NO_PIPELINE ? " (this build has no evaluation pipeline yet)" : ""));
   }
   pump(3000);  // the products follow the planes
 
   // 5. What came back.
-  std::fprintf(out, "5. evaluation %u: %u of %u grind planes in %u ms (%u dense points, %u after filtering)\n",
-               result ? result->eval_id : 0, result ? result->planes_found : 0, result ? result->planes_requested : 0,
-               result ? result->total_ms : 0, result ? result->dense_points : 0, result ? result->filtered_points : 0);
+  std::fprintf(
+      out,
+      "5. evaluation %u: %u of %u grind planes in %u ms (%u dense points, %u after filtering)\n",
+      result ? result->eval_id : 0, result ? result->planes_found : 0,
+      result ? result->planes_requested : 0, result ? result->total_ms : 0,
+      result ? result->dense_points : 0, result ? result->filtered_points : 0);
   for (const auto& p : planes)
-    std::fprintf(out, "   plane %u: normal (%.3f, %.3f, %.3f), centroid (%.1f, %.1f, %.1f) mm, area %.0f mm2, flatness %.2f mm\n",
+    std::fprintf(out,
+                 "   plane %u: normal (%.3f, %.3f, %.3f), centroid (%.1f, %.1f, %.1f) mm, area "
+                 "%.0f mm2, flatness %.2f mm\n",
                  p.rank, p.normal[0], p.normal[1], p.normal[2], p.centroid_mm[0], p.centroid_mm[1],
                  p.centroid_mm[2], p.area_mm2, p.flatness_rms_mm);
   if (ground)
-    std::fprintf(out, "   ground: normal (%.3f, %.3f, %.3f), d %.1f mm\n", ground->normal[0], ground->normal[1],
-                 ground->normal[2], ground->d_mm);
+    std::fprintf(out, "   ground: normal (%.3f, %.3f, %.3f), d %.1f mm\n", ground->normal[0],
+                 ground->normal[1], ground->normal[2], ground->d_mm);
   std::fprintf(out, "6. pictures and products in %s:\n", dir.c_str());
   for (const auto& p : pictures) std::fprintf(out, "   %s\n", p.c_str());
   fsw.stop();

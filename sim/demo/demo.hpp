@@ -12,11 +12,11 @@ namespace petra::demo {
 
 struct Options {
   std::string out_dir = "petra-demo";
-  std::string scene_dir;   // left.*, right.*, calib.json, truth.json; empty: run the simulator
+  std::string scene_dir;  // left.*, right.*, calib.json, truth.json; empty: run the simulator
   int seed = 1;
-  std::string fsw_binary;  // empty: beside the petra executable, then PATH
-  std::string self_binary; // the petra executable (for `petra sim scene`)
-  int timeout_s = 600;     // evaluation time limit
+  std::string fsw_binary;   // empty: beside the petra executable, then PATH
+  std::string self_binary;  // the petra executable (for `petra sim scene`)
+  int timeout_s = 600;      // evaluation time limit
 };
 
 // Returns the exit status (0: planes received) and prints progress to out.

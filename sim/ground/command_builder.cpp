@@ -29,7 +29,9 @@ std::string command_usage() {
   std::ostringstream o;
   for (const cmd::CommandDesc& c : cmd::command_table()) {
     o << "  " << c.name;
-    for (const auto& f : c.fields) o << " " << f.name << "=<" << f.min << ".." << f.max << (f.unit[0] ? std::string(" ") + f.unit : "") << ">";
+    for (const auto& f : c.fields)
+      o << " " << f.name << "=<" << f.min << ".." << f.max
+        << (f.unit[0] ? std::string(" ") + f.unit : "") << ">";
     o << "\n      " << c.description << "\n";
   }
   return o.str();
@@ -41,7 +43,8 @@ Result<cmd::Command> build_command(const std::string& name, const std::vector<st
                  [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
   const cmd::CommandDesc* desc = cmd::find_command(upper);
   if (desc == nullptr)
-    return Error::make(Errc::invalid_argument, "unknown command '%s' (see petra cmd --help)", name.c_str());
+    return Error::make(Errc::invalid_argument, "unknown command '%s' (see petra cmd --help)",
+                       name.c_str());
   cmd::Command c;
   c.code = static_cast<cmd::FunctionCode>(desc->code);
   c.args = cmd::default_args(c.code);
@@ -49,7 +52,8 @@ Result<cmd::Command> build_command(const std::string& name, const std::vector<st
   for (const std::string& w : words) {
     const auto eq = w.find('=');
     if (eq == std::string::npos)
-      return Error::make(Errc::invalid_argument, "%s: '%s' is not field=value", desc->name, w.c_str());
+      return Error::make(Errc::invalid_argument, "%s: '%s' is not field=value", desc->name,
+                         w.c_str());
     const std::string key = w.substr(0, eq);
     const std::string value = w.substr(eq + 1);
     const wire::FieldDesc* f = nullptr;
@@ -77,7 +81,8 @@ Result<cmd::Command> build_command(const std::string& name, const std::vector<st
         },
         c.args);
   }
-  if (auto* roi = std::get_if<cmd::SelectRoiArgs>(&c.args); roi != nullptr && click) roi->has_click = 1;
+  if (auto* roi = std::get_if<cmd::SelectRoiArgs>(&c.args); roi != nullptr && click)
+    roi->has_click = 1;
   return c;
 }
 
@@ -89,8 +94,8 @@ Result<std::uint32_t> next_counter(const std::string& path) {
       return Error::make(Errc::parse_error, "counter file %s: not a number", path.c_str());
   }
   if (last >= 0xFFFFFFFFull)
-    return Error::make(Errc::capacity_exceeded, "counter file %s: counter exhausted; new key needed",
-                       path.c_str());
+    return Error::make(Errc::capacity_exceeded,
+                       "counter file %s: counter exhausted; new key needed", path.c_str());
   const auto next = static_cast<std::uint32_t>(last + 1);
   std::ofstream out(path, std::ios::trunc);
   out << next << "\n";

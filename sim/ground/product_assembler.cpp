@@ -26,7 +26,8 @@ std::optional<Product> ProductAssembler::add(const tlm::Product& c) {
   auto& p = partial_[key];
   if (p.have.size() != c.chunks || p.product.bytes.size() != c.total_bytes) {  // new (or restarted)
     p = Partial{};
-    p.product = Product{c.product, c.format, c.id, c.width, c.height, std::vector<std::uint8_t>(c.total_bytes)};
+    p.product = Product{c.product, c.format, c.id,
+                        c.width,   c.height, std::vector<std::uint8_t>(c.total_bytes)};
     p.have.assign(c.chunks, false);
   }
   const std::size_t at = static_cast<std::size_t>(c.chunk) * PETRA_PRODUCT_DATA_BYTES;
@@ -48,7 +49,8 @@ std::string write_product(const Product& p, const std::string& dir) {
     path += p.format == 1 ? ".pgm" : ".ppm";
     std::ofstream f(path, std::ios::binary);
     f << (p.format == 1 ? "P5" : "P6") << "\n" << p.width << " " << p.height << "\n255\n";
-    f.write(reinterpret_cast<const char*>(p.bytes.data()), static_cast<std::streamsize>(p.bytes.size()));
+    f.write(reinterpret_cast<const char*>(p.bytes.data()),
+            static_cast<std::streamsize>(p.bytes.size()));
   } else {
     path += ".xyz";
     std::ofstream f(path);

@@ -34,7 +34,8 @@ std::string fc_name(long v) {
 }
 
 std::string kind_name(const std::string& kind, long v) {
-  if (kind == "mode") return v >= 0 && v < kModeCount ? mode_name(static_cast<Mode>(v)) : std::to_string(v);
+  if (kind == "mode")
+    return v >= 0 && v < kModeCount ? mode_name(static_cast<Mode>(v)) : std::to_string(v);
   if (kind == "reason") return reason_name(static_cast<Reason>(v));
   if (kind == "fc") return fc_name(v);
   if (kind == "errc") return errc_name(static_cast<Errc>(v));
@@ -43,7 +44,8 @@ std::string kind_name(const std::string& kind, long v) {
     return p != nullptr ? p->name : std::to_string(v);
   }
   if (kind == "component") {
-    static const char* names[] = {"UPLINK", "PIPELINE", "PRODUCTS", "HOUSEKEEPING", "DOWNLINK", "WORKER", "ARM"};
+    static const char* names[] = {"UPLINK",   "PIPELINE", "PRODUCTS", "HOUSEKEEPING",
+                                  "DOWNLINK", "WORKER",   "ARM"};
     return v >= 0 && v < 7 ? names[v] : std::to_string(v);
   }
   if (kind == "step") {
@@ -101,21 +103,26 @@ std::string format_line(const tlm::TmPacket& p) {
         } else if constexpr (std::is_same_v<B, tlm::Ack>) {
           o << fc_name(b.function_code) << " counter " << b.counter << " "
             << ack_stage_name(static_cast<AckStage>(b.stage));
-          if (b.reason != 0) o << " " << reason_name(static_cast<Reason>(b.reason)) << " (detail " << b.detail << ")";
+          if (b.reason != 0)
+            o << " " << reason_name(static_cast<Reason>(b.reason)) << " (detail " << b.detail
+              << ")";
         } else if constexpr (std::is_same_v<B, tlm::ParamValue>) {
           const ParamDesc* d = find_param(b.param_id);
-          o << (d != nullptr ? d->name : "?") << " = " << number(b.value) << " " << (d != nullptr ? d->unit : "");
+          o << (d != nullptr ? d->name : "?") << " = " << number(b.value) << " "
+            << (d != nullptr ? d->unit : "");
         } else if constexpr (std::is_same_v<B, tlm::Product>) {
-          o << "product " << unsigned{b.product} << " id " << b.id << " chunk " << b.chunk + 1 << "/"
-            << b.chunks << " (" << b.total_bytes << " bytes, " << b.width << "x" << b.height << ")";
+          o << "product " << unsigned{b.product} << " id " << b.id << " chunk " << b.chunk + 1
+            << "/" << b.chunks << " (" << b.total_bytes << " bytes, " << b.width << "x" << b.height
+            << ")";
         } else if constexpr (std::is_same_v<B, tlm::GrindPlane>) {
           char buf[256];
-          std::snprintf(buf, sizeof(buf),
-                        "eval %u rank %u/%u normal (%.4f, %.4f, %.4f) centroid (%.2f, %.2f, %.2f) mm "
-                        "area %.1f mm2 flatness %.3f mm, %u triangles",
-                        b.eval_id, b.rank, b.plane_count, b.normal[0], b.normal[1], b.normal[2],
-                        b.centroid_mm[0], b.centroid_mm[1], b.centroid_mm[2], b.area_mm2,
-                        b.flatness_rms_mm, b.triangles);
+          std::snprintf(
+              buf, sizeof(buf),
+              "eval %u rank %u/%u normal (%.4f, %.4f, %.4f) centroid (%.2f, %.2f, %.2f) mm "
+              "area %.1f mm2 flatness %.3f mm, %u triangles",
+              b.eval_id, b.rank, b.plane_count, b.normal[0], b.normal[1], b.normal[2],
+              b.centroid_mm[0], b.centroid_mm[1], b.centroid_mm[2], b.area_mm2, b.flatness_rms_mm,
+              b.triangles);
           o << buf;
         } else {
           bool first = true;
@@ -143,10 +150,10 @@ std::string format_line(const tlm::TmPacket& p) {
 
 std::string format_json(const tlm::TmPacket& p) {
   std::ostringstream o;
-  o << "{\"apid\":" << p.header.primary.apid << ",\"packet\":\"" << packet_name(p.header.primary.apid)
-    << "\",\"seq\":" << p.header.primary.seq_count
+  o << "{\"apid\":" << p.header.primary.apid << ",\"packet\":\""
+    << packet_name(p.header.primary.apid) << "\",\"seq\":" << p.header.primary.seq_count
     << ",\"seq_flags\":" << static_cast<unsigned>(p.header.primary.seq_flags)
-    << ",\"time\":" << p.header.time.seconds << "." ;
+    << ",\"time\":" << p.header.time.seconds << ".";
   char us[8];
   std::snprintf(us, sizeof(us), "%06u", p.header.time.micros);
   o << us << ",\"fields\":{";

@@ -27,10 +27,10 @@ std::string hex(unsigned v, int digits) {
 
 std::string modes_of(std::uint32_t mask) {
   std::string s;
-#define PETRA_MODE_LIST(NAME, value, desc)           \
-  if (mask & (1u << value)) {                        \
-    if (!s.empty()) s += ", ";                       \
-    s += #NAME;                                      \
+#define PETRA_MODE_LIST(NAME, value, desc) \
+  if (mask & (1u << value)) {              \
+    if (!s.empty()) s += ", ";             \
+    s += #NAME;                            \
   }
   PETRA_MODES(PETRA_MODE_LIST)
 #undef PETRA_MODE_LIST
@@ -50,7 +50,8 @@ std::string type_cell(const wire::FieldDesc& f) {
   return t;
 }
 
-void field_table(std::ostringstream& o, std::span<const wire::FieldDesc> fields, std::size_t offset) {
+void field_table(std::ostringstream& o, std::span<const wire::FieldDesc> fields,
+                 std::size_t offset) {
   if (fields.empty()) {
     o << "No arguments.\n\n";
     return;
@@ -77,8 +78,8 @@ std::string markdown_section() {
     << "chunks 1 first, 0 continuation, 2 last), sequence count (14 bits, per APID, wrapping),\n"
     << "data length (16 bits: packet bytes - 7). CRC-16-CCITT: polynomial 0x1021, initial 0xFFFF,\n"
     << "no reflection, no final XOR (check value of \"123456789\": 0x29B1).\n\n"
-    << "Telecommand packet (APID " << hex(cmd::kCommandApid, 3) << ", "
-    << cmd::kMinCommandBytes << ".." << cmd::kMaxCommandBytes << " bytes):\n\n"
+    << "Telecommand packet (APID " << hex(cmd::kCommandApid, 3) << ", " << cmd::kMinCommandBytes
+    << ".." << cmd::kMaxCommandBytes << " bytes):\n\n"
     << "| offset | bytes | field |\n|---|---|---|\n"
     << "| 0 | 6 | primary header |\n| 6 | 1 | function code |\n| 7 | 1 | spare, 0 |\n"
     << "| 8 | 4 | command counter (u32): must exceed the last authenticated one |\n"
@@ -120,7 +121,8 @@ std::string markdown_section() {
 
   o << "### Telemetry packets\n\n";
   for (const tlm::TmDesc& t : tlm::telemetry_table()) {
-    o << "#### " << t.name << " (APID " << hex(t.apid, 3) << ")\n\n" << sentence(t.description) << ". Packet "
+    o << "#### " << t.name << " (APID " << hex(t.apid, 3) << ")\n\n"
+      << sentence(t.description) << ". Packet "
       << tlm::kTmHeaderBytes + t.payload_bytes + tlm::kTmCrcBytes << " bytes.\n\n";
     field_table(o, t.fields, tlm::kTmHeaderBytes);
   }
@@ -129,15 +131,17 @@ std::string markdown_section() {
   for (const EventDesc& e : kEventTable)
     o << "| " << hex(e.id, 3) << " | " << e.name << " | " << severity_name(e.severity) << " | "
       << e.text << " |\n";
-  o << "\n`{n}` is argument n; `{n:kind}` is printed by ground tools as the name of a mode, reason,\n"
+  o << "\n`{n}` is argument n; `{n:kind}` is printed by ground tools as the name of a mode, "
+       "reason,\n"
     << "function code (fc), error code (errc), component, parameter or pipeline step.\n\n";
 
   o << "### Parameters (SET_PARAM, GET_PARAM, DUMP_PARAMS)\n\n"
-    << "| id | parameter | unit | range | default | whole | meaning |\n|---|---|---|---|---|---|---|\n";
+    << "| id | parameter | unit | range | default | whole | meaning "
+       "|\n|---|---|---|---|---|---|---|\n";
   for (const ParamDesc& p : param_table())
     o << "| " << p.id << " | " << p.name << " | " << p.unit << " | " << num(p.min) << " .. "
-      << num(p.max) << " | " << num(p.default_value) << " | " << (p.integer ? "yes" : "no")
-      << " | " << p.description << " |\n";
+      << num(p.max) << " | " << num(p.default_value) << " | " << (p.integer ? "yes" : "no") << " | "
+      << p.description << " |\n";
   o << "\n" << kEndMarker << "\n";
   return o.str();
 }
@@ -167,8 +171,8 @@ void xtce_type(std::ostringstream& o, const std::string& name, const wire::Field
   const bool is_float = f.type == wire::FieldType::f32 || f.type == wire::FieldType::f64;
   const bool is_signed = f.type == wire::FieldType::i16 || f.type == wire::FieldType::i32;
   const std::size_t bits = wire::type_bytes(f.type) * 8;
-  const std::string unit = f.unit[0] ? std::string("<xtce:UnitSet><xtce:Unit>") + xml_escape(f.unit) +
-                                           "</xtce:Unit></xtce:UnitSet>"
+  const std::string unit = f.unit[0] ? std::string("<xtce:UnitSet><xtce:Unit>") +
+                                           xml_escape(f.unit) + "</xtce:Unit></xtce:UnitSet>"
                                      : std::string("<xtce:UnitSet/>");
   const std::string scalar = f.count > 1 ? name + "_Element" : name;
   if (is_float) {
@@ -183,15 +187,17 @@ void xtce_type(std::ostringstream& o, const std::string& name, const wire::Field
   }
   if (ranges) {
     if (is_float)
-      o << "<xtce:ValidRange minInclusive=\"" << num(f.min) << "\" maxInclusive=\"" << num(f.max) << "\"/>";
+      o << "<xtce:ValidRange minInclusive=\"" << num(f.min) << "\" maxInclusive=\"" << num(f.max)
+        << "\"/>";
     else
-      o << "<xtce:ValidRangeSet><xtce:ValidRange minInclusive=\"" << num(f.min) << "\" maxInclusive=\""
-        << num(f.max) << "\"/></xtce:ValidRangeSet>";
+      o << "<xtce:ValidRangeSet><xtce:ValidRange minInclusive=\"" << num(f.min)
+        << "\" maxInclusive=\"" << num(f.max) << "\"/></xtce:ValidRangeSet>";
   }
   o << "</xtce:" << (is_float ? "Float" : "Integer") << flavour << "Type>\n";
   if (f.count > 1)
     o << "      <xtce:Array" << flavour << "Type name=\"" << name << "\" arrayTypeRef=\"" << scalar
-      << "\"><xtce:DimensionList><xtce:Dimension><xtce:StartingIndex><xtce:FixedValue>0</xtce:FixedValue>"
+      << "\"><xtce:DimensionList><xtce:Dimension><xtce:StartingIndex><xtce:FixedValue>0</"
+         "xtce:FixedValue>"
       << "</xtce:StartingIndex><xtce:EndingIndex><xtce:FixedValue>" << f.count - 1
       << "</xtce:FixedValue></xtce:EndingIndex></xtce:Dimension></xtce:DimensionList></xtce:Array"
       << flavour << "Type>\n";
@@ -201,7 +207,9 @@ wire::FieldDesc header_field(const char* name, std::size_t bits) {
   // Integer fields of the CCSDS header, described with the widest type that holds them.
   wire::FieldDesc f;
   f.name = name;
-  f.type = bits <= 8 ? wire::FieldType::u8 : bits <= 16 ? wire::FieldType::u16 : wire::FieldType::u32;
+  f.type = bits <= 8    ? wire::FieldType::u8
+           : bits <= 16 ? wire::FieldType::u16
+                        : wire::FieldType::u32;
   return f;
 }
 
@@ -209,8 +217,9 @@ void header_types(std::ostringstream& o, const char* flavour) {
   const struct {
     const char* name;
     int bits;
-  } h[] = {{"CCSDS_Version", 3},  {"CCSDS_Type", 1},     {"CCSDS_SecHdrFlag", 1}, {"CCSDS_APID", 11},
-           {"CCSDS_SeqFlags", 2}, {"CCSDS_SeqCount", 14}, {"CCSDS_Length", 16}};
+  } h[] = {{"CCSDS_Version", 3}, {"CCSDS_Type", 1},     {"CCSDS_SecHdrFlag", 1},
+           {"CCSDS_APID", 11},   {"CCSDS_SeqFlags", 2}, {"CCSDS_SeqCount", 14},
+           {"CCSDS_Length", 16}};
   for (const auto& x : h)
     o << "      <xtce:Integer" << flavour << "Type name=\"" << x.name << "_Type\" signed=\"false\">"
       << "<xtce:UnitSet/><xtce:IntegerDataEncoding sizeInBits=\"" << x.bits
@@ -228,9 +237,11 @@ std::string xtce_document() {
     << "  <xtce:TelemetryMetaData>\n    <xtce:ParameterTypeSet>\n";
   header_types(o, "Parameter");
   o << "      <xtce:IntegerParameterType name=\"U32_Type\" signed=\"false\"><xtce:UnitSet/>"
-       "<xtce:IntegerDataEncoding sizeInBits=\"32\" encoding=\"unsigned\"/></xtce:IntegerParameterType>\n"
+       "<xtce:IntegerDataEncoding sizeInBits=\"32\" "
+       "encoding=\"unsigned\"/></xtce:IntegerParameterType>\n"
     << "      <xtce:IntegerParameterType name=\"U16_Type\" signed=\"false\"><xtce:UnitSet/>"
-       "<xtce:IntegerDataEncoding sizeInBits=\"16\" encoding=\"unsigned\"/></xtce:IntegerParameterType>\n";
+       "<xtce:IntegerDataEncoding sizeInBits=\"16\" "
+       "encoding=\"unsigned\"/></xtce:IntegerParameterType>\n";
   for (const tlm::TmDesc& t : tlm::telemetry_table())
     for (const wire::FieldDesc& f : t.fields)
       xtce_type(o, std::string(t.name) + "." + f.name + "_Type", f, "Parameter", false);
@@ -248,8 +259,9 @@ std::string xtce_document() {
         << "\"/>\n";
   o << "    </xtce:ParameterSet>\n    <xtce:ContainerSet>\n"
     << "      <xtce:SequenceContainer name=\"CCSDS_TM\" abstract=\"true\"><xtce:EntryList>\n";
-  for (const char* p : {"CCSDS_Version", "CCSDS_Type", "CCSDS_SecHdrFlag", "CCSDS_APID",
-                        "CCSDS_SeqFlags", "CCSDS_SeqCount", "CCSDS_Length", "TM_Seconds", "TM_Micros"})
+  for (const char* p :
+       {"CCSDS_Version", "CCSDS_Type", "CCSDS_SecHdrFlag", "CCSDS_APID", "CCSDS_SeqFlags",
+        "CCSDS_SeqCount", "CCSDS_Length", "TM_Seconds", "TM_Micros"})
     o << "        <xtce:ParameterRefEntry parameterRef=\"" << p << "\"/>\n";
   o << "      </xtce:EntryList></xtce:SequenceContainer>\n";
   for (const tlm::TmDesc& t : tlm::telemetry_table()) {
@@ -258,22 +270,28 @@ std::string xtce_document() {
     for (const wire::FieldDesc& f : t.fields)
       o << "        <xtce:ParameterRefEntry parameterRef=\"" << t.name << "." << f.name << "\"/>\n";
     o << "        <xtce:ParameterRefEntry parameterRef=\"TM_CRC\"/>\n"
-      << "      </xtce:EntryList><xtce:BaseContainer containerRef=\"CCSDS_TM\"><xtce:RestrictionCriteria>"
+      << "      </xtce:EntryList><xtce:BaseContainer "
+         "containerRef=\"CCSDS_TM\"><xtce:RestrictionCriteria>"
       << "<xtce:ComparisonList><xtce:Comparison parameterRef=\"CCSDS_APID\" value=\"" << t.apid
-      << "\"/></xtce:ComparisonList></xtce:RestrictionCriteria></xtce:BaseContainer></xtce:SequenceContainer>\n";
+      << "\"/></xtce:ComparisonList></xtce:RestrictionCriteria></xtce:BaseContainer></"
+         "xtce:SequenceContainer>\n";
   }
   o << "    </xtce:ContainerSet>\n  </xtce:TelemetryMetaData>\n"
     << "  <xtce:CommandMetaData>\n    <xtce:ArgumentTypeSet>\n";
   header_types(o, "Argument");
   o << "      <xtce:IntegerArgumentType name=\"FunctionCode_Type\" signed=\"false\"><xtce:UnitSet/>"
-       "<xtce:IntegerDataEncoding sizeInBits=\"8\" encoding=\"unsigned\"/></xtce:IntegerArgumentType>\n"
+       "<xtce:IntegerDataEncoding sizeInBits=\"8\" "
+       "encoding=\"unsigned\"/></xtce:IntegerArgumentType>\n"
     << "      <xtce:IntegerArgumentType name=\"Counter_Type\" signed=\"false\"><xtce:UnitSet/>"
-       "<xtce:IntegerDataEncoding sizeInBits=\"32\" encoding=\"unsigned\"/></xtce:IntegerArgumentType>\n"
+       "<xtce:IntegerDataEncoding sizeInBits=\"32\" "
+       "encoding=\"unsigned\"/></xtce:IntegerArgumentType>\n"
     << "      <xtce:BinaryArgumentType name=\"HMAC_Type\"><xtce:UnitSet/><xtce:BinaryDataEncoding>"
-       "<xtce:SizeInBits><xtce:FixedValue>256</xtce:FixedValue></xtce:SizeInBits></xtce:BinaryDataEncoding>"
+       "<xtce:SizeInBits><xtce:FixedValue>256</xtce:FixedValue></xtce:SizeInBits></"
+       "xtce:BinaryDataEncoding>"
        "</xtce:BinaryArgumentType>\n"
     << "      <xtce:IntegerArgumentType name=\"CRC_Type\" signed=\"false\"><xtce:UnitSet/>"
-       "<xtce:IntegerDataEncoding sizeInBits=\"16\" encoding=\"unsigned\"/></xtce:IntegerArgumentType>\n";
+       "<xtce:IntegerDataEncoding sizeInBits=\"16\" "
+       "encoding=\"unsigned\"/></xtce:IntegerArgumentType>\n";
   for (const cmd::CommandDesc& c : cmd::command_table())
     for (const wire::FieldDesc& f : c.fields)
       xtce_type(o, std::string(c.name) + "." + f.name + "_Type", f, "Argument", true);
@@ -284,7 +302,8 @@ std::string xtce_document() {
     o << "        <xtce:Argument name=\"" << p << "\" argumentTypeRef=\"" << p << "_Type\"/>\n";
   o << "        <xtce:Argument name=\"FunctionCode\" argumentTypeRef=\"FunctionCode_Type\"/>\n"
     << "        <xtce:Argument name=\"Counter\" argumentTypeRef=\"Counter_Type\"/>\n"
-    << "      </xtce:ArgumentList><xtce:CommandContainer name=\"CCSDS_TC_Header\"><xtce:EntryList>\n";
+    << "      </xtce:ArgumentList><xtce:CommandContainer "
+       "name=\"CCSDS_TC_Header\"><xtce:EntryList>\n";
   for (const char* p : {"CCSDS_Version", "CCSDS_Type", "CCSDS_SecHdrFlag", "CCSDS_APID",
                         "CCSDS_SeqFlags", "CCSDS_SeqCount", "CCSDS_Length"})
     o << "        <xtce:ArgumentRefEntry argumentRef=\"" << p << "\"/>\n";
@@ -298,11 +317,13 @@ std::string xtce_document() {
       << "<xtce:ArgumentAssignmentList>"
       << "<xtce:ArgumentAssignment argumentName=\"CCSDS_Type\" argumentValue=\"1\"/>"
       << "<xtce:ArgumentAssignment argumentName=\"CCSDS_SecHdrFlag\" argumentValue=\"1\"/>"
-      << "<xtce:ArgumentAssignment argumentName=\"CCSDS_APID\" argumentValue=\"" << cmd::kCommandApid << "\"/>"
+      << "<xtce:ArgumentAssignment argumentName=\"CCSDS_APID\" argumentValue=\""
+      << cmd::kCommandApid << "\"/>"
       << "<xtce:ArgumentAssignment argumentName=\"CCSDS_SeqFlags\" argumentValue=\"3\"/>"
       << "<xtce:ArgumentAssignment argumentName=\"CCSDS_Length\" argumentValue=\""
       << cmd::kTcOverheadBytes + c.arg_bytes - 7 << "\"/>"
-      << "<xtce:ArgumentAssignment argumentName=\"FunctionCode\" argumentValue=\"" << unsigned{c.code}
+      << "<xtce:ArgumentAssignment argumentName=\"FunctionCode\" argumentValue=\""
+      << unsigned{c.code}
       << "\"/></xtce:ArgumentAssignmentList></xtce:BaseMetaCommand>\n        <xtce:ArgumentList>\n";
     for (const wire::FieldDesc& f : c.fields)
       o << "          <xtce:Argument name=\"" << f.name << "\" argumentTypeRef=\"" << c.name << "."

@@ -13,7 +13,9 @@ TEST(Crc16, CcittFalseCheckValue) {
   EXPECT_EQ(crc16_ccitt(digits), 0x29B1);
 }
 
-TEST(Crc16, EmptyInputIsTheInitialValue) { EXPECT_EQ(crc16_ccitt({}), 0xFFFF); }
+TEST(Crc16, EmptyInputIsTheInitialValue) {
+  EXPECT_EQ(crc16_ccitt({}), 0xFFFF);
+}
 
 TEST(Crc16, EverySingleBitFlipIsDetected) {
   std::array<std::uint8_t, 64> data{};

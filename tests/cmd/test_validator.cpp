@@ -79,7 +79,8 @@ TEST_F(Validator, EveryCommandRoundTripsWithDefaultArguments) {
   std::uint32_t counter = 11;
   ValidationContext c = ctx();
   for (const CommandDesc& d : command_table()) {
-    Command cmd{static_cast<FunctionCode>(d.code), counter++, default_args(static_cast<FunctionCode>(d.code))};
+    Command cmd{static_cast<FunctionCode>(d.code), counter++,
+                default_args(static_cast<FunctionCode>(d.code))};
     const auto p = packet(cmd);
     EXPECT_EQ(p.size(), kTcOverheadBytes + d.arg_bytes) << d.name;
     const Verdict v = validate_command(p, c);

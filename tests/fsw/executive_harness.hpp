@@ -39,10 +39,10 @@ class ExecutiveHarness {
   explicit ExecutiveHarness(std::string extra_config = "", bool with_job = true,
                             std::string dir_name = "")
       : with_job_(with_job) {
-    dir_ = dir_name.empty() ? std::filesystem::temp_directory_path() /
-                                  ("petra_fsw_" + std::to_string(::getpid()) + "_" +
-                                   std::to_string(next_id()))
-                            : std::filesystem::path(dir_name);
+    dir_ = dir_name.empty()
+               ? std::filesystem::temp_directory_path() /
+                     ("petra_fsw_" + std::to_string(::getpid()) + "_" + std::to_string(next_id()))
+               : std::filesystem::path(dir_name);
     std::filesystem::create_directories(dir_ / "camera");
     write_pgm((dir_ / "camera/left_000.pgm").string(), kWidth, kHeight, 0);
     write_pgm((dir_ / "camera/right_000.pgm").string(), kWidth, kHeight, 5);
@@ -57,12 +57,14 @@ class ExecutiveHarness {
 
   // Writes the configuration and boots the executive.
   Status boot() {
-    const std::string cfg = R"({"uplink":{"host":"127.0.0.1","port":0,"key_file":"key.hex","counter_file":"counter.txt"},
-      "downlink":{"host":"127.0.0.1","port":)" + std::to_string(ground_.local_port()) +
-                            R"(},"loop":)" + loop + R"(,
+    const std::string cfg =
+        R"({"uplink":{"host":"127.0.0.1","port":0,"key_file":"key.hex","counter_file":"counter.txt"},
+      "downlink":{"host":"127.0.0.1","port":)" +
+        std::to_string(ground_.local_port()) + R"(},"loop":)" + loop + R"(,
       "budget":{"image_width":320,"image_height":240,"arena_mb":1,"tlm_queue_packets":)" +
-                            std::to_string(queue_packets) + R"(,"worker_stack_kb":256,"cloud_points":100},
-      "camera":{"kind":"file","dir":"camera"})" + extra_ + "}";
+        std::to_string(queue_packets) + R"(,"worker_stack_kb":256,"cloud_points":100},
+      "camera":{"kind":"file","dir":"camera"})" +
+        extra_ + "}";
     std::ofstream(dir_ / "fsw.json") << cfg;
     auto config = fsw::load_config((dir_ / "fsw.json").c_str());
     if (!config) return config.error();

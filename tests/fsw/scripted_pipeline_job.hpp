@@ -25,7 +25,8 @@ class ScriptedPipelineJob final : public fsw::PipelineJob {
 
   const char* name() const override { return "scripted test double"; }
   std::size_t arena_bytes(const fsw::PipelineBudget& b) const override {
-    return static_cast<std::size_t>(b.max_width) * static_cast<std::size_t>(b.max_height) * 4 + 4096;
+    return static_cast<std::size_t>(b.max_width) * static_cast<std::size_t>(b.max_height) * 4 +
+           4096;
   }
   Status run(const fsw::EvalRequest& request, Arena& arena, const std::atomic<bool>& cancel,
              fsw::EvalOutput& out) override {
@@ -36,7 +37,9 @@ class ScriptedPipelineJob final : public fsw::PipelineJob {
         saw_cancel.store(true);
         return Error::make(Errc::not_ready, "cancelled");
       }
-      struct timespec ts{0, 1000000};
+      struct timespec ts {
+        0, 1000000
+      };
       nanosleep(&ts, nullptr);
     }
     if (fail) {
@@ -51,7 +54,8 @@ class ScriptedPipelineJob final : public fsw::PipelineJob {
     auto view = Gray8View::over(*pixels, request.roi.w, request.roi.h);
     copy_pixels<std::uint8_t, std::uint8_t>(request.left.sub(request.roi), view);
     out.disparity_gray = view;
-    for (std::size_t i = 0; i < out.step_us.size(); ++i) out.step_us[i] = static_cast<std::uint32_t>(10 * (i + 1));
+    for (std::size_t i = 0; i < out.step_us.size(); ++i)
+      out.step_us[i] = static_cast<std::uint32_t>(10 * (i + 1));
     return {};
   }
 };

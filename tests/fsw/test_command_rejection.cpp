@@ -22,8 +22,10 @@ struct Snapshot {
 };
 
 Snapshot snap(fsw::Executive& e) {
-  Snapshot s{e.mode(), e.command_counters(), {}, e.loop_counters().frames, e.loop_counters().evaluations};
-  for (std::size_t i = 0; i < kParamCount; ++i) (void)e.params().get(kParamTable[i].id, s.params[i]);
+  Snapshot s{
+      e.mode(), e.command_counters(), {}, e.loop_counters().frames, e.loop_counters().evaluations};
+  for (std::size_t i = 0; i < kParamCount; ++i)
+    (void)e.params().get(kParamTable[i].id, s.params[i]);
   return s;
 }
 
@@ -61,10 +63,13 @@ TEST(CommandRejection, EachBadCommandHasItsOwnReasonEventAndChangesNothingElse) 
 
   std::set<std::uint16_t> reason_events;
   const Case cases[] = {
-      {"forged", Reason::BAD_AUTH, false},       {"replayed", Reason::REPLAY, false},
-      {"truncated", Reason::LENGTH_MISMATCH, false}, {"wrong CRC", Reason::BAD_CRC, false},
+      {"forged", Reason::BAD_AUTH, false},
+      {"replayed", Reason::REPLAY, false},
+      {"truncated", Reason::LENGTH_MISMATCH, false},
+      {"wrong CRC", Reason::BAD_CRC, false},
       {"unknown function code", Reason::UNKNOWN_FUNCTION, true},
-      {"out of range", Reason::OUT_OF_RANGE, true}, {"wrong mode", Reason::WRONG_MODE, true},
+      {"out of range", Reason::OUT_OF_RANGE, true},
+      {"wrong mode", Reason::WRONG_MODE, true},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.what);

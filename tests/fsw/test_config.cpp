@@ -7,7 +7,9 @@
 namespace petra::fsw {
 namespace {
 
-Result<FswConfig> parse(const std::string& s) { return parse_config(s.data(), s.size(), "/etc/petra"); }
+Result<FswConfig> parse(const std::string& s) {
+  return parse_config(s.data(), s.size(), "/etc/petra");
+}
 
 const std::string kMinimal = R"({"uplink":{"key_file":"k.hex"},"camera":{"dir":"/data/pairs"}})";
 
@@ -30,8 +32,10 @@ TEST(Config, EveryErrorNamesTheField) {
       {R"({"camera":{"dir":"x"}})", "uplink"},
       {R"({"uplink":{},"camera":{"dir":"x"}})", "uplink.key_file"},
       {R"({"uplink":{"key_file":"k","port":70000},"camera":{"dir":"x"}})", "uplink.port"},
-      {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"loop":{"cycle_ms":0}})", "loop.cycle_ms"},
-      {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"budget":{"arena_mb":"big"}})", "budget.arena_mb"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"loop":{"cycle_ms":0}})",
+       "loop.cycle_ms"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"budget":{"arena_mb":"big"}})",
+       "budget.arena_mb"},
       {R"({"uplink":{"key_file":"k"},"camera":{"kind":"v4l2","dir":"x"}})", "camera.kind"},
       {R"({"uplink":{"key_file":"k"}})", "camera"},
       {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},)", "json"},

@@ -101,7 +101,8 @@ TEST(Executive, SelectRoiAndEvaluateDownlinkThePipelinesPlanes) {
   std::size_t left_bytes = 0;
   for (const auto& p : h.all<tlm::Product>())
     if (p.product == 1) left_bytes += p.data_len;
-  EXPECT_EQ(left_bytes, static_cast<std::size_t>(ExecutiveHarness::kWidth * ExecutiveHarness::kHeight));
+  EXPECT_EQ(left_bytes,
+            static_cast<std::size_t>(ExecutiveHarness::kWidth * ExecutiveHarness::kHeight));
 }
 
 TEST(Executive, ProductChunksCarryCcsdsSequenceFlagsAndRebuildTheImage) {
@@ -125,10 +126,12 @@ TEST(Executive, ProductChunksCarryCcsdsSequenceFlagsAndRebuildTheImage) {
   ASSERT_EQ(flags.size(), (160u * 120u + 1023u) / 1024u);
   EXPECT_EQ(flags.front(), wire::SeqFlags::first);
   EXPECT_EQ(flags.back(), wire::SeqFlags::last);
-  for (std::size_t i = 1; i + 1 < flags.size(); ++i) EXPECT_EQ(flags[i], wire::SeqFlags::continuation);
+  for (std::size_t i = 1; i + 1 < flags.size(); ++i)
+    EXPECT_EQ(flags[i], wire::SeqFlags::continuation);
   for (int y = 0; y < 120; ++y)
     for (int x = 0; x < 160; ++x)
-      ASSERT_EQ(image[static_cast<std::size_t>(y * 160 + x)], static_cast<std::uint8_t>((x * 7 + y * 3) & 0xFF));
+      ASSERT_EQ(image[static_cast<std::size_t>(y * 160 + x)],
+                static_cast<std::uint8_t>((x * 7 + y * 3) & 0xFF));
 }
 
 TEST(Executive, CommandsAndHousekeepingKeepFlowingDuringALongEvaluation) {
@@ -194,7 +197,8 @@ TEST(Executive, PipelineErrorFailsTheCommandWithAnEvent) {
   const auto eval = h.make(FunctionCode::EVALUATE, cmd::EvaluateArgs{1});
   h.send(eval);
   ASSERT_TRUE(h.cycle_until([&] { return h.has_ack(eval.counter, AckStage::FAILED); }));
-  EXPECT_EQ(h.acks_for(eval.counter).back().reason, static_cast<std::uint8_t>(Reason::PIPELINE_ERROR));
+  EXPECT_EQ(h.acks_for(eval.counter).back().reason,
+            static_cast<std::uint8_t>(Reason::PIPELINE_ERROR));
   EXPECT_TRUE(h.has_event(static_cast<std::uint16_t>(EventId::EVAL_FAILED)));
   ASSERT_EQ(h.all<tlm::EvalResult>().size(), 1u);
   EXPECT_EQ(h.all<tlm::EvalResult>()[0].status, 2);
@@ -262,7 +266,8 @@ TEST(Executive, DropsAreCountedAndReportedWhenTheQueueOverflows) {
 
 TEST(Executive, TheCommandCounterSurvivesARebootSoOldCommandsStayReplays) {
   std::vector<std::uint8_t> recorded;
-  const auto dir = std::filesystem::temp_directory_path() / ("petra_fsw_reboot_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("petra_fsw_reboot_" + std::to_string(::getpid()));
   {
     ExecutiveHarness h("", true, dir.string());
     h.keep_dir();
@@ -287,7 +292,8 @@ TEST(Executive, ArmCommandsFailClearlyWithoutAnArm) {
   const auto go = h.make(FunctionCode::ARM_GOTO);
   h.send(go);
   ASSERT_TRUE(h.cycle_until([&] { return h.has_ack(go.counter, AckStage::FAILED); }));
-  EXPECT_EQ(h.acks_for(go.counter).back().reason, static_cast<std::uint8_t>(Reason::ARM_UNAVAILABLE));
+  EXPECT_EQ(h.acks_for(go.counter).back().reason,
+            static_cast<std::uint8_t>(Reason::ARM_UNAVAILABLE));
   EXPECT_EQ(h.exec().mode(), Mode::IDLE);
 }
 

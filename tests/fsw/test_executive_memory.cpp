@@ -39,7 +39,8 @@ TEST(ExecutiveMemory, ThousandCommandsOfEveryKindAllocateNothingAfterInit) {
       if (code == FunctionCode::SELECT_ROI) args = roi(10, 10, 64, 48, 2);
       if (code == FunctionCode::SET_PARAM) args = cmd::SetParamArgs{5, 0.2};
       if (code == FunctionCode::GET_PARAM) args = cmd::GetParamArgs{1};
-      if (code == FunctionCode::SET_MODE) args = cmd::SetModeArgs{static_cast<std::uint8_t>(round % 2 ? 1 : 5)};
+      if (code == FunctionCode::SET_MODE)
+        args = cmd::SetModeArgs{static_cast<std::uint8_t>(round % 2 ? 1 : 5)};
       auto pk = h.packet(h.make(code, args));
       if (round % 5 == 4) pk[pk.size() / 2] ^= 1;  // every fifth round corrupted: rejections too
       packets.push_back(pk);
@@ -52,7 +53,8 @@ TEST(ExecutiveMemory, ThousandCommandsOfEveryKindAllocateNothingAfterInit) {
     usleep(1000);
   }
   std::uint8_t sink[2048];
-  while (*h.ground_.receive(sink) > 0) {}
+  while (*h.ground_.receive(sink) > 0) {
+  }
   const long rss_before = resident_kb();
 
   std::size_t telemetry = 0;
@@ -96,10 +98,12 @@ TEST(ExecutiveMemory, ThousandCommandsOfEveryKindAllocateNothingAfterInit) {
   EXPECT_GT(telemetry, packets.size());
   // Flat: every buffer was touched at init. 64 kB of slack for the test's own stack and libc.
   EXPECT_LE(rss_after - rss_before, 64) << "RSS " << rss_before << " kB -> " << rss_after << " kB";
-  std::printf("[ figures  ] %zu commands, %zu accepted, %zu rejected, %d evaluations, %zu telemetry packets, "
-              "RSS %ld -> %ld kB, %zu bytes allocated at init\n",
-              sent, accepted, rejected, h.job.runs.load(),
-              telemetry, rss_before, rss_after, h.exec().memory_bytes());
+  std::printf(
+      "[ figures  ] %zu commands, %zu accepted, %zu rejected, %d evaluations, %zu telemetry "
+      "packets, "
+      "RSS %ld -> %ld kB, %zu bytes allocated at init\n",
+      sent, accepted, rejected, h.job.runs.load(), telemetry, rss_before, rss_after,
+      h.exec().memory_bytes());
 }
 
 }  // namespace

@@ -18,7 +18,8 @@ TEST(Health, ReportsASilentComponentOnceUntilItBeatsAgain) {
   timeout.fill(100 * kMs);
   std::int64_t silent = 0;
   for (std::size_t c = 0; c < kComponentCount; ++c)
-    if (c != static_cast<std::size_t>(Component::UPLINK)) h.beat(static_cast<Component>(c), 150 * kMs);
+    if (c != static_cast<std::size_t>(Component::UPLINK))
+      h.beat(static_cast<Component>(c), 150 * kMs);
   EXPECT_EQ(h.check(150 * kMs, timeout, silent), static_cast<int>(Component::UPLINK));
   EXPECT_EQ(silent, 150 * kMs);
   EXPECT_EQ(h.check(160 * kMs, timeout, silent), -1);  // reported once

@@ -13,7 +13,8 @@ TEST(ParamTable, StartsAtTheDefinedDefaults) {
     double v = -1;
     ASSERT_TRUE(t.get(p.id, v));
     EXPECT_EQ(v, p.default_value) << p.name;
-    EXPECT_TRUE(param_value_valid(p, p.default_value)) << p.name << " default outside its own range";
+    EXPECT_TRUE(param_value_valid(p, p.default_value))
+        << p.name << " default outside its own range";
   }
 }
 

@@ -39,7 +39,8 @@ TEST(ProductStreamer, SubsampledImageArrivesWholeInChunks) {
   Fixture f(64);
   std::vector<std::uint8_t> img(64 * 48);
   for (std::size_t i = 0; i < img.size(); ++i) img[i] = static_cast<std::uint8_t>(i % 251);
-  ASSERT_TRUE(f.streamer.stage_image(ProductKind::DISPARITY, 7, ConstGray8View(img.data(), 64, 48), 1, 2));
+  ASSERT_TRUE(
+      f.streamer.stage_image(ProductKind::DISPARITY, 7, ConstGray8View(img.data(), 64, 48), 1, 2));
   f.streamer.pump(f.queue, {}, 100, 0);
   EXPECT_TRUE(f.streamer.idle());
   const auto chunks = f.drain();
@@ -53,7 +54,8 @@ TEST(ProductStreamer, SubsampledImageArrivesWholeInChunks) {
 TEST(ProductStreamer, NeverTakesTheReservedQueueSlots) {
   Fixture f(8);
   std::vector<std::uint8_t> img(64 * 48, 9);
-  ASSERT_TRUE(f.streamer.stage_image(ProductKind::LEFT_IMAGE, 1, ConstGray8View(img.data(), 64, 48), 1, 1));
+  ASSERT_TRUE(
+      f.streamer.stage_image(ProductKind::LEFT_IMAGE, 1, ConstGray8View(img.data(), 64, 48), 1, 1));
   f.streamer.pump(f.queue, {}, 100, 6);
   EXPECT_EQ(f.queue.size(), 2u);  // 8 slots, 6 kept free
   EXPECT_EQ(f.queue.dropped(), 0u);

@@ -20,7 +20,9 @@ void pgm(const fs::path& p, int w, int h, int v, const char* header_extra = "") 
 }
 
 struct TempDir {
-  TempDir() : path(fs::temp_directory_path() / ("petra_cam_" + std::to_string(::getpid()) + "_" + std::to_string(n++))) {
+  TempDir()
+      : path(fs::temp_directory_path() /
+             ("petra_cam_" + std::to_string(::getpid()) + "_" + std::to_string(n++))) {
     fs::create_directories(path);
   }
   ~TempDir() { fs::remove_all(path); }

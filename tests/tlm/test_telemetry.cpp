@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "tlm/tlm_queue.hpp"
 #include "tests/support/heap_counter.hpp"
+#include "tlm/tlm_queue.hpp"
 
 namespace petra::tlm {
 namespace {
@@ -18,7 +18,8 @@ TEST(Telemetry, EveryPacketRoundTripsWithHeaderTimeAndCrc) {
   g.centroid_mm = {1.25, 2.5, 800.125};
   g.area_mm2 = 1234.5;
   std::vector<std::uint8_t> buf(kMaxTmBytes);
-  const std::size_t n = encode_tm(g, 42, wire::SeqFlags::unsegmented, TmTime{1700000000, 250000}, buf);
+  const std::size_t n =
+      encode_tm(g, 42, wire::SeqFlags::unsegmented, TmTime{1700000000, 250000}, buf);
   ASSERT_EQ(n, kTmHeaderBytes + GrindPlane::wire_bytes() + kTmCrcBytes);
   auto p = decode_tm(std::span(buf).first(n));
   ASSERT_TRUE(p.ok()) << p.error().message;

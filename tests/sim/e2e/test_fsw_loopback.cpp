@@ -59,7 +59,8 @@ void write_pgm(const fs::path& path, int w, int h, int seed) {
     for (int x = 0; x < w; ++x) f.put(static_cast<char>((x + 2 * y + seed) & 0xFF));
 }
 
-bool contains_line(const std::vector<std::string>& lines, std::initializer_list<const char*> parts) {
+bool contains_line(const std::vector<std::string>& lines,
+                   std::initializer_list<const char*> parts) {
   for (const auto& l : lines) {
     bool all = true;
     for (const char* p : parts) all = all && l.find(p) != std::string::npos;
@@ -75,34 +76,43 @@ TEST(FswLoopback, PetraCmdAndPetraTlmTalkToTheFlightProcess) {
   write_pgm(dir / "camera/left.pgm", 320, 240, 0);
   write_pgm(dir / "camera/right.pgm", 320, 240, 3);
   const std::string cli = PETRA_CLI_BIN;
-  ASSERT_EQ(std::system((cli + " keygen --out " + (dir / "uplink.key").string() + " >/dev/null").c_str()), 0);
-  ASSERT_EQ(std::system((cli + " keygen --out " + (dir / "forger.key").string() + " >/dev/null").c_str()), 0);
+  ASSERT_EQ(
+      std::system((cli + " keygen --out " + (dir / "uplink.key").string() + " >/dev/null").c_str()),
+      0);
+  ASSERT_EQ(
+      std::system((cli + " keygen --out " + (dir / "forger.key").string() + " >/dev/null").c_str()),
+      0);
   const std::uint16_t cmd_port = free_udp_port();
   const std::uint16_t tlm_port = free_udp_port();
   std::ofstream(dir / "fsw.json") << R"({"uplink":{"host":"127.0.0.1","port":)" << cmd_port
                                   << R"(,"key_file":"uplink.key","counter_file":"fsw_counter"},
-    "downlink":{"host":"127.0.0.1","port":)" << tlm_port << R"(},
+    "downlink":{"host":"127.0.0.1","port":)"
+                                  << tlm_port << R"(},
     "loop":{"cycle_ms":10},"budget":{"image_width":320,"image_height":240,"arena_mb":4,"tlm_queue_packets":256},
     "camera":{"kind":"file","dir":"camera"}})";
 
   const pid_t tlm = spawn_shell(cli + " tlm --follow --json --port " + std::to_string(tlm_port) +
                                 " --save-products " + (dir / "products").string() + " > " +
                                 (dir / "tlm.jsonl").string() + " 2>" + (dir / "tlm.err").string());
-  const pid_t fsw = spawn_shell(std::string(PETRA_FSW_BIN) + " --config " + (dir / "fsw.json").string() +
-                                " 2>" + (dir / "fsw.err").string());
+  const pid_t fsw = spawn_shell(std::string(PETRA_FSW_BIN) + " --config " +
+                                (dir / "fsw.json").string() + " 2>" + (dir / "fsw.err").string());
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   ASSERT_EQ(waitpid(fsw, nullptr, WNOHANG), 0) << "petra-fsw exited at boot";
 
   const std::string send = cli + " cmd --key " + (dir / "uplink.key").string() + " --port " +
                            std::to_string(cmd_port) + " ";
-  for (const char* c : {"NOOP", "SELECT_ROI x_px=40 y_px=30 w_px=200 h_px=150 planes=2 click_u_px=100 click_v_px=90",
-                        "ACQUIRE", "EVALUATE acquire=0", "GET_PARAM param_id=8"}) {
+  for (const char* c :
+       {"NOOP",
+        "SELECT_ROI x_px=40 y_px=30 w_px=200 h_px=150 planes=2 click_u_px=100 click_v_px=90",
+        "ACQUIRE", "EVALUATE acquire=0", "GET_PARAM param_id=8"}) {
     ASSERT_EQ(std::system((send + c + " >/dev/null").c_str()), 0) << c;
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   // A forged command (another key) and a command outside its range: refused by petra cmd itself.
   ASSERT_EQ(std::system((cli + " cmd --key " + (dir / "forger.key").string() + " --port " +
-                         std::to_string(cmd_port) + " NOOP >/dev/null").c_str()), 0);
+                         std::to_string(cmd_port) + " NOOP >/dev/null")
+                            .c_str()),
+            0);
   EXPECT_NE(std::system((send + "SELECT_ROI planes=12 2>/dev/null").c_str()), 0);
 
   // Resident memory stays flat across 2,000 more commands straight from a test sender.
@@ -119,7 +129,8 @@ TEST(FswLoopback, PetraCmdAndPetraTlmTalkToTheFlightProcess) {
     ASSERT_TRUE(s.set_peer("127.0.0.1", cmd_port).ok());
     std::vector<std::uint8_t> p(cmd::kMaxCommandBytes);
     for (std::uint32_t i = 0; i < 2000; ++i) {
-      const auto n = cmd::encode_command_packet({cmd::FunctionCode::NOOP, 1000 + i, cmd::NoopArgs{}}, 0, key, p);
+      const auto n = cmd::encode_command_packet(
+          {cmd::FunctionCode::NOOP, 1000 + i, cmd::NoopArgs{}}, 0, key, p);
       s.send(std::span(p).first(*n));
       if (i % 8 == 7) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
@@ -135,13 +146,17 @@ TEST(FswLoopback, PetraCmdAndPetraTlmTalkToTheFlightProcess) {
   ASSERT_FALSE(lines.empty());
   EXPECT_TRUE(contains_line(lines, {"\"packet\":\"EVENT\"", "boot complete"}));
   EXPECT_TRUE(contains_line(lines, {"\"packet\":\"HK\""}));
-  EXPECT_TRUE(contains_line(lines, {"\"packet\":\"ACK\"", "\"function_code\":1,", "\"counter\":1,", "\"stage\":3"}));
+  EXPECT_TRUE(contains_line(
+      lines, {"\"packet\":\"ACK\"", "\"function_code\":1,", "\"counter\":1,", "\"stage\":3"}));
   EXPECT_TRUE(contains_line(lines, {"\"packet\":\"ACK\"", "\"function_code\":16,", "\"stage\":3"}));
   EXPECT_TRUE(contains_line(lines, {"\"packet\":\"ACK\"", "\"function_code\":17,", "\"stage\":3"}));
-  EXPECT_TRUE(contains_line(lines, {"\"packet\":\"EVENT\"", "ROI x 40, y 30, 200 x 150 px selected"}));
-  EXPECT_TRUE(contains_line(lines, {"\"packet\":\"PARAM_VALUE\"", "\"param_id\":8,", "\"value\":4"}));
+  EXPECT_TRUE(
+      contains_line(lines, {"\"packet\":\"EVENT\"", "ROI x 40, y 30, 200 x 150 px selected"}));
+  EXPECT_TRUE(
+      contains_line(lines, {"\"packet\":\"PARAM_VALUE\"", "\"param_id\":8,", "\"value\":4"}));
   // The flight binary has no image pipeline yet: EVALUATE fails, saying so.
-  EXPECT_TRUE(contains_line(lines, {"\"packet\":\"ACK\"", "\"function_code\":18,", "\"stage\":4", "\"reason\":32"}));
+  EXPECT_TRUE(contains_line(
+      lines, {"\"packet\":\"ACK\"", "\"function_code\":18,", "\"stage\":4", "\"reason\":32"}));
   // The forged NOOP: rejected for its MAC, with the reason's own event.
   EXPECT_TRUE(contains_line(lines, {"\"packet\":\"ACK\"", "\"stage\":2", "\"reason\":6"}));
   EXPECT_TRUE(contains_line(lines, {"\"packet\":\"EVENT\"", "HMAC-SHA256 does not verify"}));
@@ -149,13 +164,15 @@ TEST(FswLoopback, PetraCmdAndPetraTlmTalkToTheFlightProcess) {
   EXPECT_EQ(fs::file_size(dir / "products/left_image_1.pgm"), 320u * 240u + 15u);
   std::size_t completed = 0;
   for (const auto& l : lines)
-    if (l.find("\"packet\":\"ACK\"") != std::string::npos && l.find("\"function_code\":1,") != std::string::npos &&
+    if (l.find("\"packet\":\"ACK\"") != std::string::npos &&
+        l.find("\"function_code\":1,") != std::string::npos &&
         l.find("\"stage\":3") != std::string::npos)
       ++completed;
   EXPECT_GE(completed, 1900u) << "NOOPs completed out of 2001 (UDP on loopback may drop a few)";
   EXPECT_LE(rss_after - rss_before, 64) << "RSS " << rss_before << " -> " << rss_after << " kB";
-  std::printf("[ figures  ] %zu telemetry lines, %zu NOOPs completed, petra-fsw RSS %ld -> %ld kB\n",
-              lines.size(), completed, rss_before, rss_after);
+  std::printf(
+      "[ figures  ] %zu telemetry lines, %zu NOOPs completed, petra-fsw RSS %ld -> %ld kB\n",
+      lines.size(), completed, rss_before, rss_after);
   fs::remove_all(dir);
 }
 

@@ -34,8 +34,26 @@ std::vector<std::uint8_t> frame(const std::vector<std::uint8_t>& payload, std::u
   put16(f, 0x0800);
   const std::size_t ip_at = f.size();
   const unsigned ip_len = 20 + 8 + static_cast<unsigned>(payload.size());
-  const std::uint8_t ip[20] = {0x45, 0, static_cast<std::uint8_t>(ip_len >> 8), static_cast<std::uint8_t>(ip_len),
-                               0, 0, 0x40, 0, 64, 17, 0, 0, 127, 0, 0, 1, 127, 0, 0, 1};
+  const std::uint8_t ip[20] = {0x45,
+                               0,
+                               static_cast<std::uint8_t>(ip_len >> 8),
+                               static_cast<std::uint8_t>(ip_len),
+                               0,
+                               0,
+                               0x40,
+                               0,
+                               64,
+                               17,
+                               0,
+                               0,
+                               127,
+                               0,
+                               0,
+                               1,
+                               127,
+                               0,
+                               0,
+                               1};
   f.insert(f.end(), ip, ip + 20);
   unsigned sum = 0;
   for (int i = 0; i < 20; i += 2) sum += (unsigned{f[ip_at + i]} << 8) | f[ip_at + i + 1];
@@ -84,7 +102,8 @@ TEST(TsharkCcsds, DissectorDecodesOurPrimaryHeaders) {
   cmd::SelectRoiArgs roi;
   roi.w_px = 100;
   std::vector<std::uint8_t> tc(cmd::kMaxCommandBytes);
-  tc.resize(*cmd::encode_command_packet(cmd::Command{cmd::FunctionCode::SELECT_ROI, 9, roi}, 1234, key, tc));
+  tc.resize(*cmd::encode_command_packet(cmd::Command{cmd::FunctionCode::SELECT_ROI, 9, roi}, 1234,
+                                        key, tc));
   sent.push_back({tc, kCmdPort});
 
   const auto dir = std::filesystem::temp_directory_path();
@@ -108,11 +127,13 @@ TEST(TsharkCcsds, DissectorDecodesOurPrimaryHeaders) {
     }
   }
   const auto out = dir / ("petra_ccsds_" + std::to_string(::getpid()) + ".txt");
-  const std::string cmdline =
-      "tshark -r " + pcap.string() + " -d udp.port==" + std::to_string(kTlmPort) + ",ccsds -d udp.port==" +
-      std::to_string(kCmdPort) +
-      ",ccsds -T fields -E separator=, -e ccsds.version -e ccsds.type -e ccsds.secheader -e ccsds.apid "
-      "-e ccsds.seqflag -e ccsds.seqnum -e ccsds.length > " + out.string() + " 2>/dev/null";
+  const std::string cmdline = "tshark -r " + pcap.string() +
+                              " -d udp.port==" + std::to_string(kTlmPort) +
+                              ",ccsds -d udp.port==" + std::to_string(kCmdPort) +
+                              ",ccsds -T fields -E separator=, -e ccsds.version -e ccsds.type -e "
+                              "ccsds.secheader -e ccsds.apid "
+                              "-e ccsds.seqflag -e ccsds.seqnum -e ccsds.length > " +
+                              out.string() + " 2>/dev/null";
   ASSERT_EQ(std::system(cmdline.c_str()), 0) << cmdline;
   std::ifstream in(out);
   std::vector<std::string> lines;
@@ -130,8 +151,9 @@ TEST(TsharkCcsds, DissectorDecodesOurPrimaryHeaders) {
       if (auto p = got.find(t); p != std::string::npos) got.replace(p, std::string(t).size(), "1");
     EXPECT_EQ(got, want.str()) << "packet " << i;
   }
-  std::printf("[ figures  ] tshark decoded %zu CCSDS primary headers (TM APIDs 0x010-0x030, TC 0x064)\n",
-              lines.size());
+  std::printf(
+      "[ figures  ] tshark decoded %zu CCSDS primary headers (TM APIDs 0x010-0x030, TC 0x064)\n",
+      lines.size());
   std::filesystem::remove(pcap);
   std::filesystem::remove(out);
 }

@@ -13,7 +13,7 @@ namespace {
 
 TEST(CommandBuilder, BuildsSelectRoiFromFieldWords) {
   auto c = build_command("select_roi", {"x_px=10", "y_px=20", "w_px=100", "h_px=80", "planes=3",
-                                         "click_u_px=50", "click_v_px=60"});
+                                        "click_u_px=50", "click_v_px=60"});
   ASSERT_TRUE(c.ok()) << c.error().message;
   EXPECT_EQ(c->code, cmd::FunctionCode::SELECT_ROI);
   const auto& a = std::get<cmd::SelectRoiArgs>(c->args);
@@ -40,7 +40,8 @@ TEST(CommandBuilder, RefusesUnknownNamesFieldsAndRangesNamingThem) {
 }
 
 TEST(CommandBuilder, CounterFileIncreasesEveryTime) {
-  const auto path = std::filesystem::temp_directory_path() / ("petra_counter_" + std::to_string(::getpid()));
+  const auto path =
+      std::filesystem::temp_directory_path() / ("petra_counter_" + std::to_string(::getpid()));
   std::filesystem::remove(path);
   EXPECT_EQ(*next_counter(path.string()), 1u);
   EXPECT_EQ(*next_counter(path.string()), 2u);
@@ -55,7 +56,8 @@ TEST(TlmFormat, EventTextNamesItsArguments) {
   EXPECT_EQ(event_text(e), "mode IDLE -> SAFE (by SET_MODE)");
   e.event_id = rejection_event(Reason::BAD_AUTH);
   e.args = {0x10, 0, 0, 0};
-  EXPECT_NE(event_text(e).find("SELECT_ROI rejected: HMAC-SHA256 does not verify"), std::string::npos);
+  EXPECT_NE(event_text(e).find("SELECT_ROI rejected: HMAC-SHA256 does not verify"),
+            std::string::npos);
 }
 
 TEST(TlmFormat, JsonLineCarriesPacketNameAndFields) {
@@ -69,7 +71,8 @@ TEST(TlmFormat, JsonLineCarriesPacketNameAndFields) {
   const std::string j = format_json(p);
   EXPECT_NE(j.find("\"packet\":\"ACK\""), std::string::npos) << j;
   EXPECT_NE(j.find("\"counter\":7"), std::string::npos) << j;
-  EXPECT_NE(format_line(p).find("EVALUATE counter 7 COMPLETED"), std::string::npos) << format_line(p);
+  EXPECT_NE(format_line(p).find("EVALUATE counter 7 COMPLETED"), std::string::npos)
+      << format_line(p);
 }
 
 }  // namespace

@@ -40,19 +40,22 @@ TEST(IcdGenerator, EveryCommandAndTelemetryFieldIsDocumented) {
   const std::string xtce = xtce_document();
   for (const auto& c : cmd::command_table()) {
     EXPECT_NE(md.find(std::string("#### ") + c.name + " "), std::string::npos) << c.name;
-    EXPECT_NE(xtce.find(std::string("<xtce:MetaCommand name=\"") + c.name + "\""), std::string::npos);
-    for (const auto& f : c.fields) EXPECT_NE(md.find(std::string("`") + f.name + "`"), std::string::npos);
+    EXPECT_NE(xtce.find(std::string("<xtce:MetaCommand name=\"") + c.name + "\""),
+              std::string::npos);
+    for (const auto& f : c.fields)
+      EXPECT_NE(md.find(std::string("`") + f.name + "`"), std::string::npos);
   }
   for (const auto& t : tlm::telemetry_table()) {
     EXPECT_NE(md.find(std::string("#### ") + t.name + " "), std::string::npos) << t.name;
     for (const auto& f : t.fields)
-      EXPECT_NE(xtce.find(std::string("name=\"") + t.name + "." + f.name + "\""), std::string::npos);
+      EXPECT_NE(xtce.find(std::string("name=\"") + t.name + "." + f.name + "\""),
+                std::string::npos);
   }
 }
 
 TEST(IcdGenerator, SpliceReplacesOnlyTheGeneratedSection) {
-  const std::string doc = "# ICD\n\nhand text\n\n" + std::string(kBeginMarker) + "\nold\n" + kEndMarker +
-                          "\n\n## later section\n";
+  const std::string doc = "# ICD\n\nhand text\n\n" + std::string(kBeginMarker) + "\nold\n" +
+                          kEndMarker + "\n\n## later section\n";
   const std::string out = splice_section(doc, markdown_section());
   EXPECT_EQ(out.find("old\n"), std::string::npos);
   EXPECT_NE(out.find("hand text"), std::string::npos);
@@ -61,7 +64,8 @@ TEST(IcdGenerator, SpliceReplacesOnlyTheGeneratedSection) {
 }
 
 TEST(IcdGenerator, XtceIsWellFormedXml) {
-  if (std::system("command -v xmllint >/dev/null 2>&1") != 0) GTEST_SKIP() << "xmllint not installed";
+  if (std::system("command -v xmllint >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xmllint not installed";
   EXPECT_EQ(std::system(("xmllint --noout " + kDocs + "/petra.xtce.xml").c_str()), 0);
 }
 
