@@ -63,9 +63,9 @@ Verdict validate_command(std::span<const std::uint8_t> datagram, const Validatio
 
   wire::ByteReader counter_reader(datagram.subspan(8, 4));
   const std::uint32_t counter = counter_reader.u32();
+  v.command.counter = counter;  // authentic: worth reporting even when stale
   if (counter <= ctx.last_counter) return reject(v, Reason::REPLAY);
   v.authenticated = true;
-  v.command.counter = counter;
 
   const CommandDesc* desc = find_command(v.function_code);
   if (desc == nullptr) return reject(v, Reason::UNKNOWN_FUNCTION, v.function_code);

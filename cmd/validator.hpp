@@ -31,7 +31,7 @@ struct Verdict {
   // records the counter even when a later check rejects the command, so an
   // authentic command can never be replayed in another mode.
   bool authenticated = false;
-  Command command;
+  Command command;  // counter set once the HMAC verified (also for REPLAY)
 
   bool ok() const { return reason == Reason::NONE; }
 };

@@ -62,7 +62,9 @@ void Executive::handle_datagram(std::span<const std::uint8_t> datagram) {
   if (!v.ok()) {
     ++cmd_.rejected;
     cmd_.last_reason = v.reason;
-    const std::uint32_t counter = v.authenticated ? v.command.counter : 0;
+    // The counter is reported once the HMAC verified (authentic, even if stale).
+    const bool mac_ok = v.authenticated || v.reason == Reason::REPLAY;
+    const std::uint32_t counter = mac_ok ? v.command.counter : 0;
     events_.raise_rejection(v.reason, v.function_code, v.detail, counter);
     ack(v.function_code, counter, AckStage::REJECTED, v.reason, v.detail);
     return;
