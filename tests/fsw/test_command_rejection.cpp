@@ -113,7 +113,9 @@ TEST(CommandRejection, EachBadCommandHasItsOwnReasonEventAndChangesNothingElse) 
     const tlm::Ack ack = h.all<tlm::Ack>().back();
     EXPECT_EQ(ack.stage, static_cast<std::uint8_t>(AckStage::REJECTED));
     EXPECT_EQ(ack.reason, static_cast<std::uint8_t>(c.reason));
-    if (what == "replayed") EXPECT_EQ(ack.counter, first.counter);  // authentic, so reported
+    if (what == "replayed") {
+      EXPECT_EQ(ack.counter, first.counter);  // authentic, so reported
+    }
     const fsw::EventRecord* ev = h.exec().events().latest();
     ASSERT_NE(ev, nullptr);
     EXPECT_EQ(ev->id, rejection_event(c.reason));
