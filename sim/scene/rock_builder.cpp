@@ -75,14 +75,19 @@ Result<BuiltRock> build_rock(Rng& rng, const RockSpec& spec) {
   const Eigen::Vector3d& v = spec.toward_cameras;
   const double view_az = std::atan2(v.y(), v.x());
   const double side = rng.coin() ? 1.0 : -1.0;
+  // A slab is flat and wide: its faces toward the cameras are tilted further up.
+  const bool slab = spec.shape == RockShape::slab;
   std::vector<Eigen::Vector3d> flat;
   if (spec.flat_faces == 2) {
-    flat.push_back(direction(view_az + side * rng.uniform(18, 40) * kDeg, rng.uniform(22, 50) * kDeg));
-    flat.push_back(direction(view_az - side * rng.uniform(18, 40) * kDeg, rng.uniform(22, 50) * kDeg));
+    const double el_lo = slab ? 35 : 22, el_hi = slab ? 60 : 50;
+    flat.push_back(direction(view_az + side * rng.uniform(18, 40) * kDeg, rng.uniform(el_lo, el_hi) * kDeg));
+    flat.push_back(direction(view_az - side * rng.uniform(18, 40) * kDeg, rng.uniform(el_lo, el_hi) * kDeg));
   } else {
-    flat.push_back(direction(view_az + rng.uniform(-20, 20) * kDeg, rng.uniform(55, 72) * kDeg));
-    flat.push_back(direction(view_az + side * rng.uniform(38, 58) * kDeg, rng.uniform(8, 30) * kDeg));
-    flat.push_back(direction(view_az - side * rng.uniform(38, 58) * kDeg, rng.uniform(8, 30) * kDeg));
+    const double top_lo = slab ? 68 : 55, top_hi = slab ? 82 : 72;
+    const double side_lo = slab ? 22 : 8, side_hi = slab ? 40 : 30;
+    flat.push_back(direction(view_az + rng.uniform(-20, 20) * kDeg, rng.uniform(top_lo, top_hi) * kDeg));
+    flat.push_back(direction(view_az + side * rng.uniform(38, 58) * kDeg, rng.uniform(side_lo, side_hi) * kDeg));
+    flat.push_back(direction(view_az - side * rng.uniform(38, 58) * kDeg, rng.uniform(side_lo, side_hi) * kDeg));
   }
   const double cut_lo = spec.flat_faces == 2 ? 0.22 : 0.18;
   const double cut_hi = spec.flat_faces == 2 ? 0.36 : 0.30;

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <utility>
+#include <vector>
 
 #include "algo/rectify_geometry.hpp"
 #include "sim/scene/rig_builder.hpp"
@@ -68,9 +71,9 @@ void choose_materials(const SceneOptions& o, Scene& s) {
   if (s.boundary == Boundary::weak) {
     // Same tone and the same kind of texture: only geometry tells them apart.
     r = g;
-    r.mean_albedo = g.mean_albedo * weak_factor;
+    s.tone_ratio = weak_factor;
   } else {
-    r.mean_albedo = std::min(0.8, g.mean_albedo * (darker ? dark_factor : light_factor));
+    s.tone_ratio = darker ? dark_factor : light_factor;
     r.fractal_contrast = 0.17;
     r.largest_mm = 32;
     r.finest_mm = 1.2;
@@ -81,8 +84,27 @@ void choose_materials(const SceneOptions& o, Scene& s) {
     r.vein_contrast = 0.25;
   }
   r.perm = make_permutation(mix64(o.seed * 2 + 0x2001));
-  // Exposure: sunlit ground near 130 DN unless that would saturate a sunlit rock face.
-  const double lit_ground = g.mean_albedo * (std::sin(s.sun_elevation_deg * kDeg) + s.ambient);
+}
+
+// Once the rock is placed: its albedo gives it tone_ratio times the ground's
+// brightness as the left camera sees it (shading included, so a weak boundary
+// stays weak under a low sun), then the exposure.
+void set_tone_and_exposure(Scene& s) {
+  const Eigen::Vector3d cam = camera_centre_world(s.rig.left);
+  double shade = 0, weight = 0;
+  for (const auto& f : visible_facets(s)) {
+    const double lit = std::max(0.0, f.normal.dot(s.sun_dir));
+    const double sky = s.ambient * (0.7 + 0.3 * f.normal.z());
+    const double w = f.area_mm2 * f.normal.dot((cam - f.centroid).normalized());  // projected area
+    shade += w * (lit + sky);
+    weight += w;
+  }
+  const double ground_shade = std::sin(s.sun_elevation_deg * kDeg) + s.ambient;
+  const double rock_shade = weight > 0 ? shade / weight : ground_shade;
+  TextureRecipe& r = s.rock_surface;
+  r.mean_albedo = std::clamp(s.ground.mean_albedo * s.tone_ratio * ground_shade / rock_shade, 0.05, 0.9);
+  // Sunlit ground near 130 DN unless that would saturate a rock face facing the sun.
+  const double lit_ground = s.ground.mean_albedo * ground_shade;
   const double brightest = r.mean_albedo * 1.3 * (1.0 + s.ambient);
   s.gain_dn = std::min(130.0 / lit_ground, 235.0 / brightest);
   s.sky_radiance = 185.0 / s.gain_dn;
@@ -105,47 +127,65 @@ double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) / kDeg;
 }
 
-// Why a placement is refused, or nullptr when it meets every requirement.
+// Why a placement is refused, in the order the checks run.
+constexpr const char* kRefusals[] = {
+    "degenerate rock",
+    "a flat face was cut away by another",
+    "flat faces not visible in both views",
+    "flat faces are not the largest facets",
+    "a flat face is too small",
+    "a flat face is seen too obliquely",
+    "two flat faces are nearly parallel",
+    "rig cannot be rectified",
+    "rock outside an image",
+    "shadow outside an image",
+};
+
+// Why a placement is refused (an entry of kRefusals), or nullptr when it
+// meets every requirement.
 const char* refusal(const Scene& s) {
   int grind = 0;
   for (const auto& f : s.rock.faces) grind += f.plane.grind_face ? 1 : 0;
-  if (grind != s.flat_faces) return "a flat face was cut away by another";
+  if (grind != s.flat_faces) return kRefusals[1];
   const auto facets = visible_facets(s);
-  if (static_cast<int>(facets.size()) < s.flat_faces) return "flat faces not visible in both views";
+  if (static_cast<int>(facets.size()) < s.flat_faces) return kRefusals[2];
   double largest_rough = 0;
   for (std::size_t i = 0; i < facets.size(); ++i) {
     const bool expect_grind = static_cast<int>(i) < s.flat_faces;
-    if (facets[i].grind_face != expect_grind) return "flat faces are not the largest facets";
+    if (facets[i].grind_face != expect_grind) return kRefusals[3];
     if (!expect_grind) largest_rough = std::max(largest_rough, facets[i].area_mm2);
   }
   const Eigen::Vector3d cl = camera_centre_world(s.rig.left);
   const Eigen::Vector3d cr = camera_centre_world(s.rig.right);
   for (int i = 0; i < s.flat_faces; ++i) {
     const VisibleFacet& f = facets[static_cast<std::size_t>(i)];
-    if (f.area_mm2 < kFlatOverRoughArea * largest_rough) return "a flat face is too small";
+    if (f.area_mm2 < kFlatOverRoughArea * largest_rough) return kRefusals[4];
     if (f.area_mm2 < kMinFlatAreaFraction * s.rock_size_mm * s.rock_size_mm)
-      return "a flat face is too small";
+      return kRefusals[4];
     if (angle_deg(f.normal, cl - f.centroid) > kMaxViewAngleDeg ||
         angle_deg(f.normal, cr - f.centroid) > kMaxViewAngleDeg)
-      return "a flat face is seen too obliquely";
+      return kRefusals[5];
     for (int j = 0; j < i; ++j)
       if (angle_deg(f.normal, facets[static_cast<std::size_t>(j)].normal) < kMinFlatSeparationDeg)
-        return "two flat faces are nearly parallel";
+        return kRefusals[6];
   }
-  auto pts = rock_outline_points(s.rock, 8);
-  const auto shadow = polygon_edge_points(shadow_region(s.rock, s.sun_dir), 8);
-  pts.insert(pts.end(), shadow.begin(), shadow.end());
   auto pair = rectify_geometry(s.rig, kImageWidth, kImageHeight);
-  if (!pair) return "rig cannot be rectified";
-  for (const auto& p : pts) {
-    if (!in_image(s.rig.left, p, kMarginPx) || !in_image(s.rig.right, p, kMarginPx))
-      return "rock or shadow outside an image";
-    auto r = rectified_project(*pair, p);
-    if (!r || r->uv_left.x() < kMarginPx / 2 || r->uv_left.x() - r->disparity < kMarginPx / 2 ||
-        r->uv_left.x() > kImageWidth - 1 - kMarginPx / 2 || r->uv_left.y() < kMarginPx / 2 ||
-        r->uv_left.y() > kImageHeight - 1 - kMarginPx / 2)
-      return "rock or shadow outside a rectified image";
-  }
+  if (!pair) return kRefusals[7];
+  auto in_views = [&](const std::vector<Eigen::Vector3d>& pts) {
+    for (const auto& p : pts) {
+      if (!in_image(s.rig.left, p, kMarginPx) || !in_image(s.rig.right, p, kMarginPx)) return false;
+      auto r = rectified_project(*pair, p);
+      const double m = kMarginPx / 2;
+      if (!r || r->uv_left.x() < m || r->uv_left.x() - r->disparity < m ||
+          r->uv_left.x() > kImageWidth - 1 - m || r->uv_left.y() < m ||
+          r->uv_left.y() > kImageHeight - 1 - m)
+        return false;
+    }
+    return true;
+  };
+  if (!in_views(rock_outline_points(s.rock, 8))) return kRefusals[8];
+  if (!in_views(polygon_edge_points(shadow_region(s.rock, s.sun_dir), 8)))
+    return kRefusals[9];
   return nullptr;
 }
 
@@ -160,7 +200,18 @@ Result<Scene> make_scene(const SceneOptions& o) {
   const double h = s.camera_height_mm;
   const double dist = s.rock_distance_mm;
   Rng geo(o.seed, kStreamGeometry);
-  const char* why = "no attempt";
+  // Refusals come in check order: the latest check ever reached names what
+  // kept the options from working.
+  const char* furthest = "none";
+  auto stage = [](const char* why) {
+    for (int i = 0; i < static_cast<int>(std::size(kRefusals)); ++i)
+      if (why == kRefusals[i]) return i;
+    return -1;
+  };
+  auto tally = [&](const char* why) {
+    if (stage(why) >= stage(furthest)) furthest = why;
+  };
+  const char* why = nullptr;
   for (int attempt = 1; attempt <= kMaxAttempts; ++attempt) {
     const double phi = geo.uniform(-10, 10) * kDeg;  // rock bearing from the rig
     // Faces are aimed using an estimate of the centre height (exact below).
@@ -176,7 +227,7 @@ Result<Scene> make_scene(const SceneOptions& o) {
     const double tilt_jitter = geo.uniform(-6, 6) * kDeg;
     const double roll = geo.uniform(-1.5, 1.5) * kDeg;
     if (!built) {
-      why = "degenerate rock";
+      tally(kRefusals[0]);
       continue;
     }
     const double zc = built->centre_height_mm;
@@ -193,10 +244,14 @@ Result<Scene> make_scene(const SceneOptions& o) {
     s.sun_dir = sun_direction(phi, s.sun_azimuth_deg, s.sun_elevation_deg);
     s.attempts = attempt;
     why = refusal(s);
-    if (!why) return s;
+    if (!why) {
+      set_tone_and_exposure(s);
+      return s;
+    }
+    tally(why);
   }
-  return Error::make(Errc::no_solution, "scene: no placement after %d attempts (last: %s)",
-                     kMaxAttempts, why);
+  return Error::make(Errc::no_solution, "scene: no placement in %d attempts (furthest: %s)",
+                     kMaxAttempts, furthest);
 }
 
 }  // namespace petra::sim

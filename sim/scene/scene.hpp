@@ -36,6 +36,7 @@ struct Scene {
   Eigen::Vector3d sun_dir = Eigen::Vector3d::UnitZ();        // unit, from the scene toward the sun
   double ambient = 0.3;       // sky irradiance relative to the sun's at normal incidence
   double sky_radiance = 1.0;  // what a ray that misses the ground sees
+  double tone_ratio = 1.0;  // rock's mean brightness / the ground's, as the left camera sees them
   TextureRecipe ground;
   TextureRecipe rock_surface;
   double gain_dn = 200;  // DN per unit radiance (exposure)

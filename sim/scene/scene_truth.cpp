@@ -137,6 +137,7 @@ Result<std::string> format_truth_json(const Scene& s, const SceneTruth& t) {
   w.key("rock_size_mm").number(s.rock_size_mm);
   w.key("rock_distance_mm").number(s.rock_distance_mm);
   w.key("camera_height_mm").number(s.camera_height_mm);
+  w.key("tone_ratio").number(s.tone_ratio);
   w.key("rock_centre_mm");
   vec3(w, s.rock_centre_mm);
   w.key("noise_dn").number(s.options.noise_sigma_dn);
