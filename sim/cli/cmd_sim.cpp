@@ -16,7 +16,7 @@ namespace petra::cli {
 namespace {
 
 struct SceneArgs {
-  std::optional<std::uint64_t> seed;
+  std::optional<long long> seed;  // signed, so a negative seed is reported, not wrapped
   std::optional<int> set_index;
   std::string out;
   std::optional<std::string> boundary;
@@ -118,7 +118,14 @@ void add_sim(CLI::App& app, Outcome& outcome) {
         }
         base = sim::standard_scene_set()[static_cast<std::size_t>(k)];
       } else if (scene_args.seed) {
-        base.seed = *scene_args.seed;
+        const long long seed = *scene_args.seed;
+        if (seed < 0 || static_cast<unsigned long long>(seed) > sim::kMaxSeed) {
+          const std::string msg = "--seed " + std::to_string(seed) + " outside 0.." +
+                                  std::to_string(sim::kMaxSeed);
+          outcome.exit_code = fail("sim scene", msg.c_str());
+          return;
+        }
+        base.seed = static_cast<std::uint64_t>(seed);
       } else {
         outcome.exit_code = fail("sim scene", "--seed N or --set-index K is required");
         return;
