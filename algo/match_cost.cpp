@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "algo/core/assert.hpp"
+
 namespace petra::match {
 
 namespace {
@@ -55,15 +57,23 @@ void gray_row(ConstGray8View image, int y, int x0, int n, std::uint8_t* gray) {
   padded_row(image, y, x0, n, gray);
 }
 
+template <int kLanes>
 void raw_cost_row(const RawRowInputs& in, int k_count, std::uint8_t* raw, std::uint16_t* colsum,
-                  int stride) {
+                  int stride_arg) {
+  const int stride = kLanes > 0 ? kLanes : stride_arg;
+  PETRA_ASSERT(k_count <= stride && stride <= kMaxLanes);
+  std::uint8_t pad[kMaxLanes];  // kRawPad on the lanes beyond the range
+  for (int k = 0; k < stride; ++k) pad[k] = k < k_count ? 0 : kRawPad;
   for (int i = 0; i < in.n_left; ++i) {
     std::uint8_t* __restrict out = raw + static_cast<std::ptrdiff_t>(i) * stride;
     std::uint16_t* __restrict sum = colsum + static_cast<std::ptrdiff_t>(i) * stride;
+    // All `stride` lanes in one vectorised loop (no scalar tail); the lanes
+    // beyond k_count keep kRawPad.
     if (in.neutral_left[i]) {
-      for (int k = 0; k < k_count; ++k) {
-        sum[k] = static_cast<std::uint16_t>(sum[k] + kRawNeutral - out[k]);
-        out[k] = kRawNeutral;
+      for (int k = 0; k < stride; ++k) {
+        const std::uint8_t v = pad[k] != 0 ? pad[k] : std::uint8_t{kRawNeutral};
+        sum[k] = static_cast<std::uint16_t>(sum[k] + v - out[k]);
+        out[k] = v;
       }
       continue;
     }
@@ -75,36 +85,40 @@ void raw_cost_row(const RawRowInputs& in, int k_count, std::uint8_t* raw, std::u
     const std::uint8_t* __restrict cro = in.census_outer_right_rev + base;
     const std::uint8_t* __restrict gr = in.gray_right_rev + base;
     const std::uint8_t* __restrict ov = in.override_rev + base;
-    for (int k = 0; k < k_count; ++k) {
+    for (int k = 0; k < stride; ++k) {
       const std::uint8_t ad = static_cast<std::uint8_t>(max8(gl, gr[k]) - min8(gl, gr[k]));
       const std::uint8_t c = static_cast<std::uint8_t>(
           popcount8(static_cast<std::uint8_t>(ci ^ cri[k])) + popcount8(static_cast<std::uint8_t>(co ^ cro[k])) +
           (min8(ad, 32) >> 2));
-      const std::uint8_t v = ov[k] != 0 ? ov[k] : c;
+      // Overrides as branch-free selects: padding lanes, then right samples.
+      std::uint8_t v = ov[k] != 0 ? ov[k] : c;
+      v = pad[k] != 0 ? pad[k] : v;
       sum[k] = static_cast<std::uint16_t>(sum[k] + v - out[k]);
       out[k] = v;
     }
   }
 }
 
-void box_and_shift_row(const std::uint16_t* colsum, int n, int stride, std::uint16_t* hs,
+template <int kLanes>
+void box_and_shift_row(const std::uint16_t* colsum, int n, int stride_arg, std::uint16_t* hs,
                        std::uint16_t* agg) {
+  const int stride = kLanes > 0 ? kLanes : stride_arg;
   const int nh = n + 2 * kShiftRadiusX;
   // Box sums by a running sum along x, vectorised over k.
   for (int k = 0; k < stride; ++k)
     hs[k] = static_cast<std::uint16_t>(colsum[k] + colsum[stride + k] + colsum[2 * stride + k] +
                                        colsum[3 * stride + k] + colsum[4 * stride + k]);
   for (int j = 1; j < nh; ++j) {
-    const std::uint16_t* prev = hs + static_cast<std::ptrdiff_t>(j - 1) * stride;
-    const std::uint16_t* add = colsum + static_cast<std::ptrdiff_t>(j + 4) * stride;
-    const std::uint16_t* sub = colsum + static_cast<std::ptrdiff_t>(j - 1) * stride;
-    std::uint16_t* cur = hs + static_cast<std::ptrdiff_t>(j) * stride;
+    const std::uint16_t* __restrict prev = hs + static_cast<std::ptrdiff_t>(j - 1) * stride;
+    const std::uint16_t* __restrict add = colsum + static_cast<std::ptrdiff_t>(j + 4) * stride;
+    const std::uint16_t* __restrict sub = colsum + static_cast<std::ptrdiff_t>(j - 1) * stride;
+    std::uint16_t* __restrict cur = hs + static_cast<std::ptrdiff_t>(j) * stride;
     for (int k = 0; k < stride; ++k) cur[k] = static_cast<std::uint16_t>(prev[k] + add[k] - sub[k]);
   }
   // Minimum over five box positions: min(min(h0,h1), min(h2,h3), h4).
   for (int i = 0; i < n; ++i) {
-    const std::uint16_t* h0 = hs + static_cast<std::ptrdiff_t>(i) * stride;
-    std::uint16_t* out = agg + static_cast<std::ptrdiff_t>(i) * stride;
+    const std::uint16_t* __restrict h0 = hs + static_cast<std::ptrdiff_t>(i) * stride;
+    std::uint16_t* __restrict out = agg + static_cast<std::ptrdiff_t>(i) * stride;
     for (int k = 0; k < stride; ++k) {
       const std::uint16_t a = std::min(h0[k], h0[stride + k]);
       const std::uint16_t b = std::min(h0[2 * stride + k], h0[3 * stride + k]);
@@ -112,5 +126,11 @@ void box_and_shift_row(const std::uint16_t* colsum, int n, int stride, std::uint
     }
   }
 }
+
+#define PETRA_INSTANTIATE(n)                                                                    \
+  template void raw_cost_row<n>(const RawRowInputs&, int, std::uint8_t*, std::uint16_t*, int); \
+  template void box_and_shift_row<n>(const std::uint16_t*, int, int, std::uint16_t*, std::uint16_t*);
+PETRA_MATCH_LANE_COUNTS(PETRA_INSTANTIATE)
+#undef PETRA_INSTANTIATE
 
 }  // namespace petra::match

@@ -30,6 +30,13 @@ inline constexpr int kWindowRows = 2 * kBoxRadiusY + 1;
 inline constexpr int kMarginX = kBoxRadiusX + kShiftRadiusX;
 inline constexpr int kAggregatedMax = kRawMax * (2 * kBoxRadiusX + 1) * kWindowRows;  // 1080
 
+// The row kernels below are compiled for fixed lane counts (the disparity
+// count rounded up to 16), so each lane loop is a fixed number of vector
+// operations without loop tails; kLanes = 0 is the generic version for any
+// stride. X(n) is expanded for every compiled count.
+inline constexpr int kMaxLanes = 4096;  // |d| <= 2047 on both sides
+#define PETRA_MATCH_LANE_COUNTS(X) X(16) X(32) X(48) X(64) X(80) X(96) X(112) X(128) X(0)
+
 // 16-bit census of row `y`, columns [x0, x0 + n), borders replicated, as
 // two byte planes (bits 0-7: the 3x3 ring, bits 8-15: the outer points) so
 // the cost runs in byte lanes. `rows` is scratch of 5 * (n + 4) bytes.
@@ -46,7 +53,8 @@ void gray_row(ConstGray8View image, int y, int x0, int n, std::uint8_t* gray);
 // disparities k = 0..k_count-1 read consecutive entries m = (n_left - 1 - i)
 // + k. `override_rev[m]` != 0 replaces the cost (a right sample outside the
 // image or in shadow); `neutral_left[i]` != 0 makes left column i carry no
-// information (outside the image or in shadow). Lanes >= k_count are untouched.
+// information (outside the image or in shadow). Lanes >= k_count get kRawPad;
+// the right arrays must hold n_left + stride - 1 entries.
 struct RawRowInputs {
   const std::uint8_t* census_inner_left;
   const std::uint8_t* census_outer_left;
@@ -58,11 +66,13 @@ struct RawRowInputs {
   const std::uint8_t* override_rev;
   const std::uint8_t* neutral_left;
 };
+template <int kLanes>
 void raw_cost_row(const RawRowInputs& in, int k_count, std::uint8_t* raw, std::uint16_t* colsum,
                   int stride);
 
 // hs[j][k] = sum of colsum[j..j+4][k]; agg[i][k] = min of hs[i..i+4][k].
 // colsum has n + 2*kMarginX columns; agg gets n; hs is scratch of n + 4.
+template <int kLanes>
 void box_and_shift_row(const std::uint16_t* colsum, int n, int stride, std::uint16_t* hs,
                        std::uint16_t* agg);
 

@@ -127,26 +127,37 @@ struct Winner {
   int second = 0;
 };
 
-template <class T>
-T lane_min(const T* __restrict v, int lo, int hi) {  // [lo, hi), max() when empty
-  T m = std::numeric_limits<T>::max();
-  for (int k = lo; k < hi; ++k) m = v[k] < m ? v[k] : m;
-  return m;
-}
-
-template <class T>
-[[gnu::noinline]] Winner winner(const T* __restrict v, int n) {
-  // Value and lane in one key (value << 12 | lane): one min-reduction gives
-  // the smallest value and its first lane (n <= 4096, values < 2^16).
-  std::int32_t key = std::numeric_limits<std::int32_t>::max();
-  for (int k = 0; k < n; ++k) {
-    const std::int32_t kv = static_cast<std::int32_t>(v[k]) << 12 | k;
-    key = kv < key ? kv : key;
+// Lane numbers as data: the reductions below compare them with loaded
+// values instead of an induction variable, which keeps them vectorised.
+struct LaneNumbers {
+  std::int16_t k[match::kMaxLanes];
+  constexpr LaneNumbers() : k() {
+    for (int i = 0; i < match::kMaxLanes; ++i) k[i] = static_cast<std::int16_t>(i);
   }
-  const int k1 = key & 0xFFF;
-  const T left = lane_min(v, 0, std::max(k1 - 1, 0));
-  const T right = lane_min(v, std::min(k1 + 2, n), n);
-  return Winner{k1, key >> 12, std::min(left, right)};
+};
+constexpr LaneNumbers kLaneNumbers{};
+
+template <int kLanes, class T>
+[[gnu::noinline]] Winner winner(const T* __restrict v, int n_arg) {
+  const int n = kLanes > 0 ? kLanes : n_arg;
+  constexpr T kTop = std::numeric_limits<T>::max();
+  const std::int16_t* __restrict lane = kLaneNumbers.k;
+  T m = kTop;
+  for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
+  std::int16_t k1 = 0x7FFF;  // first lane holding the minimum
+  for (int k = 0; k < n; ++k) {  // masks, not ?:, keep it one basic block
+    const std::int16_t hit = static_cast<std::int16_t>(-(v[k] == m));
+    const std::int16_t c = static_cast<std::int16_t>((lane[k] & hit) | (0x7FFF & ~hit));
+    k1 = c < k1 ? c : k1;
+  }
+  const std::int16_t lo = static_cast<std::int16_t>(k1 - 1), hi = static_cast<std::int16_t>(k1 + 1);
+  T m2 = kTop;  // best more than one lane away
+  for (int k = 0; k < n; ++k) {
+    const T near = static_cast<T>(-((lane[k] >= lo) & (lane[k] <= hi)));
+    const T c = static_cast<T>((v[k] & ~near) | (kTop & near));
+    m2 = c < m2 ? c : m2;
+  }
+  return Winner{k1, m, m2};
 }
 
 bool unique_enough(const Winner& w, int pct) {
@@ -159,20 +170,24 @@ bool unique_enough(const Winner& w, int pct) {
 }
 
 // Right-view winners: for right pixel (reversed index m), the lane k of the
-// smallest path cost over the left pixels i with m = (w - 1 - i) + k.
-[[gnu::noinline]] void right_winners(const std::int16_t* __restrict S, int w, int stride, int D,
+// smallest path cost over the left pixels i with m = (w - 1 - i) + k. All
+// `lanes` lanes are scanned (padding lanes never win), so no scalar tail;
+// rmin and rk hold w + lanes - 1 entries.
+template <int kLanes>
+[[gnu::noinline]] void right_winners(const std::int16_t* __restrict S, int w, int row_stride, int lanes_arg,
                                      const std::uint8_t* __restrict skip, std::int16_t* __restrict rmin,
                                      std::int16_t* __restrict rk) {
-  for (int m = 0; m < w + D - 1; ++m) {
+  const int lanes = kLanes > 0 ? kLanes : lanes_arg;
+  for (int m = 0; m < w + lanes - 1; ++m) {
     rmin[m] = 0x7FFF;
     rk[m] = -1;
   }
   for (int i = 0; i < w; ++i) {
     if (skip[i]) continue;
-    const std::int16_t* __restrict s = S + static_cast<std::size_t>(i) * stride;
+    const std::int16_t* __restrict s = S + static_cast<std::size_t>(i) * row_stride;
     std::int16_t* __restrict rm = rmin + (w - 1 - i);
     std::int16_t* __restrict rl = rk + (w - 1 - i);
-    for (int k = 0; k < D; ++k) {
+    for (int k = 0; k < lanes; ++k) {
       const bool better = s[k] < rm[k];
       rm[k] = better ? s[k] : rm[k];
       rl[k] = better ? static_cast<std::int16_t>(k) : rl[k];
@@ -194,10 +209,13 @@ Rect right_search_area(Rect roi, int disp_min, int disp_max, int image_width) {
   return Rect{x0, roi.y, x1 - x0 + 1, roi.h};
 }
 
-Result<MatchDpStats> match_dp(const StereoInput& in, Rect roi, const MatchDpParams& p,
-                              const MatchBudget& budget, Arena& arena, DisparityMap& out,
-                              ImageView<std::uint8_t> confidence) {
-  PETRA_TRY(validate(in, roi, p, budget, out, confidence));
+namespace {
+
+// The whole matcher for one lane count (kLanes = Dp, or 0 for any), so every
+// row kernel runs with a compile-time lane count.
+template <int kLanes>
+Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpParams& p, Arena& arena,
+                                DisparityMap& out, ImageView<std::uint8_t> confidence) {
   const int W = in.left.width();
   const int H = in.left.height();
   const Rect band = right_search_area(roi, p.disp_min, p.disp_max, W);
@@ -300,16 +318,10 @@ Result<MatchDpStats> match_dp(const StereoInput& in, Rect roi, const MatchDpPara
     }
     match::RawRowInputs ri{cli.data(), clo.data(), gl.data(), wc, cri.data(), cro.data(), gr.data(), ov.data(),
                            neutral.data()};
-    match::raw_cost_row(ri, D, raw, colsum.data(), Dp);
+    match::raw_cost_row<kLanes>(ri, D, raw, colsum.data(), Dp);
   };
 
-  // Fill the window for the first ROI row. Ring and sums start at zero; the
-  // padding lanes hold kRawPad for good.
-  for (int i = 0; i < wc; ++i)
-    for (int k = D; k < Dp; ++k) {
-      for (int r = 0; r < kWindowRows; ++r) ring[static_cast<std::size_t>(r) * cells + static_cast<std::size_t>(i) * Dp + k] = match::kRawPad;
-      colsum[static_cast<std::size_t>(i) * Dp + k] = kWindowRows * match::kRawPad;
-    }
+  // Fill the window for the first ROI row (ring and sums start at zero).
   for (int r = 0; r < kWindowRows; ++r)
     raw_row(roi.y - match::kBoxRadiusY + r, ring.data() + static_cast<std::size_t>(r) * cells);
 
@@ -325,7 +337,7 @@ Result<MatchDpStats> match_dp(const StereoInput& in, Rect roi, const MatchDpPara
       std::uint8_t* slot = ring.data() + static_cast<std::size_t>((t - 1) % kWindowRows) * cells;
       raw_row(y + match::kBoxRadiusY, slot);  // replaces the row leaving the window
     }
-    match::box_and_shift_row(colsum.data(), w, Dp, hs.data(), agg.data());
+    match::box_and_shift_row<kLanes>(colsum.data(), w, Dp, hs.data(), agg.data());
 
     // Steps 2-3: edge pairs -> anchors -> bounds (lanes k = d - dmin).
     for (int i = 0; i < w; ++i) {
@@ -355,7 +367,7 @@ Result<MatchDpStats> match_dp(const StereoInput& in, Rect roi, const MatchDpPara
         const match::EdgePair e = pairs[static_cast<std::size_t>(a)];
         const int i = e.x_left - roi.x;
         const int kp = e.x_left - e.x_right - dmin;
-        const Winner wl = winner(agg.data() + static_cast<std::size_t>(i) * Dp, D);
+        const Winner wl = winner<0>(agg.data() + static_cast<std::size_t>(i) * Dp, D);
         if (std::abs(wl.k - kp) > tol || !unique_enough(wl, p.edge_uniqueness_pct)) continue;
         int kr = -1, best = 0;
         for (int k = 0; k < D; ++k) {
@@ -406,13 +418,13 @@ Result<MatchDpStats> match_dp(const StereoInput& in, Rect roi, const MatchDpPara
       p2[i] = static_cast<std::uint16_t>(std::max(p2_floor, p.p2 * 8 / (8 + g)));
     }
     p2[0] = static_cast<std::uint16_t>(p.p2);
-    match::apply_bounds(agg.data(), w, Dp, lo.data(), hi.data(), D - 1);
+    match::apply_bounds<kLanes>(agg.data(), w, Dp, lo.data(), hi.data(), D - 1);
     match::ScanlineInputs si{agg.data(), w, Dp, p2.data(), p.p1};
-    match::scanline_dp(si, S.data(), dp_rows.data());
+    match::scanline_dp<kLanes>(si, S.data(), dp_rows.data());
 
     // Right view winners along the same path costs (reversed index m).
     for (int i = 0; i < w; ++i) skip[i] = shadow_at(in.left_shadow, roi.x + i, y);
-    right_winners(S.data() + match::kGuardLanes, w, sp, D, skip.data(), rmin.data(), rk.data());
+    right_winners<kLanes>(S.data() + match::kGuardLanes, w, sp, Dp, skip.data(), rmin.data(), rk.data());
 
     // Steps 4-5: select, reject, refine.
     std::int16_t* o = out.q4.row(t);
@@ -425,7 +437,7 @@ Result<MatchDpStats> match_dp(const StereoInput& in, Rect roi, const MatchDpPara
       const std::int16_t* s = S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
       const int klo = lo[i], khi = hi[i];
       // Lanes outside [klo, khi] carry kForbiddenCost and never win.
-      const Winner win = winner(s, Dp);
+      const Winner win = winner<kLanes>(s, Dp);
       const int k1 = win.k;
       const int d = dmin + k1;
       if (x - d < 0 || x - d >= W) {
@@ -474,6 +486,23 @@ Result<MatchDpStats> match_dp(const StereoInput& in, Rect roi, const MatchDpPara
   out.roi = roi;
   st.scratch_high_water = arena.high_water() - used_at_entry;
   return st;
+}
+
+}  // namespace
+
+Result<MatchDpStats> match_dp(const StereoInput& in, Rect roi, const MatchDpParams& p,
+                              const MatchBudget& budget, Arena& arena, DisparityMap& out,
+                              ImageView<std::uint8_t> confidence) {
+  PETRA_TRY(validate(in, roi, p, budget, out, confidence));
+  switch (Layout(roi.w, roi.h, p.disp_max - p.disp_min + 1).dp) {
+#define PETRA_CASE(n) \
+  case n:             \
+    return match_impl<n>(in, roi, p, arena, out, confidence);
+    PETRA_MATCH_LANE_COUNTS(PETRA_CASE)
+#undef PETRA_CASE
+    default:
+      return match_impl<0>(in, roi, p, arena, out, confidence);
+  }
 }
 
 }  // namespace petra

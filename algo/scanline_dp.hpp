@@ -21,6 +21,7 @@ inline constexpr int kMaxP2 = 960;
 
 // cost[x][k] += kForbiddenCost for k outside [lo[x], hi[x]]; columns with
 // lo <= 0 and hi >= full_hi (no constraint) are skipped.
+template <int kLanes>  // see PETRA_MATCH_LANE_COUNTS (algo/match_cost.hpp)
 void apply_bounds(std::uint16_t* cost, int n, int stride, const std::int16_t* lo,
                   const std::int16_t* hi, int full_hi);
 
@@ -40,6 +41,7 @@ struct ScanlineInputs {
 // int16, lanes of column x at S + x * path_row_stride + kGuardLanes (the
 // forward pass writes there directly; the guards are set here). `rows` is
 // scratch of 2 * (stride + 2) int16.
+template <int kLanes>
 void scanline_dp(const ScanlineInputs& in, std::int16_t* S, std::int16_t* rows);
 
 }  // namespace petra::match
