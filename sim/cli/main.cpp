@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
   petra::cli::add_info(app, outcome);
   petra::cli::add_sim(app, outcome);
   petra::cli::add_score(app, outcome);
+  petra::cli::add_stereo(app, outcome);
+  petra::cli::add_middlebury(app, outcome);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
