@@ -13,6 +13,10 @@ struct Outcome {
 };
 
 void add_info(CLI::App& app, Outcome& outcome);
+void add_sim(CLI::App& app, Outcome& outcome);
+void add_score(CLI::App& app, Outcome& outcome);
+void add_stereo(CLI::App& app, Outcome& outcome);
+void add_middlebury(CLI::App& app, Outcome& outcome);
 void add_cmd(CLI::App& app, Outcome& outcome);
 void add_tlm(CLI::App& app, Outcome& outcome);
 void add_keygen(CLI::App& app, Outcome& outcome);
