@@ -160,6 +160,23 @@ int run(const Options& o, std::FILE* out) {
       !io::write_pgm((dir / "pairs/right.pgm").string(), right->view()))
     return fail("cannot write the camera folder " + (dir / "pairs").string());
 
+  {
+    // What the operator selected, drawn on the left image.
+    io::RgbImage pic(left->width, left->height);
+    for (int y = 0; y < left->height; ++y)
+      for (int x = 0; x < left->width; ++x) {
+        const std::uint8_t g = left->view()(x, y);
+        std::uint8_t* px = pic.at(x, y);
+        px[0] = px[1] = px[2] = g;
+        const Rect& r = scene->roi;
+        const bool edge = (x >= r.x - 1 && x <= r.x + r.w && (y == r.y - 1 || y == r.y + r.h)) ||
+                          (y >= r.y - 1 && y <= r.y + r.h && (x == r.x - 1 || x == r.x + r.w));
+        if (edge) px[0] = 255, px[1] = 200, px[2] = 0;
+      }
+    if (io::write_png((dir / "roi.png").string(), pic))
+      std::fprintf(out, "   the operator's ROI on the left image: %s\n", (dir / "roi.png").c_str());
+  }
+
   // 2. Key, configuration, petra-fsw.
   if (sodium_init() < 0) return fail("libsodium failed to initialise");
   cmd::AuthKey key;
