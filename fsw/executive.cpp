@@ -139,6 +139,7 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
   PETRA_TRY(allocate(config, deps.job != nullptr ? b.arena_bytes : 0));
 
   PETRA_TRY(uplink_.open(config.cmd_host.data(), config.cmd_port));
+  uplink_.set_receive_buffer(1 << 18);  // a burst of commands waits for the next cycles
   PETRA_TRY(downlink_.open("0.0.0.0", 0));
   PETRA_TRY(downlink_.set_peer(config.tlm_host.data(), config.tlm_port));
   downlink_.set_send_buffer(1 << 20);

@@ -61,6 +61,10 @@ void UdpLink::set_send_buffer(int bytes) {
   if (fd_ >= 0) ::setsockopt(fd_, SOL_SOCKET, SO_SNDBUF, &bytes, sizeof(bytes));
 }
 
+void UdpLink::set_receive_buffer(int bytes) {
+  if (fd_ >= 0) ::setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &bytes, sizeof(bytes));
+}
+
 Result<std::size_t> UdpLink::receive(std::span<std::uint8_t> buf) {
   if (fd_ < 0) return Error::make(Errc::not_ready, "udp: not open");
   const ssize_t n = ::recv(fd_, buf.data(), buf.size(), MSG_DONTWAIT | MSG_TRUNC);

@@ -27,8 +27,9 @@ class UdpLink {
   Status open(const char* host, std::uint16_t port);
   // Destination of send().
   Status set_peer(const char* host, std::uint16_t port);
-  // Enlarges the kernel send buffer (telemetry bursts); best effort.
+  // Enlarge the kernel buffers (telemetry bursts, command bursts); best effort.
   void set_send_buffer(int bytes);
+  void set_receive_buffer(int bytes);
 
   // One datagram into buf; returns its true size (which may exceed buf.size():
   // then it was truncated), or 0 when nothing is waiting.
