@@ -20,13 +20,13 @@ inline void sort2(std::int16_t& a, std::int16_t& b) {
 
 // One output row from three guarded input rows (index 0 and w+1 invalid).
 // Every step is branch-free so the compiler runs eight pixels per vector:
-// invalid neighbours become alternately kLow and kHigh (the first kLow),
+// invalid neighbours become alternately kHigh and kLow (the first kHigh),
 // which leaves the valid values' (upper) median in the middle of nine; then
 // the classic 19-exchange median-of-nine network.
 inline std::int16_t pad(std::int16_t x, int& parity, int& valid) {
   const int bad = x == kInvalidDisparity;
   valid += 1 - bad;
-  const std::int16_t out = bad ? (parity ? kHigh : kLow) : x;
+  const std::int16_t out = bad ? (parity ? kLow : kHigh) : x;
   parity ^= bad;
   return out;
 }
