@@ -69,8 +69,8 @@ struct MatchDpParams {
   int edge_zncc_floor_pct = 80;  // correlation floor of an edge pair
   int edge_uniqueness_pct = 10;  // anchor: margin of the dense winner
   int edge_tolerance_px = 1;     // edge localisation slack of the bounds
-  int p1 = 67;                   // DP penalty of a one-pixel step (cost units)
-  int p2 = 800;                  // DP penalty of a jump, before edge lowering
+  int p1 = 100;                  // DP penalty of a one-pixel step (cost units)
+  int p2 = 900;                  // DP penalty of a jump, before edge lowering
   int lr_tolerance_px = 1;
   int uniqueness_pct = 5;
   int max_mean_cost = 10;  // ceiling of the mean raw cost (0..24) in the window
