@@ -18,17 +18,22 @@ constexpr int kTanDen = 32;
 
 // The row kernels are out of line: inlined into canny() they are not
 // vectorised by GCC 12.
-[[gnu::noinline]] void vertical_binomial(const std::uint16_t* __restrict a, const std::uint16_t* __restrict b,
-                                         const std::uint16_t* __restrict c, const std::uint16_t* __restrict d,
-                                         const std::uint16_t* __restrict e, int n, std::uint8_t* __restrict o) {
+[[gnu::noinline]] void vertical_binomial(const std::uint16_t* __restrict a,
+                                         const std::uint16_t* __restrict b,
+                                         const std::uint16_t* __restrict c,
+                                         const std::uint16_t* __restrict d,
+                                         const std::uint16_t* __restrict e, int n,
+                                         std::uint8_t* __restrict o) {
   for (int i = 0; i < n; ++i)
     o[i] = static_cast<std::uint8_t>((a[i] + 4 * b[i] + 6 * c[i] + 4 * d[i] + e[i] + 128) >> 8);
 }
 
 // Sobel gradients and L1 magnitude of one row from three smoothed rows.
-[[gnu::noinline]] void sobel_row(const std::uint8_t* __restrict up, const std::uint8_t* __restrict mid,
-                                 const std::uint8_t* __restrict dn, int n, std::int16_t* __restrict ox,
-                                 std::int16_t* __restrict oy, std::uint16_t* __restrict om) {
+[[gnu::noinline]] void sobel_row(const std::uint8_t* __restrict up,
+                                 const std::uint8_t* __restrict mid,
+                                 const std::uint8_t* __restrict dn, int n,
+                                 std::int16_t* __restrict ox, std::int16_t* __restrict oy,
+                                 std::uint16_t* __restrict om) {
   for (int i = 0; i < n; ++i) {
     const int vx = (up[i + 2] + 2 * mid[i + 2] + dn[i + 2]) - (up[i] + 2 * mid[i] + dn[i]);
     const int vy = (dn[i] + 2 * dn[i + 1] + dn[i + 2]) - (up[i] + 2 * up[i + 1] + up[i + 2]);
@@ -43,8 +48,10 @@ constexpr int kTanDen = 32;
 // (i - 1 and i + 1 are valid). Writes 0, or the sector and sign with kWeak
 // or kEdgeBit. Branch-free so the compiler runs it in vector lanes.
 [[gnu::noinline]] void nms_row(const std::int16_t* __restrict gx, const std::int16_t* __restrict gy,
-             const std::uint16_t* __restrict up, const std::uint16_t* __restrict mid,
-             const std::uint16_t* __restrict dn, int w, int low, int high, std::uint8_t* __restrict out) {
+                               const std::uint16_t* __restrict up,
+                               const std::uint16_t* __restrict mid,
+                               const std::uint16_t* __restrict dn, int w, int low, int high,
+                               std::uint8_t* __restrict out) {
   const std::int16_t lo = static_cast<std::int16_t>(low), hi = static_cast<std::int16_t>(high);
   // Every neighbour is loaded and chosen by masks: a select between two
   // addresses would be a gather, which stops the vectoriser.
@@ -53,10 +60,13 @@ constexpr int kTanDen = 32;
   };
   for (int i = 0; i < w; ++i) {
     const std::int16_t m = static_cast<std::int16_t>(mid[i]);
-    const std::int16_t l = static_cast<std::int16_t>(mid[i - 1]), r = static_cast<std::int16_t>(mid[i + 1]);
+    const std::int16_t l = static_cast<std::int16_t>(mid[i - 1]),
+                       r = static_cast<std::int16_t>(mid[i + 1]);
     const std::int16_t u = static_cast<std::int16_t>(up[i]), d = static_cast<std::int16_t>(dn[i]);
-    const std::int16_t ul = static_cast<std::int16_t>(up[i - 1]), ur = static_cast<std::int16_t>(up[i + 1]);
-    const std::int16_t dl = static_cast<std::int16_t>(dn[i - 1]), dr = static_cast<std::int16_t>(dn[i + 1]);
+    const std::int16_t ul = static_cast<std::int16_t>(up[i - 1]),
+                       ur = static_cast<std::int16_t>(up[i + 1]);
+    const std::int16_t dl = static_cast<std::int16_t>(dn[i - 1]),
+                       dr = static_cast<std::int16_t>(dn[i + 1]);
     const std::int16_t ax = static_cast<std::int16_t>(gx[i] < 0 ? -gx[i] : gx[i]);
     const std::int16_t ay = static_cast<std::int16_t>(gy[i] < 0 ? -gy[i] : gy[i]);
     const std::int16_t horizontal = static_cast<std::int16_t>(-(ay * kTanDen <= ax * kTanNum));
@@ -64,8 +74,9 @@ constexpr int kTanDen = 32;
     const std::int16_t same = static_cast<std::int16_t>(-((gx[i] > 0) == (gy[i] > 0)));
     const std::int16_t n1 = pick(horizontal, l, pick(vertical, u, pick(same, ul, ur)));
     const std::int16_t n2 = pick(horizontal, r, pick(vertical, d, pick(same, dr, dl)));
-    const std::int16_t sector = pick(horizontal, kSectorHorizontal,
-                                     pick(vertical, kSectorVertical, pick(same, kSectorDiagonal, kSectorAntiDiagonal)));
+    const std::int16_t sector =
+        pick(horizontal, kSectorHorizontal,
+             pick(vertical, kSectorVertical, pick(same, kSectorDiagonal, kSectorAntiDiagonal)));
     // Strict on one side, so a plateau of two equal pixels keeps one.
     const bool keep = m >= lo && m > n1 && m >= n2;
     const int code = sector | (gx[i] < 0 ? kEdgeGxNegative : 0) | (m >= hi ? kEdgeBit : kWeak);
@@ -73,7 +84,9 @@ constexpr int kTanDen = 32;
   }
 }
 
-std::size_t sz(int w, int h) { return static_cast<std::size_t>(w) * static_cast<std::size_t>(h); }
+std::size_t sz(int w, int h) {
+  return static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+}
 
 // Copies source row `y` (clamped) over columns [x0, x0 + n) with border
 // replication, so the filters below need no bounds checks.
@@ -107,8 +120,9 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
     return Error::make(Errc::invalid_argument, "canny: edges are %dx%d, area is %dx%d",
                        edges.width(), edges.height(), area.w, area.h);
   if (params.low <= 0 || params.high < params.low)
-    return Error::make(Errc::invalid_argument, "canny: thresholds low %d, high %d (need 0 < low <= high)",
-                       params.low, params.high);
+    return Error::make(Errc::invalid_argument,
+                       "canny: thresholds low %d, high %d (need 0 < low <= high)", params.low,
+                       params.high);
   ArenaScope scope(scratch);
   const int w = area.w, h = area.h;
   const int sw = w + 4, sh = h + 4;  // smoothed: area grown by 2
@@ -135,7 +149,8 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
     std::uint8_t* s = src_row->data();
     padded_row(image, y_img, area.x - 4, w + 8, s);
     for (int i = 0; i < sw; ++i)  // out[i] is column area.x - 2 + i
-      out[i] = static_cast<std::uint16_t>(s[i] + 4 * s[i + 1] + 6 * s[i + 2] + 4 * s[i + 3] + s[i + 4]);
+      out[i] =
+          static_cast<std::uint16_t>(s[i] + 4 * s[i + 1] + 6 * s[i + 2] + 4 * s[i + 3] + s[i + 4]);
   };
   std::uint16_t* ring = hring->data();
   const int y_first = area.y - 4;  // first source row needed
@@ -154,7 +169,8 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
   const ImageView<std::int16_t> gx = ImageView<std::int16_t>::over(*gx_buf, gw, gh);
   const ImageView<std::int16_t> gy = ImageView<std::int16_t>::over(*gy_buf, gw, gh);
   const ImageView<std::uint16_t> mg = ImageView<std::uint16_t>::over(*mag_buf, gw, gh);
-  for (int j = 0; j < gh; ++j) sobel_row(sm.row(j), sm.row(j + 1), sm.row(j + 2), gw, gx.row(j), gy.row(j), mg.row(j));
+  for (int j = 0; j < gh; ++j)
+    sobel_row(sm.row(j), sm.row(j + 1), sm.row(j + 2), gw, gx.row(j), gy.row(j), mg.row(j));
 
   // 3. Non-maximum suppression, one row at a time (nms_row, vectorised);
   // then the strong pixels seed the stack.
@@ -162,8 +178,8 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
   std::size_t top = 0;
   for (int j = 0; j < h; ++j) {
     std::uint8_t* out = edges.row(j);
-    nms_row(gx.row(j + 1) + 1, gy.row(j + 1) + 1, mg.row(j) + 1, mg.row(j + 1) + 1, mg.row(j + 2) + 1, w,
-            params.low, params.high, out);
+    nms_row(gx.row(j + 1) + 1, gy.row(j + 1) + 1, mg.row(j) + 1, mg.row(j + 1) + 1,
+            mg.row(j + 2) + 1, w, params.low, params.high, out);
     for (int i = 0; i < w; ++i)
       if (out[i] & kEdgeBit) {
         (*stack)[top++] = static_cast<std::uint32_t>(j * w + i);

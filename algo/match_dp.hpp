@@ -67,7 +67,7 @@ struct MatchDpParams {
   int disp_min = 0;  // px, right = left - d
   int disp_max = 63;
   CannyParams canny{};
-  bool edge_constraint = true;  // steps 2-3; off only to measure their effect
+  bool edge_constraint = true;   // steps 2-3; off only to measure their effect
   int edge_zncc_floor_pct = 80;  // correlation floor of an edge pair
   int edge_uniqueness_pct = 10;  // anchor: margin of the dense winner
   int edge_tolerance_px = 1;     // edge localisation slack of the bounds
@@ -90,8 +90,8 @@ struct MatchDpStats {
   long rejected_shadow_right = 0;
   long left_edges = 0;
   long right_edges = 0;
-  long edge_pairs = 0;  // from the edge DP
-  long anchors = 0;     // pairs kept as constraints
+  long edge_pairs = 0;                 // from the edge DP
+  long anchors = 0;                    // pairs kept as constraints
   std::size_t scratch_high_water = 0;  // arena bytes used at the peak
 };
 

@@ -49,8 +49,9 @@ Result<Rectifier> Rectifier::create(const StereoRig& rig, std::span<RemapEntry> 
                        h, kRemapMaxSide);
   const std::size_t n = table_entries(w, h);
   if (left_table.size() < n || right_table.size() < n)
-    return Error::make(Errc::capacity_exceeded, "rectify: tables need %zu entries each, got %zu and %zu",
-                       n, left_table.size(), right_table.size());
+    return Error::make(Errc::capacity_exceeded,
+                       "rectify: tables need %zu entries each, got %zu and %zu", n,
+                       left_table.size(), right_table.size());
   auto geometry = rectify_geometry(rig, w, h);
   if (!geometry) return geometry.error();
 
@@ -100,7 +101,8 @@ Status Rectifier::rectify(StereoSide side, ConstGray8View original, Gray8View re
       }
       const int fx = m.x_q4 & (kOne - 1);
       const int fy = m.y_q4 & (kOne - 1);
-      const std::uint8_t* p = src + (m.y_q4 >> kRemapFracBits) * stride + (m.x_q4 >> kRemapFracBits);
+      const std::uint8_t* p =
+          src + (m.y_q4 >> kRemapFracBits) * stride + (m.x_q4 >> kRemapFracBits);
       // The second column (row) is read only when its weight is non-zero, so
       // the last column and row of the image need no margin.
       const int dx = (fx + kOne - 1) >> kRemapFracBits;

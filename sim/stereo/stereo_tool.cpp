@@ -16,8 +16,8 @@ namespace petra::stereo {
 namespace {
 
 // Shadow mask of one view over `area`, threshold from `histogram_roi`.
-Status make_mask(ConstGray8View img, Rect histogram_roi, Rect area, double p, std::vector<std::uint8_t>& pixels,
-                 ShadowMask& mask) {
+Status make_mask(ConstGray8View img, Rect histogram_roi, Rect area, double p,
+                 std::vector<std::uint8_t>& pixels, ShadowMask& mask) {
   auto t = shadow_threshold(img, histogram_roi, p);
   if (!t) return t.error();
   pixels.assign(static_cast<std::size_t>(area.w) * area.h, 0);
@@ -32,16 +32,19 @@ Status make_mask(ConstGray8View img, Rect histogram_roi, Rect area, double p, st
 
 Result<StereoToolReport> run_stereo_tool(const StereoToolOptions& o) {
   if (o.method == "gc")
-    return Error::make(Errc::not_ready, "--method gc: the graph-cut matcher is not available in this build (use dp)");
-  if (o.method != "dp") return Error::make(Errc::invalid_argument, "--method %s: expected dp or gc", o.method.c_str());
+    return Error::make(
+        Errc::not_ready,
+        "--method gc: the graph-cut matcher is not available in this build (use dp)");
+  if (o.method != "dp")
+    return Error::make(Errc::invalid_argument, "--method %s: expected dp or gc", o.method.c_str());
   if (o.out.empty()) return Error::make(Errc::missing_field, "--out: no output file given");
   auto left = io::read_gray_image(o.left);
   if (!left) return left.error();
   auto right = io::read_gray_image(o.right);
   if (!right) return right.error();
   if (left->width != right->width || left->height != right->height)
-    return Error::make(Errc::invalid_argument, "left image is %dx%d but right image is %dx%d", left->width,
-                       left->height, right->width, right->height);
+    return Error::make(Errc::invalid_argument, "left image is %dx%d but right image is %dx%d",
+                       left->width, left->height, right->width, right->height);
   const int W = left->width, H = left->height;
   Rect roi{0, 0, W, H};
   if (!o.roi.empty()) {
@@ -50,8 +53,8 @@ Result<StereoToolReport> run_stereo_tool(const StereoToolOptions& o) {
     roi = *r;
   }
   if (!roi.inside(W, H))
-    return Error::make(Errc::out_of_range, "--roi %d,%d,%d,%d is outside the %dx%d image", roi.x, roi.y, roi.w, roi.h,
-                       W, H);
+    return Error::make(Errc::out_of_range, "--roi %d,%d,%d,%d is outside the %dx%d image", roi.x,
+                       roi.y, roi.w, roi.h, W, H);
 
   io::GrayImage rl, rr;  // the pair the matcher sees
   if (!o.calib.empty()) {
@@ -60,8 +63,9 @@ Result<StereoToolReport> run_stereo_tool(const StereoToolOptions& o) {
     auto rig = parse_calib_json(*text);
     if (!rig) return rig.error();
     if (rig->left.width != W || rig->left.height != H)
-      return Error::make(Errc::invalid_argument, "calibration is for %dx%d images, the pair is %dx%d",
-                         rig->left.width, rig->left.height, W, H);
+      return Error::make(Errc::invalid_argument,
+                         "calibration is for %dx%d images, the pair is %dx%d", rig->left.width,
+                         rig->left.height, W, H);
     std::vector<RemapEntry> tl(Rectifier::table_entries(W, H)), tr(tl.size());
     auto rect = Rectifier::create(*rig, tl, tr);
     if (!rect) return rect.error();
@@ -107,7 +111,8 @@ Result<StereoToolReport> run_stereo_tool(const StereoToolOptions& o) {
   std::vector<std::uint8_t> conf(q4.size());
   DisparityMap map{ImageView<std::int16_t>(q4.data(), roi.w, roi.h), roi};
   const auto t0 = std::chrono::steady_clock::now();
-  auto stats = match_dp(in, roi, params, budget, arena, map, ImageView<std::uint8_t>(conf.data(), roi.w, roi.h));
+  auto stats = match_dp(in, roi, params, budget, arena, map,
+                        ImageView<std::uint8_t>(conf.data(), roi.w, roi.h));
   const auto t1 = std::chrono::steady_clock::now();
   if (!stats) return stats.error();
 

@@ -16,7 +16,8 @@ namespace petra::test {
 
 class ValueNoise {
  public:
-  ValueNoise(int w, int h, std::uint32_t seed, int lo = 30, int hi = 225) : w_(w), h_(h), v_(static_cast<std::size_t>(w) * h) {
+  ValueNoise(int w, int h, std::uint32_t seed, int lo = 30, int hi = 225)
+      : w_(w), h_(h), v_(static_cast<std::size_t>(w) * h) {
     std::mt19937 rng(seed);
     std::uniform_int_distribution<int> g(lo, hi);
     for (auto& x : v_) x = static_cast<float>(g(rng));
@@ -27,7 +28,8 @@ class ValueNoise {
     const int x0 = std::min(static_cast<int>(c), w_ - 2);
     const double f = c - x0;
     const float* row = v_.data() + static_cast<std::size_t>(std::clamp(y, 0, h_ - 1)) * w_;
-    return static_cast<float>((1 - f) * static_cast<double>(row[x0]) + f * static_cast<double>(row[x0 + 1]));
+    return static_cast<float>((1 - f) * static_cast<double>(row[x0]) +
+                              f * static_cast<double>(row[x0 + 1]));
   }
 
  private:
@@ -47,8 +49,8 @@ struct StereoScene {
 
 // Background at disparity d_bg; optional box [bx, bx+bw) x [by, by+bh) (in
 // the left view) at d_fg.
-inline StereoScene make_scene(int w, int h, double d_bg, double d_fg = 0, int bx = 0, int by = 0, int bw = 0,
-                              int bh = 0, std::uint32_t seed = 1) {
+inline StereoScene make_scene(int w, int h, double d_bg, double d_fg = 0, int bx = 0, int by = 0,
+                              int bw = 0, int bh = 0, std::uint32_t seed = 1) {
   StereoScene s;
   s.w = w;
   s.h = h;
@@ -57,12 +59,15 @@ inline StereoScene make_scene(int w, int h, double d_bg, double d_fg = 0, int bx
   s.truth.resize(s.left.size());
   const ValueNoise bg(w + 300, h, seed), fg(w + 300, h, seed + 7);
   const int off = 150;  // texture coordinates stay positive for negative disparities
-  auto in_box = [&](double xl, int y) { return bw > 0 && y >= by && y < by + bh && xl >= bx && xl < bx + bw; };
+  auto in_box = [&](double xl, int y) {
+    return bw > 0 && y >= by && y < by + bh && xl >= bx && xl < bx + bw;
+  };
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * w + x;
       const bool box = in_box(x, y);
-      s.left[i] = static_cast<std::uint8_t>(std::lround(box ? fg.at(x + off, y) : bg.at(x + off, y)));
+      s.left[i] =
+          static_cast<std::uint8_t>(std::lround(box ? fg.at(x + off, y) : bg.at(x + off, y)));
       // Right pixel xr sees the box if xr + d_fg falls in it, else the background.
       const double xf = x + d_fg;
       s.right[i] = static_cast<std::uint8_t>(

@@ -15,7 +15,8 @@ namespace {
 struct Image {
   int w, h;
   std::vector<std::uint8_t> px;
-  Image(int w_, int h_, std::uint8_t v = 0) : w(w_), h(h_), px(static_cast<std::size_t>(w_) * h_, v) {}
+  Image(int w_, int h_, std::uint8_t v = 0)
+      : w(w_), h(h_), px(static_cast<std::size_t>(w_) * h_, v) {}
   Gray8View view() { return {px.data(), w, h}; }
   std::uint8_t& at(int x, int y) { return px[static_cast<std::size_t>(y) * w + x]; }
 };

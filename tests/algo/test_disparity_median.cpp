@@ -38,8 +38,10 @@ TEST(DisparityMedian, MatchesASortingReferenceWithInvalidNeighbours) {
   for (int trial = 0; trial < 30; ++trial) {
     const int w = 17 + trial, h = 9 + trial % 7;
     std::vector<std::int16_t> d(static_cast<std::size_t>(w) * h);
-    for (auto& q : d) q = (rng() % 100) < static_cast<unsigned>(trial * 2) ? kInvalidDisparity
-                                                                            : static_cast<std::int16_t>(static_cast<int>(rng() % 2000) - 300);
+    for (auto& q : d)
+      q = (rng() % 100) < static_cast<unsigned>(trial * 2)
+              ? kInvalidDisparity
+              : static_cast<std::int16_t>(static_cast<int>(rng() % 2000) - 300);
     const auto expect = reference(d, w, h);
     std::vector<std::int16_t> scratch(median3x3_scratch(w));
     ASSERT_TRUE(median3x3_valid(ImageView<std::int16_t>(d.data(), w, h), scratch).ok());
@@ -55,7 +57,8 @@ TEST(DisparityMedian, RemovesASpikeAndAllocatesNothing) {
   EXPECT_EQ(scope.allocations(), 0u);
   EXPECT_EQ(d[55], 160);
   std::vector<std::int16_t> small(3);
-  EXPECT_EQ(median3x3_valid(ImageView<std::int16_t>(d.data(), 10, 10), small).code(), Errc::capacity_exceeded);
+  EXPECT_EQ(median3x3_valid(ImageView<std::int16_t>(d.data(), 10, 10), small).code(),
+            Errc::capacity_exceeded);
 }
 
 }  // namespace

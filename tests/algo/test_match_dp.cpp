@@ -24,7 +24,9 @@ struct Matcher {
   std::vector<std::uint8_t> conf;
 
   explicit Matcher(MatchBudget b)
-      : budget(b), scratch(match_dp_scratch_bytes(b)), arena(scratch),
+      : budget(b),
+        scratch(match_dp_scratch_bytes(b)),
+        arena(scratch),
         q4(static_cast<std::size_t>(b.max_width) * b.max_height),
         conf(q4.size()) {}
 
@@ -32,7 +34,8 @@ struct Matcher {
                            const ShadowMask* ls = nullptr, const ShadowMask* rs = nullptr) {
     out = DisparityMap{ImageView<std::int16_t>(q4.data(), roi.w, roi.h), {}};
     StereoInput in{s.lv(), s.rv(), ls, rs};
-    return match_dp(in, roi, p, budget, arena, out, ImageView<std::uint8_t>(conf.data(), roi.w, roi.h));
+    return match_dp(in, roi, p, budget, arena, out,
+                    ImageView<std::uint8_t>(conf.data(), roi.w, roi.h));
   }
 };
 
@@ -44,9 +47,9 @@ MatchDpParams range(int lo, int hi) {
 }
 
 struct Accuracy {
-  double coverage = 0;      // valid / pixels with a visible truth
-  double within_1px = 0;    // of valid pixels with truth
-  double mean_abs = 0;      // px, of valid pixels with truth
+  double coverage = 0;    // valid / pixels with a visible truth
+  double within_1px = 0;  // of valid pixels with truth
+  double mean_abs = 0;    // px, of valid pixels with truth
 };
 
 Accuracy accuracy(const StereoScene& s, const DisparityMap& m) {
@@ -165,7 +168,8 @@ TEST(MatchDp, ShadowPixelsGetNoDisparity) {
       }
       if (is_valid_disparity(q)) {
         const int xr = roi.x + x - static_cast<int>(std::lround(disparity_px(q)));
-        EXPECT_FALSE(rs.is_shadow(xr, roi.y + y)) << "match into the right shadow at " << x << "," << y;
+        EXPECT_FALSE(rs.is_shadow(xr, roi.y + y))
+            << "match into the right shadow at " << x << "," << y;
       }
     }
   EXPECT_GT(st->rejected_shadow_right, 100);  // of the 400 pixels that match into it
@@ -179,7 +183,8 @@ TEST(MatchDp, ConfidenceIsZeroExactlyWhereInvalid) {
   ASSERT_TRUE(m.run(s, {10, 5, 180, 110}, range(0, 23), out).ok());
   for (int y = 0; y < 110; ++y)
     for (int x = 0; x < 180; ++x)
-      EXPECT_EQ(is_valid_disparity(out.q4(x, y)), m.conf[static_cast<std::size_t>(y * 180 + x)] != 0);
+      EXPECT_EQ(is_valid_disparity(out.q4(x, y)),
+                m.conf[static_cast<std::size_t>(y * 180 + x)] != 0);
 }
 
 TEST(MatchDp, EveryBadInputIsAnErrorNamingTheProblem) {
@@ -193,10 +198,13 @@ TEST(MatchDp, EveryBadInputIsAnErrorNamingTheProblem) {
   };
   expect(m.run(s, {100, 50, 100, 60}, range(0, 20), out), Errc::out_of_range, "outside");
   expect(m.run(s, {10, 10, 0, 60}, range(0, 20), out), Errc::invalid_argument, "empty");
-  expect(m.run(s, {0, 0, 150, 60}, range(0, 20), out), Errc::capacity_exceeded, "exceeds the budget");
-  expect(m.run(s, {0, 0, 50, 50}, range(0, 40), out), Errc::capacity_exceeded, "disparity range of 41");
+  expect(m.run(s, {0, 0, 150, 60}, range(0, 20), out), Errc::capacity_exceeded,
+         "exceeds the budget");
+  expect(m.run(s, {0, 0, 50, 50}, range(0, 40), out), Errc::capacity_exceeded,
+         "disparity range of 41");
   expect(m.run(s, {0, 0, 50, 50}, range(10, 5), out), Errc::invalid_argument, "is empty");
-  expect(m.run(s, {0, 0, 50, 50}, range(200, 220), out), Errc::out_of_range, "outside the right image");
+  expect(m.run(s, {0, 0, 50, 50}, range(200, 220), out), Errc::out_of_range,
+         "outside the right image");
   MatchDpParams bad = range(0, 20);
   bad.p2 = 10000;
   expect(m.run(s, {0, 0, 50, 50}, bad, out), Errc::invalid_argument, "P2");
@@ -204,12 +212,12 @@ TEST(MatchDp, EveryBadInputIsAnErrorNamingTheProblem) {
   const StereoScene other = make_scene(150, 100, 7.0);
   StereoInput in{s.lv(), other.rv()};
   DisparityMap small{ImageView<std::int16_t>(m.q4.data(), 50, 50), {}};
-  expect(match_dp(in, {0, 0, 50, 50}, range(0, 20), m.budget, m.arena, small), Errc::invalid_argument,
-         "right is 150x100");
+  expect(match_dp(in, {0, 0, 50, 50}, range(0, 20), m.budget, m.arena, small),
+         Errc::invalid_argument, "right is 150x100");
   // Output of the wrong size.
   StereoInput ok_in{s.lv(), s.rv()};
-  expect(match_dp(ok_in, {0, 0, 60, 50}, range(0, 20), m.budget, m.arena, small), Errc::invalid_argument,
-         "output is 50x50");
+  expect(match_dp(ok_in, {0, 0, 60, 50}, range(0, 20), m.budget, m.arena, small),
+         Errc::invalid_argument, "output is 50x50");
   // An all-shadow ROI.
   std::vector<std::uint8_t> all(50 * 50, kShadowPixel);
   ShadowMask dark{ImageView<const std::uint8_t>(all.data(), 50, 50), {0, 0, 50, 50}};
@@ -223,7 +231,8 @@ TEST(MatchDp, EveryBadInputIsAnErrorNamingTheProblem) {
   std::vector<std::byte> tiny(4096);
   Arena small_arena(tiny);
   DisparityMap o2{ImageView<std::int16_t>(m.q4.data(), 50, 50), {}};
-  expect(match_dp(ok_in, {0, 0, 50, 50}, range(0, 20), m.budget, small_arena, o2), Errc::capacity_exceeded, "arena");
+  expect(match_dp(ok_in, {0, 0, 50, 50}, range(0, 20), m.budget, small_arena, o2),
+         Errc::capacity_exceeded, "arena");
 }
 
 TEST(MatchDp, RepeatedCallsAllocateNothingAndStayWithinTheStatedMemory) {

@@ -53,9 +53,12 @@ TEST(Rectify, TablesReproduceTheExactModelWithinAThirtySecondOfAPixel) {
   const double a = 0.3, b = 0.12;  // gray per px along x and y
   std::vector<std::uint8_t> orig(static_cast<std::size_t>(w) * h), out(orig.size());
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) orig[static_cast<std::size_t>(y) * w + x] = static_cast<std::uint8_t>(a * x * 0.5 + b * y * 0.5 + 20);
+    for (int x = 0; x < w; ++x)
+      orig[static_cast<std::size_t>(y) * w + x] =
+          static_cast<std::uint8_t>(a * x * 0.5 + b * y * 0.5 + 20);
   for (StereoSide side : {StereoSide::left, StereoSide::right}) {
-    ASSERT_TRUE(rect->rectify(side, ConstGray8View(orig.data(), w, h), Gray8View(out.data(), w, h)).ok());
+    ASSERT_TRUE(
+        rect->rectify(side, ConstGray8View(orig.data(), w, h), Gray8View(out.data(), w, h)).ok());
     int checked = 0;
     for (int v = 0; v < h; v += 7)
       for (int u = 0; u < w; u += 7) {
@@ -64,9 +67,12 @@ TEST(Rectify, TablesReproduceTheExactModelWithinAThirtySecondOfAPixel) {
         if (src->x() < 1 || src->y() < 1 || src->x() > w - 2 || src->y() > h - 2) continue;
         // The stored image is truncated to integers, so compare with the
         // bilinear interpolation of the stored values at the exact position.
-        const int x0 = static_cast<int>(std::floor(src->x())), y0 = static_cast<int>(std::floor(src->y()));
+        const int x0 = static_cast<int>(std::floor(src->x())),
+                  y0 = static_cast<int>(std::floor(src->y()));
         const double fx = src->x() - x0, fy = src->y() - y0;
-        auto px = [&](int x, int y) { return static_cast<double>(orig[static_cast<std::size_t>(y) * w + x]); };
+        auto px = [&](int x, int y) {
+          return static_cast<double>(orig[static_cast<std::size_t>(y) * w + x]);
+        };
         const double expect = (1 - fy) * ((1 - fx) * px(x0, y0) + fx * px(x0 + 1, y0)) +
                               fy * ((1 - fx) * px(x0, y0 + 1) + fx * px(x0 + 1, y0 + 1));
         // 1/32 px of position error times a gradient < 1 gray/px, plus rounding.
@@ -120,7 +126,9 @@ TEST(Rectify, AnAlreadyRectifiedRigMapsEveryPixelToItself) {
   std::vector<std::uint8_t> img(320 * 240), out(img.size());
   std::mt19937 rng(1);
   for (auto& v : img) v = static_cast<std::uint8_t>(rng());
-  ASSERT_TRUE(rect->rectify(StereoSide::right, ConstGray8View(img.data(), 320, 240), Gray8View(out.data(), 320, 240)).ok());
+  ASSERT_TRUE(rect->rectify(StereoSide::right, ConstGray8View(img.data(), 320, 240),
+                            Gray8View(out.data(), 320, 240))
+                  .ok());
   EXPECT_EQ(img, out);
 }
 
@@ -131,12 +139,16 @@ TEST(Rectify, RegionWritesOnlyTheRegion) {
   ASSERT_TRUE(rect.ok());
   std::vector<std::uint8_t> img(160 * 120, 200), out(img.size(), 7);
   const Rect region{40, 30, 50, 20};
-  ASSERT_TRUE(rect->rectify(StereoSide::left, ConstGray8View(img.data(), 160, 120), Gray8View(out.data(), 160, 120), region).ok());
+  ASSERT_TRUE(rect->rectify(StereoSide::left, ConstGray8View(img.data(), 160, 120),
+                            Gray8View(out.data(), 160, 120), region)
+                  .ok());
   for (int y = 0; y < 120; ++y)
     for (int x = 0; x < 160; ++x) {
       const std::uint8_t v = out[static_cast<std::size_t>(y) * 160 + x];
-      if (region.contains(x, y)) EXPECT_EQ(v, 200);
-      else EXPECT_EQ(v, 7);
+      if (region.contains(x, y))
+        EXPECT_EQ(v, 200);
+      else
+        EXPECT_EQ(v, 7);
     }
 }
 
@@ -152,7 +164,8 @@ TEST(Rectify, RoiMapsToABoxHoldingItsOutline) {
     for (int y : {roi.y, roi.y + roi.h - 1}) {
       auto p = rect->to_rectified(StereoSide::left, {x, y});
       ASSERT_TRUE(p.ok());
-      EXPECT_TRUE(r->contains(static_cast<int>(std::lround(p->x())), static_cast<int>(std::lround(p->y()))));
+      EXPECT_TRUE(r->contains(static_cast<int>(std::lround(p->x())),
+                              static_cast<int>(std::lround(p->y()))));
     }
   EXPECT_NEAR(r->w, roi.w, 6);  // a mild rectification keeps the size
   EXPECT_NEAR(r->h, roi.h, 6);
@@ -187,16 +200,23 @@ TEST(Rectify, BadInputNamesTheProblem) {
   auto rect = Rectifier::create(rig, t.l, t.r);
   ASSERT_TRUE(rect.ok());
   std::vector<std::uint8_t> img(160 * 120), wrong(100 * 100);
-  auto d = rect->rectify(StereoSide::left, ConstGray8View(wrong.data(), 100, 100), Gray8View(img.data(), 160, 120));
+  auto d = rect->rectify(StereoSide::left, ConstGray8View(wrong.data(), 100, 100),
+                         Gray8View(img.data(), 160, 120));
   EXPECT_EQ(d.code(), Errc::invalid_argument);
-  EXPECT_NE(std::strstr(d.error().message, "original image is 100x100"), nullptr) << d.error().message;
-  auto e = rect->rectify(StereoSide::left, ConstGray8View(img.data(), 160, 120), Gray8View(img.data(), 160, 120),
-                         Rect{150, 0, 20, 10});
+  EXPECT_NE(std::strstr(d.error().message, "original image is 100x100"), nullptr)
+      << d.error().message;
+  auto e = rect->rectify(StereoSide::left, ConstGray8View(img.data(), 160, 120),
+                         Gray8View(img.data(), 160, 120), Rect{150, 0, 20, 10});
   EXPECT_EQ(e.code(), Errc::out_of_range);
-  EXPECT_EQ(rect->roi_to_rectified(StereoSide::left, Rect{150, 100, 20, 30}).code(), Errc::out_of_range);
-  EXPECT_EQ(rect->roi_to_rectified(StereoSide::left, Rect{10, 10, 0, 30}).code(), Errc::invalid_argument);
+  EXPECT_EQ(rect->roi_to_rectified(StereoSide::left, Rect{150, 100, 20, 30}).code(),
+            Errc::out_of_range);
+  EXPECT_EQ(rect->roi_to_rectified(StereoSide::left, Rect{10, 10, 0, 30}).code(),
+            Errc::invalid_argument);
   Rectifier empty;
-  EXPECT_EQ(empty.rectify(StereoSide::left, ConstGray8View(img.data(), 160, 120), Gray8View(img.data(), 160, 120)).code(),
+  EXPECT_EQ(empty
+                .rectify(StereoSide::left, ConstGray8View(img.data(), 160, 120),
+                         Gray8View(img.data(), 160, 120))
+                .code(),
             Errc::not_ready);
 }
 
@@ -208,7 +228,9 @@ TEST(Rectify, ApplyingTablesAndMappingPointsAllocateNothing) {
   std::vector<std::uint8_t> img(320 * 240, 100), out(img.size());
   petra::test::HeapScope scope;
   for (int i = 0; i < 3; ++i) {
-    ASSERT_TRUE(rect->rectify(StereoSide::left, ConstGray8View(img.data(), 320, 240), Gray8View(out.data(), 320, 240)).ok());
+    ASSERT_TRUE(rect->rectify(StereoSide::left, ConstGray8View(img.data(), 320, 240),
+                              Gray8View(out.data(), 320, 240))
+                    .ok());
     ASSERT_TRUE(rect->roi_to_rectified(StereoSide::left, Rect{100, 80, 60, 50}).ok());
     ASSERT_TRUE(rect->point_3d(160, 120, 20).ok());
   }

@@ -15,8 +15,14 @@ struct Row {
   int n;
   std::vector<std::uint16_t> cost, p2;
   std::vector<std::int16_t> lo, hi, S, scratch;
-  explicit Row(int n_) : n(n_), cost(static_cast<std::size_t>(n_) * kLanes), p2(n_), lo(n_, 0), hi(n_, kLanes - 1),
-                         S(static_cast<std::size_t>(n_) * kSp), scratch(2 * (kLanes + 2)) {}
+  explicit Row(int n_)
+      : n(n_),
+        cost(static_cast<std::size_t>(n_) * kLanes),
+        p2(n_),
+        lo(n_, 0),
+        hi(n_, kLanes - 1),
+        S(static_cast<std::size_t>(n_) * kSp),
+        scratch(2 * (kLanes + 2)) {}
   int best(int x) const {
     const std::int16_t* s = S.data() + static_cast<std::size_t>(x) * kSp + kGuardLanes;
     int k = 0;
@@ -45,7 +51,8 @@ TEST(ScanlineDp, WithoutPenaltiesEachColumnTakesItsCheapestLane) {
 TEST(ScanlineDp, PenaltiesSmoothAwayAOneColumnOutlier) {
   Row r(30);
   for (int x = 0; x < r.n; ++x)
-    for (int k = 0; k < kLanes; ++k) r.cost[static_cast<std::size_t>(x) * kLanes + k] = k == 5 ? 100 : 300;
+    for (int k = 0; k < kLanes; ++k)
+      r.cost[static_cast<std::size_t>(x) * kLanes + k] = k == 5 ? 100 : 300;
   // Column 12 prefers lane 11 slightly.
   for (int k = 0; k < kLanes; ++k) r.cost[12 * kLanes + k] = k == 11 ? 250 : 300;
   r.run(20, 200);

@@ -14,14 +14,16 @@ namespace {
 struct Image {
   int w, h;
   std::vector<std::uint8_t> px;
-  Image(int w_, int h_, std::uint8_t v = 0) : w(w_), h(h_), px(static_cast<std::size_t>(w_) * h_, v) {}
+  Image(int w_, int h_, std::uint8_t v = 0)
+      : w(w_), h(h_), px(static_cast<std::size_t>(w_) * h_, v) {}
   Gray8View view() { return {px.data(), w, h}; }
 };
 
 // Pixel values 0..99, each once, in a 10x10 ROI inside a brighter image.
 Image ramp() {
   Image img(20, 20, 200);
-  for (int i = 0; i < 100; ++i) img.view()(5 + i % 10, 5 + i / 10) = static_cast<std::uint8_t>((i * 37) % 100);
+  for (int i = 0; i < 100; ++i)
+    img.view()(5 + i % 10, 5 + i / 10) = static_cast<std::uint8_t>((i * 37) % 100);
   return img;
 }
 
@@ -61,7 +63,8 @@ TEST(Shadow, MaskMarksExactlyThePixelsAtOrBelowTheThreshold) {
   ShadowMask sm{ImageView<const std::uint8_t>(m.data(), 10, 10), {5, 5, 10, 10}};
   EXPECT_FALSE(sm.is_shadow(0, 0));  // outside the area: lit
   for (int y = 0; y < 10; ++y)
-    for (int x = 0; x < 10; ++x) EXPECT_EQ(sm.is_shadow(5 + x, 5 + y), img.view()(5 + x, 5 + y) <= 19);
+    for (int x = 0; x < 10; ++x)
+      EXPECT_EQ(sm.is_shadow(5 + x, 5 + y), img.view()(5 + x, 5 + y) <= 19);
 }
 
 TEST(Shadow, LeftAndRightThresholdsAreIndependent) {
@@ -127,8 +130,10 @@ TEST(Shadow, RandomImagesMaskAtLeastPAndOnlyTheDarkest) {
     for (int y = 0; y < roi.h; ++y)
       for (int x = 0; x < roi.w; ++x) {
         const int v = img.view()(roi.x + x, roi.y + y);
-        if (m[static_cast<std::size_t>(y * roi.w + x)]) max_shadow = std::max(max_shadow, v);
-        else min_lit = std::min(min_lit, v);
+        if (m[static_cast<std::size_t>(y * roi.w + x)])
+          max_shadow = std::max(max_shadow, v);
+        else
+          min_lit = std::min(min_lit, v);
       }
     EXPECT_LT(max_shadow, min_lit);  // shadow is darker than everything lit
   }

@@ -22,7 +22,8 @@ TEST(DisparityImage, FillTakesTheSmallerNearestValidNeighbourOnTheRow) {
   fill_invalid_background(d.view());
   const float expect[8] = {5, 5, 5, 5, 9, 3, 3, 3};  // ends: the only side; middle: the smaller
   for (int x = 0; x < 8; ++x) EXPECT_EQ(d.data[static_cast<std::size_t>(x)], expect[x]) << x;
-  for (int x = 0; x < 8; ++x) EXPECT_TRUE(std::isinf(d.data[8 + static_cast<std::size_t>(x)]));  // nothing to take
+  for (int x = 0; x < 8; ++x)
+    EXPECT_TRUE(std::isinf(d.data[8 + static_cast<std::size_t>(x)]));  // nothing to take
 }
 
 TEST(DisparityImage, FillStaysInsideTheArea) {

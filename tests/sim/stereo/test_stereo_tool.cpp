@@ -43,7 +43,8 @@ TEST(StereoTool, WritesAFullSizePfmWithInfOutsideTheRoi) {
     for (int x = 0; x < 384; ++x) {
       const float v = pfm->data[static_cast<std::size_t>(y) * 384 + x];
       const bool inside = x >= 100 && x < 220 && y >= 80 && y < 170;
-      if (!inside) EXPECT_TRUE(std::isinf(v));
+      if (!inside)
+        EXPECT_TRUE(std::isinf(v));
       else if (std::isfinite(v)) {
         ++inside_valid;
         EXPECT_GE(v, 0.0f);
@@ -62,7 +63,8 @@ TEST(StereoTool, FillLeavesNoHoleInsideTheRoi) {
   auto pfm = io::read_pfm(o.out);
   ASSERT_TRUE(pfm.ok());
   for (int y = 80; y < 170; ++y)
-    for (int x = 100; x < 220; ++x) EXPECT_TRUE(std::isfinite(pfm->data[static_cast<std::size_t>(y) * 384 + x]));
+    for (int x = 100; x < 220; ++x)
+      EXPECT_TRUE(std::isfinite(pfm->data[static_cast<std::size_t>(y) * 384 + x]));
 }
 
 TEST(StereoTool, ShadowFractionRemovesTheDarkestPixels) {
