@@ -26,7 +26,7 @@ struct ChessboardOptions {
   int cols = 9;                // inner corners along the board's first axis
   int rows = 6;                // and along the second
   int ring_radius_px = 0;      // X-corner ring; 0 = from the image size (then a retry at others)
-  int subpix_half_window = 0;  // final refinement; 0 = from the square size, at most 11
+  int subpix_half_window = 0;  // final refinement; 0 = from the square size, at most 5
   double min_contrast = 12;    // gray levels between dark and bright squares
 };
 
