@@ -13,6 +13,8 @@ struct Outcome {
 };
 
 void add_info(CLI::App& app, Outcome& outcome);
+void add_calib(CLI::App& app, Outcome& outcome);
+void add_click(CLI::App& app, Outcome& outcome);
 
 // Prints "petra <cmd>: <message>" on stderr and returns the exit code 1.
 int fail(const char* cmd, const char* message);
