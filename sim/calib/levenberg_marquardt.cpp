@@ -8,9 +8,10 @@ namespace petra::calib {
 
 LmReport minimise(const LmProblem& problem, Eigen::VectorXd& x, const LmOptions& options) {
   LmReport report;
-  const Eigen::Index n = x.size();
-  Eigen::MatrixXd jtj(n, n);
-  Eigen::VectorXd jtr(n);
+  // The step lives in the problem's free-parameter space, which may be
+  // smaller than the state (fixed parameters) when the problem supplies plus().
+  Eigen::MatrixXd jtj;
+  Eigen::VectorXd jtr;
   double cost = 0;
   if (!problem.linearise(x, jtj, jtr, cost) || !std::isfinite(cost)) return report;
   report.valid = true;
@@ -23,7 +24,8 @@ LmReport minimise(const LmProblem& problem, Eigen::VectorXd& x, const LmOptions&
     bool converged = false;
     while (lambda < 1e16) {
       Eigen::MatrixXd a = jtj;
-      for (Eigen::Index k = 0; k < n; ++k) a(k, k) += lambda * std::max(jtj(k, k), diag_floor);
+      for (Eigen::Index k = 0; k < jtj.rows(); ++k)
+        a(k, k) += lambda * std::max(jtj(k, k), diag_floor);
       const Eigen::VectorXd delta = a.ldlt().solve(-jtr);
       if (!delta.allFinite()) {
         lambda *= 10;

@@ -17,7 +17,8 @@ struct LmProblem {
                      double& cost)>
       linearise;
   std::function<bool(const Eigen::VectorXd& x, double& cost)> cost;
-  // x (+) delta; plain addition when empty.
+  // x (+) delta, delta in the space of J^T J (the free parameters); plain
+  // addition when empty (then J^T J must be x.size() square).
   std::function<Eigen::VectorXd(const Eigen::VectorXd& x, const Eigen::VectorXd& delta)> plus;
 };
 

@@ -43,7 +43,7 @@ struct FocalDepth {
 
 std::optional<FocalDepth> solve_f_tz(const Eigen::Matrix3d& r, double tx, double ty,
                                      const std::vector<Eigen::Vector2d>& pd, const PlanarView& view,
-                                     std::optional<double> known_f) {
+                                     std::optional<double> known_f, double& residual) {
   const std::size_t n = pd.size();
   Eigen::MatrixXd a(2 * n, 2);
   Eigen::VectorXd b(2 * n);
@@ -62,10 +62,13 @@ std::optional<FocalDepth> solve_f_tz(const Eigen::Matrix3d& r, double tx, double
     const Eigen::VectorXd rhs = b - *known_f * a.col(0);
     const double den = a.col(1).squaredNorm();
     if (!(den > 0)) return std::nullopt;
-    return FocalDepth{*known_f, a.col(1).dot(rhs) / den};
+    const double tz = a.col(1).dot(rhs) / den;
+    residual = (rhs - tz * a.col(1)).norm();
+    return FocalDepth{*known_f, tz};
   }
   const Eigen::Vector2d s = a.colPivHouseholderQr().solve(b);
   if (!s.allFinite()) return std::nullopt;
+  residual = (a * s - b).norm();
   return FocalDepth{s(0), s(1)};
 }
 
@@ -122,8 +125,11 @@ Result<TsaiViewResult> tsai_calibrate_view(const PlanarView& view, const TsaiCam
   }
   if (agree < 0) r1 = -r1, r2 = -r2, tx = -tx, r4 = -r4, r5 = -r5, ty = -ty;
 
+  // Two rotations fit step 1 (r3, r6 and the third row change sign). Without
+  // f, the wrong one gives f < 0; with f given, it fits step 2's equations worse.
   std::optional<FocalDepth> fd;
-  Eigen::Matrix3d rot;
+  Eigen::Matrix3d rot = Eigen::Matrix3d::Identity();
+  double best_residual = 0;
   for (int root = 0; root < 2; ++root) {
     const double r3 = std::sqrt(std::max(0.0, 1 - r1 * r1 - r2 * r2)) * (root == 0 ? 1 : -1);
     const double s6 = (r1 * r4 + r2 * r5) > 0 ? -1.0 : 1.0;
@@ -132,17 +138,22 @@ Result<TsaiViewResult> tsai_calibrate_view(const PlanarView& view, const TsaiCam
     raw.row(0) << r1, r2, r3;
     raw.row(1) << r4, r5, r6;
     raw.row(2) = raw.row(0).cross(raw.row(1));
-    rot = nearest_rotation(raw);
-    const double tilt = std::acos(std::min(1.0, std::abs(rot(2, 2)))) * kRadToDeg;
+    const Eigen::Matrix3d candidate = nearest_rotation(raw);
+    const double tilt = std::acos(std::min(1.0, std::abs(candidate(2, 2)))) * kRadToDeg;
     if (!known_f_mm && tilt < kMinTiltDeg)
       return Error::make(
           Errc::degenerate,
           "view nearly parallel to the image (tilt %.1f deg < %.0f): f and distance not "
           "separable",
           tilt, kMinTiltDeg);
-    fd = solve_f_tz(rot, tx, ty, pd, view, known_f_mm);
-    if (fd && fd->f > 0 && fd->tz > 0) break;
-    fd.reset();
+    double residual = 0;
+    const auto sol = solve_f_tz(candidate, tx, ty, pd, view, known_f_mm, residual);
+    if (!sol || !(sol->f > 0) || !(sol->tz > 0)) continue;
+    if (!fd || residual < best_residual) {
+      fd = sol;
+      rot = candidate;
+      best_residual = residual;
+    }
   }
   if (!fd)
     return Error::make(Errc::no_solution, "tsai: no focal length > 0 in front of the camera");
