@@ -17,7 +17,9 @@
 namespace petra::calib {
 namespace {
 
-std::string data_dir() { return std::string(PETRA_SOURCE_DIR) + "/../shared/data/chessboard-opencv/"; }
+std::string data_dir() {
+  return std::string(PETRA_SOURCE_DIR) + "/../shared/data/chessboard-opencv/";
+}
 
 struct OpenCvFigures {
   double left_rms = 0, right_rms = 0, stereo_rms = 0, baseline = 0;
@@ -26,7 +28,8 @@ struct OpenCvFigures {
 std::vector<cv::Point2f> opencv_corners(const std::string& path, int half_window) {
   const cv::Mat img = cv::imread(path, cv::IMREAD_GRAYSCALE);
   std::vector<cv::Point2f> c;
-  if (!cv::findChessboardCorners(img, cv::Size(9, 6), c, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE))
+  if (!cv::findChessboardCorners(img, cv::Size(9, 6), c,
+                                 cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE))
     return {};
   cv::cornerSubPix(img, c, cv::Size(half_window, half_window), cv::Size(-1, -1),
                    cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 30, 0.01));
@@ -36,7 +39,8 @@ std::vector<cv::Point2f> opencv_corners(const std::string& path, int half_window
 OpenCvFigures opencv_calibration(const std::vector<StereoPairCorners>& pairs, int half_window) {
   std::vector<cv::Point3f> board;
   for (int j = 0; j < 6; ++j)
-    for (int i = 0; i < 9; ++i) board.emplace_back(static_cast<float>(i), static_cast<float>(j), 0.0f);
+    for (int i = 0; i < 9; ++i)
+      board.emplace_back(static_cast<float>(i), static_cast<float>(j), 0.0f);
   std::vector<std::vector<cv::Point3f>> object;
   std::vector<std::vector<cv::Point2f>> left, right;
   for (const StereoPairCorners& p : pairs) {
@@ -59,8 +63,8 @@ OpenCvFigures opencv_calibration(const std::vector<StereoPairCorners>& pairs, in
   out.stereo_rms = cv::stereoCalibrate(object, left, right, k1, d1, k2, d2, size, rot, t, e, f,
                                        flags | cv::CALIB_USE_INTRINSIC_GUESS);
   out.baseline = cv::norm(t);
-  std::printf("OpenCV: left fx %.2f fy %.2f cx %.2f cy %.2f k1 %.4f\n", k1.at<double>(0, 0), k1.at<double>(1, 1),
-              k1.at<double>(0, 2), k1.at<double>(1, 2), d1.at<double>(0));
+  std::printf("OpenCV: left fx %.2f fy %.2f cx %.2f cy %.2f k1 %.4f\n", k1.at<double>(0, 0),
+              k1.at<double>(1, 1), k1.at<double>(0, 2), k1.at<double>(1, 2), d1.at<double>(0));
   return out;
 }
 

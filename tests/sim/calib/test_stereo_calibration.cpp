@@ -14,68 +14,10 @@
 namespace petra::calib {
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
-
-// The left camera at the world origin, the right one 60 mm to its right,
-// turned by about 1.5 degrees, with its own intrinsics.
-StereoRig true_rig() {
-  StereoRig rig;
-  rig.left = test::sample_camera();
-  rig.right = test::sample_camera();
-  rig.right.f_mm = 3.25;
-  rig.right.kappa1 = 0.023;
-  rig.right.cx_px = 318.0;
-  rig.right.cy_px = 251.5;
-  rig.right.sx = 1.003;
-  rig.right.R = (Eigen::AngleAxisd(1.2 * kDeg, Eigen::Vector3d::UnitY()) *
-                 Eigen::AngleAxisd(-0.6 * kDeg, Eigen::Vector3d::UnitX()) *
-                 Eigen::AngleAxisd(0.4 * kDeg, Eigen::Vector3d::UnitZ()))
-                    .toRotationMatrix();
-  rig.right.T_mm = -rig.right.R * Eigen::Vector3d(60.0, 0.8, -1.5);  // centre at (60, 0.8, -1.5)
-  return rig;
-}
-
-struct BoardPose {
-  double ax, ay, az, distance, shift_x, shift_y;
-};
-
-// Tilts of 15-40 degrees about both axes, the board turned in its plane,
-// moved around the field of view: what a careful operator collects.
-const BoardPose kPoses[] = {
-    {25, 0, 0, 500, 20, 0},      {-25, 0, 10, 520, 30, 10},    {0, 30, -5, 480, 20, -20},
-    {0, -30, 5, 500, 40, 15},    {20, 20, 90, 560, 30, 0},     {-20, -25, 180, 540, 30, 5},
-    {30, -15, 30, 600, -20, 40}, {-15, 35, -20, 580, 70, -30}, {35, 10, 150, 620, 30, -40},
-    {10, -35, 60, 550, -10, 30}, {-35, -10, 270, 600, 60, 20}, {15, 15, 200, 460, 30, 0},
-};
-
-// Corners of the board in pose p seen by both cameras, plus Gaussian noise.
-StereoPairCorners observe(const StereoRig& rig, const BoardSpec& b, const BoardPose& p,
-                          double noise_px, std::mt19937_64& rng) {
-  TsaiCamera board_in_left = rig.left;  // pose of the board relative to the left camera
-  test::place_board(board_in_left, b, p.ax, p.ay, p.az, p.distance, p.shift_x, p.shift_y);
-  std::normal_distribution<double> noise(0.0, noise_px > 0 ? noise_px : 1.0);
-  StereoPairCorners pc;
-  for (int side = 0; side < 2; ++side) {
-    TsaiCamera cam = side == 0 ? rig.left : rig.right;
-    // world = left camera frame; board -> camera = (world -> camera) * (board -> world)
-    cam.R = (side == 0 ? rig.left.R : rig.right.R) * board_in_left.R;
-    cam.T_mm = (side == 0 ? rig.left.R : rig.right.R) * board_in_left.T_mm +
-               (side == 0 ? rig.left.T_mm : rig.right.T_mm);
-    std::vector<Eigen::Vector2d>& uv = side == 0 ? pc.left_uv : pc.right_uv;
-    for (int j = 0; j < b.rows; ++j)
-      for (int i = 0; i < b.cols; ++i) {
-        auto q = project(cam, board_corner(b, i, j));
-        EXPECT_TRUE(q.ok());
-        EXPECT_TRUE(q->x() > 0 && q->y() > 0 && q->x() < cam.width - 1 && q->y() < cam.height - 1)
-            << "corner outside the image: pose " << p.ax << "," << p.ay << "," << p.az;
-        uv.push_back(*q + (noise_px > 0 ? Eigen::Vector2d(noise(rng), noise(rng))
-                                        : Eigen::Vector2d::Zero()));
-      }
-  }
-  pc.left_name = "left";
-  pc.right_name = "right";
-  return pc;
-}
+using test::BoardPose;
+using test::kDeg;
+using test::kPoses;
+using test::observe;
 
 StereoCalibOptions options_for(const StereoRig& rig, const BoardSpec& b) {
   StereoCalibOptions o;
@@ -104,7 +46,7 @@ std::vector<StereoPairCorners> observe_all(const StereoRig& rig, const BoardSpec
 }
 
 TEST(StereoCalibration, ExactCornersGiveTheRigBack) {
-  const StereoRig truth = true_rig();
+  const StereoRig truth = test::sample_rig();
   const BoardSpec board;
   auto cal = calibrate_stereo(observe_all(truth, board, 0.0), options_for(truth, board));
   ASSERT_TRUE(cal.ok()) << cal.error().message;
@@ -132,7 +74,7 @@ TEST(StereoCalibration, NoisyCornersGiveTheRigWithinTheStatedTolerances) {
   // principal points (0.7 px / 533 px = 0.075 deg). The tolerances are four
   // sigma, so they scale with the noise: f 0.4 %, kappa1 6 %, cx, cy 3 px,
   // sx 0.001, rotation 0.3 deg, right camera centre 0.5 mm (0.8 % of 60 mm).
-  const StereoRig truth = true_rig();
+  const StereoRig truth = test::sample_rig();
   const BoardSpec board;
   auto cal = calibrate_stereo(observe_all(truth, board, 0.1), options_for(truth, board));
   ASSERT_TRUE(cal.ok()) << cal.error().message;
@@ -173,7 +115,7 @@ TEST(StereoCalibration, NoisyCornersGiveTheRigWithinTheStatedTolerances) {
 }
 
 TEST(StereoCalibration, WorldOnTheTargetIsTheFirstBoard) {
-  const StereoRig truth = true_rig();
+  const StereoRig truth = test::sample_rig();
   const BoardSpec board;
   StereoCalibOptions o = options_for(truth, board);
   o.world_at_target = true;
@@ -194,7 +136,7 @@ TEST(StereoCalibration, WorldOnTheTargetIsTheFirstBoard) {
 }
 
 TEST(StereoCalibration, FewerThanThreeViewsAreRefused) {
-  const StereoRig truth = true_rig();
+  const StereoRig truth = test::sample_rig();
   const BoardSpec board;
   std::vector<StereoPairCorners> pairs = observe_all(truth, board, 0.05);
   pairs.resize(2);
@@ -215,7 +157,7 @@ TEST(StereoCalibration, FewerThanThreeViewsAreRefused) {
 }
 
 TEST(StereoCalibration, FrontoParallelViewsAreRefused) {
-  const StereoRig truth = true_rig();
+  const StereoRig truth = test::sample_rig();
   const BoardSpec board;
   std::mt19937_64 rng(5);
   std::vector<StereoPairCorners> pairs;
@@ -229,7 +171,7 @@ TEST(StereoCalibration, FrontoParallelViewsAreRefused) {
 }
 
 TEST(StereoCalibration, DuplicatedViewsCountOnce) {
-  const StereoRig truth = true_rig();
+  const StereoRig truth = test::sample_rig();
   const BoardSpec board;
   std::vector<StereoPairCorners> all = observe_all(truth, board, 0.05);
   // Two distinct board positions, each photographed three times.
@@ -254,7 +196,7 @@ TEST(StereoCalibration, DuplicatedViewsCountOnce) {
 }
 
 TEST(StereoCalibration, CornerCountMustMatchTheBoard) {
-  const StereoRig truth = true_rig();
+  const StereoRig truth = test::sample_rig();
   const BoardSpec board;
   std::vector<StereoPairCorners> pairs = observe_all(truth, board, 0.0);
   pairs[2].left_uv.pop_back();
