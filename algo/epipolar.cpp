@@ -230,6 +230,10 @@ Result<ClickMatch> transfer_click(const StereoRig& rig, ConstGray8View left, Con
 
   ClickMatch m;
   m.samples = count;
+  int first = 0, last = count - 1;
+  while (score[static_cast<std::size_t>(first)] < -1.5) ++first;
+  while (score[static_cast<std::size_t>(last)] < -1.5) --last;
+  m.at_search_end = best == first || best == last;
   m.score = score[static_cast<std::size_t>(best)];
   double offset = 0;
   if (best > 0 && best + 1 < count && score[static_cast<std::size_t>(best - 1)] > -2 &&

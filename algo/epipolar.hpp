@@ -69,13 +69,15 @@ struct ClickOptions {
 };
 
 struct ClickMatch {
-  Eigen::Vector2d right_px;  // best match in the right image (distorted pixels)
-  double score = 0;          // ZNCC of the best match, -1..1
-  double runner_up = -1;     // best ZNCC at least a window away from it (ambiguity)
-  Eigen::Vector3d point_mm;  // the 3D point in the world frame of the rig
-  double ray_gap_mm = 0;     // distance between the two rays at the point
-  double depth_mm = 0;       // along the left camera's axis
-  int samples = 0;           // positions scored
+  Eigen::Vector2d right_px;    // best match in the right image (distorted pixels)
+  double score = 0;            // ZNCC of the best match, -1..1
+  double runner_up = -1;       // best ZNCC at least a window away from it (ambiguity)
+  Eigen::Vector3d point_mm;    // the 3D point in the world frame of the rig
+  double ray_gap_mm = 0;       // distance between the two rays at the point
+  double depth_mm = 0;         // along the left camera's axis
+  int samples = 0;             // positions scored
+  bool at_search_end = false;  // best at the first or last scored position: the true
+                               // match may lie outside the searched depth range
 };
 
 // Fails with a reason: click outside the image or too near its border for

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   // One line per subcommand, each defined in its own cmd_<name>.cpp.
   petra::cli::add_info(app, outcome);
   petra::cli::add_calib(app, outcome);
+  petra::cli::add_click(app, outcome);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
