@@ -103,6 +103,78 @@ std::optional<Eigen::Matrix3d> local_homography(const Grid& grid, int i, int j) 
   return std::nullopt;
 }
 
+// The four squares around a corner at p, centred at p + (+-a +-b)/2 for the
+// grid steps a, b, must alternate: a board corner has two dark and two bright
+// squares on its diagonals. A junction just outside the board (outer square,
+// white margin, dark background) can pass the ring test but not this.
+bool squares_alternate(const Images& im, const Vec2& p, const Vec2& a, const Vec2& b) {
+  double v[4];
+  const Vec2 c[4] = {p + 0.5 * (a + b), p - 0.5 * (a + b), p + 0.5 * (a - b), p - 0.5 * (a - b)};
+  for (int k = 0; k < 4; ++k) {
+    if (!im.smooth.in_bounds(static_cast<int>(c[k].x()), static_cast<int>(c[k].y()))) return false;
+    v[k] = sample_bilinear(im.smooth, c[k].x(), c[k].y());
+  }
+  const double thr = 0.5 * im.min_contrast;
+  return std::min(v[0], v[1]) - std::max(v[2], v[3]) > thr ||
+         std::min(v[2], v[3]) - std::max(v[0], v[1]) > thr;
+}
+
+// Grid steps at (i, j) from its neighbours (forward where possible).
+bool local_steps(const Grid& g, int i, int j, Vec2& a, Vec2& b) {
+  const Vec2& p = *g.at(i, j);
+  if (i + 1 < g.w && g.at(i + 1, j))
+    a = *g.at(i + 1, j) - p;
+  else if (i > 0 && g.at(i - 1, j))
+    a = p - *g.at(i - 1, j);
+  else
+    return false;
+  if (j + 1 < g.h && g.at(i, j + 1))
+    b = *g.at(i, j + 1) - p;
+  else if (j > 0 && g.at(i, j - 1))
+    b = p - *g.at(i, j - 1);
+  else
+    return false;
+  return true;
+}
+
+// Drops corners whose surrounding squares do not alternate, then lines of the
+// grid left empty at its border.
+void drop_false_corners(const Images& im, Grid& g) {
+  std::vector<std::size_t> bad;
+  for (int j = 0; j < g.h; ++j)
+    for (int i = 0; i < g.w; ++i) {
+      if (!g.at(i, j)) continue;
+      Vec2 a, b;
+      if (!local_steps(g, i, j, a, b) || !squares_alternate(im, *g.at(i, j), a, b))
+        bad.push_back(static_cast<std::size_t>(j) * g.w + i);
+    }
+  for (std::size_t k : bad) g.p[k].reset();
+  auto column_empty = [&](int i) {
+    for (int j = 0; j < g.h; ++j)
+      if (g.at(i, j)) return false;
+    return true;
+  };
+  auto row_empty = [&](int j) {
+    for (int i = 0; i < g.w; ++i)
+      if (g.at(i, j)) return false;
+    return true;
+  };
+  int i0 = 0, i1 = g.w - 1, j0 = 0, j1 = g.h - 1;
+  while (i0 <= i1 && column_empty(i0)) ++i0;
+  while (i1 >= i0 && column_empty(i1)) --i1;
+  while (j0 <= j1 && row_empty(j0)) ++j0;
+  while (j1 >= j0 && row_empty(j1)) --j1;
+  if (i0 > i1 || j0 > j1) {
+    g = Grid{};
+    return;
+  }
+  Grid t{i1 - i0 + 1, j1 - j0 + 1, {}};
+  t.p.resize(static_cast<std::size_t>(t.w) * t.h);
+  for (int j = 0; j < t.h; ++j)
+    for (int i = 0; i < t.w; ++i) t.at(i, j) = g.at(i + i0, j + j0);
+  g = std::move(t);
+}
+
 // A corner the candidates missed: refine from the prediction and accept it
 // only if it stays near the prediction and looks like an X-corner.
 std::optional<Vec2> verify_predicted(const Images& im, const Grid& grid, int i, int j) {
@@ -118,6 +190,8 @@ std::optional<Vec2> verify_predicted(const Images& im, const Grid& grid, int i, 
   if (!refined || (*refined - pred).norm() > 0.3 * spacing) return std::nullopt;
   const double r = std::min<double>(im.ring_radius, 0.35 * spacing);
   if (!analyse_ring(im.smooth, *refined, r, im.min_contrast).is_xcorner) return std::nullopt;
+  const Vec2 a = apply(*hm, i + 1, j) - pred, b = apply(*hm, i, j + 1) - pred;
+  if (!squares_alternate(im, *refined, a, b)) return std::nullopt;
   return *refined;
 }
 
@@ -248,6 +322,8 @@ Attempt try_radius(const Images& im, const ChessboardOptions& opt) {
   grid.p.resize(lab.cell.size());
   for (std::size_t k = 0; k < lab.cell.size(); ++k)
     if (lab.cell[k] >= 0) grid.p[k] = cands[static_cast<std::size_t>(lab.cell[k])].uv;
+  drop_false_corners(im, grid);
+  if (grid.found() < 4) return out;
   out.seen_w = grid.w;
   out.seen_h = grid.h;
   out.seen_found = grid.found();

@@ -67,13 +67,29 @@ Links find_links(const std::vector<XCorner>& corners, ImageView<const float> smo
                             corners[static_cast<std::size_t>(best_b)].uv, min_contrast))
         nearest[static_cast<std::size_t>(a)][static_cast<std::size_t>(h)] = best_b;
     }
+  // Along a grid line, neighbouring steps differ by perspective only: a link
+  // much longer or shorter than the one continuing it on the other side of
+  // either end joins two different patterns (e.g. the board and a small
+  // chessboard on a monitor behind it).
+  auto length = [&](int a, int h) {
+    const int b = nearest[static_cast<std::size_t>(a)][static_cast<std::size_t>(h)];
+    return b < 0
+               ? 0.0
+               : (corners[static_cast<std::size_t>(b)].uv - corners[static_cast<std::size_t>(a)].uv)
+                     .norm();
+  };
+  auto steady = [&](int a, int h, double len) {
+    const double other = length(a, (h + 2) % 4);
+    return other == 0.0 || (len < 2.0 * other && other < 2.0 * len);
+  };
   Links links(static_cast<std::size_t>(n));
   for (int a = 0; a < n; ++a)
     for (int h = 0; h < 4; ++h) {
       const int b = nearest[static_cast<std::size_t>(a)][static_cast<std::size_t>(h)];
-      if (b < 0) continue;
+      if (b < 0 || !steady(a, h, length(a, h))) continue;
       for (int hb = 0; hb < 4; ++hb)
-        if (nearest[static_cast<std::size_t>(b)][static_cast<std::size_t>(hb)] == a) {
+        if (nearest[static_cast<std::size_t>(b)][static_cast<std::size_t>(hb)] == a &&
+            steady(b, hb, length(a, h))) {
           links[static_cast<std::size_t>(a)][static_cast<std::size_t>(h)] = {b, hb};
           break;
         }

@@ -71,6 +71,12 @@ Result<StereoCalibration> calibrate_stereo(const std::vector<StereoPairCorners>&
       r_pair.push_back(static_cast<int>(p));
     }
   }
+  if (static_cast<int>(lv.size()) < o.camera.min_views ||
+      static_cast<int>(rv.size()) < o.camera.min_views)
+    return Error::make(
+        Errc::degenerate,
+        "the board was found in %zu left and %zu right images of %zu pairs, need at least %d each",
+        lv.size(), rv.size(), pairs.size(), o.camera.min_views);
   auto left = calibrate_camera(lv, o.left_sensor, o.camera);
   if (!left) return Error::make(left.code(), "left camera: %s", left.error().message);
   auto right = calibrate_camera(rv, o.right_sensor, o.camera);

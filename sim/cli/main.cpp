@@ -6,6 +6,7 @@
 namespace petra::cli {
 
 int fail(const char* cmd, const char* message) {
+  std::fflush(stdout);  // what was printed before the failure comes first in a shared log
   std::fprintf(stderr, "petra %s: %s\n", cmd, message);
   return 1;
 }
