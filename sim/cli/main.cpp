@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   petra::cli::add_keygen(app, outcome);
   petra::cli::add_icd(app, outcome);
   petra::cli::add_demo(app, outcome);
+  petra::cli::add_gnd(app, outcome);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
