@@ -33,6 +33,8 @@ async function get3d() {
 
 const roi = new RoiCanvas($('left'), () => {
   const r = roi.roi;
+  state.roi = r;
+  state.click = roi.click;
   $('roi-text').textContent = r ? `x ${r.x}, y ${r.y}, ${r.w} × ${r.h} px` : 'none';
   $('click-text').textContent = roi.click ? `(${roi.click.u}, ${roi.click.v})` : 'none';
   $('send-eval').disabled = !r;
