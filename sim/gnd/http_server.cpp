@@ -4,8 +4,10 @@
 #include <httplib.h>
 
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <sstream>
+#include <vector>
 
 #include "cmd/commands.hpp"
 #include "sim/gnd/command_request.hpp"
@@ -24,6 +26,41 @@ std::uint8_t product_kind(const std::string& name) {
 void answer_error(httplib::Response& res, int status, const std::string& message) {
   res.status = status;
   res.set_content(json_error(message), "application/json");
+}
+
+const char* mime_type(const std::filesystem::path& file) {
+  const std::string ext = file.extension().string();
+  if (ext == ".html") return "text/html";
+  if (ext == ".js") return "text/javascript";
+  if (ext == ".css") return "text/css";
+  if (ext == ".png") return "image/png";
+  if (ext == ".json") return "application/json";
+  return "application/octet-stream";
+}
+
+// Static files under `root`: no "..", no hidden files, regular files only.
+// Sent through a content provider so the library does not compress them on
+// the fly (brotli at its default quality takes seconds on three.js).
+void serve_file(const std::string& root, const std::string& rel, httplib::Response& res) {
+  namespace fs = std::filesystem;
+  const fs::path relative = rel.empty() || rel.back() == '/' ? fs::path(rel) / "index.html" : fs::path(rel);
+  for (const auto& part : relative)
+    if (part == ".." || part.string().starts_with("."))
+      return answer_error(res, 400, "path: '" + rel + "' is not allowed");
+  const fs::path file = fs::path(root) / relative;
+  std::error_code ec;
+  const auto size = fs::file_size(file, ec);
+  if (ec || !fs::is_regular_file(file)) return answer_error(res, 404, "path: no file '" + rel + "'");
+  auto in = std::make_shared<std::ifstream>(file, std::ios::binary);
+  res.set_header("Cache-Control", "no-cache");
+  res.set_content_provider(static_cast<std::size_t>(size), mime_type(file),
+                           [in](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+                             std::vector<char> buf(std::min<std::size_t>(length, 1 << 16));
+                             in->seekg(static_cast<std::streamoff>(offset));
+                             in->read(buf.data(), static_cast<std::streamsize>(buf.size()));
+                             const auto got = static_cast<std::size_t>(in->gcount());
+                             return got > 0 && sink.write(buf.data(), got);
+                           });
 }
 
 }  // namespace
@@ -57,9 +94,13 @@ struct HttpServer::Impl {
     // One thread per connected page (its event stream) plus the requests.
     server.new_task_queue = [] { return new httplib::ThreadPool(16); };
     server.set_payload_max_length(kMaxRequestBytes);
-    server.set_mount_point("/", options.web_dir);
-    if (!options.vendor_dir.empty() && std::filesystem::is_directory(options.vendor_dir))
-      server.set_mount_point("/vendor", options.vendor_dir);
+    const std::string web = options.web_dir, vendor = options.vendor_dir;
+    server.Get(R"(/vendor/(.*))", [vendor](const httplib::Request& req, httplib::Response& res) {
+      serve_file(vendor, req.matches[1], res);
+    });
+    server.Get(R"(/((?!api/).*))", [web](const httplib::Request& req, httplib::Response& res) {
+      serve_file(web, req.matches[1], res);
+    });
 
     server.Get("/api/info", [](const httplib::Request&, httplib::Response& res) {
       res.set_content(info_json(), "application/json");

@@ -12,7 +12,7 @@ const COLOURS = ['#e6194b', '#3cb44b', '#4363d8', '#f58231', '#911eb4', '#42d4f4
 const state = {
   commands: new Map(),  // counter -> {command, args, stage, reason, detail}
   evalResult: null, planes: [], ground: null, picked: null,
-  hk: null, lastPacketMs: 0, events: [], products: {}, arm: 'not requested',
+  hk: null, lastPacketMs: 0, view3d: 'loading', events: [], products: {}, arm: 'not requested',
 };
 window.petra = state;
 
@@ -23,9 +23,12 @@ async function get3d() {
   try {
     const { View3D } = await import('./view3d.js');
     view3d = new View3D($('view3d'));
+    view3d.setLabel('no point cloud yet');
     $('view3d-status').remove();
+    state.view3d = 'ready';
   } catch (e) {
     view3dError = String(e.message || e);
+    state.view3d = view3dError;
     $('view3d-status').textContent = `3D view unavailable: ${view3dError} (install the page assets: sim/gnd/install-web.sh)`;
   }
   return view3d;
@@ -71,8 +74,18 @@ $('send-eval').addEventListener('click', async () => {
   const args = { x_px: r.x, y_px: r.y, w_px: r.w, h_px: r.h, planes: Number($('planes').value) };
   if (roi.click) Object.assign(args, { has_click: 1, click_u_px: roi.click.u, click_v_px: roi.click.v });
   const counter = await send('SELECT_ROI', args);
-  if (counter !== null) pendingEvaluate = { after: counter, acquire: $('acquire').checked ? 1 : 0 };
+  if (counter === null) return;
+  pendingEvaluate = { after: counter, acquire: $('acquire').checked ? 1 : 0 };
+  continueEvaluate(state.commands.get(counter));  // its ack may have come before the reply
 });
+
+function continueEvaluate(row) {
+  if (!pendingEvaluate || row.counter !== pendingEvaluate.after || row.stage === 'SENT' || row.stage === 'ACCEPTED') return;
+  const acquire = pendingEvaluate.acquire;
+  pendingEvaluate = null;
+  if (row.stage === 'COMPLETED') send('EVALUATE', { acquire });
+  else $('request-error').textContent = `EVALUATE not sent: SELECT_ROI ${row.stage} ${row.reason}`;
+}
 $('send-acquire').addEventListener('click', () => send('ACQUIRE'));
 $('send-abort').addEventListener('click', () => send('ABORT'));
 $('send-stow').addEventListener('click', () => send('ARM_STOW'));
@@ -123,12 +136,7 @@ function onTlm(m) {
 function onAck(f, names) {
   const row = noteCommand(f.counter, { command: names.command, stage: names.stage,
                                        reason: f.reason ? names.reason : '', detail: f.detail });
-  if (pendingEvaluate && f.counter === pendingEvaluate.after && names.stage !== 'ACCEPTED') {
-    const acquire = pendingEvaluate.acquire;
-    pendingEvaluate = null;
-    if (names.stage === 'COMPLETED') send('EVALUATE', { acquire });
-    else $('request-error').textContent = `EVALUATE not sent: SELECT_ROI ${names.stage} ${names.reason}`;
-  }
+  continueEvaluate(row);
   if (row.command === 'EVALUATE' && (names.stage === 'FAILED' || names.stage === 'REJECTED'))
     $('planes-status').textContent = `EVALUATE ${names.stage}: ${names.reason} - no planes.`;
   if (row.command === 'ARM_GOTO' && names.stage !== 'ACCEPTED') {
@@ -268,6 +276,8 @@ function renderArm() {
   $('arm-status').textContent = text;
   $('arm-status').className = state.arm.startsWith('FAILED') || state.arm.startsWith('REJECTED') ? 'error' : 'hint';
 }
+
+get3d();  // three.js from /vendor and WebGL: ready before the first cloud
 
 setInterval(() => {
   const age = (Date.now() - state.lastPacketMs) / 1000;

@@ -17,6 +17,7 @@ const shots = path.join(buildDir, 'gnd', 'screenshots');
 fs.mkdirSync(shots, { recursive: true });
 const work = fs.mkdtempSync(path.join(os.tmpdir(), 'petra-gnd-e2e-'));
 const children = [];
+const pageErrors = [];
 let context = null;
 const t0 = Date.now();
 const log = (s) => console.log(`[${((Date.now() - t0) / 1000).toFixed(1)} s] ${s}`);
@@ -124,11 +125,14 @@ async function main() {
   const page = context.pages()[0] || await context.newPage();
   const offsite = [];
   page.on('request', (r) => { if (!r.url().startsWith(url)) offsite.push(r.url()); });
-  const pageErrors = [];
   page.on('pageerror', (e) => pageErrors.push(String(e)));
+  // Console errors other than HTTP statuses (the test's own refused request is one).
+  page.on('console', (m) => { if (m.type() === 'error' && !m.text().startsWith('Failed to load resource')) pageErrors.push(m.text()); });
   await page.goto(url);
   await until('the scene image on the page', () => page.evaluate(() => document.getElementById('left').width > 0), 10000);
   await until('petra-fsw housekeeping in IDLE', () => page.evaluate(() => window.petra.hk?.names.mode === 'IDLE'), 15000);
+  const view3d = await until('the 3D view', () => page.evaluate(() => window.petra.view3d !== 'loading' && window.petra.view3d), 10000);
+  check(view3d === 'ready', `3D view (three.js from /vendor, WebGL): ${view3d}`);
   check(await page.evaluate(() => window.petra.events.some((e) => e.startsWith('BOOT_COMPLETE'))), 'the page shows the BOOT_COMPLETE event');
 
   // 4. The operator drags the ROI and clicks a point on the rock.
@@ -242,6 +246,7 @@ try {
   await main();
 } catch (e) {
   console.error(`FAILED: ${e.message}`);
+  if (pageErrors.length) console.error(`page errors: ${pageErrors.join('; ')}`);
   const fswLog = path.join(work, 'fsw.log');
   if (fs.existsSync(fswLog)) console.error(`petra-fsw log:\n${fs.readFileSync(fswLog, 'utf8').slice(-2000)}`);
   status = 1;
