@@ -23,7 +23,8 @@ namespace petra::cli {
 void add_gnd(CLI::App& app, Outcome& outcome) {
   auto* gnd = app.add_subcommand("gnd", "Ground station in the browser");
   gnd->require_subcommand(1);
-  auto* sub = gnd->add_subcommand("serve", "Serve the ground station page and bridge it to petra-fsw");
+  auto* sub =
+      gnd->add_subcommand("serve", "Serve the ground station page and bridge it to petra-fsw");
   static gnd::ServerOptions http{.bind = "127.0.0.1",
                                  .port = 8080,
                                  .web_dir = PETRA_GND_WEB_DIR,

@@ -88,7 +88,8 @@ Status GroundStation::start(const StationOptions& options) {
     keep_product(std::move(p));
   }
   PETRA_TRY(uplink_.open("0.0.0.0", 0));
-  PETRA_TRY(uplink_.set_peer(options.fsw_host.c_str(), static_cast<std::uint16_t>(options.cmd_port)));
+  PETRA_TRY(
+      uplink_.set_peer(options.fsw_host.c_str(), static_cast<std::uint16_t>(options.cmd_port)));
   PETRA_TRY(downlink_.open(options.tlm_host.c_str(), static_cast<std::uint16_t>(options.tlm_port)));
   downlink_.set_receive_buffer(8 << 20);  // products arrive in bursts of chunks
   running_ = true;
@@ -110,17 +111,17 @@ Result<std::uint32_t> GroundStation::send(cmd::Command c) {
   if (!next) return next.error();
   c.counter = *next;
   std::vector<std::uint8_t> packet(cmd::kMaxCommandBytes);
-  auto n = cmd::encode_command_packet(c, static_cast<std::uint16_t>(c.counter & 0x3FFF), key_,
-                                      packet);
+  auto n =
+      cmd::encode_command_packet(c, static_cast<std::uint16_t>(c.counter & 0x3FFF), key_, packet);
   if (!n) return n.error();
   if (uplink_.send(std::span(packet).first(*n)) != hal::SendResult::sent)
     return Error::make(Errc::io_error, "uplink: sending %s failed",
                        command_name(static_cast<std::uint8_t>(c.code)));
   const auto code = static_cast<unsigned>(c.code);
-  hub_.publish("sent", "{\"command\":" + json_string(command_name(static_cast<std::uint8_t>(code))) +
-                           ",\"code\":" + std::to_string(code) +
-                           ",\"counter\":" + std::to_string(c.counter) +
-                           ",\"args\":" + args_json(c) + "}");
+  hub_.publish("sent",
+               "{\"command\":" + json_string(command_name(static_cast<std::uint8_t>(code))) +
+                   ",\"code\":" + std::to_string(code) +
+                   ",\"counter\":" + std::to_string(c.counter) + ",\"args\":" + args_json(c) + "}");
   return c.counter;
 }
 
@@ -148,9 +149,8 @@ void GroundStation::publish_packet(const tlm::TmPacket& p) {
     if (auto done = assembler_.add(*chunk)) keep_product(std::move(*done));
     return;
   }
-  hub_.publish("tlm", "{\"tlm\":" + ground::format_json(p) +
-                          ",\"line\":" + json_string(ground::format_line(p)) +
-                          ",\"names\":" + names_of(p) + "}");
+  hub_.publish("tlm", "{\"tlm\":" + ground::format_json(p) + ",\"line\":" +
+                          json_string(ground::format_line(p)) + ",\"names\":" + names_of(p) + "}");
 }
 
 void GroundStation::receive_loop() {

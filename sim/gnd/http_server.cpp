@@ -43,14 +43,16 @@ const char* mime_type(const std::filesystem::path& file) {
 // the fly (brotli at its default quality takes seconds on three.js).
 void serve_file(const std::string& root, const std::string& rel, httplib::Response& res) {
   namespace fs = std::filesystem;
-  const fs::path relative = rel.empty() || rel.back() == '/' ? fs::path(rel) / "index.html" : fs::path(rel);
+  const fs::path relative =
+      rel.empty() || rel.back() == '/' ? fs::path(rel) / "index.html" : fs::path(rel);
   for (const auto& part : relative)
     if (part == ".." || part.string().starts_with("."))
       return answer_error(res, 400, "path: '" + rel + "' is not allowed");
   const fs::path file = fs::path(root) / relative;
   std::error_code ec;
   const auto size = fs::file_size(file, ec);
-  if (ec || !fs::is_regular_file(file)) return answer_error(res, 404, "path: no file '" + rel + "'");
+  if (ec || !fs::is_regular_file(file))
+    return answer_error(res, 404, "path: no file '" + rel + "'");
   auto in = std::make_shared<std::ifstream>(file, std::ios::binary);
   res.set_header("Cache-Control", "no-cache");
   res.set_content_provider(static_cast<std::size_t>(size), mime_type(file),
@@ -70,8 +72,9 @@ std::string info_json() {
   o << "{\"commands\":[";
   bool first = true;
   for (const cmd::CommandDesc& c : cmd::command_table()) {
-    o << (first ? "" : ",") << "{\"name\":" << json_string(c.name) << ",\"code\":" << unsigned{c.code}
-      << ",\"description\":" << json_string(c.description) << ",\"fields\":[";
+    o << (first ? "" : ",") << "{\"name\":" << json_string(c.name)
+      << ",\"code\":" << unsigned{c.code} << ",\"description\":" << json_string(c.description)
+      << ",\"fields\":[";
     first = false;
     bool first_field = true;
     for (const auto& f : c.fields) {
@@ -112,29 +115,28 @@ struct HttpServer::Impl {
       auto counter = station.send(*command);
       if (!counter) return answer_error(res, 503, counter.error().message);
       const cmd::CommandDesc* d = cmd::find_command(static_cast<std::uint8_t>(command->code));
-      res.set_content("{\"command\":" + json_string(d->name) +
-                          ",\"counter\":" + std::to_string(*counter) + "}",
-                      "application/json");
+      res.set_content(
+          "{\"command\":" + json_string(d->name) + ",\"counter\":" + std::to_string(*counter) + "}",
+          "application/json");
     });
 
-    server.Get(R"(/api/product/([a-z_]+))",
-               [this](const httplib::Request& req, httplib::Response& res) {
-                 const std::uint8_t kind = product_kind(req.matches[1]);
-                 if (kind == 0)
-                   return answer_error(res, 400,
-                                       "product: '" + std::string(req.matches[1]) +
-                                           "' is not left_image, disparity, overlay or "
-                                           "point_cloud");
-                 auto p = station.product(kind);
-                 if (!p) return answer_error(res, 404, "product: none received yet");
-                 res.set_header("Cache-Control", "no-store");
-                 res.set_header("X-Petra-Width", std::to_string(p->width));
-                 res.set_header("X-Petra-Height", std::to_string(p->height));
-                 res.set_header("X-Petra-Format", std::to_string(p->format));
-                 res.set_header("X-Petra-Id", std::to_string(p->id));
-                 res.set_content(std::string(p->bytes.begin(), p->bytes.end()),
-                                 "application/octet-stream");
-               });
+    server.Get(R"(/api/product/([a-z_]+))", [this](const httplib::Request& req,
+                                                   httplib::Response& res) {
+      const std::uint8_t kind = product_kind(req.matches[1]);
+      if (kind == 0)
+        return answer_error(res, 400,
+                            "product: '" + std::string(req.matches[1]) +
+                                "' is not left_image, disparity, overlay or "
+                                "point_cloud");
+      auto p = station.product(kind);
+      if (!p) return answer_error(res, 404, "product: none received yet");
+      res.set_header("Cache-Control", "no-store");
+      res.set_header("X-Petra-Width", std::to_string(p->width));
+      res.set_header("X-Petra-Height", std::to_string(p->height));
+      res.set_header("X-Petra-Format", std::to_string(p->format));
+      res.set_header("X-Petra-Id", std::to_string(p->id));
+      res.set_content(std::string(p->bytes.begin(), p->bytes.end()), "application/octet-stream");
+    });
 
     server.Get("/api/events", [this](const httplib::Request& req, httplib::Response& res) {
       // A reconnecting EventSource resumes after the last message it saw.
@@ -165,7 +167,9 @@ struct HttpServer::Impl {
 };
 
 HttpServer::HttpServer(GroundStation& station) : impl_(std::make_unique<Impl>(station)) {}
-HttpServer::~HttpServer() { stop(); }
+HttpServer::~HttpServer() {
+  stop();
+}
 
 Result<int> HttpServer::bind(const ServerOptions& options) {
   in_addr addr{};
@@ -175,12 +179,12 @@ Result<int> HttpServer::bind(const ServerOptions& options) {
   if (options.port < 0 || options.port > 65535)
     return Error::make(Errc::out_of_range, "--port %d: outside 0..65535", options.port);
   if (!std::filesystem::is_regular_file(std::filesystem::path(options.web_dir) / "index.html"))
-    return Error::make(Errc::missing_field, "--web '%s': no index.html there", options.web_dir.c_str());
+    return Error::make(Errc::missing_field, "--web '%s': no index.html there",
+                       options.web_dir.c_str());
   impl_->routes(options);
   if (options.port == 0) {
     const int port = impl_->server.bind_to_any_port(options.bind.c_str());
-    if (port <= 0)
-      return Error::make(Errc::io_error, "cannot bind %s:0", options.bind.c_str());
+    if (port <= 0) return Error::make(Errc::io_error, "cannot bind %s:0", options.bind.c_str());
     return port;
   }
   if (!impl_->server.bind_to_port(options.bind.c_str(), options.port))
@@ -189,7 +193,9 @@ Result<int> HttpServer::bind(const ServerOptions& options) {
   return options.port;
 }
 
-void HttpServer::run() { impl_->server.listen_after_bind(); }
+void HttpServer::run() {
+  impl_->server.listen_after_bind();
+}
 
 void HttpServer::stop() {
   if (impl_) impl_->server.stop();

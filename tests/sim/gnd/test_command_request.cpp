@@ -39,7 +39,8 @@ TEST(CommandRequest, CommandNameIsCaseInsensitiveAndArgsOptional) {
 }
 
 TEST(CommandRequest, FloatFieldKeepsItsValue) {
-  auto c = parse_command_request(R"({"command":"ARM_GOTO","args":{"plane_rank":1,"standoff_mm":42.5}})");
+  auto c =
+      parse_command_request(R"({"command":"ARM_GOTO","args":{"plane_rank":1,"standoff_mm":42.5}})");
   ASSERT_TRUE(c) << c.error().message;
   const auto& a = std::get<cmd::ArmGotoArgs>(c->args);
   EXPECT_EQ(a.plane_rank, 1);
@@ -67,7 +68,8 @@ TEST(CommandRequest, NamesTheUnknownCommandOrField) {
             std::string::npos);
   EXPECT_NE(error_of(R"({"command":"EVALUATE","args":{"acquired":1}})").find("no field 'acquired'"),
             std::string::npos);
-  EXPECT_NE(error_of(R"({"command":"EVALUATE","args":{"acquire":"yes"}})").find("args.acquire: must be a number"),
+  EXPECT_NE(error_of(R"({"command":"EVALUATE","args":{"acquire":"yes"}})")
+                .find("args.acquire: must be a number"),
             std::string::npos);
   EXPECT_NE(error_of(R"({"command":"EVALUATE","args":{"a=b":1}})").find("bad field name"),
             std::string::npos);
@@ -82,8 +84,9 @@ TEST(CommandRequest, NamesTheFieldOutOfRange) {
             std::string::npos);
   EXPECT_NE(error_of(R"({"command":"ARM_GOTO","args":{"plane_rank":1.5}})").find("whole numbers"),
             std::string::npos);
-  EXPECT_NE(error_of(R"({"command":"ARM_GOTO","args":{"standoff_mm":-1}})").find("ARM_GOTO.standoff_mm"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(R"({"command":"ARM_GOTO","args":{"standoff_mm":-1}})").find("ARM_GOTO.standoff_mm"),
+      std::string::npos);
 }
 
 }  // namespace
