@@ -18,6 +18,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "algo/linalg3.hpp"
+
 namespace petra {
 
 namespace fixed_detail {
@@ -189,14 +191,7 @@ constexpr bool isfinite(Fixed<F> x) {
 using Q31_32 = Fixed<32>;
 using Q47_16 = Fixed<16>;
 
-// Scalar helpers so templated code reads the same for double and Fixed.
-template <class S>
-S scalar_from(double v) {
-  return S(v);
-}
-inline double to_double(double v) {
-  return v;
-}
+// to_double for Fixed (the double overload is in algo/linalg3.hpp).
 template <int F>
 double to_double(Fixed<F> v) {
   return v.to_double();

@@ -7,8 +7,23 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
+#include <type_traits>
 
 namespace petra {
+
+// Scalar helpers so templated code reads the same for double and Fixed<F>.
+template <class S>
+S from_count(std::size_t n) {
+  if constexpr (std::is_floating_point_v<S>) {
+    return static_cast<S>(n);
+  } else {
+    return S(static_cast<long>(n));
+  }
+}
+inline double to_double(double v) {
+  return v;
+}
 
 template <class S>
 using Vec2T = Eigen::Matrix<S, 2, 1>;

@@ -49,7 +49,7 @@ Result<PlaneFitT<S>> fit_plane_tls(std::span<const Vec3T<S>> points, Use&& use) 
       ++n;
     }
   if (n < 3) return Error::make(Errc::degenerate, "plane fit: %zu points, need at least 3", n);
-  const S count(static_cast<long>(n));
+  const S count = from_count<S>(n);
   const Vec3T<S> c = sum / count;
   S spread(0);
   for (std::size_t i = 0; i < points.size(); ++i)
