@@ -43,46 +43,36 @@ Result<MeshFilterStats> remove_discontinuities(std::span<const Eigen::Vector3d> 
         return Error::make(Errc::out_of_range, "mesh filter: triangle %zu neighbour %d", i,
                            tris[i].n[k]);
     }
-  ArenaScope scope(scratch);
-  auto remap = scratch.allocate<std::int32_t>(tris.size(), "mesh filter index map");
-  if (!remap) return remap.error();
   const double max_edge2 = params.max_edge_mm * params.max_edge_mm;
   const double cos_max = std::cos(params.max_view_angle_deg * M_PI / 180.0);
   MeshFilterStats stats;
-  for (std::size_t i = 0; i < tris.size(); ++i) {
+  auto keep = [&](std::size_t i) {
     const MeshTriangle& t = tris[i];
     const Eigen::Vector3d& a = xyz[static_cast<std::size_t>(t.v[0])];
     const Eigen::Vector3d& b = xyz[static_cast<std::size_t>(t.v[1])];
     const Eigen::Vector3d& c = xyz[static_cast<std::size_t>(t.v[2])];
-    std::int32_t& r = (*remap)[i];
-    r = -1;
     if ((b - a).squaredNorm() > max_edge2 || (c - b).squaredNorm() > max_edge2 ||
         (a - c).squaredNorm() > max_edge2) {
       ++stats.removed_long;
-      continue;
+      return false;
     }
     const Eigen::Vector3d cross = (b - a).cross(c - a);
     const double len = cross.norm();
     if (!(len > 0)) {
       ++stats.removed_degenerate;
-      continue;
+      return false;
     }
     const Eigen::Vector3d ray = camera_centre - (a + b + c) / 3.0;
     const double cos_view = std::abs(cross.dot(ray)) / (len * ray.norm());
     if (!(cos_view >= cos_max)) {
       ++stats.removed_grazing;
-      continue;
+      return false;
     }
-    r = static_cast<std::int32_t>(stats.kept++);
-  }
-  for (std::size_t i = 0; i < tris.size(); ++i) {
-    const std::int32_t r = (*remap)[i];
-    if (r < 0) continue;
-    MeshTriangle t = tris[i];
-    for (int k = 0; k < 3; ++k)
-      t.n[k] = t.n[k] < 0 ? -1 : (*remap)[static_cast<std::size_t>(t.n[k])];
-    tris[static_cast<std::size_t>(r)] = t;  // r <= i: compaction never overwrites unread entries
-  }
+    return true;
+  };
+  auto kept = keep_triangles(tris, keep, scratch);
+  if (!kept) return kept.error();
+  stats.kept = *kept;
   return stats;
 }
 

@@ -39,6 +39,28 @@ inline std::size_t mesh_filter_scratch_bytes(std::size_t triangles) {
   return triangles * sizeof(std::int32_t) + alignof(std::int32_t);
 }
 
+// Keeps the triangles with keep(i) true (i: index before compaction), in
+// order, in place; neighbours re-indexed, -1 where the neighbour went.
+// Scratch: mesh_filter_scratch_bytes(triangles.size()). Returns the count kept.
+template <class Keep>
+Result<std::size_t> keep_triangles(std::span<MeshTriangle> tris, Keep&& keep, Arena& scratch) {
+  ArenaScope scope(scratch);
+  auto remap = scratch.allocate<std::int32_t>(tris.size(), "triangle index map");
+  if (!remap) return remap.error();
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < tris.size(); ++i)
+    (*remap)[i] = keep(i) ? static_cast<std::int32_t>(kept++) : -1;
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    const std::int32_t r = (*remap)[i];
+    if (r < 0) continue;
+    MeshTriangle t = tris[i];
+    for (int k = 0; k < 3; ++k)
+      t.n[k] = t.n[k] < 0 ? -1 : (*remap)[static_cast<std::size_t>(t.n[k])];
+    tris[static_cast<std::size_t>(r)] = t;  // r <= i: never overwrites an unread entry
+  }
+  return kept;
+}
+
 // `triangles` is rewritten: the first stats.kept entries are the kept mesh.
 Result<MeshFilterStats> remove_discontinuities(std::span<const Eigen::Vector3d> xyz_mm,
                                                const Eigen::Vector3d& camera_centre_mm,

@@ -36,34 +36,35 @@ struct PlaneFitT {
 // collinear (their plane is undefined).
 inline constexpr double kCollinearEigenRatio = 1e-6;
 
-template <class S, class Use>
-Result<PlaneFitT<S>> fit_plane_tls(std::span<const Vec3T<S>> points, Use&& use) {
+// Points given by an accessor: point(k) for k < count, used when use(k).
+template <class S, class Get, class Use>
+Result<PlaneFitT<S>> fit_plane_tls_by(std::size_t count_all, Get&& point, Use&& use) {
   using std::abs;
   using std::sqrt;
   PlaneFitT<S> fit;
   Vec3T<S> sum = Vec3T<S>::Zero();
   std::size_t n = 0;
-  for (std::size_t i = 0; i < points.size(); ++i)
+  for (std::size_t i = 0; i < count_all; ++i)
     if (use(i)) {
-      sum += points[i];
+      sum += point(i);
       ++n;
     }
   if (n < 3) return Error::make(Errc::degenerate, "plane fit: %zu points, need at least 3", n);
   const S count = from_count<S>(n);
   const Vec3T<S> c = sum / count;
   S spread(0);
-  for (std::size_t i = 0; i < points.size(); ++i)
+  for (std::size_t i = 0; i < count_all; ++i)
     if (use(i)) {
-      const Vec3T<S> q = points[i] - c;
+      const Vec3T<S> q = point(i) - c;
       spread += abs(q(0)) + abs(q(1)) + abs(q(2));
     }
   const S scale = spread / count;
   if (!(scale > S(0)))
     return Error::make(Errc::degenerate, "plane fit: all %zu points coincide", n);
   Mat3T<S> cov = Mat3T<S>::Zero();
-  for (std::size_t i = 0; i < points.size(); ++i)
+  for (std::size_t i = 0; i < count_all; ++i)
     if (use(i)) {
-      const Vec3T<S> q = (points[i] - c) / scale;
+      const Vec3T<S> q = (point(i) - c) / scale;
       cov(0, 0) += q(0) * q(0);
       cov(1, 0) += q(1) * q(0);
       cov(2, 0) += q(2) * q(0);
@@ -88,6 +89,12 @@ Result<PlaneFitT<S>> fit_plane_tls(std::span<const Vec3T<S>> points, Use&& use) 
   fit.rms = scale * sqrt(lmin / count);
   fit.count = n;
   return fit;
+}
+
+template <class S, class Use>
+Result<PlaneFitT<S>> fit_plane_tls(std::span<const Vec3T<S>> points, Use&& use) {
+  return fit_plane_tls_by<S>(
+      points.size(), [&](std::size_t i) -> const Vec3T<S>& { return points[i]; }, use);
 }
 
 template <class S>
