@@ -379,15 +379,14 @@ class Builder {
 
 }  // namespace
 
-std::size_t delaunay_scratch_bytes(std::size_t n) {
+std::size_t delaunay_incremental_scratch_bytes(std::size_t n) {
   const std::size_t cap = pool_capacity(n);
   return bytes_for<MeshTriangle>(cap) + 3 * bytes_for<std::int32_t>(cap) +
          bytes_for<Boundary>(cap) + bytes_for<std::int32_t>(n + 1) +
          bytes_for<std::uint64_t>(2 * n) + bytes_for<std::uint32_t>(2 * n);
 }
 
-Result<DelaunayStats> delaunay_triangulate(std::span<const IntPoint> points,
-                                           std::span<MeshTriangle> triangles, Arena& scratch) {
+Status check_delaunay_input(std::span<const IntPoint> points) {
   const std::size_t n = points.size();
   if (n < 3) return Error::make(Errc::degenerate, "delaunay: %zu points, need at least 3", n);
   if (n > 0x3FFFFFFF) return Error::make(Errc::capacity_exceeded, "delaunay: %zu points", n);
@@ -398,10 +397,29 @@ Result<DelaunayStats> delaunay_triangulate(std::span<const IntPoint> points,
       return Error::make(Errc::out_of_range, "delaunay: point %zu (%d, %d) beyond +-%d", i, p.x,
                          p.y, kPredicateMaxAbsCoord);
   }
+  return {};
+}
+
+std::size_t delaunay_scratch_bytes(std::size_t n) {
+  const std::size_t a = delaunay_incremental_scratch_bytes(n), b = delaunay_raster_scratch_bytes(n);
+  return a > b ? a : b;
+}
+
+Result<DelaunayStats> delaunay_triangulate_incremental(std::span<const IntPoint> points,
+                                                       std::span<MeshTriangle> triangles,
+                                                       Arena& scratch) {
+  PETRA_TRY(check_delaunay_input(points));
   ArenaScope scope(scratch);
   Builder builder(points, scratch);
   PETRA_TRY(builder.allocate());
   return builder.run(triangles);
+}
+
+Result<DelaunayStats> delaunay_triangulate(std::span<const IntPoint> points,
+                                           std::span<MeshTriangle> triangles, Arena& scratch) {
+  PETRA_TRY(check_delaunay_input(points));
+  if (is_raster_ordered(points)) return delaunay_triangulate_raster(points, triangles, scratch);
+  return delaunay_triangulate_incremental(points, triangles, scratch);
 }
 
 }  // namespace petra

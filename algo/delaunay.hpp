@@ -1,6 +1,7 @@
 // 2-D Delaunay triangulation (SEED.md 3d) of the matched points in the
-// rectified left image, by Bowyer-Watson insertion with ghost triangles (a
-// vertex at infinity, so no super-triangle and no large coordinates):
+// rectified left image. General input: Bowyer-Watson insertion with ghost
+// triangles (a vertex at infinity, so no super-triangle and no large
+// coordinates); raster-ordered input: see delaunay_raster.cpp. Incremental path:
 //   - exact integer predicates (algo/predicates.hpp): orient2d, incircle;
 //   - points inserted in BRIO rounds, along a Hilbert curve within each round
 //     (radix-sorted keys), located by a
@@ -43,9 +44,28 @@ struct DelaunayStats {
 constexpr std::size_t delaunay_max_triangles(std::size_t n) {
   return n < 3 ? 0 : 2 * n;
 }
+// Enough for either strategy.
 std::size_t delaunay_scratch_bytes(std::size_t n);
 
+// Raster-ordered input (rows of increasing y, x increasing within a row: the
+// order of a disparity map's valid pixels) takes the raster path
+// (delaunay_raster.cpp: row strips, hull pockets, Lawson flips; several times
+// faster), anything else the incremental one. Both give a Delaunay
+// triangulation.
 Result<DelaunayStats> delaunay_triangulate(std::span<const IntPoint> points,
                                            std::span<MeshTriangle> triangles, Arena& scratch);
+
+// The strategies themselves (tests compare them).
+bool is_raster_ordered(std::span<const IntPoint> points);
+Result<DelaunayStats> delaunay_triangulate_incremental(std::span<const IntPoint> points,
+                                                       std::span<MeshTriangle> triangles,
+                                                       Arena& scratch);
+Result<DelaunayStats> delaunay_triangulate_raster(std::span<const IntPoint> points,
+                                                  std::span<MeshTriangle> triangles,
+                                                  Arena& scratch);
+std::size_t delaunay_incremental_scratch_bytes(std::size_t n);
+std::size_t delaunay_raster_scratch_bytes(std::size_t n);
+// Shared input checks: at least 3 points, coordinates within +-2^20.
+Status check_delaunay_input(std::span<const IntPoint> points);
 
 }  // namespace petra

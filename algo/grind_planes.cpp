@@ -17,7 +17,8 @@ std::size_t bytes_for(std::size_t n) {
 }
 
 struct Scratch {
-  std::span<Eigen::Vector3d> normal, centroid;
+  std::span<Eigen::Vector3d> normal, centroid, sample;
+  std::span<std::uint8_t> sample_cls;
   std::span<double> area;
   std::span<std::uint8_t> cls, support;
   std::span<std::int32_t> queue;
@@ -37,6 +38,12 @@ Result<Scratch> allocate(Arena& arena, std::size_t n) {
   if (!support) return support.error();
   auto queue = arena.allocate<std::int32_t>(n, "grind planes queue");
   if (!queue) return queue.error();
+  auto sample = arena.allocate<Eigen::Vector3d>(kCMeansSamples, "c-means samples");
+  if (!sample) return sample.error();
+  auto sample_cls = arena.allocate<std::uint8_t>(kCMeansSamples, "c-means sample classes");
+  if (!sample_cls) return sample_cls.error();
+  s.sample = *sample;
+  s.sample_cls = *sample_cls;
   s.normal = *normal;
   s.centroid = *centroid;
   s.area = *area;
@@ -138,7 +145,8 @@ Status validate(const GrindParams& p) {
 
 std::size_t grind_planes_scratch_bytes(std::size_t n) {
   return 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<double>(n) + 2 * bytes_for<std::uint8_t>(n) +
-         bytes_for<std::int32_t>(n);
+         bytes_for<std::int32_t>(n) + bytes_for<Eigen::Vector3d>(kCMeansSamples) +
+         bytes_for<std::uint8_t>(kCMeansSamples);
 }
 
 Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
@@ -193,8 +201,13 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     for (std::size_t i = 0; i < n; ++i) sum += s.area[i] * s.normal[i];
     centres[0] = sum;
   } else {
-    auto cm = cmeans<double>(std::span<const Eigen::Vector3d>(s.normal.data(), n), c, params.cmeans,
-                             s.cls);
+    // C-means on a regular sample of the triangles (its cost is per sample
+    // and per iteration; the angle pass below sees every triangle).
+    const std::size_t stride = (n + kCMeansSamples - 1) / kCMeansSamples;
+    std::size_t m = 0;
+    for (std::size_t i = 0; i < n; i += stride) s.sample[m++] = s.normal[i];
+    auto cm = cmeans<double>(std::span<const Eigen::Vector3d>(s.sample.data(), m), c, params.cmeans,
+                             s.sample_cls.first(m));
     if (!cm) {
       // All normals equal (one flat face): one class, and the angle pass says so.
       if (cm.code() != Errc::degenerate) return cm.error();

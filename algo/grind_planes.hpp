@@ -3,7 +3,9 @@
 //      camera: a visible face's outward normal) of every rock triangle;
 //   2. surface classification by C-means (eq. 9-12, algo/cmeans) of the
 //      normals into c classes: the paper's 4a clustering of 3-component
-//      samples, applied to the normals as its 4b step asks;
+//      samples, applied to the normals as its 4b step asks; it sees at most
+//      kCMeansSamples triangles, a regular stride through the mesh (its cost
+//      grows with samples x iterations; its output only seeds step 3);
 //   3. refinement by angle clustering (algo/angle_cluster): the C-means class
 //      means are the initial centres (kept only if more than 5 degrees apart,
 //      as the paper asks), then nearest-angle assignment and area-weighted
@@ -40,6 +42,8 @@
 #include "algo/delaunay.hpp"
 
 namespace petra {
+
+inline constexpr std::size_t kCMeansSamples = 2048;
 
 struct GrindParams {
   double grinder_diameter_mm = 20.0;  // footprint: planes with less area are too small

@@ -13,7 +13,9 @@
 //      (Petra adds: trimmed to the points within 3 RMS of the previous fit,
 //      because k-means on distance puts the foot of the rock in the ground
 //      cluster and it would tilt the plane by a fraction of a degree);
-//   4. repeat 2-3 until |(A,B,C,D) - (A',B',C',D')| < epsilon.
+//   4. repeat 2-3 until |(A,B,C,D) - (A',B',C',D')| < epsilon; the loop
+//      runs on a regular sample of at most kSegmentSamples points (each pass
+//      costs per point), then one k-means and refit on every point.
 // Then the result is checked: the rock must stand out (its cluster centre at
 // least min_rock_height_mm above the plane), the ground must be a plane
 // (RMS <= max_ground_rms_mm), a real share of the points, with almost nothing
@@ -35,6 +37,10 @@
 #include "algo/plane_fit.hpp"
 
 namespace petra {
+
+// The iteration runs on a regular sample of at most this many points; the
+// final labels and plane use every point (see ground_segment_impl.hpp).
+inline constexpr std::size_t kSegmentSamples = 4096;
 
 struct GroundParams {
   double epsilon = 1e-4;             // plane-vector change that ends the iteration

@@ -114,7 +114,11 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
   };
   orient_to_camera(plane);
 
-  // 2-4. k-means on the signed distance, refit, until the plane settles.
+  // 2-4. k-means on the signed distance, refit, until the plane settles; on
+  // a regular sample of at most kSegmentSamples points (every pass costs
+  // per point), then one full-resolution labelling and refit.
+  const std::size_t stride = (n + kSegmentSamples - 1) / kSegmentSamples;
+  const std::size_t samples = (n + stride - 1) / stride;
   S rock_centre{};
   {
     S top = plane.distance(xyz[0]);
@@ -127,8 +131,8 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
   S ground_centre(0);
   PlaneFitT<S> fit;
   bool have_fit = false;
-  for (int it = 0; it < params.max_iterations; ++it) {
-    out.iterations = it + 1;
+  // Labels of the whole cloud (stride 1) or of the sample.
+  auto kmeans = [&](std::size_t step, std::size_t count) {
     if (click.present) rock_centre = plane.distance(xyz[out.click_point]);
     ground_centre = S(0);
     if (!(rock_centre > ground_centre)) rock_centre = ground_centre + S(params.min_rock_height_mm);
@@ -136,7 +140,8 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
       S sum_g(0), sum_r(0);
       std::size_t ng = 0, nr_ = 0, moved = 0;
       const S split = (ground_centre + rock_centre) / S(2);
-      for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t k = 0; k < count; ++k) {
+        const std::size_t i = k * step;
         const S d = plane.distance(xyz[i]);
         const PointClass c = d > split ? PointClass::rock : PointClass::ground;
         if (pass == 0 || c != labels[i]) ++moved;
@@ -151,23 +156,32 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
       }
       if (ng > 0) ground_centre = sum_g / from_count<S>(ng);
       if (nr_ > 0) rock_centre = sum_r / from_count<S>(nr_);
-      out.ground_points = ng;
-      out.rock_points = nr_;
       if (moved == 0 || nr_ == 0) break;
     }
     if (click.present) labels[out.click_point] = PointClass::rock;
-    // The foot of the rock falls in the ground cluster (k-means on distance
-    // splits at mid-height); trimming the cluster to a band of 3 RMS of the
-    // previous fit keeps it out of the refit.
+  };
+  // The foot of the rock falls in the ground cluster (k-means on distance
+  // splits at mid-height); trimming the cluster to a band of 3 RMS of the
+  // previous fit keeps it out of the refit.
+  auto refit = [&](std::size_t step, std::size_t count) -> Status {
     const S band_mm = have_fit ? max_s(S(3) * fit.rms, S(params.min_trim_band_mm)) : S(1e6);
-    auto refit = fit_plane_tls<S>(xyz, [&](std::size_t i) {
-      return labels[i] == PointClass::ground && abs_s(plane.distance(xyz[i])) <= band_mm;
-    });
-    if (!refit)
+    auto f = fit_plane_tls_by<S>(
+        count, [&](std::size_t k) -> const Vec3T<S>& { return xyz[k * step]; },
+        [&](std::size_t k) {
+          return labels[k * step] == PointClass::ground &&
+                 abs_s(plane.distance(xyz[k * step])) <= band_mm;
+        });
+    if (!f)
       return Error::make(Errc::no_solution, "segmentation: no ground plane in the ROI (%s)",
-                         refit.error().message);
-    fit = *refit;
+                         f.error().message);
+    fit = *f;
     have_fit = true;
+    return {};
+  };
+  for (int it = 0; it < params.max_iterations; ++it) {
+    out.iterations = it + 1;
+    kmeans(stride, samples);
+    PETRA_TRY(refit(stride, samples));
     PlaneT<S> next = fit.plane;
     orient_to_camera(next);
     const Vec3T<S> dn = next.normal - plane.normal;
@@ -178,6 +192,12 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
       out.converged = true;
       break;
     }
+  }
+  if (stride > 1) {
+    kmeans(1, n);
+    PETRA_TRY(refit(1, n));
+    plane = fit.plane;
+    orient_to_camera(plane);
   }
   PETRA_ASSERT(have_fit);
 

@@ -45,6 +45,7 @@ Result<MeshFilterStats> remove_discontinuities(std::span<const Eigen::Vector3d> 
     }
   const double max_edge2 = params.max_edge_mm * params.max_edge_mm;
   const double cos_max = std::cos(params.max_view_angle_deg * M_PI / 180.0);
+  const double cos2_max = cos_max * cos_max;
   MeshFilterStats stats;
   auto keep = [&](std::size_t i) {
     const MeshTriangle& t = tris[i];
@@ -57,14 +58,15 @@ Result<MeshFilterStats> remove_discontinuities(std::span<const Eigen::Vector3d> 
       return false;
     }
     const Eigen::Vector3d cross = (b - a).cross(c - a);
-    const double len = cross.norm();
-    if (!(len > 0)) {
+    const double len2 = cross.squaredNorm();
+    if (!(len2 > 0)) {
       ++stats.removed_degenerate;
       return false;
     }
+    // |cos(normal, ray)| >= cos_max, squared: no root, no division.
     const Eigen::Vector3d ray = camera_centre - (a + b + c) / 3.0;
-    const double cos_view = std::abs(cross.dot(ray)) / (len * ray.norm());
-    if (!(cos_view >= cos_max)) {
+    const double dot = cross.dot(ray);
+    if (!(dot * dot >= cos2_max * len2 * ray.squaredNorm())) {
       ++stats.removed_grazing;
       return false;
     }

@@ -1,9 +1,10 @@
 // Total-least-squares plane fit over a scalar type S (double or Fixed<F>):
 // the plane A X + B Y + C Z + D = 0 with |(A, B, C)| = 1 minimising the sum
 // of squared orthogonal distances (SEED.md 2a eq. 1, normalised form).
-// Centroid first, then the covariance of the centred points divided by a
-// scale (their mean L1 spread), so sums stay O(count) whatever the units:
-// that keeps a Q format from overflowing and costs double nothing.
+// Centroid and bounding box first, then the covariance of the centred points
+// divided by a scale (half the largest extent), so sums stay O(count)
+// whatever the units: that keeps a Q format from overflowing and costs
+// double nothing.
 // Inputs: points (mm) and a selector `use(i) -> bool`; no heap, two passes.
 #pragma once
 
@@ -43,28 +44,33 @@ Result<PlaneFitT<S>> fit_plane_tls_by(std::size_t count_all, Get&& point, Use&& 
   using std::sqrt;
   PlaneFitT<S> fit;
   Vec3T<S> sum = Vec3T<S>::Zero();
+  Vec3T<S> lo = Vec3T<S>::Zero(), hi = Vec3T<S>::Zero();
   std::size_t n = 0;
   for (std::size_t i = 0; i < count_all; ++i)
     if (use(i)) {
-      sum += point(i);
+      const Vec3T<S>& p = point(i);
+      if (n == 0) lo = hi = p;
+      for (int k = 0; k < 3; ++k) {
+        lo(k) = p(k) < lo(k) ? p(k) : lo(k);
+        hi(k) = p(k) > hi(k) ? p(k) : hi(k);
+      }
+      sum += p;
       ++n;
     }
   if (n < 3) return Error::make(Errc::degenerate, "plane fit: %zu points, need at least 3", n);
   const S count = from_count<S>(n);
   const Vec3T<S> c = sum / count;
-  S spread(0);
-  for (std::size_t i = 0; i < count_all; ++i)
-    if (use(i)) {
-      const Vec3T<S> q = point(i) - c;
-      spread += abs(q(0)) + abs(q(1)) + abs(q(2));
-    }
-  const S scale = spread / count;
+  // Scale: half the largest extent, so every |q| <= 2 (centroid inside the box).
+  const Vec3T<S> extent = hi - lo;
+  S scale = extent(0) > extent(1) ? extent(0) : extent(1);
+  scale = (extent(2) > scale ? extent(2) : scale) / S(2);
   if (!(scale > S(0)))
     return Error::make(Errc::degenerate, "plane fit: all %zu points coincide", n);
+  const S inv_scale = S(1) / scale;
   Mat3T<S> cov = Mat3T<S>::Zero();
   for (std::size_t i = 0; i < count_all; ++i)
     if (use(i)) {
-      const Vec3T<S> q = (point(i) - c) / scale;
+      const Vec3T<S> q = (point(i) - c) * inv_scale;
       cov(0, 0) += q(0) * q(0);
       cov(1, 0) += q(1) * q(0);
       cov(2, 0) += q(2) * q(0);

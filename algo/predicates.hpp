@@ -38,4 +38,17 @@ inline int incircle_sign(IntPoint a, IntPoint b, IntPoint c, IntPoint d) {
   return det > 0 ? 1 : (det < 0 ? -1 : 0);
 }
 
+// The same sign in 64-bit arithmetic, exact when every coordinate difference
+// is below 2^14 (lifts < 2^29, products < 2^58, the sum of three < 2^60).
+inline constexpr std::int32_t kSmallPredicateSpan = 1 << 14;
+inline int incircle_sign_small(IntPoint a, IntPoint b, IntPoint c, IntPoint d) {
+  const std::int64_t adx = a.x - d.x, ady = a.y - d.y;
+  const std::int64_t bdx = b.x - d.x, bdy = b.y - d.y;
+  const std::int64_t cdx = c.x - d.x, cdy = c.y - d.y;
+  const std::int64_t det = (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) +
+                           (bdx * bdx + bdy * bdy) * (cdx * ady - adx * cdy) +
+                           (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
+  return det > 0 ? 1 : (det < 0 ? -1 : 0);
+}
+
 }  // namespace petra

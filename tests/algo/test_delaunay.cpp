@@ -17,43 +17,49 @@ struct Run {
   std::vector<MeshTriangle> tris;
 };
 
-Result<Run> triangulate(const std::vector<IntPoint>& pts) {
+enum class Strategy { automatic, incremental, raster };
+
+Result<Run> triangulate(const std::vector<IntPoint>& pts, Strategy how = Strategy::automatic) {
   std::vector<std::byte> block(delaunay_scratch_bytes(pts.size()));
   Arena arena(block);
   Run run;
   run.tris.resize(delaunay_max_triangles(pts.size()));
-  auto stats = delaunay_triangulate(pts, run.tris, arena);
+  auto stats = how == Strategy::incremental ? delaunay_triangulate_incremental(pts, run.tris, arena)
+               : how == Strategy::raster    ? delaunay_triangulate_raster(pts, run.tris, arena)
+                                            : delaunay_triangulate(pts, run.tris, arena);
   if (!stats) return stats.error();
   run.stats = *stats;
   run.tris.resize(stats->triangles);
   return run;
 }
 
-// Convex hull boundary points (collinear ones included), by brute force over
-// the monotone chain with collinear points kept.
+// Convex hull boundary points (collinear ones included): strict hull by the
+// monotone chain, then every point lying on one of its edges.
 std::size_t hull_boundary_points(std::vector<IntPoint> pts) {
   std::sort(pts.begin(), pts.end(),
             [](auto a, auto b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
   pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+  std::vector<IntPoint> hull;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t base = hull.size();
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const IntPoint p = pass == 0 ? pts[k] : pts[pts.size() - 1 - k];
+      while (hull.size() >= base + 2 && orient2d(hull[hull.size() - 2], hull.back(), p) <= 0)
+        hull.pop_back();
+      hull.push_back(p);
+    }
+    hull.pop_back();
+  }
   std::size_t on = 0;
-  for (const IntPoint& q : pts) {
-    // q is on the boundary iff some line through q has every point on one closed side.
-    bool boundary = false;
-    for (const IntPoint& r : pts) {
-      if (r == q) continue;
-      bool left = true, right = true;
-      for (const IntPoint& s : pts) {
-        const std::int64_t o = orient2d(q, r, s);
-        if (o > 0) right = false;
-        if (o < 0) left = false;
-      }
-      if (left || right) {
-        boundary = true;
+  for (const IntPoint& q : pts)
+    for (std::size_t e = 0; e < hull.size(); ++e) {
+      const IntPoint a = hull[e], b = hull[(e + 1) % hull.size()];
+      if (orient2d(a, b, q) == 0 && std::min(a.x, b.x) <= q.x && q.x <= std::max(a.x, b.x) &&
+          std::min(a.y, b.y) <= q.y && q.y <= std::max(a.y, b.y)) {
+        ++on;
         break;
       }
     }
-    on += boundary;
-  }
   return on;
 }
 
@@ -104,7 +110,7 @@ void check_delaunay(const std::vector<IntPoint>& pts, const Run& run, bool count
 
 TEST(Delaunay, RandomPointsSatisfyTheEmptyCircleProperty) {
   std::mt19937 rng(11);
-  for (int trial = 0; trial < 5; ++trial) {
+  for (int trial = 0; trial < 8; ++trial) {
     std::vector<IntPoint> pts(300);
     for (auto& p : pts) p = {static_cast<int>(rng() % 2000) - 1000, static_cast<int>(rng() % 1500)};
     auto run = triangulate(pts);
@@ -129,6 +135,41 @@ TEST(Delaunay, FullAndHoledGridsAreValid) {
   run = triangulate(holed);
   ASSERT_TRUE(run.ok());
   check_delaunay(holed, *run);
+}
+
+TEST(Delaunay, RasterAndIncrementalPathsBothGiveDelaunay) {
+  std::mt19937 rng(21);
+  for (int trial = 0; trial < 6; ++trial) {
+    std::vector<IntPoint> pts;
+    if (trial < 3) {
+      // Grid with holes of growing density, like a disparity map.
+      for (int y = 0; y < 25; ++y)
+        for (int x = 0; x < 30; ++x)
+          if (static_cast<int>(rng() % 10) >= 2 * trial) pts.push_back({x, y});
+    } else {
+      // Scattered points (not a grid) put in raster order; a few rows hold one point.
+      std::set<std::pair<int, int>> yx;
+      while (yx.size() < 250)
+        yx.insert({static_cast<int>(rng() % 60), static_cast<int>(rng() % 400)});
+      for (const auto& [y, x] : yx) pts.push_back({x, y});
+    }
+    ASSERT_TRUE(is_raster_ordered(pts));
+    auto raster = triangulate(pts, Strategy::raster);
+    ASSERT_TRUE(raster.ok()) << raster.error().message;
+    check_delaunay(pts, *raster);
+    auto incremental = triangulate(pts, Strategy::incremental);
+    ASSERT_TRUE(incremental.ok());
+    EXPECT_EQ(raster->tris.size(), incremental->tris.size());
+    EXPECT_EQ(raster->stats.hull_edges, incremental->stats.hull_edges);
+  }
+  // Out-of-order input is refused by the raster path, accepted by the dispatcher.
+  std::vector<IntPoint> unordered = {{5, 0}, {0, 0}, {0, 5}, {5, 5}};
+  EXPECT_EQ(triangulate(unordered, Strategy::raster).code(), Errc::invalid_argument);
+  EXPECT_TRUE(triangulate(unordered).ok());
+  // A single column (collinear, raster ordered) is an error on both paths.
+  std::vector<IntPoint> column = {{3, 0}, {3, 1}, {3, 2}, {3, 3}};
+  EXPECT_EQ(triangulate(column, Strategy::raster).code(), Errc::degenerate);
+  EXPECT_EQ(triangulate(column, Strategy::incremental).code(), Errc::degenerate);
 }
 
 TEST(Delaunay, CocircularPointsAndTheirCentre) {
