@@ -153,7 +153,8 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
                                       std::span<const MeshTriangle> tris,
                                       const Eigen::Vector3d& camera, int c,
                                       const GrindParams& params, Arena& arena,
-                                      std::span<std::uint8_t> triangle_plane) {
+                                      std::span<std::uint8_t> triangle_plane,
+                                      std::span<const Eigen::Vector3d> point_normals) {
   PETRA_TRY(validate(params));
   const std::size_t n = tris.size();
   if (c < 1 || c > kMaxClasses)
@@ -162,6 +163,9 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
   if (triangle_plane.size() != n)
     return Error::make(Errc::invalid_argument, "grind planes: %zu triangles, %zu labels", n,
                        triangle_plane.size());
+  if (!point_normals.empty() && point_normals.size() != xyz.size())
+    return Error::make(Errc::invalid_argument, "grind planes: %zu points, %zu normals", xyz.size(),
+                       point_normals.size());
   if (n < static_cast<std::size_t>(3 * c))
     return Error::make(Errc::degenerate, "grind planes: %zu rock triangles, too few for c = %d", n,
                        c);
@@ -188,6 +192,14 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     s.centroid[i] = (a + b + cc) / 3.0;
     s.area[i] = 0.5 * len;
     Eigen::Vector3d nrm = len > 0 ? Eigen::Vector3d(cross / len) : Eigen::Vector3d::UnitZ();
+    if (!point_normals.empty()) {
+      const Eigen::Vector3d& na = point_normals[static_cast<std::size_t>(tris[i].v[0])];
+      const Eigen::Vector3d& nb = point_normals[static_cast<std::size_t>(tris[i].v[1])];
+      const Eigen::Vector3d& nc = point_normals[static_cast<std::size_t>(tris[i].v[2])];
+      const Eigen::Vector3d mean = na + nb + nc;
+      if (na.squaredNorm() > 0 && nb.squaredNorm() > 0 && nc.squaredNorm() > 0 && mean.norm() > 1.5)
+        nrm = mean.normalized();
+    }
     if (nrm.dot(camera - s.centroid[i]) < 0) nrm = -nrm;
     s.normal[i] = nrm;
   }

@@ -1,6 +1,8 @@
 // Grind planes (SEED.md 4b) from the rock's mesh:
 //   1. centroid, area and unit normal (AB x AC, turned towards the left
-//      camera: a visible face's outward normal) of every rock triangle;
+//      camera: a visible face's outward normal) of every rock triangle; for
+//      the clustering, the mean of its vertices' smoothed normals when given
+//      (at pixel spacing, AB x AC alone scatters by tens of degrees);
 //   2. surface classification by C-means (eq. 9-12, algo/cmeans) of the
 //      normals into c classes: the paper's 4a clustering of 3-component
 //      samples, applied to the normals as its 4b step asks; it sees at most
@@ -81,10 +83,14 @@ struct GrindResult {
 Status validate(const GrindParams& p);
 std::size_t grind_planes_scratch_bytes(std::size_t triangles);
 
+// point_normals: optional smoothed normals per point (algo/surface_normals);
+// a triangle whose three vertices have one clusters by their mean, any
+// other by its own AB x AC normal. Empty: AB x AC everywhere (the paper).
 Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz_mm,
                                       std::span<const MeshTriangle> rock_triangles,
                                       const Eigen::Vector3d& camera_centre_mm, int c,
                                       const GrindParams& params, Arena& scratch,
-                                      std::span<std::uint8_t> triangle_plane);
+                                      std::span<std::uint8_t> triangle_plane,
+                                      std::span<const Eigen::Vector3d> point_normals = {});
 
 }  // namespace petra

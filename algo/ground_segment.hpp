@@ -8,7 +8,8 @@
 //   2. signed distance of every point to the plane (normal towards the
 //      cameras, so rock is positive) and k-means with k = 2 on it: ground
 //      centre starts at 0, rock centre at the clicked point's distance if a
-//      click is given, else at the largest distance;
+//      click is given, else at the 98th percentile of the distances (the
+//      largest would let a few far mismatches seed the rock cluster);
 //   3. total-least-squares refit of the ground cluster, |(A, B, C)| = 1
 //      (Petra adds: trimmed to the points within 3 RMS of the previous fit,
 //      because k-means on distance puts the foot of the rock in the ground

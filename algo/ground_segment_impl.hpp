@@ -121,12 +121,18 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
   const std::size_t samples = (n + stride - 1) / stride;
   S rock_centre{};
   {
-    S top = plane.distance(xyz[0]);
-    for (std::size_t i = 1; i < n; ++i) {
-      const S d = plane.distance(xyz[i]);
-      if (d > top) top = d;
+    // Rock seed: a high quantile of the distances, not the maximum, so a few
+    // far mismatches cannot take the rock cluster (1 mm bins, -64..959 mm).
+    std::uint32_t hist[1024] = {};
+    for (std::size_t k = 0; k < samples; ++k) {
+      const int bin = static_cast<int>(plane.distance(xyz[k * stride])) + 64;
+      ++hist[bin < 0 ? 0 : (bin > 1023 ? 1023 : bin)];
     }
-    rock_centre = click.present ? plane.distance(xyz[out.click_point]) : top;
+    const std::size_t target = samples - samples / 50;  // the 98th percentile
+    std::size_t seen = 0;
+    int top = 0;
+    for (; top < 1023 && seen + hist[top] < target; ++top) seen += hist[top];
+    rock_centre = click.present ? plane.distance(xyz[out.click_point]) : S(top - 64);
   }
   S ground_centre(0);
   PlaneFitT<S> fit;

@@ -24,7 +24,7 @@ std::size_t persistent_bytes(const ReconstructionBudget& b) {
   const std::size_t n = b.max_points, t = max_triangles(b);
   const std::size_t roi =
       static_cast<std::size_t>(b.max_roi_width) * static_cast<std::size_t>(b.max_roi_height);
-  return bytes_for<std::int16_t>(roi) + bytes_for<Eigen::Vector3d>(n) + bytes_for<PixelPos>(n) +
+  return bytes_for<std::int16_t>(roi) + 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<PixelPos>(n) +
          bytes_for<PointClass>(n) + bytes_for<std::uint8_t>(n) + bytes_for<MeshTriangle>(t) +
          bytes_for<std::uint8_t>(t);
 }
@@ -34,10 +34,14 @@ std::size_t transient_bytes(const ReconstructionBudget& b) {
   const std::size_t filter = mean_filter_scratch_bytes(b.max_roi_width);
   const std::size_t delaunay = bytes_for<IntPoint>(n) + delaunay_scratch_bytes(n);
   const std::size_t mesh = mesh_filter_scratch_bytes(t);
+  const std::size_t roi =
+      static_cast<std::size_t>(b.max_roi_width) * static_cast<std::size_t>(b.max_roi_height);
+  const std::size_t normals =
+      bytes_for<Eigen::Vector3d>(roi) + surface_normals_scratch_bytes(b.max_roi_width);
   const std::size_t grind = bytes_for<MeshTriangle>(t) + bytes_for<std::int32_t>(t) +
                             bytes_for<std::uint8_t>(t) +
                             std::max(mesh_filter_scratch_bytes(t), grind_planes_scratch_bytes(t));
-  return std::max(std::max(filter, delaunay), std::max(mesh, grind));
+  return std::max(std::max(filter, delaunay), std::max(std::max(mesh, normals), grind));
 }
 
 }  // namespace
@@ -160,6 +164,25 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
     out.ground = *g;
   }
 
+  // Smoothed surface normals per point, from the filtered disparity.
+  auto normals = arena.allocate<Eigen::Vector3d>(n, "point normals");
+  if (!normals) return normals.error();
+  out.normals = *normals;
+  {
+    StepTimer timer(clock, timings, "normals");
+    ArenaScope scope(arena);
+    auto grid = arena.allocate<Eigen::Vector3d>(
+        static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "pixel normals");
+    if (!grid) return grid.error();
+    PETRA_TRY(surface_normals(out.filtered, rect.left, params.normals, *grid, arena));
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t at = static_cast<std::size_t>(out.pixels[i].v - disparity.roi.y) *
+                                 static_cast<std::size_t>(w) +
+                             static_cast<std::size_t>(out.pixels[i].u - disparity.roi.x);
+      out.normals[i] = (*grid)[at];
+    }
+  }
+
   // Grind planes on the rock triangles.
   auto vclass = arena.allocate<std::uint8_t>(n, "vertex classes");
   if (!vclass) return vclass.error();
@@ -195,8 +218,9 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
     if (!kept) return kept.error();
     PETRA_ASSERT(*kept == nr);
     st.rock_triangles = nr;
-    auto g = find_grind_planes(out.xyz_mm, rock->first(nr), camera_centre_world(rig.left),
-                               request.planes, params.grind, arena, plane_of->first(nr));
+    auto g =
+        find_grind_planes(out.xyz_mm, rock->first(nr), camera_centre_world(rig.left),
+                          request.planes, params.grind, arena, plane_of->first(nr), out.normals);
     if (!g) return g.error();
     out.planes = *g;
     for (std::size_t j = 0; j < nr; ++j) {

@@ -2,7 +2,8 @@
 // the onboard chain (SEED.md 3c, 3d, 2a, 4):
 //   mean filter -> triangulate (eq. 8) -> Delaunay (rectified left pixels)
 //   -> lift and drop discontinuities -> rock/ground segmentation
-//   -> rock triangles -> C-means + angle clustering -> ranked grind planes.
+//   -> surface normals (local disparity planes) -> rock triangles
+//   -> C-means + angle clustering -> ranked grind planes.
 // Every buffer comes from the caller's arena: outputs (cloud, mesh, labels,
 // filtered map) stay allocated for the caller to read or downlink until it
 // resets the arena; scratch of each step is released after it.
@@ -26,6 +27,7 @@
 #include "algo/mesh_lift.hpp"
 #include "algo/rectify_geometry.hpp"
 #include "algo/step_clock.hpp"
+#include "algo/surface_normals.hpp"
 
 namespace petra {
 
@@ -39,6 +41,7 @@ std::size_t reconstruction_arena_bytes(const ReconstructionBudget& b);
 
 struct ReconstructionParams {
   MeanFilterParams filter;
+  NormalParams normals;
   MeshFilterParams mesh;
   GroundParams ground;
   GrindParams grind;
@@ -69,6 +72,7 @@ struct ReconstructionOutput {
   std::span<Eigen::Vector3d> xyz_mm;
   std::span<PixelPos> pixels;
   std::span<PointClass> point_class;
+  std::span<Eigen::Vector3d> normals;    // smoothed surface normal per point (zero: none)
   std::span<std::uint8_t> vertex_class;  // kVertexGround / kVertexRock / kVertexPlane0 + k
   // Mesh after discontinuity removal (all of it, rock and ground).
   std::span<MeshTriangle> mesh;

@@ -11,7 +11,13 @@ namespace petra {
 struct StepClock {
   std::uint64_t (*now_ns)(void* context) = nullptr;
   void* context = nullptr;
+  // Optional: told when a step starts (its name) and ends (nullptr), so a
+  // caller can report progress of long steps from its own thread.
+  void (*on_step)(void* context, const char* name) = nullptr;
   std::uint64_t read() const { return now_ns ? now_ns(context) : 0; }
+  void step(const char* name) const {
+    if (on_step) on_step(context, name);
+  }
 };
 
 struct StepTiming {
@@ -39,7 +45,9 @@ struct StepTimings {
 class StepTimer {
  public:
   StepTimer(const StepClock& clock, StepTimings& timings, const char* name)
-      : clock_(clock), timings_(timings), name_(name), start_(clock.read()) {}
+      : clock_(clock), timings_(timings), name_(name), start_(clock.read()) {
+    clock_.step(name_);
+  }
   ~StepTimer() { stop(); }
   StepTimer(const StepTimer&) = delete;
   StepTimer& operator=(const StepTimer&) = delete;
@@ -47,6 +55,7 @@ class StepTimer {
     if (stopped_) return;
     stopped_ = true;
     timings_.add(name_, clock_.read() - start_);
+    clock_.step(nullptr);
   }
 
  private:

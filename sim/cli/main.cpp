@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   petra::cli::add_score(app, outcome);
   petra::cli::add_stereo(app, outcome);
   petra::cli::add_middlebury(app, outcome);
+  petra::cli::add_eval(app, outcome);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
