@@ -1,6 +1,7 @@
 #include "algo/grind_planes.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "algo/plane_fit.hpp"
@@ -108,8 +109,14 @@ void largest_patch(std::span<const MeshTriangle> tris, const Scratch& s, std::ui
 
 }  // namespace
 
+int cluster_count(int c) {
+  return std::min(kMaxClasses, std::max(c + 3, 2 * c));
+}
+
 const char* verdict_name(PlaneVerdict v) {
   switch (v) {
+    case PlaneVerdict::surplus:
+      return "more planes qualify than asked for";
     case PlaneVerdict::accepted:
       return "accepted";
     case PlaneVerdict::faces_away:
@@ -138,6 +145,10 @@ Status validate(const GrindParams& p) {
   if (!(p.inlier_angle_deg > 0.0 && p.inlier_angle_deg < 90.0))
     return Error::make(Errc::invalid_argument, "grind planes: inlier_angle_deg %.3g not in (0, 90)",
                        p.inlier_angle_deg);
+  if (!(p.merge_angle_deg >= 0.0 && p.merge_angle_deg < 45.0) || !(p.merge_distance_mm >= 0.0))
+    return Error::make(Errc::invalid_argument,
+                       "grind planes: merge_angle_deg %.3g or merge_distance_mm %.3g invalid",
+                       p.merge_angle_deg, p.merge_distance_mm);
   if (!(p.min_trim_band_mm > 0.0))
     return Error::make(Errc::invalid_argument, "grind planes: min_trim_band_mm must be > 0");
   return validate(p.cmeans);
@@ -205,48 +216,51 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
   }
 
   GrindResult out;
-  // 2. C-means surface classes (eq. 9-12) on the normals.
+  // 2. C-means surface classes (eq. 9-12) on the normals, into more classes
+  // than the operator's c: a rock shows more faces than the c it is asked
+  // for, and c classes would merge two of them into a plane of neither.
+  const int k_classes = cluster_count(c);
   Eigen::Vector3d centres[kMaxClasses];
-  int c_eff = c;
-  if (c == 1) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < n; ++i) sum += s.area[i] * s.normal[i];
-    centres[0] = sum;
-  } else {
+  int k_eff = k_classes;
+  {
     // C-means on a regular sample of the triangles (its cost is per sample
     // and per iteration; the angle pass below sees every triangle).
     const std::size_t stride = (n + kCMeansSamples - 1) / kCMeansSamples;
     std::size_t m = 0;
     for (std::size_t i = 0; i < n; i += stride) s.sample[m++] = s.normal[i];
-    auto cm = cmeans<double>(std::span<const Eigen::Vector3d>(s.sample.data(), m), c, params.cmeans,
-                             s.sample_cls.first(m));
+    auto cm = cmeans<double>(std::span<const Eigen::Vector3d>(s.sample.data(), m), k_classes,
+                             params.cmeans, s.sample_cls.first(m));
     if (!cm) {
-      // All normals equal (one flat face): one class, and the angle pass says so.
+      // All normals equal (one flat face): one class.
       if (cm.code() != Errc::degenerate) return cm.error();
-      c_eff = 1;
+      k_eff = 1;
       centres[0] = s.normal[0];
     } else {
       out.cmeans_iterations = cm->iterations;
-      for (int j = 0; j < c; ++j) centres[j] = cm->classes[j].mean;
+      for (int j = 0; j < k_classes; ++j) centres[j] = cm->classes[j].mean;
       out.converged = cm->converged;
     }
   }
-  // 3. Angle clustering refinement.
+  // 3. Angle clustering refinement (centres more than 5 deg apart).
   auto ac = angle_cluster<double>(
       std::span<const Eigen::Vector3d>(s.normal.data(), n),
       std::span<const double>(s.area.data(), n),
-      std::span<const Eigen::Vector3d>(centres, static_cast<std::size_t>(c_eff)), params.angle,
+      std::span<const Eigen::Vector3d>(centres, static_cast<std::size_t>(k_eff)), params.angle,
       s.cls);
   if (!ac) return ac.error();
   out.angle_iterations = ac->iterations;
-  out.classes = ac->c;
-  out.converged = (c_eff == 1 || out.converged) && ac->converged;
+  out.converged = (k_eff == 1 || out.converged) && ac->converged;
 
-  // 4. One candidate plane per class.
+  // 4. One candidate plane per class; coplanar neighbours merged.
   GrindPlane candidates[kMaxClasses];
+  bool alive[kMaxClasses] = {};
   const double cos_inlier = std::cos(params.inlier_angle_deg * M_PI / 180.0);
-  for (int k = 0; k < ac->c; ++k) {
+  const double cos_merge = std::cos(params.merge_angle_deg * M_PI / 180.0);
+  auto fit_class = [&](int k) {
     GrindPlane& plane = candidates[k];
+    plane = GrindPlane{};
+    for (std::size_t i = 0; i < n; ++i)
+      if (triangle_plane[i] == k) triangle_plane[i] = kNone;
     largest_patch(tris, s, static_cast<std::uint8_t>(k));
     PlaneFitT<double> fit;
     bool have = false;
@@ -274,7 +288,6 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
         if (!agrees) s.support[i] = 3;  // dropped
       }
     }
-    // Support statistics and the triangle labels for this class.
     double area = 0;
     Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
     std::size_t count = 0;
@@ -283,12 +296,13 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
       area += s.area[i];
       weighted += s.area[i] * s.centroid[i];
       ++count;
+      triangle_plane[i] = static_cast<std::uint8_t>(k);
     }
     plane.triangles = count;
     plane.area_mm2 = area;
     if (!have || count == 0 || !(area > 0)) {
       plane.verdict = PlaneVerdict::no_support;
-      continue;
+      return;
     }
     plane.normal = fit.plane.normal;
     const Eigen::Vector3d centre = weighted / area;
@@ -305,43 +319,75 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     } else {
       plane.verdict = PlaneVerdict::accepted;
     }
-    // Remember which triangles support class k (labels rewritten below).
-    for (std::size_t i = 0; i < n; ++i)
-      if (s.support[i] == 1) s.support[i] = static_cast<std::uint8_t>(16 + k);
-    for (std::size_t i = 0; i < n; ++i)
-      if (s.support[i] >= 16) triangle_plane[i] = s.support[i];
+  };
+  for (int k = 0; k < ac->c; ++k) {
+    alive[k] = ac->count[k] > 0;
+    if (alive[k]) fit_class(k);
   }
+  // Two classes on one face (its normals spread over both): merge when their
+  // planes agree in direction and each centroid lies on the other's plane.
+  auto coplanar = [&](int i, int j) {
+    const GrindPlane& a = candidates[i];
+    const GrindPlane& b = candidates[j];
+    if (a.verdict == PlaneVerdict::no_support || b.verdict == PlaneVerdict::no_support)
+      return false;
+    return a.normal.dot(b.normal) >= cos_merge &&
+           std::abs(a.normal.dot(b.centroid_mm - a.centroid_mm)) <= params.merge_distance_mm &&
+           std::abs(b.normal.dot(a.centroid_mm - b.centroid_mm)) <= params.merge_distance_mm;
+  };
+  for (int guard = 0; guard < kMaxClasses; ++guard) {
+    bool merged = false;
+    for (int i = 0; i < ac->c && !merged; ++i)
+      for (int j = i + 1; j < ac->c && !merged; ++j) {
+        if (!alive[i] || !alive[j] || !coplanar(i, j)) continue;
+        for (std::size_t t = 0; t < n; ++t) {
+          if (s.cls[t] == j) s.cls[t] = static_cast<std::uint8_t>(i);
+          if (triangle_plane[t] == j) triangle_plane[t] = kNone;
+        }
+        alive[j] = false;
+        fit_class(i);
+        ++out.merges;
+        merged = true;
+      }
+    if (!merged) break;
+  }
+  int distinct = 0;
+  for (int k = 0; k < ac->c; ++k) distinct += alive[k];
+  out.classes = distinct;
 
-  // 5. Rank: accepted by area (largest first), then the rejected ones.
+  // 5. Rank: accepted by area (largest first; beyond c they are surplus),
+  // then the rejected ones.
   int order[kMaxClasses];
   int m = 0;
-  for (int pass = 0; pass < 2; ++pass)
+  for (int pass = 0; pass < 2; ++pass) {
+    const int pass_start = m;
     for (int k = 0; k < ac->c; ++k) {
+      if (!alive[k]) continue;
       const bool acc = candidates[k].verdict == PlaneVerdict::accepted;
       if ((pass == 0) != acc) continue;
       int pos = m++;
       order[pos] = k;
-      // Insertion by area within the pass.
-      const int pass_start = pass == 0 ? 0 : out.accepted;
       while (pos > pass_start && candidates[order[pos - 1]].area_mm2 < candidates[k].area_mm2) {
         order[pos] = order[pos - 1];
         order[--pos] = k;
       }
-      if (pass == 0) ++out.accepted;
     }
+    if (pass == 0) {
+      out.accepted = std::min(m, c);
+      for (int r = out.accepted; r < m; ++r) candidates[order[r]].verdict = PlaneVerdict::surplus;
+    }
+  }
   out.count = m;
   int rank_of[kMaxClasses];
+  for (int k = 0; k < kMaxClasses; ++k) rank_of[k] = -1;
   for (int r = 0; r < m; ++r) {
     out.planes[r] = candidates[order[r]];
     rank_of[order[r]] = r;
   }
-  // triangle_plane holds 16 + class for supporting triangles (from the loop
-  // above) and stale values elsewhere: rewrite all.
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t v = triangle_plane[i];
-    bool supports = false;
-    for (int k = 0; k < ac->c; ++k) supports |= v == 16 + k;
-    triangle_plane[i] = supports ? static_cast<std::uint8_t>(rank_of[v - 16]) : kNone;
+    triangle_plane[i] =
+        v < kMaxClasses && rank_of[v] >= 0 ? static_cast<std::uint8_t>(rank_of[v]) : kNone;
   }
   return out;
 }

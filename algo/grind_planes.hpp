@@ -4,8 +4,10 @@
 //      the clustering, the mean of its vertices' smoothed normals when given
 //      (at pixel spacing, AB x AC alone scatters by tens of degrees);
 //   2. surface classification by C-means (eq. 9-12, algo/cmeans) of the
-//      normals into c classes: the paper's 4a clustering of 3-component
-//      samples, applied to the normals as its 4b step asks; it sees at most
+//      normals: the paper's 4a clustering of 3-component samples, applied to
+//      the normals as its 4b step asks, into cluster_count(c) > c classes
+//      (Petra: a rock shows more faces than the c the operator wants, and c
+//      classes would merge two faces into a plane of neither); it sees at most
 //      kCMeansSamples triangles, a regular stride through the mesh (its cost
 //      grows with samples x iterations; its output only seeds step 3);
 //   3. refinement by angle clustering (algo/angle_cluster): the C-means class
@@ -20,11 +22,15 @@
 //      dropped, twice), normal out of the rock, centroid (area-weighted mean of
 //      the supporting triangles' centroids, on the plane), supporting area,
 //      RMS flatness and triangle count;
+//      Classes whose planes agree within merge_angle_deg and whose centroids
+//      lie within merge_distance_mm of each other's plane are merged (one face
+//      split by the extra classes);
 //   5. verdicts: a plane whose normal is more than max_view_angle_deg from the
 //      direction to the camera faces away; one with less area than the
 //      grinder's footprint (pi d^2 / 4) is too small; one rougher than
 //      max_rms_mm is not flat. Accepted planes are ranked by area, largest
-//      first; rejected ones follow with their reason.
+//      first, at most c of them (the rest are surplus); rejected ones follow
+//      with their reason.
 // Inputs: positions (world, mm), the rock triangles (neighbour links within
 // this set, as keep_triangles leaves them), the left camera centre, c.
 // Output: the result value; a plane index per triangle (0..count-1 in rank
@@ -53,11 +59,20 @@ struct GrindParams {
   double max_rms_mm = 1.5;            // flatness limit
   double inlier_angle_deg = 12.0;     // a triangle supports a plane within this angle
   double min_trim_band_mm = 0.3;      // floor of the 3-RMS distance band
+  double merge_angle_deg = 8.0;       // two classes' planes this close in direction ...
+  double merge_distance_mm = 3.0;     // ... and each centroid this near the other plane: merged
   CMeansParams cmeans;
   AngleClusterParams angle;
 };
 
-enum class PlaneVerdict : std::uint8_t { accepted, faces_away, too_small, not_flat, no_support };
+enum class PlaneVerdict : std::uint8_t {
+  accepted,
+  faces_away,
+  too_small,
+  not_flat,
+  no_support,
+  surplus  // qualified, but c larger ones did too
+};
 const char* verdict_name(PlaneVerdict v);
 
 struct GrindPlane {
@@ -74,13 +89,16 @@ struct GrindResult {
   GrindPlane planes[kMaxClasses];  // accepted (ranked by area) then rejected
   int count = 0;                   // planes listed
   int accepted = 0;                // the first `accepted` of them
-  int classes = 0;                 // distinct normal classes found (<= c)
+  int classes = 0;                 // distinct faces left after merging
+  int merges = 0;                  // classes merged as coplanar
   int cmeans_iterations = 0;
   int angle_iterations = 0;
   bool converged = false;  // both clusterings stopped because nothing moved
 };
 
 Status validate(const GrindParams& p);
+// Classes clustered for c planes: min(8, max(c + 3, 2c)).
+int cluster_count(int c);
 std::size_t grind_planes_scratch_bytes(std::size_t triangles);
 
 // point_normals: optional smoothed normals per point (algo/surface_normals);

@@ -21,6 +21,8 @@ Status validate(const GroundParams& p) {
     return Error::make(Errc::invalid_argument, "segmentation: max_below_fraction not in [0, 1]");
   if (!(p.min_trim_band_mm > 0.0))
     return Error::make(Errc::invalid_argument, "segmentation: min_trim_band_mm must be > 0");
+  if (!(p.ground_band_rms > 0.0) || !(p.min_ground_band_mm > 0.0))
+    return Error::make(Errc::invalid_argument, "segmentation: ground band must be > 0");
   if (!(p.min_border_ground >= 0.0 && p.min_border_ground <= 1.0))
     return Error::make(Errc::invalid_argument, "segmentation: min_border_ground not in [0, 1]");
   if (!(p.border_band > 0.0 && p.border_band < 0.5))

@@ -17,15 +17,14 @@
 //   4. repeat 2-3 until |(A,B,C,D) - (A',B',C',D')| < epsilon; the loop
 //      runs on a regular sample of at most kSegmentSamples points (each pass
 //      costs per point), then one k-means and refit on every point.
-// Then the result is checked: the rock must stand out (its cluster centre at
-// least min_rock_height_mm above the plane), the ground must be a plane
-// (RMS <= max_ground_rms_mm), a real share of the points, with almost nothing
-// below it, and hold most of the ROI's border band (a rock is surrounded by
-// ground).
-// Inputs: positions (world, mm) and rectified pixels of the cloud, the ROI
-// and optional click in rectified pixels, the left camera centre (world, mm).
-// Output: labels into a caller span (one per point) and the ground plane.
-// No heap, no scratch: every pass streams over the caller's arrays.
+// Final labels: ground within max(3 RMS, 2 mm) of the plane, rock above
+// (never more than the k-means midpoint). Then the result is checked: the rock must stand out (its
+// cluster centre at least min_rock_height_mm above the plane), the ground must be a plane (RMS <=
+// max_ground_rms_mm), a real share of the points, with almost nothing below it, and hold most of
+// the ROI's border band (a rock is surrounded by ground). Inputs: positions (world, mm) and
+// rectified pixels of the cloud, the ROI and optional click in rectified pixels, the left camera
+// centre (world, mm). Output: labels into a caller span (one per point) and the ground plane. No
+// heap, no scratch: every pass streams over the caller's arrays.
 #pragma once
 
 #include <cstddef>
@@ -52,6 +51,8 @@ struct GroundParams {
   double min_ground_fraction = 0.1;  // of all points
   double max_below_fraction = 0.05;  // points deeper than min_rock_height_mm below the ground
   double min_trim_band_mm = 0.5;     // floor of the refit's band (3 RMS of the last fit)
+  double ground_band_rms = 3.0;      // final labels: ground within this many RMS of the plane
+  double min_ground_band_mm = 2.0;   // ... and at least this far
   double min_border_ground = 0.5;    // share of the ROI border band that is ground
   double border_band = 0.08;         // band width as a fraction of min(w, h)
   int click_radius_px = 3;           // a click needs a 3-D point this close

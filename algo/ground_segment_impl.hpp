@@ -207,11 +207,15 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
   }
   PETRA_ASSERT(have_fit);
 
-  // Final labels and statistics about the final plane.
+  // Final labels about the final plane: ground is the band of noise around
+  // it (3 RMS, at least min_ground_band_mm), everything above is rock. The
+  // k-means midpoint found the plane; as a label it would give the lower
+  // half of the rock's faces to the ground.
   std::size_t ng = 0, nr_ = 0, band_total = 0, band_ground = 0, below = 0;
   const S deep = -S(params.min_rock_height_mm);
   S sum_r(0);
-  const S split = rock_centre / S(2);
+  S split = max_s(S(params.ground_band_rms) * fit.rms, S(params.min_ground_band_mm));
+  if (rock_centre / S(2) < split) split = rock_centre / S(2);
   const int band = static_cast<int>(params.border_band * (roi.w < roi.h ? roi.w : roi.h)) + 1;
   for (std::size_t i = 0; i < n; ++i) {
     const S d = plane.distance(xyz[i]);
