@@ -5,20 +5,24 @@ namespace petra::canopen {
 Status CanopenMaster::configure(std::span<const DriveConfig> drives, const LinkTiming& timing,
                                 hal::CanPort& port) {
   if (drives.empty() || drives.size() > kMaxDrives) {
-    return Error::make(Errc::out_of_range, "canopen master: %zu drives, expected 1..%zu", drives.size(), kMaxDrives);
+    return Error::make(Errc::out_of_range, "canopen master: %zu drives, expected 1..%zu",
+                       drives.size(), kMaxDrives);
   }
   if (timing.master_heartbeat_ms == 0 || timing.sdo_timeout_ms == 0) {
-    return Error::make(Errc::non_positive, "canopen master: heartbeat and SDO times must be > 0 ms");
+    return Error::make(Errc::non_positive,
+                       "canopen master: heartbeat and SDO times must be > 0 ms");
   }
   index_of_node_.fill(-1);
   for (std::size_t i = 0; i < drives.size(); ++i) {
     PETRA_TRY(links_[i].configure(drives[i], timing));
     const std::uint8_t node = drives[i].node_id;
-    if (index_of_node_[node] >= 0) return Error::make(Errc::invalid_argument, "canopen master: node %u twice", node);
+    if (index_of_node_[node] >= 0)
+      return Error::make(Errc::invalid_argument, "canopen master: node %u twice", node);
     index_of_node_[node] = static_cast<std::int8_t>(i);
   }
   if (index_of_node_[timing.master_node_id] >= 0) {
-    return Error::make(Errc::invalid_argument, "canopen master: master node id %u used by a drive", timing.master_node_id);
+    return Error::make(Errc::invalid_argument, "canopen master: master node id %u used by a drive",
+                       timing.master_node_id);
   }
   port_ = &port;
   timing_ = timing;
@@ -51,7 +55,8 @@ void CanopenMaster::disable() {
 
 Status CanopenMaster::set_targets(std::span<const double> rad) {
   if (rad.size() != count_) {
-    return Error::make(Errc::invalid_argument, "canopen master: %zu targets for %zu drives", rad.size(), count_);
+    return Error::make(Errc::invalid_argument, "canopen master: %zu targets for %zu drives",
+                       rad.size(), count_);
   }
   // All or nothing: check every drive before changing any.
   for (std::size_t i = 0; i < count_; ++i) {
@@ -125,10 +130,18 @@ void CanopenMaster::route(const CanFrame& frame, std::int64_t now_ms) {
   }
   DriveLink& link = links_[static_cast<std::size_t>(index)];
   switch (c.function) {
-    case Function::heartbeat: link.on_heartbeat(frame, now_ms, *this); return;
-    case Function::sdo_tx: link.on_sdo(frame, now_ms, *this); return;
-    case Function::tpdo1: link.on_tpdo(frame, now_ms, *this); return;
-    case Function::emcy: link.on_emcy(frame, *this); return;
+    case Function::heartbeat:
+      link.on_heartbeat(frame, now_ms, *this);
+      return;
+    case Function::sdo_tx:
+      link.on_sdo(frame, now_ms, *this);
+      return;
+    case Function::tpdo1:
+      link.on_tpdo(frame, now_ms, *this);
+      return;
+    case Function::emcy:
+      link.on_emcy(frame, *this);
+      return;
     default:
       // RPDO or SDO requests to our drives from someone else: not ours to act on.
       ++counters_.foreign_frames;
@@ -158,8 +171,8 @@ void CanopenMaster::step(std::int64_t now_ms) {
   for (std::size_t i = 0; i < count_; ++i) {
     links_[i].step(now_ms, *this);
     const LinkState s = links_[i].state();
-    live = live || s == LinkState::operational || s == LinkState::enabling || s == LinkState::ready ||
-           s == LinkState::quick_stopped || s == LinkState::starting;
+    live = live || s == LinkState::operational || s == LinkState::enabling ||
+           s == LinkState::ready || s == LinkState::quick_stopped || s == LinkState::starting;
   }
   // One drive down stops the others (an arm with a limp joint must not move on).
   for (std::size_t i = 0; i < count_; ++i) {

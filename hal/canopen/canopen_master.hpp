@@ -46,7 +46,8 @@ class CanopenMaster final : private LinkOutput {
   static constexpr std::size_t kEventCapacity = 64;
 
   // Init: checks every drive config, distinct node ids, and the timing.
-  Status configure(std::span<const DriveConfig> drives, const LinkTiming& timing, hal::CanPort& port);
+  Status configure(std::span<const DriveConfig> drives, const LinkTiming& timing,
+                   hal::CanPort& port);
 
   // Commands for all drives (take effect over the next steps).
   void boot(std::int64_t now_ms);  // NMT reset, SDO configuration, NMT start

@@ -17,7 +17,9 @@ using hal::CanFrame;
 
 inline constexpr std::uint8_t kMinNodeId = 1;
 inline constexpr std::uint8_t kMaxNodeId = 127;
-inline bool valid_node_id(unsigned id) { return id >= kMinNodeId && id <= kMaxNodeId; }
+inline bool valid_node_id(unsigned id) {
+  return id >= kMinNodeId && id <= kMaxNodeId;
+}
 
 // Predefined connection set: COB-ID = function code + node id.
 enum class Function : std::uint16_t {
@@ -30,7 +32,9 @@ enum class Function : std::uint16_t {
   sdo_rx = 0x600,  // client (master) -> server (drive)
   heartbeat = 0x700,
 };
-inline std::uint32_t cob_id(Function f, std::uint8_t node) { return static_cast<std::uint32_t>(f) + node; }
+inline std::uint32_t cob_id(Function f, std::uint8_t node) {
+  return static_cast<std::uint32_t>(f) + node;
+}
 
 // Splits a received 11-bit COB-ID into function code and node id. SYNC and NMT
 // have node 0.
@@ -72,7 +76,9 @@ struct SdoAddress {
   std::uint16_t index = 0;
   std::uint8_t subindex = 0;
 };
-inline bool operator==(SdoAddress a, SdoAddress b) { return a.index == b.index && a.subindex == b.subindex; }
+inline bool operator==(SdoAddress a, SdoAddress b) {
+  return a.index == b.index && a.subindex == b.subindex;
+}
 
 enum class SdoKind : std::uint8_t {
   download_request,   // client: write value
@@ -84,8 +90,8 @@ enum class SdoKind : std::uint8_t {
 struct SdoMessage {
   SdoKind kind = SdoKind::abort;
   SdoAddress address;
-  std::uint32_t value = 0;     // data (downloads, upload responses) or abort code
-  std::uint8_t size = 0;       // data bytes 1..4 (0: not indicated)
+  std::uint32_t value = 0;  // data (downloads, upload responses) or abort code
+  std::uint8_t size = 0;    // data bytes 1..4 (0: not indicated)
 };
 CanFrame make_sdo_request(std::uint8_t node, const SdoMessage& message);   // to 0x600 + node
 CanFrame make_sdo_response(std::uint8_t node, const SdoMessage& message);  // to 0x580 + node

@@ -4,15 +4,24 @@ namespace petra::canopen {
 
 const char* drive_state_name(DriveState state) {
   switch (state) {
-    case DriveState::not_ready_to_switch_on: return "not_ready_to_switch_on";
-    case DriveState::switch_on_disabled: return "switch_on_disabled";
-    case DriveState::ready_to_switch_on: return "ready_to_switch_on";
-    case DriveState::switched_on: return "switched_on";
-    case DriveState::operation_enabled: return "operation_enabled";
-    case DriveState::quick_stop_active: return "quick_stop_active";
-    case DriveState::fault_reaction_active: return "fault_reaction_active";
-    case DriveState::fault: return "fault";
-    case DriveState::unknown: return "unknown";
+    case DriveState::not_ready_to_switch_on:
+      return "not_ready_to_switch_on";
+    case DriveState::switch_on_disabled:
+      return "switch_on_disabled";
+    case DriveState::ready_to_switch_on:
+      return "ready_to_switch_on";
+    case DriveState::switched_on:
+      return "switched_on";
+    case DriveState::operation_enabled:
+      return "operation_enabled";
+    case DriveState::quick_stop_active:
+      return "quick_stop_active";
+    case DriveState::fault_reaction_active:
+      return "fault_reaction_active";
+    case DriveState::fault:
+      return "fault";
+    case DriveState::unknown:
+      return "unknown";
   }
   return "unknown";
 }
@@ -33,15 +42,24 @@ DriveState decode_statusword(std::uint16_t sw) {
 
 std::uint16_t statusword_bits(DriveState state) {
   switch (state) {
-    case DriveState::not_ready_to_switch_on: return 0x0000;
-    case DriveState::switch_on_disabled: return 0x0040;
-    case DriveState::ready_to_switch_on: return 0x0021;
-    case DriveState::switched_on: return 0x0023;
-    case DriveState::operation_enabled: return 0x0027;
-    case DriveState::quick_stop_active: return 0x0007;
-    case DriveState::fault_reaction_active: return 0x000F;
-    case DriveState::fault: return 0x0008;
-    case DriveState::unknown: return 0x0000;
+    case DriveState::not_ready_to_switch_on:
+      return 0x0000;
+    case DriveState::switch_on_disabled:
+      return 0x0040;
+    case DriveState::ready_to_switch_on:
+      return 0x0021;
+    case DriveState::switched_on:
+      return 0x0023;
+    case DriveState::operation_enabled:
+      return 0x0027;
+    case DriveState::quick_stop_active:
+      return 0x0007;
+    case DriveState::fault_reaction_active:
+      return 0x000F;
+    case DriveState::fault:
+      return 0x0008;
+    case DriveState::unknown:
+      return 0x0000;
   }
   return 0x0000;
 }

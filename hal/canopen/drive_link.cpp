@@ -17,67 +17,102 @@ std::uint32_t counts_u32(double value) {
 
 const char* link_state_name(LinkState s) {
   switch (s) {
-    case LinkState::idle: return "idle";
-    case LinkState::resetting: return "resetting";
-    case LinkState::configuring: return "configuring";
-    case LinkState::starting: return "starting";
-    case LinkState::operational: return "operational";
-    case LinkState::enabling: return "enabling";
-    case LinkState::ready: return "ready";
-    case LinkState::quick_stopped: return "quick_stopped";
-    case LinkState::fault: return "fault";
+    case LinkState::idle:
+      return "idle";
+    case LinkState::resetting:
+      return "resetting";
+    case LinkState::configuring:
+      return "configuring";
+    case LinkState::starting:
+      return "starting";
+    case LinkState::operational:
+      return "operational";
+    case LinkState::enabling:
+      return "enabling";
+    case LinkState::ready:
+      return "ready";
+    case LinkState::quick_stopped:
+      return "quick_stopped";
+    case LinkState::fault:
+      return "fault";
   }
   return "unknown";
 }
 
 const char* drive_fault_name(DriveFault f) {
   switch (f) {
-    case DriveFault::none: return "none";
-    case DriveFault::boot_timeout: return "boot_timeout";
-    case DriveFault::sdo_timeout: return "sdo_timeout";
-    case DriveFault::sdo_abort: return "sdo_abort";
-    case DriveFault::wrong_device: return "wrong_device";
-    case DriveFault::start_timeout: return "start_timeout";
-    case DriveFault::heartbeat_lost: return "heartbeat_lost";
-    case DriveFault::nmt_state: return "nmt_state";
-    case DriveFault::emergency: return "emergency";
-    case DriveFault::drive_fault: return "drive_fault";
-    case DriveFault::following_error: return "following_error";
-    case DriveFault::enable_refused: return "enable_refused";
-    case DriveFault::unexpected_state: return "unexpected_state";
+    case DriveFault::none:
+      return "none";
+    case DriveFault::boot_timeout:
+      return "boot_timeout";
+    case DriveFault::sdo_timeout:
+      return "sdo_timeout";
+    case DriveFault::sdo_abort:
+      return "sdo_abort";
+    case DriveFault::wrong_device:
+      return "wrong_device";
+    case DriveFault::start_timeout:
+      return "start_timeout";
+    case DriveFault::heartbeat_lost:
+      return "heartbeat_lost";
+    case DriveFault::nmt_state:
+      return "nmt_state";
+    case DriveFault::emergency:
+      return "emergency";
+    case DriveFault::drive_fault:
+      return "drive_fault";
+    case DriveFault::following_error:
+      return "following_error";
+    case DriveFault::enable_refused:
+      return "enable_refused";
+    case DriveFault::unexpected_state:
+      return "unexpected_state";
   }
   return "unknown";
 }
 
 const char* link_event_name(LinkEvent e) {
   switch (e) {
-    case LinkEvent::booted: return "booted";
-    case LinkEvent::configured: return "configured";
-    case LinkEvent::operational: return "operational";
-    case LinkEvent::enabled: return "enabled";
-    case LinkEvent::fault: return "fault";
-    case LinkEvent::emergency: return "emergency";
-    case LinkEvent::quick_stopped: return "quick_stopped";
-    case LinkEvent::bad_frame: return "bad_frame";
-    case LinkEvent::disabled: return "disabled";
-    case LinkEvent::bus_state: return "bus_state";
+    case LinkEvent::booted:
+      return "booted";
+    case LinkEvent::configured:
+      return "configured";
+    case LinkEvent::operational:
+      return "operational";
+    case LinkEvent::enabled:
+      return "enabled";
+    case LinkEvent::fault:
+      return "fault";
+    case LinkEvent::emergency:
+      return "emergency";
+    case LinkEvent::quick_stopped:
+      return "quick_stopped";
+    case LinkEvent::bad_frame:
+      return "bad_frame";
+    case LinkEvent::disabled:
+      return "disabled";
+    case LinkEvent::bus_state:
+      return "bus_state";
   }
   return "unknown";
 }
 
 Status validate_drive_config(const DriveConfig& c) {
-  if (!valid_node_id(c.node_id)) return Error::make(Errc::out_of_range, "drive node id %u outside 1..127", c.node_id);
+  if (!valid_node_id(c.node_id))
+    return Error::make(Errc::out_of_range, "drive node id %u outside 1..127", c.node_id);
   const unsigned n = c.node_id;
   if (!(c.counts_per_rad > 0.0) || !std::isfinite(c.counts_per_rad)) {
     return Error::make(Errc::non_positive, "drive %u: counts_per_rad must be > 0", n);
   }
-  if (c.direction != 1 && c.direction != -1) return Error::make(Errc::invalid_argument, "drive %u: direction must be +1 or -1", n);
+  if (c.direction != 1 && c.direction != -1)
+    return Error::make(Errc::invalid_argument, "drive %u: direction must be +1 or -1", n);
   if (!std::isfinite(c.min_position_rad) || !std::isfinite(c.max_position_rad) ||
       !(c.min_position_rad < c.max_position_rad)) {
     return Error::make(Errc::invalid_argument, "drive %u: position range empty or not finite", n);
   }
   // Every reachable position must fit the drive's 32-bit position objects.
-  const double span = std::max(std::abs(c.min_position_rad), std::abs(c.max_position_rad)) * c.counts_per_rad;
+  const double span =
+      std::max(std::abs(c.min_position_rad), std::abs(c.max_position_rad)) * c.counts_per_rad;
   if (span + std::abs(static_cast<double>(c.zero_counts)) > 2.0e9) {
     return Error::make(Errc::out_of_range, "drive %u: position range overflows 32-bit counts", n);
   }
@@ -90,11 +125,13 @@ Status validate_drive_config(const DriveConfig& c) {
                   {"following_error_window_rad", c.following_error_window_rad},
                   {"position_window_rad", c.position_window_rad}};
   for (const auto& p : positive) {
-    if (!(p.v > 0.0) || !std::isfinite(p.v)) return Error::make(Errc::non_positive, "drive %u: %s must be > 0", n, p.name);
+    if (!(p.v > 0.0) || !std::isfinite(p.v))
+      return Error::make(Errc::non_positive, "drive %u: %s must be > 0", n, p.name);
   }
   if (c.heartbeat_producer_ms == 0 || c.heartbeat_timeout_ms <= c.heartbeat_producer_ms) {
-    return Error::make(Errc::invalid_argument, "drive %u: heartbeat timeout %u ms must exceed the producer time %u ms",
-                       n, c.heartbeat_timeout_ms, c.heartbeat_producer_ms);
+    return Error::make(Errc::invalid_argument,
+                       "drive %u: heartbeat timeout %u ms must exceed the producer time %u ms", n,
+                       c.heartbeat_timeout_ms, c.heartbeat_producer_ms);
   }
   return ok_status();
 }
@@ -102,8 +139,8 @@ Status validate_drive_config(const DriveConfig& c) {
 Status DriveLink::configure(const DriveConfig& config, const LinkTiming& timing) {
   PETRA_TRY(validate_drive_config(config));
   if (!valid_node_id(timing.master_node_id) || timing.master_node_id == config.node_id) {
-    return Error::make(Errc::invalid_argument, "master node id %u invalid or equal to drive %u", timing.master_node_id,
-                       config.node_id);
+    return Error::make(Errc::invalid_argument, "master node id %u invalid or equal to drive %u",
+                       timing.master_node_id, config.node_id);
   }
   config_ = config;
   timing_ = timing;
@@ -114,27 +151,36 @@ Status DriveLink::configure(const DriveConfig& config, const LinkTiming& timing)
 }
 
 std::int32_t DriveLink::to_counts(double rad) const {
-  return config_.zero_counts + config_.direction * static_cast<std::int32_t>(std::lround(rad * config_.counts_per_rad));
+  return config_.zero_counts +
+         config_.direction * static_cast<std::int32_t>(std::lround(rad * config_.counts_per_rad));
 }
 
 double DriveLink::to_rad(std::int32_t counts) const {
-  return config_.direction * static_cast<double>(counts - config_.zero_counts) / config_.counts_per_rad;
+  return config_.direction * static_cast<double>(counts - config_.zero_counts) /
+         config_.counts_per_rad;
 }
 
-double DriveLink::position_rad() const { return to_rad(position_counts_); }
-double DriveLink::target_rad() const { return to_rad(wanted_counts_); }
+double DriveLink::position_rad() const {
+  return to_rad(position_counts_);
+}
+double DriveLink::target_rad() const {
+  return to_rad(wanted_counts_);
+}
 
 void DriveLink::build_sdo_plan() {
   const DriveConfig& c = config_;
   const std::uint8_t n = c.node_id;
   std::size_t k = 0;
   auto up = [&](SdoAddress a) { plan_[k++] = SdoStep{true, a, 0, 4}; };
-  auto down = [&](SdoAddress a, std::uint32_t v, std::uint8_t size) { plan_[k++] = SdoStep{false, a, v, size}; };
+  auto down = [&](SdoAddress a, std::uint32_t v, std::uint8_t size) {
+    plan_[k++] = SdoStep{false, a, v, size};
+  };
   up(od::kDeviceType);
   up(od::kSupportedModes);
   down(od::kProducerHeartbeat, c.heartbeat_producer_ms, 2);
   down(od::kConsumerHeartbeat,
-       (static_cast<std::uint32_t>(timing_.master_node_id) << 16) | timing_.drive_watches_master_ms, 4);
+       (static_cast<std::uint32_t>(timing_.master_node_id) << 16) | timing_.drive_watches_master_ms,
+       4);
   // PDO mapping (CiA 301 7.5.2.36): disable, clear, map, count, type, enable.
   down(od::kRpdo1CobId, od::kPdoDisabled | cob_id(Function::rpdo1, n), 4);
   down(od::kRpdo1MapCount, 0, 1);
@@ -155,7 +201,8 @@ void DriveLink::build_sdo_plan() {
   down(od::kProfileVelocity, counts_u32(c.profile_velocity_rad_s * c.counts_per_rad), 4);
   down(od::kProfileAcceleration, counts_u32(c.profile_acceleration_rad_s2 * c.counts_per_rad), 4);
   down(od::kProfileDeceleration, counts_u32(c.profile_acceleration_rad_s2 * c.counts_per_rad), 4);
-  down(od::kQuickStopDeceleration, counts_u32(c.quick_stop_deceleration_rad_s2 * c.counts_per_rad), 4);
+  down(od::kQuickStopDeceleration, counts_u32(c.quick_stop_deceleration_rad_s2 * c.counts_per_rad),
+       4);
   down(od::kFollowingErrorWindow, counts_u32(c.following_error_window_rad * c.counts_per_rad), 4);
   down(od::kPositionWindow, counts_u32(c.position_window_rad * c.counts_per_rad), 4);
   const std::int32_t a = to_counts(c.min_position_rad);
@@ -202,7 +249,8 @@ void DriveLink::quick_stop(LinkOutput& out) {
 
 void DriveLink::disable(LinkOutput& out) {
   enable_requested_ = false;
-  if (state_ == LinkState::enabling || state_ == LinkState::ready || state_ == LinkState::quick_stopped) {
+  if (state_ == LinkState::enabling || state_ == LinkState::ready ||
+      state_ == LinkState::quick_stopped) {
     state_ = LinkState::operational;
     send_rpdo(controlword::kDisableVoltage, out);
     out.event(config_.node_id, LinkEvent::disabled, 0);
@@ -211,11 +259,12 @@ void DriveLink::disable(LinkOutput& out) {
 
 Status DriveLink::set_target(double rad) {
   if (state_ != LinkState::ready) {
-    return Error::make(Errc::not_ready, "drive %u: target refused in state %s", config_.node_id, link_state_name(state_));
+    return Error::make(Errc::not_ready, "drive %u: target refused in state %s", config_.node_id,
+                       link_state_name(state_));
   }
   if (!std::isfinite(rad) || rad < config_.min_position_rad || rad > config_.max_position_rad) {
-    return Error::make(Errc::out_of_range, "drive %u: target %.4f rad outside %.4f..%.4f", config_.node_id, rad,
-                       config_.min_position_rad, config_.max_position_rad);
+    return Error::make(Errc::out_of_range, "drive %u: target %.4f rad outside %.4f..%.4f",
+                       config_.node_id, rad, config_.min_position_rad, config_.max_position_rad);
   }
   wanted_counts_ = to_counts(rad);
   wanted_valid_ = true;
@@ -223,10 +272,12 @@ Status DriveLink::set_target(double rad) {
 }
 
 bool DriveLink::target_reached() const {
-  if (state_ != LinkState::ready || setpoint_ != SetPoint::idle || sent_counts_ != wanted_counts_) return false;
+  if (state_ != LinkState::ready || setpoint_ != SetPoint::idle || sent_counts_ != wanted_counts_)
+    return false;
   if ((statusword_ & statusword::kTargetReached) == 0) return false;
   const double window = config_.position_window_rad * config_.counts_per_rad;
-  return std::abs(static_cast<double>(position_counts_) - static_cast<double>(sent_counts_)) <= window;
+  return std::abs(static_cast<double>(position_counts_) - static_cast<double>(sent_counts_)) <=
+         window;
 }
 
 void DriveLink::enter_fault(DriveFault fault, std::uint32_t detail, LinkOutput& out) {
@@ -237,7 +288,8 @@ void DriveLink::enter_fault(DriveFault fault, std::uint32_t detail, LinkOutput& 
   fault_ = fault;
   fault_detail_ = detail;
   enable_requested_ = false;
-  out.event(config_.node_id, LinkEvent::fault, (static_cast<std::uint32_t>(fault) << 24) | (detail & 0xFFFFFF));
+  out.event(config_.node_id, LinkEvent::fault,
+            (static_cast<std::uint32_t>(fault) << 24) | (detail & 0xFFFFFF));
   // A drive that still listens is told to stop now.
   if (was_live) send_rpdo(controlword::kQuickStop, out);
 }
@@ -263,7 +315,8 @@ Status DriveLink::check_upload(const SdoStep& step, std::uint32_t value) {
     return Error::make(Errc::invalid_argument, "device type 0x%08X is not CiA 402", value);
   }
   if (step.address == od::kSupportedModes && (value & od::kSupportsProfilePosition) == 0) {
-    return Error::make(Errc::invalid_argument, "supported modes 0x%08X lack profile position", value);
+    return Error::make(Errc::invalid_argument, "supported modes 0x%08X lack profile position",
+                       value);
   }
   if (step.address == od::kPositionActual) {
     position_counts_ = static_cast<std::int32_t>(value);
@@ -389,7 +442,8 @@ void DriveLink::on_emcy(const CanFrame& frame, LinkOutput& out) {
   out.event(config_.node_id, LinkEvent::emergency, parsed->error_code);
   if (parsed->error_code == emcy_code::kNoError) return;  // "error reset": information only
   if (state_ == LinkState::idle || state_ == LinkState::resetting) return;
-  enter_fault(parsed->error_code == kFollowingErrorCode ? DriveFault::following_error : DriveFault::emergency,
+  enter_fault(parsed->error_code == kFollowingErrorCode ? DriveFault::following_error
+                                                        : DriveFault::emergency,
               parsed->error_code, out);
 }
 
@@ -399,7 +453,8 @@ void DriveLink::step(std::int64_t now_ms, LinkOutput& out) {
                         state_ == LinkState::operational || state_ == LinkState::enabling ||
                         state_ == LinkState::ready || state_ == LinkState::quick_stopped;
   if (watching && heartbeat_seen_ && now_ms - last_heartbeat_ms_ > config_.heartbeat_timeout_ms) {
-    enter_fault(DriveFault::heartbeat_lost, static_cast<std::uint32_t>(now_ms - last_heartbeat_ms_), out);
+    enter_fault(DriveFault::heartbeat_lost, static_cast<std::uint32_t>(now_ms - last_heartbeat_ms_),
+                out);
   }
   switch (state_) {
     case LinkState::idle:
@@ -411,7 +466,8 @@ void DriveLink::step(std::int64_t now_ms, LinkOutput& out) {
     case LinkState::configuring:
       if (sdo_pending_ && now_ms - sdo_sent_ms_ > timing_.sdo_timeout_ms) {
         const SdoAddress a = plan_[plan_next_].address;
-        enter_fault(DriveFault::sdo_timeout, (static_cast<std::uint32_t>(a.index) << 8) | a.subindex, out);
+        enter_fault(DriveFault::sdo_timeout,
+                    (static_cast<std::uint32_t>(a.index) << 8) | a.subindex, out);
       } else if (!sdo_pending_) {
         send_sdo_step(now_ms, out);
       }
@@ -442,8 +498,12 @@ void DriveLink::step(std::int64_t now_ms, LinkOutput& out) {
           fault_reset_edge_ = !fault_reset_edge_;
           cw = fault_reset_edge_ ? controlword::kFaultReset : controlword::kDisableVoltage;
           break;
-        case DriveState::switch_on_disabled: cw = controlword::kShutdown; break;
-        case DriveState::ready_to_switch_on: cw = controlword::kSwitchOn; break;
+        case DriveState::switch_on_disabled:
+          cw = controlword::kShutdown;
+          break;
+        case DriveState::ready_to_switch_on:
+          cw = controlword::kSwitchOn;
+          break;
         case DriveState::switched_on:
         case DriveState::quick_stop_active:
           // Hold where the arm is: the target becomes the actual position.
@@ -457,7 +517,8 @@ void DriveLink::step(std::int64_t now_ms, LinkOutput& out) {
           out.event(config_.node_id, LinkEvent::enabled, 0);
           cw = controlword::kEnableOperation;
           break;
-        default: break;
+        default:
+          break;
       }
       send_rpdo(cw, out);
       return;

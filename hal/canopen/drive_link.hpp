@@ -22,7 +22,7 @@ struct DriveConfig {
   std::uint8_t node_id = 1;
   double counts_per_rad = 1048576.0 / (2.0 * 3.141592653589793);  // 2^20 counts per turn
   std::int32_t zero_counts = 0;
-  int direction = 1;  // +1 or -1
+  int direction = 1;               // +1 or -1
   double min_position_rad = -3.0;  // written to the drive's software limits (0x607D)
   double max_position_rad = 3.0;
   double profile_velocity_rad_s = 0.6;
@@ -78,16 +78,16 @@ const char* drive_fault_name(DriveFault fault);
 
 // What happened, for the executive's event log.
 enum class LinkEvent : std::uint8_t {
-  booted = 0,        // boot-up heartbeat seen
-  configured = 1,    // SDO plan done
-  operational = 2,   // NMT operational
-  enabled = 3,       // Operation Enabled
-  fault = 4,         // entered fault (detail: DriveFault << 24 | fault detail & 0xFFFFFF)
-  emergency = 5,     // EMCY (detail: error code), also when it is not a fault
-  quick_stopped = 6, // holding after a quick stop
-  bad_frame = 7,     // a frame from this node failed validation (detail: COB-ID)
-  disabled = 8,      // power stage off on request
-  bus_state = 9,     // node 0: the CAN controller changed state (detail: hal::CanBusState)
+  booted = 0,         // boot-up heartbeat seen
+  configured = 1,     // SDO plan done
+  operational = 2,    // NMT operational
+  enabled = 3,        // Operation Enabled
+  fault = 4,          // entered fault (detail: DriveFault << 24 | fault detail & 0xFFFFFF)
+  emergency = 5,      // EMCY (detail: error code), also when it is not a fault
+  quick_stopped = 6,  // holding after a quick stop
+  bad_frame = 7,      // a frame from this node failed validation (detail: COB-ID)
+  disabled = 8,       // power stage off on request
+  bus_state = 9,      // node 0: the CAN controller changed state (detail: hal::CanBusState)
 };
 const char* link_event_name(LinkEvent event);
 

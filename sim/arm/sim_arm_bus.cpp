@@ -4,11 +4,13 @@ namespace petra::sim {
 
 Status SimArmBus::configure(std::span<const SimDriveParams> drives, hal::CanPort& port) {
   if (drives.empty() || drives.size() > kMaxDrives) {
-    return Error::make(Errc::out_of_range, "sim arm: %zu drives, expected 1..%zu", drives.size(), kMaxDrives);
+    return Error::make(Errc::out_of_range, "sim arm: %zu drives, expected 1..%zu", drives.size(),
+                       kMaxDrives);
   }
   for (std::size_t i = 0; i < drives.size(); ++i) {
     if (!canopen::valid_node_id(drives[i].node_id)) {
-      return Error::make(Errc::out_of_range, "sim arm: node id %u outside 1..127", drives[i].node_id);
+      return Error::make(Errc::out_of_range, "sim arm: node id %u outside 1..127",
+                         drives[i].node_id);
     }
     for (std::size_t j = 0; j < i; ++j) {
       if (drives[j].node_id == drives[i].node_id) {

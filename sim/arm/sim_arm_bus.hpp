@@ -30,7 +30,9 @@ class SimArmBus final : private FrameSink {
   SimDrive& drive(std::size_t i) { return drives_[i]; }
   const SimDrive& drive(std::size_t i) const { return drives_[i]; }
   // Fault injection that needs to send (EMCY): through the bus port.
-  void inject_fault(std::size_t i, std::uint16_t emcy_code) { drives_[i].inject_fault(emcy_code, *this); }
+  void inject_fault(std::size_t i, std::uint16_t emcy_code) {
+    drives_[i].inject_fault(emcy_code, *this);
+  }
   std::uint32_t send_errors() const { return send_errors_; }
 
  private:

@@ -67,7 +67,8 @@ void SimDrive::reset_application() {
 
 std::uint16_t SimDrive::statusword() const {
   std::uint16_t sw = statusword_bits(state_);
-  const bool powered_stage = state_ == DriveState::switched_on || state_ == DriveState::operation_enabled ||
+  const bool powered_stage = state_ == DriveState::switched_on ||
+                             state_ == DriveState::operation_enabled ||
                              state_ == DriveState::quick_stop_active;
   if (powered_stage) sw |= statusword::kVoltageEnabled;
   sw |= statusword::kRemote;
@@ -90,15 +91,16 @@ void SimDrive::on_frame(const hal::CanFrame& f, std::int64_t now_ms, FrameSink& 
   if (f.id == 0x000) {
     handle_nmt(f, now_ms);
   } else if (f.id == 0x080) {
-    if (nmt_ == NmtState::operational && (tpdo_.cob_id & od::kPdoDisabled) == 0 && tpdo_.type >= 1 &&
-        tpdo_.type <= 240) {
+    if (nmt_ == NmtState::operational && (tpdo_.cob_id & od::kPdoDisabled) == 0 &&
+        tpdo_.type >= 1 && tpdo_.type <= 240) {
       send_tpdo(out);
     }
   } else if (f.id == cob_id(Function::sdo_rx, n)) {
     if (nmt_ == NmtState::preoperational || nmt_ == NmtState::operational) handle_sdo(f, out);
   } else if ((rpdo_.cob_id & od::kPdoDisabled) == 0 && f.id == (rpdo_.cob_id & 0x7FF)) {
     if (nmt_ == NmtState::operational) handle_rpdo(f, out);
-  } else if (consumer_ != 0 && f.id == cob_id(Function::heartbeat, static_cast<std::uint8_t>(consumer_ >> 16))) {
+  } else if (consumer_ != 0 &&
+             f.id == cob_id(Function::heartbeat, static_cast<std::uint8_t>(consumer_ >> 16))) {
     master_seen_ms_ = now_ms;
   }
 }
@@ -108,9 +110,15 @@ void SimDrive::handle_nmt(const hal::CanFrame& f, std::int64_t now_ms) {
   auto cmd = parse_nmt(f, node);
   if (!cmd || (node != 0 && node != p_.node_id)) return;
   switch (*cmd) {
-    case NmtCommand::start: nmt_ = NmtState::operational; break;
-    case NmtCommand::stop: nmt_ = NmtState::stopped; break;
-    case NmtCommand::enter_preoperational: nmt_ = NmtState::preoperational; break;
+    case NmtCommand::start:
+      nmt_ = NmtState::operational;
+      break;
+    case NmtCommand::stop:
+      nmt_ = NmtState::stopped;
+      break;
+    case NmtCommand::enter_preoperational:
+      nmt_ = NmtState::preoperational;
+      break;
     case NmtCommand::reset_node:
       reset_application();
       [[fallthrough]];
@@ -167,35 +175,83 @@ std::uint32_t SimDrive::read_object(SdoAddress a, std::uint32_t& v) const {
     return 0;
   };
   switch (a.index) {
-    case 0x1000: v = p_.device_type; return 0;
-    case 0x1001: v = error_register_; return 0;
-    case 0x1016: v = a.subindex == 0 ? 1 : consumer_; return a.subindex <= 1 ? 0 : sdo_abort::kNoSubindex;
-    case 0x1017: v = heartbeat_ms_; return 0;
-    case 0x1400: v = a.subindex == 1 ? rpdo_.cob_id : rpdo_.type; return 0;
-    case 0x1800: v = a.subindex == 1 ? tpdo_.cob_id : tpdo_.type; return 0;
-    case 0x1600: return map_entry(rpdo_, a.subindex, v);
-    case 0x1A00: return map_entry(tpdo_, a.subindex, v);
-    case 0x6040: v = controlword_; return 0;
-    case 0x6041: v = statusword(); return 0;
-    case 0x605A: v = static_cast<std::uint16_t>(quick_stop_option_); return 0;
-    case 0x6060: v = static_cast<std::uint8_t>(mode_); return 0;
-    case 0x6061: v = static_cast<std::uint8_t>(mode_); return 0;
-    case 0x6064: v = static_cast<std::uint32_t>(static_cast<std::int32_t>(std::lround(actual_))); return 0;
-    case 0x6065: v = following_window_; return 0;
-    case 0x6066: v = following_timeout_ms_; return 0;
-    case 0x6067: v = position_window_; return 0;
-    case 0x607A: v = static_cast<std::uint32_t>(pending_target_); return 0;
-    case 0x607D: v = static_cast<std::uint32_t>(a.subindex == 1 ? limit_min_ : limit_max_); return 0;
-    case 0x6081: v = profile_velocity_; return 0;
-    case 0x6083: v = profile_acceleration_; return 0;
-    case 0x6084: v = profile_deceleration_; return 0;
-    case 0x6085: v = quick_stop_deceleration_; return 0;
-    case 0x6502: v = p_.supported_modes; return 0;
-    default: return sdo_abort::kNoObject;
+    case 0x1000:
+      v = p_.device_type;
+      return 0;
+    case 0x1001:
+      v = error_register_;
+      return 0;
+    case 0x1016:
+      v = a.subindex == 0 ? 1 : consumer_;
+      return a.subindex <= 1 ? 0 : sdo_abort::kNoSubindex;
+    case 0x1017:
+      v = heartbeat_ms_;
+      return 0;
+    case 0x1400:
+      v = a.subindex == 1 ? rpdo_.cob_id : rpdo_.type;
+      return 0;
+    case 0x1800:
+      v = a.subindex == 1 ? tpdo_.cob_id : tpdo_.type;
+      return 0;
+    case 0x1600:
+      return map_entry(rpdo_, a.subindex, v);
+    case 0x1A00:
+      return map_entry(tpdo_, a.subindex, v);
+    case 0x6040:
+      v = controlword_;
+      return 0;
+    case 0x6041:
+      v = statusword();
+      return 0;
+    case 0x605A:
+      v = static_cast<std::uint16_t>(quick_stop_option_);
+      return 0;
+    case 0x6060:
+      v = static_cast<std::uint8_t>(mode_);
+      return 0;
+    case 0x6061:
+      v = static_cast<std::uint8_t>(mode_);
+      return 0;
+    case 0x6064:
+      v = static_cast<std::uint32_t>(static_cast<std::int32_t>(std::lround(actual_)));
+      return 0;
+    case 0x6065:
+      v = following_window_;
+      return 0;
+    case 0x6066:
+      v = following_timeout_ms_;
+      return 0;
+    case 0x6067:
+      v = position_window_;
+      return 0;
+    case 0x607A:
+      v = static_cast<std::uint32_t>(pending_target_);
+      return 0;
+    case 0x607D:
+      v = static_cast<std::uint32_t>(a.subindex == 1 ? limit_min_ : limit_max_);
+      return 0;
+    case 0x6081:
+      v = profile_velocity_;
+      return 0;
+    case 0x6083:
+      v = profile_acceleration_;
+      return 0;
+    case 0x6084:
+      v = profile_deceleration_;
+      return 0;
+    case 0x6085:
+      v = quick_stop_deceleration_;
+      return 0;
+    case 0x6502:
+      v = p_.supported_modes;
+      return 0;
+    default:
+      return sdo_abort::kNoObject;
   }
 }
 
-std::uint32_t SimDrive::write_mapping(Mapping& m, bool receive, std::uint8_t sub, std::uint32_t value) {
+std::uint32_t SimDrive::write_mapping(Mapping& m, bool receive, std::uint8_t sub,
+                                      std::uint32_t value) {
   // CiA 301: the mapping may change only while the PDO is disabled and, for the
   // entries, while the count is 0.
   if ((m.cob_id & od::kPdoDisabled) == 0) return sdo_abort::kDeviceState;
@@ -276,18 +332,27 @@ std::uint32_t SimDrive::write_object(SdoAddress a, std::uint32_t v, std::uint8_t
       if (static_cast<std::int8_t>(v) != kModeProfilePosition) return sdo_abort::kValueRange;
       mode_ = static_cast<std::int8_t>(v);
       return 0;
-    case 0x6065: following_window_ = v; return sized(4) ? 0 : sdo_abort::kLengthMismatch;
-    case 0x6066: following_timeout_ms_ = static_cast<std::uint16_t>(v); return sized(2) ? 0 : sdo_abort::kLengthMismatch;
-    case 0x6067: position_window_ = v; return sized(4) ? 0 : sdo_abort::kLengthMismatch;
+    case 0x6065:
+      following_window_ = v;
+      return sized(4) ? 0 : sdo_abort::kLengthMismatch;
+    case 0x6066:
+      following_timeout_ms_ = static_cast<std::uint16_t>(v);
+      return sized(2) ? 0 : sdo_abort::kLengthMismatch;
+    case 0x6067:
+      position_window_ = v;
+      return sized(4) ? 0 : sdo_abort::kLengthMismatch;
     case 0x607A:
       if (!sized(4)) return sdo_abort::kLengthMismatch;
       pending_target_ = static_cast<std::int32_t>(v);
       return 0;
     case 0x607D:
       if (!sized(4)) return sdo_abort::kLengthMismatch;
-      if (sub == 1) limit_min_ = static_cast<std::int32_t>(v);
-      else if (sub == 2) limit_max_ = static_cast<std::int32_t>(v);
-      else return sdo_abort::kNoSubindex;
+      if (sub == 1)
+        limit_min_ = static_cast<std::int32_t>(v);
+      else if (sub == 2)
+        limit_max_ = static_cast<std::int32_t>(v);
+      else
+        return sdo_abort::kNoSubindex;
       return 0;
     case 0x6081:
     case 0x6083:
@@ -333,7 +398,8 @@ void SimDrive::send_tpdo(FrameSink& out) {
     const std::uint32_t e = tpdo_.entries[i];
     std::uint32_t v = 0;
     if (e == od::kMapStatusword) v = statusword();
-    if (e == od::kMapPositionActual) v = static_cast<std::uint32_t>(static_cast<std::int32_t>(std::lround(actual_)));
+    if (e == od::kMapPositionActual)
+      v = static_cast<std::uint32_t>(static_cast<std::int32_t>(std::lround(actual_)));
     const unsigned n = (e & 0xFF) / 8;
     for (unsigned k = 0; k < n; ++k) f.data[f.len++] = static_cast<std::uint8_t>(v >> (8 * k));
   }
@@ -355,7 +421,8 @@ void SimDrive::apply_controlword(std::uint16_t cw, FrameSink& out) {
   const DriveCommand cmd = decode_controlword(cw);
   if (cmd != DriveCommand::fault_reset) {
     DriveState next = next_drive_state(state_, cmd, quick_stop_option_);
-    if (next == DriveState::operation_enabled && state_ != DriveState::operation_enabled && refuse_enable_) {
+    if (next == DriveState::operation_enabled && state_ != DriveState::operation_enabled &&
+        refuse_enable_) {
       next = state_;  // injected: the power stage will not enable
     }
     if (next == DriveState::operation_enabled && state_ != DriveState::operation_enabled &&
@@ -364,7 +431,8 @@ void SimDrive::apply_controlword(std::uint16_t cw, FrameSink& out) {
       velocity_ = 0.0;
       target_ = static_cast<std::int32_t>(std::lround(actual_));
     }
-    if (next != DriveState::operation_enabled && next != DriveState::quick_stop_active) velocity_ = 0.0;
+    if (next != DriveState::operation_enabled && next != DriveState::quick_stop_active)
+      velocity_ = 0.0;
     state_ = next;
   }
   // Profile position set-point handshake (bit 4 rising edge, bit 12 echoes).
@@ -392,7 +460,8 @@ void SimDrive::inject_fault(std::uint16_t code, FrameSink& out) {
 }
 
 void SimDrive::integrate(double dt, FrameSink& out) {
-  const bool profile_runs = state_ == DriveState::operation_enabled || state_ == DriveState::quick_stop_active;
+  const bool profile_runs =
+      state_ == DriveState::operation_enabled || state_ == DriveState::quick_stop_active;
   if (!profile_runs) {
     demand_ = actual_;  // power stage off: the brake holds the joint where it is
     velocity_ = 0.0;
@@ -408,7 +477,8 @@ void SimDrive::integrate(double dt, FrameSink& out) {
     velocity_ += std::clamp(v_want - velocity_, -rate * dt, rate * dt);
     demand_ += velocity_ * dt;
     // Arrived: within one step's travel at the lowest speed, and slow.
-    if (std::abs(target_ - demand_) <= 0.5 * rate * dt * dt + 0.5 && std::abs(velocity_) <= rate * dt) {
+    if (std::abs(target_ - demand_) <= 0.5 * rate * dt * dt + 0.5 &&
+        std::abs(velocity_) <= rate * dt) {
       demand_ = target_;
       velocity_ = 0.0;
     }

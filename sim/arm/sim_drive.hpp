@@ -25,8 +25,8 @@ namespace petra::sim {
 struct SimDriveParams {
   std::uint8_t node_id = 1;
   std::int32_t initial_position_counts = 0;
-  std::uint16_t boot_delay_ms = 20;       // power-on or reset to the boot-up message
-  double motor_time_constant_s = 0.02;    // lag of the motor behind the profile
+  std::uint16_t boot_delay_ms = 20;     // power-on or reset to the boot-up message
+  double motor_time_constant_s = 0.02;  // lag of the motor behind the profile
   std::uint32_t device_type = canopen::od::kDeviceTypeServo;
   std::uint32_t supported_modes = canopen::od::kSupportsProfilePosition;
 };
@@ -125,9 +125,9 @@ class SimDrive {
   std::int32_t pending_target_ = 0;  // 0x607A as last written, taken on a new set-point
   std::uint16_t sdo_controlword_ = 0;
   bool sdo_controlword_pending_ = false;
-  double demand_ = 0.0;   // profile generator output
-  double velocity_ = 0.0; // of the demand
-  double actual_ = 0.0;   // motor
+  double demand_ = 0.0;    // profile generator output
+  double velocity_ = 0.0;  // of the demand
+  double actual_ = 0.0;    // motor
   bool setpoint_ack_ = false;
   bool internal_limit_ = false;
   bool following_error_ = false;

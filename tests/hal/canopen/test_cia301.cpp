@@ -116,11 +116,13 @@ TEST(Cia301, ExpeditedSdoUploadsAndAborts) {
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r->kind, SdoKind::abort);
   EXPECT_EQ(r->value, sdo_abort::kNoObject);
-  expect_frame(make_sdo_response(3, {SdoKind::abort, {0x6060, 0}, sdo_abort::kValueRange, 0}), 0x583,
-               {0x80, 0x60, 0x60, 0x00, 0x30, 0x00, 0x09, 0x06});
+  expect_frame(make_sdo_response(3, {SdoKind::abort, {0x6060, 0}, sdo_abort::kValueRange, 0}),
+               0x583, {0x80, 0x60, 0x60, 0x00, 0x30, 0x00, 0x09, 0x06});
   // Segmented upload (0x41) and block transfers are not part of the subset.
-  EXPECT_EQ(parse_sdo(raw(0x583, {0x41, 0x08, 0x10, 0x00, 0x10, 0, 0, 0}), true).code(), Errc::parse_error);
-  EXPECT_EQ(parse_sdo(raw(0x583, {0xC2, 0x08, 0x10, 0x00, 0, 0, 0, 0}), true).code(), Errc::parse_error);
+  EXPECT_EQ(parse_sdo(raw(0x583, {0x41, 0x08, 0x10, 0x00, 0x10, 0, 0, 0}), true).code(),
+            Errc::parse_error);
+  EXPECT_EQ(parse_sdo(raw(0x583, {0xC2, 0x08, 0x10, 0x00, 0, 0, 0, 0}), true).code(),
+            Errc::parse_error);
   // A client command arriving where a server answer is expected.
   EXPECT_FALSE(parse_sdo(raw(0x583, {0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0}), true).ok());
   EXPECT_FALSE(parse_sdo(raw(0x583, {0x60, 0x40, 0x60, 0x00, 0, 0, 0}), true).ok());  // 7 bytes

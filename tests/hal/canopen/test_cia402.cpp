@@ -12,11 +12,16 @@ TEST(Cia402, StatuswordDecodesEveryStateAndIgnoresOtherBits) {
   };
   // Values as drives report them (bits 4, 7, 9-15 vary and must not matter).
   const Case cases[] = {
-      {0x0000, DriveState::not_ready_to_switch_on}, {0x0250, DriveState::switch_on_disabled},
-      {0x0231, DriveState::ready_to_switch_on},     {0x0233, DriveState::switched_on},
-      {0x0237, DriveState::operation_enabled},      {0x1637, DriveState::operation_enabled},
-      {0x0217, DriveState::quick_stop_active},      {0x021F, DriveState::fault_reaction_active},
-      {0x0218, DriveState::fault},                  {0x2238, DriveState::fault},
+      {0x0000, DriveState::not_ready_to_switch_on},
+      {0x0250, DriveState::switch_on_disabled},
+      {0x0231, DriveState::ready_to_switch_on},
+      {0x0233, DriveState::switched_on},
+      {0x0237, DriveState::operation_enabled},
+      {0x1637, DriveState::operation_enabled},
+      {0x0217, DriveState::quick_stop_active},
+      {0x021F, DriveState::fault_reaction_active},
+      {0x0218, DriveState::fault},
+      {0x2238, DriveState::fault},
   };
   for (const Case& c : cases) {
     EXPECT_EQ(decode_statusword(c.sw), c.state) << std::hex << c.sw;
@@ -52,8 +57,10 @@ TEST(Cia402, TheStateMachineWalksToOperationEnabledAndQuickStops) {
   EXPECT_EQ(next_drive_state(s, DriveCommand::enable_operation, 6), DriveState::operation_enabled);
   EXPECT_EQ(next_drive_state(s, DriveCommand::disable_voltage, 6), DriveState::switch_on_disabled);
   // Fault leaves only by a fault reset.
-  EXPECT_EQ(next_drive_state(DriveState::fault, DriveCommand::enable_operation, 6), DriveState::fault);
-  EXPECT_EQ(next_drive_state(DriveState::fault, DriveCommand::fault_reset, 6), DriveState::switch_on_disabled);
+  EXPECT_EQ(next_drive_state(DriveState::fault, DriveCommand::enable_operation, 6),
+            DriveState::fault);
+  EXPECT_EQ(next_drive_state(DriveState::fault, DriveCommand::fault_reset, 6),
+            DriveState::switch_on_disabled);
 }
 
 }  // namespace
