@@ -150,14 +150,20 @@ Status DriveLink::configure(const DriveConfig& config, const LinkTiming& timing)
   return ok_status();
 }
 
-std::int32_t DriveLink::to_counts(double rad) const {
-  return config_.zero_counts +
-         config_.direction * static_cast<std::int32_t>(std::lround(rad * config_.counts_per_rad));
+std::int32_t position_to_counts(const DriveConfig& c, double rad) {
+  return c.zero_counts +
+         c.direction * static_cast<std::int32_t>(std::lround(rad * c.counts_per_rad));
 }
 
+double counts_to_position(const DriveConfig& c, std::int32_t counts) {
+  return c.direction * static_cast<double>(counts - c.zero_counts) / c.counts_per_rad;
+}
+
+std::int32_t DriveLink::to_counts(double rad) const {
+  return position_to_counts(config_, rad);
+}
 double DriveLink::to_rad(std::int32_t counts) const {
-  return config_.direction * static_cast<double>(counts - config_.zero_counts) /
-         config_.counts_per_rad;
+  return counts_to_position(config_, counts);
 }
 
 double DriveLink::position_rad() const {

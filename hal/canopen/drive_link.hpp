@@ -34,6 +34,9 @@ struct DriveConfig {
   std::uint16_t heartbeat_timeout_ms = 350;  // consumer: a beat missed for this long is a fault
 };
 Status validate_drive_config(const DriveConfig& config);
+// The wire convention: radians to encoder counts and back.
+std::int32_t position_to_counts(const DriveConfig& config, double rad);
+double counts_to_position(const DriveConfig& config, std::int32_t counts);
 
 // Timing of the master's own procedures (ms).
 struct LinkTiming {

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   petra::cli::Outcome outcome;
   // One line per subcommand, each defined in its own cmd_<name>.cpp.
   petra::cli::add_info(app, outcome);
+  petra::cli::add_arm_sim(app, outcome);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
