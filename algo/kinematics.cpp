@@ -129,6 +129,19 @@ double joint_distance(const JointVector& a, const JointVector& b) {
 
 }  // namespace
 
+Eigen::Isometry3d default_rover_mount() {
+  Eigen::Isometry3d m = Eigen::Isometry3d::Identity();
+  m.linear() = Eigen::Matrix3d(Eigen::AngleAxisd(0.5 * kPi, Eigen::Vector3d::UnitZ()));
+  m.translation() = Eigen::Vector3d(300.0, 100.0, 100.0);
+  return m;
+}
+
+ArmGeometry rover_arm_geometry() {
+  ArmGeometry g;
+  g.world_from_base = default_rover_mount();
+  return g;
+}
+
 JointLimits default_joint_limits() {
   JointLimits l;
   const double lo[kJointCount] = {0.0, 0.0, 0.0, 35.0, -45.0};

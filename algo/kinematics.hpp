@@ -42,6 +42,15 @@ struct ArmGeometry {
   Eigen::Isometry3d world_from_base = Eigen::Isometry3d::Identity();
 };
 
+// Where the arm sits on the rover, in Petra's world frame for the arm: the
+// rover ground frame (z up, origin on the ground below the stereo rig's
+// midpoint, y forward along the cameras' heading; the simulated scenes use
+// it). Base at (300, 100, 100) mm: right front corner, low; base x along +y,
+// so th1 = 0..90 deg sweeps from straight ahead to the left (docs/arm.md).
+Eigen::Isometry3d default_rover_mount();
+// ArmGeometry defaults with that mount.
+ArmGeometry rover_arm_geometry();
+
 // Joint ranges and rate limits, per joint (index 0 is th1).
 struct JointLimits {
   std::array<double, kJointCount> min_rad{};

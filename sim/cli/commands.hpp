@@ -14,6 +14,7 @@ struct Outcome {
 
 void add_info(CLI::App& app, Outcome& outcome);
 void add_arm_sim(CLI::App& app, Outcome& outcome);
+void add_arm_view(CLI::App& app, Outcome& outcome);
 
 // Prints "petra <cmd>: <message>" on stderr and returns the exit code 1.
 int fail(const char* cmd, const char* message);

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   // One line per subcommand, each defined in its own cmd_<name>.cpp.
   petra::cli::add_info(app, outcome);
   petra::cli::add_arm_sim(app, outcome);
+  petra::cli::add_arm_view(app, outcome);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
