@@ -29,7 +29,7 @@ struct DriveConfig {
   double profile_acceleration_rad_s2 = 1.2;
   double quick_stop_deceleration_rad_s2 = 3.0;
   double following_error_window_rad = 0.05;
-  double position_window_rad = 0.0005;  // "target reached" band
+  double position_window_rad = 0.0001;  // "target reached" band (0.07 mm at 0.7 m)
   std::uint16_t heartbeat_producer_ms = 100;
   std::uint16_t heartbeat_timeout_ms = 350;  // consumer: a beat missed for this long is a fault
 };
