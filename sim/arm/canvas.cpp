@@ -78,6 +78,12 @@ const Glyph& glyph(char c) {
   return kFont[sizeof kFont / sizeof kFont[0] - 1];  // '?'
 }
 
+// Pixel index of a coordinate, saturated: projections of points far outside a
+// panel can be huge, and casting those to int would be undefined.
+int to_pixel(double v) {
+  return static_cast<int>(std::clamp(std::floor(v), -1.0e6, 1.0e6));
+}
+
 double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                         const Eigen::Vector2d& b) {
   const Eigen::Vector2d ab = b - a;
@@ -139,14 +145,27 @@ void RasterCanvas::line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, Rgb 
                         double width_px, double opacity) {
   if (!a.allFinite() || !b.allFinite()) return;
   const double r = 0.5 * std::max(width_px, 0.5);
-  const int x0 = static_cast<int>(std::floor(std::min(a.x(), b.x()) - r - 1));
-  const int x1 = static_cast<int>(std::ceil(std::max(a.x(), b.x()) + r + 1));
-  const int y0 = static_cast<int>(std::floor(std::min(a.y(), b.y()) - r - 1));
-  const int y1 = static_cast<int>(std::ceil(std::max(a.y(), b.y()) + r + 1));
-  for (int y = std::max(y0, 0); y <= std::min(y1, image_.height - 1); ++y) {
-    for (int x = std::max(x0, 0); x <= std::min(x1, image_.width - 1); ++x) {
-      const double d = segment_distance({x, y}, a, b);
-      blend(x, y, color, opacity * std::clamp(r + 0.5 - d, 0.0, 1.0));
+  const double pad = r + 1.5;
+  const int x0 = std::max({to_pixel(std::min(a.x(), b.x()) - pad), 0, clip_x0_});
+  const int x1 =
+      std::min({to_pixel(std::max(a.x(), b.x()) + pad) + 1, image_.width - 1, clip_x1_ - 1});
+  const int y0 = std::max({to_pixel(std::min(a.y(), b.y()) - pad), 0, clip_y0_});
+  const int y1 =
+      std::min({to_pixel(std::max(a.y(), b.y()) + pad) + 1, image_.height - 1, clip_y1_ - 1});
+  const Eigen::Vector2d d = b - a;
+  const double len = d.norm();
+  for (int y = y0; y <= y1; ++y) {
+    // Only the pixels of this row near the segment: its crossing +- the band.
+    int xs = x0, xe = x1;
+    if (std::abs(d.y()) > 1e-9) {
+      const double xc = a.x() + (y - a.y()) * d.x() / d.y();
+      const double half = pad * len / std::abs(d.y());
+      xs = std::max(x0, to_pixel(xc - half));
+      xe = std::min(x1, to_pixel(xc + half) + 1);
+    }
+    for (int x = xs; x <= xe; ++x) {
+      const double dist = segment_distance({x, y}, a, b);
+      blend(x, y, color, opacity * std::clamp(r + 0.5 - dist, 0.0, 1.0));
     }
   }
 }
@@ -162,10 +181,12 @@ void RasterCanvas::polygon(std::span<const Eigen::Vector2d> pts, Rgb fill, doubl
     ymax = std::max(ymax, p.y());
   }
   // 4x4 samples per pixel for smooth edges (even-odd rule).
-  for (int y = std::max(0, static_cast<int>(ymin));
-       y <= std::min(image_.height - 1, static_cast<int>(ymax) + 1); ++y) {
-    for (int x = std::max(0, static_cast<int>(xmin));
-         x <= std::min(image_.width - 1, static_cast<int>(xmax) + 1); ++x) {
+  const int ya = std::max({0, clip_y0_, to_pixel(ymin)});
+  const int yb = std::min({image_.height - 1, clip_y1_ - 1, to_pixel(ymax) + 1});
+  const int xa = std::max({0, clip_x0_, to_pixel(xmin)});
+  const int xb = std::min({image_.width - 1, clip_x1_ - 1, to_pixel(xmax) + 1});
+  for (int y = ya; y <= yb; ++y) {
+    for (int x = xa; x <= xb; ++x) {
       int inside = 0;
       for (int sy = 0; sy < 4; ++sy) {
         for (int sx = 0; sx < 4; ++sx) {
@@ -190,10 +211,8 @@ void RasterCanvas::polygon(std::span<const Eigen::Vector2d> pts, Rgb fill, doubl
 
 void RasterCanvas::disc(const Eigen::Vector2d& c, double radius, Rgb fill, double opacity) {
   if (!c.allFinite()) return;
-  for (int y = static_cast<int>(c.y() - radius - 1); y <= static_cast<int>(c.y() + radius + 1);
-       ++y) {
-    for (int x = static_cast<int>(c.x() - radius - 1); x <= static_cast<int>(c.x() + radius + 1);
-         ++x) {
+  for (int y = to_pixel(c.y() - radius - 1); y <= to_pixel(c.y() + radius + 1); ++y) {
+    for (int x = to_pixel(c.x() - radius - 1); x <= to_pixel(c.x() + radius + 1); ++x) {
       const double d = std::hypot(x - c.x(), y - c.y());
       blend(x, y, fill, opacity * std::clamp(radius + 0.5 - d, 0.0, 1.0));
     }
@@ -218,11 +237,18 @@ void RasterCanvas::text(const Eigen::Vector2d& at, std::string_view s, Rgb color
   }
 }
 
+void RasterCanvas::rect(double x, double y, double w, double h, Rgb fill, double opacity) {
+  // Axis-aligned: whole pixels, no coverage sampling needed.
+  for (int py = to_pixel(y); py < to_pixel(y + h); ++py) {
+    for (int px = to_pixel(x); px < to_pixel(x + w); ++px) blend(px, py, fill, opacity);
+  }
+}
+
 void RasterCanvas::begin_clip(double x, double y, double w, double h) {
-  clip_x0_ = static_cast<int>(std::floor(x));
-  clip_y0_ = static_cast<int>(std::floor(y));
-  clip_x1_ = static_cast<int>(std::ceil(x + w));
-  clip_y1_ = static_cast<int>(std::ceil(y + h));
+  clip_x0_ = to_pixel(x);
+  clip_y0_ = to_pixel(y);
+  clip_x1_ = to_pixel(x + w) + 1;
+  clip_y1_ = to_pixel(y + h) + 1;
 }
 
 void RasterCanvas::end_clip() {

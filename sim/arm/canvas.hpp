@@ -31,7 +31,7 @@ class Canvas {
   // Top-left of the text at `at`; `scale` multiplies the 5x7 cell (raster) or
   // sets the font size to 9 * scale px (SVG).
   virtual void text(const Eigen::Vector2d& at, std::string_view s, Rgb color, int scale = 2) = 0;
-  void rect(double x, double y, double w, double h, Rgb fill, double opacity = 1.0);
+  virtual void rect(double x, double y, double w, double h, Rgb fill, double opacity = 1.0);
   // Drawing between begin_clip and end_clip stays inside the rectangle.
   virtual void begin_clip(double x, double y, double w, double h) = 0;
   virtual void end_clip() = 0;
@@ -48,6 +48,7 @@ class RasterCanvas final : public Canvas {
   void disc(const Eigen::Vector2d& centre, double radius_px, Rgb fill,
             double opacity = 1.0) override;
   void text(const Eigen::Vector2d& at, std::string_view s, Rgb color, int scale = 2) override;
+  void rect(double x, double y, double w, double h, Rgb fill, double opacity = 1.0) override;
   void begin_clip(double x, double y, double w, double h) override;
   void end_clip() override;
   const io::RgbImage& image() const { return image_; }
