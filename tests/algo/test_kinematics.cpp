@@ -4,11 +4,18 @@
 
 #include <numbers>
 #include <random>
+#include <string>
 
 #include "tests/support/heap_counter.hpp"
 
 namespace petra::arm {
 namespace {
+
+std::string sci(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
@@ -83,8 +90,8 @@ TEST(Kinematics, IkThenFkReturnsTheTargetEverywhereInTheLimits) {
       ++solved;
     }
   }
-  RecordProperty("worst_tip_error_mm", std::to_string(worst_mm));
-  RecordProperty("worst_axis_error_rad", std::to_string(worst_rad));
+  RecordProperty("worst_tip_error_mm", sci(worst_mm));
+  RecordProperty("worst_axis_error_rad", sci(worst_rad));
   EXPECT_EQ(solved, 10000);
   EXPECT_LT(worst_mm, 1e-6);
   EXPECT_LT(worst_rad, 1e-6);

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <numbers>
 #include <random>
+#include <string>
 
 #include "algo/kinematics.hpp"
 
@@ -17,6 +18,12 @@
 
 namespace petra::arm {
 namespace {
+
+[[maybe_unused]] std::string sci(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
 
 #ifdef PETRA_HAVE_KDL
 KDL::Frame to_kdl(const Eigen::Isometry3d& t) {
@@ -94,8 +101,8 @@ TEST(KinematicsKdl, ForwardKinematicsMatchesKdlOn10000RandomJointVectors) {
       }
     }
   }
-  RecordProperty("worst_position_mm", std::to_string(worst_mm));
-  RecordProperty("worst_rotation", std::to_string(worst_rot));
+  RecordProperty("worst_position_mm", sci(worst_mm));
+  RecordProperty("worst_rotation", sci(worst_rot));
   EXPECT_LT(worst_mm, 1e-9);
   EXPECT_LT(worst_rot, 1e-9);
 }
