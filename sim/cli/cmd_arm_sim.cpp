@@ -265,7 +265,7 @@ int run_socketcan(const std::string& iface, const std::array<double, 5>& initial
 
 }  // namespace
 
-void add_arm_sim(CLI::App& app, Outcome& outcome) {
+void add_arm_sim(CLI::App& app, Outcome& outcome, const char* name) {
   auto* cmd =
       app.add_subcommand("sim-arm", "Simulated CANopen drives of the arm (SocketCAN or loopback)");
   static std::string iface;

@@ -13,7 +13,12 @@ struct Outcome {
 };
 
 void add_info(CLI::App& app, Outcome& outcome);
-void add_arm_sim(CLI::App& app, Outcome& outcome);
+void add_sim(CLI::App& app, Outcome& outcome);
+void add_score(CLI::App& app, Outcome& outcome);
+void add_stereo(CLI::App& app, Outcome& outcome);
+void add_middlebury(CLI::App& app, Outcome& outcome);
+// Registers `name` on `app`; `petra sim arm` = add_arm_sim(sim_subcommand, outcome, "arm").
+void add_arm_sim(CLI::App& app, Outcome& outcome, const char* name = "sim-arm");
 void add_arm_view(CLI::App& app, Outcome& outcome);
 
 // Prints "petra <cmd>: <message>" on stderr and returns the exit code 1.
