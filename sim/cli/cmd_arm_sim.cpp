@@ -267,7 +267,7 @@ int run_socketcan(const std::string& iface, const std::array<double, 5>& initial
 
 void add_arm_sim(CLI::App& app, Outcome& outcome, const char* name) {
   auto* cmd =
-      app.add_subcommand("sim-arm", "Simulated CANopen drives of the arm (SocketCAN or loopback)");
+      app.add_subcommand(name, "Simulated CANopen drives of the arm (SocketCAN or loopback)");
   static std::string iface;
   static bool loopback = false;
   static std::string initial_text = "0,0,145,35,0";
