@@ -115,6 +115,9 @@ TEST(CanLoopback, BusOffRefusesSendsUntilRestartAndErrorFramesAreCounted) {
 }
 
 TEST(CanLoopback, ReceiveWaitsForAFrameFromAnotherThread) {
+#ifdef PETRA_UNDER_EMULATOR
+  GTEST_SKIP() << "skipped: std::thread hangs under qemu-user emulation (runs in the host build)";
+#endif
   auto bus = std::make_unique<CanLoopbackBus>();
   auto a = bus->attach();
   auto b = bus->attach();
