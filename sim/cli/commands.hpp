@@ -17,6 +17,11 @@ void add_sim(CLI::App& app, Outcome& outcome);
 void add_score(CLI::App& app, Outcome& outcome);
 void add_stereo(CLI::App& app, Outcome& outcome);
 void add_middlebury(CLI::App& app, Outcome& outcome);
+void add_cmd(CLI::App& app, Outcome& outcome);
+void add_tlm(CLI::App& app, Outcome& outcome);
+void add_keygen(CLI::App& app, Outcome& outcome);
+void add_icd(CLI::App& app, Outcome& outcome);
+void add_demo(CLI::App& app, Outcome& outcome);
 // Registers `name` on `app`; `petra sim arm` = add_arm_sim(sim_subcommand, outcome, "arm").
 void add_arm_sim(CLI::App& app, Outcome& outcome, const char* name = "sim-arm");
 void add_arm_view(CLI::App& app, Outcome& outcome);
