@@ -337,7 +337,10 @@ void Executive::on_arm(const cmd::Command& c) {
   } else {
     s = deps_.arm->start_stow();
   }
-  if (!s) return fail(fc_of(c), c.counter, Reason::ARM_UNAVAILABLE);
+  if (!s) {
+    return fail(fc_of(c), c.counter,
+                s.code() == Errc::not_ready ? Reason::ARM_NOT_READY : Reason::ARM_REFUSED);
+  }
   if (modes_.mode() == Mode::IDLE) modes_.request(Mode::ARM_MOVING, fc_of(c));
   pending_arm_ = {true, fc_of(c), c.counter};
 }

@@ -135,23 +135,23 @@ JointVector ArmService::measured_joints() const {
   return q;
 }
 
-ArmProgress ArmService::progress() const {
+MotionProgress ArmService::progress() const {
   switch (state_) {
     case ArmState::moving:
     case ArmState::approaching:
     case ArmState::retreating:
     case ArmState::settling:
-      return ArmProgress::moving;
+      return MotionProgress::moving;
     case ArmState::enabling:
-      return pending_start_ ? ArmProgress::moving : ArmProgress::idle;
+      return pending_start_ ? MotionProgress::moving : MotionProgress::idle;
     case ArmState::fault:
-      return ArmProgress::failed;
+      return MotionProgress::failed;
     default:
       break;
   }
-  if (failed_) return ArmProgress::failed;
-  if (reached_) return ArmProgress::reached;
-  return ArmProgress::idle;
+  if (failed_) return MotionProgress::failed;
+  if (reached_) return MotionProgress::reached;
+  return MotionProgress::idle;
 }
 
 void ArmService::push_event(ArmEventKind kind, std::uint8_t node, std::uint8_t code,

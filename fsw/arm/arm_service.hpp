@@ -34,8 +34,8 @@ struct ArmServiceConfig {
   canopen::LinkTiming timing;
   double max_tool_speed_mm_s = 10.0;  // straight approach and retreat
   double max_tool_accel_mm_s2 = 20.0;
-  double min_standoff_mm = 10.0;  // ARM_GOTO standoff range
-  double max_standoff_mm = 200.0;
+  double min_standoff_mm = 5.0;  // ARM_GOTO standoff range (the command allows 0..300)
+  double max_standoff_mm = 300.0;
   double reach_tolerance_mm = 1.0;  // verification of the reached pose
   double axis_tolerance_deg = 0.5;
   std::int64_t settle_timeout_ms = 3000;  // last set-point to "target reached"
@@ -56,7 +56,7 @@ enum class ArmState : std::uint8_t {
 };
 const char* arm_state_name(ArmState state);
 
-enum class ArmProgress : std::uint8_t { idle = 0, moving = 1, reached = 2, failed = 3 };
+enum class MotionProgress : std::uint8_t { idle = 0, moving = 1, reached = 2, failed = 3 };
 
 // A grind plane to reach (world frame): the contact point and the outward normal.
 struct ArmGoal {
@@ -90,7 +90,7 @@ struct ArmEvent {
 // What telemetry reports about the arm (docs/icd.md, arm state).
 struct ArmTelemetry {
   ArmState state = ArmState::off;
-  ArmProgress progress = ArmProgress::idle;
+  MotionProgress progress = MotionProgress::idle;
   std::array<double, 5> joint_rad{};                 // measured (drive feedback)
   std::array<double, 5> joint_target_rad{};          // last set-point
   Eigen::Vector3d tip_mm = Eigen::Vector3d::Zero();  // forward kinematics of the measured joints
@@ -125,7 +125,7 @@ class ArmService {
   void step(std::int64_t now_ms);
 
   ArmState state() const { return state_; }
-  ArmProgress progress() const;
+  MotionProgress progress() const;
   ArmTelemetry telemetry() const;
   bool pop_event(ArmEvent& out);
   JointVector measured_joints() const;

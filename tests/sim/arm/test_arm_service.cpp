@@ -20,8 +20,8 @@ namespace petra {
 namespace {
 
 using fsw::arm::ArmEventKind;
-using fsw::arm::ArmProgress;
 using fsw::arm::ArmState;
+using fsw::arm::MotionProgress;
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr std::int64_t kCycleMs = 10;
 
@@ -67,7 +67,7 @@ struct Rig {
     return run_until([&] { return arm.state() == ArmState::holding; }, 3000);
   }
   bool finish_motion(std::int64_t max_ms = 30000) {
-    return run_until([&] { return arm.progress() != ArmProgress::moving; }, max_ms);
+    return run_until([&] { return arm.progress() != MotionProgress::moving; }, max_ms);
   }
   // The joints as the simulated encoders read them (not the master's view).
   arm::JointVector sim_joints() const {
@@ -115,7 +115,7 @@ TEST(ArmService, GotoPutsTheTipOnTheCentroidAlongTheNormal) {
   for (const arm::JointVector& contact : {deg(35, 25, 100, 80, -10), deg(15, 40, 120, 95, 20)}) {
     const fsw::arm::ArmGoal goal = goal_at(rig->config.geometry, contact);
     ASSERT_TRUE(rig->arm.start_goto(goal, rig->now).ok());
-    EXPECT_EQ(rig->arm.progress(), ArmProgress::moving);
+    EXPECT_EQ(rig->arm.progress(), MotionProgress::moving);
     // During the straight approach the real tip stays near the line.
     bool approached = false;
     ASSERT_TRUE(rig->run_until(
@@ -125,11 +125,11 @@ TEST(ArmService, GotoPutsTheTipOnTheCentroidAlongTheNormal) {
             const Eigen::Vector3d rel = rig->sim_tool().tip_mm - goal.centroid_mm;
             worst_line = std::max(worst_line, (rel - rel.dot(goal.normal) * goal.normal).norm());
           }
-          return rig->arm.progress() != ArmProgress::moving;
+          return rig->arm.progress() != MotionProgress::moving;
         },
         30000));
     EXPECT_TRUE(approached);
-    ASSERT_EQ(rig->arm.progress(), ArmProgress::reached);
+    ASSERT_EQ(rig->arm.progress(), MotionProgress::reached);
     const arm::ToolPose tool = rig->sim_tool();
     worst_tip = std::max(worst_tip, (tool.tip_mm - goal.centroid_mm).norm());
     worst_axis = std::max(worst_axis, axis_error_deg(tool, goal.normal));
@@ -153,7 +153,7 @@ TEST(ArmService, TheNextMotionFirstBacksOutAlongTheNormal) {
   const fsw::arm::ArmGoal goal = goal_at(rig->config.geometry, deg(35, 25, 100, 80, -10));
   ASSERT_TRUE(rig->arm.start_goto(goal, rig->now).ok());
   ASSERT_TRUE(rig->finish_motion());
-  ASSERT_EQ(rig->arm.progress(), ArmProgress::reached);
+  ASSERT_EQ(rig->arm.progress(), MotionProgress::reached);
   ASSERT_TRUE(rig->arm.start_stow(rig->now).ok());
   EXPECT_EQ(rig->arm.state(), ArmState::retreating);
   double off_line = 0;
@@ -165,12 +165,12 @@ TEST(ArmService, TheNextMotionFirstBacksOutAlongTheNormal) {
           const Eigen::Vector3d rel = rig->sim_tool().tip_mm - goal.centroid_mm;
           off_line = std::max(off_line, (rel - rel.dot(goal.normal) * goal.normal).norm());
         }
-        return rig->arm.progress() != ArmProgress::moving;
+        return rig->arm.progress() != MotionProgress::moving;
       },
       30000));
   EXPECT_TRUE(retreated);
   EXPECT_LT(off_line, 2.0);
-  EXPECT_EQ(rig->arm.progress(), ArmProgress::reached);
+  EXPECT_EQ(rig->arm.progress(), MotionProgress::reached);
   EXPECT_LT((rig->sim_joints() - arm::stow_pose()).cwiseAbs().maxCoeff(), 0.2 * kDeg);
 }
 
@@ -215,7 +215,7 @@ TEST(ArmService, QuickStopHaltsAndANewGotoResumes) {
   rig->run_for(1500);
   rig->arm.quick_stop();
   EXPECT_EQ(rig->arm.state(), ArmState::stopped);
-  EXPECT_EQ(rig->arm.progress(), ArmProgress::idle);
+  EXPECT_EQ(rig->arm.progress(), MotionProgress::idle);
   rig->run_for(500);
   const arm::JointVector held = rig->sim_joints();
   rig->run_for(500);
@@ -224,9 +224,9 @@ TEST(ArmService, QuickStopHaltsAndANewGotoResumes) {
     EXPECT_EQ(rig->drives.drive(j).drive_state(), canopen::DriveState::quick_stop_active);
   }
   ASSERT_TRUE(rig->arm.start_goto(goal, rig->now).ok());
-  EXPECT_EQ(rig->arm.progress(), ArmProgress::moving);
+  EXPECT_EQ(rig->arm.progress(), MotionProgress::moving);
   ASSERT_TRUE(rig->finish_motion());
-  EXPECT_EQ(rig->arm.progress(), ArmProgress::reached);
+  EXPECT_EQ(rig->arm.progress(), MotionProgress::reached);
   EXPECT_LT((rig->sim_tool().tip_mm - goal.centroid_mm).norm(), 1.0);
 }
 
@@ -238,7 +238,7 @@ TEST(ArmService, ALostHeartbeatEndsInFaultWithAnEventAndResetRecovers) {
   rig->run_for(1000);
   rig->drives.drive(1).stop_heartbeat(true);
   ASSERT_TRUE(rig->run_until([&] { return rig->arm.state() == ArmState::fault; }, 1000));
-  EXPECT_EQ(rig->arm.progress(), ArmProgress::failed);
+  EXPECT_EQ(rig->arm.progress(), MotionProgress::failed);
   const auto tlm = rig->arm.telemetry();
   EXPECT_EQ(tlm.fault_node, 2);
   EXPECT_EQ(tlm.fault, canopen::DriveFault::heartbeat_lost);
@@ -257,7 +257,7 @@ TEST(ArmService, ALostHeartbeatEndsInFaultWithAnEventAndResetRecovers) {
   ASSERT_TRUE(rig->run_until([&] { return rig->arm.state() == ArmState::holding; }, 3000));
   ASSERT_TRUE(rig->arm.start_stow(rig->now).ok());
   ASSERT_TRUE(rig->finish_motion());
-  EXPECT_EQ(rig->arm.progress(), ArmProgress::reached);
+  EXPECT_EQ(rig->arm.progress(), MotionProgress::reached);
 }
 
 TEST(ArmService, AnEmergencyMidMoveEndsInFault) {
