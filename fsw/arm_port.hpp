@@ -38,6 +38,8 @@ class ArmPort {
   virtual Status start_stow() = 0;
   virtual ArmProgress poll() = 0;  // every cycle
   virtual void quick_stop() = 0;   // ABORT, e-stop, SAFE
+  // Leaving SAFE: recover from a drive fault (reboot the drives); nothing otherwise.
+  virtual Status reset() { return {}; }
   // Drained every cycle after poll().
   virtual bool pop_event(ArmEventOut& out) {
     (void)out;

@@ -314,7 +314,7 @@ void ArmService::quick_stop() {
   pending_start_ = false;
   segments_.clear();
   goal_ = Goal::none;
-  if (state_ != ArmState::fault && state_ != ArmState::off) {
+  if (state_ != ArmState::fault && state_ != ArmState::off && state_ != ArmState::stopped) {
     state_ = ArmState::stopped;
     push_event(ArmEventKind::stopped, 0, 0, 0);
   }

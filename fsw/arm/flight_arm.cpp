@@ -52,6 +52,7 @@ void FlightArm::quick_stop() {
 }
 
 Status FlightArm::reset() {
+  if (service_.state() != ArmState::fault) return ok_status();
   return service_.reset(now_ms());
 }
 

@@ -23,8 +23,8 @@ class FlightArm final : public fsw::ArmPort {
   bool pop_event(ArmEventOut& out) override;
   bool status(tlm::ArmStatus& out) const override;
 
-  // Reboots the drives after a fault (the operator leaves SAFE).
-  Status reset();
+  // Reboots the drives after a fault (the operator leaves SAFE); no-op otherwise.
+  Status reset() override;
   const ArmService& service() const { return service_; }
 
  private:

@@ -272,6 +272,24 @@ TEST(ExecutiveArm, ALostDriveHeartbeatEndsInSafeWithAnEvent) {
   ASSERT_TRUE(rig.until([&] { return rig.h.has_ack(stow.counter, AckStage::FAILED); }, 50));
   EXPECT_EQ(rig.h.acks_for(stow.counter).back().reason,
             static_cast<std::uint8_t>(Reason::ARM_NOT_READY));
+  // The drive recovers; leaving SAFE reboots the drives and the arm can stow.
+  rig.drives.drive(2).stop_heartbeat(false);
+  cmd::SetModeArgs idle;
+  idle.mode = static_cast<std::uint8_t>(Mode::IDLE);
+  const auto leave = rig.h.make(FunctionCode::SET_MODE, idle);
+  rig.h.send(leave);
+  ASSERT_TRUE(rig.until([&] { return rig.h.has_ack(leave.counter, AckStage::COMPLETED); }, 50));
+  ASSERT_TRUE(rig.until(
+      [&] {
+        int ready = 0;
+        for (const auto& e : rig.h.all<tlm::Event>())
+          ready += e.event_id == static_cast<std::uint16_t>(EventId::ARM_READY);
+        return ready == 2;
+      },
+      500));
+  const auto stow2 = rig.h.make(FunctionCode::ARM_STOW);
+  rig.h.send(stow2);
+  ASSERT_TRUE(rig.until([&] { return rig.h.has_ack(stow2.counter, AckStage::COMPLETED); }, 4000));
 }
 
 TEST(ExecutiveArm, TheEStopEndsInAQuickStopAndSafe) {
@@ -286,6 +304,21 @@ TEST(ExecutiveArm, TheEStopEndsInAQuickStopAndSafe) {
   rig.until([&] { return false; }, 30);
   for (int j = 0; j < 5; ++j)
     EXPECT_EQ(rig.drives.drive(j).drive_state(), canopen::DriveState::quick_stop_active);
+  // While the e-stop is held, the arm does not move, not even to stow.
+  const auto stow = rig.h.make(FunctionCode::ARM_STOW);
+  rig.h.send(stow);
+  ASSERT_TRUE(rig.until([&] { return rig.h.has_ack(stow.counter, AckStage::FAILED); }, 50));
+  EXPECT_EQ(rig.h.acks_for(stow.counter).back().reason,
+            static_cast<std::uint8_t>(Reason::ARM_NOT_READY));
+  rig.estop.set(false);
+  rig.until([&] { return false; }, 2);  // the executive reads the line once per cycle
+  const auto stow2 = rig.h.make(FunctionCode::ARM_STOW);
+  rig.h.send(stow2);
+  ASSERT_TRUE(rig.until([&] { return rig.h.has_ack(stow2.counter, AckStage::COMPLETED); }, 4000));
+  int stopped = 0;
+  for (const auto& e : rig.h.all<tlm::Event>())
+    stopped += e.event_id == static_cast<std::uint16_t>(EventId::ARM_STOPPED);
+  EXPECT_EQ(stopped, 1);
 }
 
 }  // namespace
