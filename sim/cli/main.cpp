@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
   petra::cli::add_click(app, outcome);
   petra::cli::add_gnd(app, outcome);
   petra::cli::add_eval(app, outcome);
+  petra::cli::add_arm_sim(app, outcome);
+  petra::cli::add_arm_view(app, outcome);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
