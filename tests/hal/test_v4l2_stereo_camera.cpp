@@ -121,7 +121,9 @@ TEST_F(StereoOnVivid, TriggeredPairPulsesTheTriggerOnce) {
   EXPECT_EQ(trigger.falling_edges(), 1u);
   // vivid free-runs whatever the trigger: the pair is accepted only if the
   // first frames happen to fall within the bound, else refused as skew.
-  if (!info.ok()) EXPECT_EQ(cam.health().last_fault, FrameFault::skew) << info.error().message;
+  if (!info.ok()) {
+    EXPECT_EQ(cam.health().last_fault, FrameFault::skew) << info.error().message;
+  }
 }
 
 TEST_F(StereoOnVivid, SideBySideFrameIsSplitIntoTwoViews) {
