@@ -163,10 +163,44 @@ Status V4l2Capture::open(const V4l2CaptureConfig& config) {
     close();
     return Error::make(s.error().code, "%s: %s", path_.data(), s.error().message);
   }
+  // Y'CbCr is video range unless the driver says full range; gray is full range
+  // unless the driver says otherwise (what V4L2's defaults mean for each).
+  if (format_.pixel == PixelFormat::yuyv)
+    format_.limited_range = f.fmt.pix.quantization != V4L2_QUANTIZATION_FULL_RANGE &&
+                            f.fmt.pix.colorspace != V4L2_COLORSPACE_JPEG;
+  else
+    format_.limited_range = f.fmt.pix.quantization == V4L2_QUANTIZATION_LIM_RANGE;
   if (f.fmt.pix.field != V4L2_FIELD_NONE) {
     close();
     return Error::make(Errc::wrong_type, "%s: interlaced field order %u, need progressive",
                        path_.data(), f.fmt.pix.field);
+  }
+
+  if (config.fps < 0 || config.fps > 1000) {
+    close();
+    return Error::make(Errc::invalid_argument, "camera.fps: %d outside 0..1000", config.fps);
+  }
+  if (config.fps > 0) {
+    v4l2_streamparm parm{};
+    parm.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
+    parm.parm.capture.timeperframe.numerator = 1;
+    parm.parm.capture.timeperframe.denominator = static_cast<std::uint32_t>(config.fps);
+    if (xioctl(fd_, VIDIOC_S_PARM, &parm) < 0) {
+      const int err = errno;
+      close();
+      return fail_device("VIDIOC_S_PARM (frame rate)", err);
+    }
+    const auto& tpf = parm.parm.capture.timeperframe;
+    // The driver picks the nearest rate it has: anything else than asked is refused.
+    if ((parm.parm.capture.capability & V4L2_CAP_TIMEPERFRAME) == 0 || tpf.numerator == 0 ||
+        static_cast<std::uint64_t>(tpf.denominator) * 100 <
+            static_cast<std::uint64_t>(tpf.numerator) * static_cast<std::uint64_t>(config.fps) * 99 ||
+        static_cast<std::uint64_t>(tpf.denominator) * 100 >
+            static_cast<std::uint64_t>(tpf.numerator) * static_cast<std::uint64_t>(config.fps) * 101) {
+      close();
+      return Error::make(Errc::invalid_argument, "%s: device runs at %u/%u fps, configured %d",
+                         path_.data(), tpf.denominator, tpf.numerator, config.fps);
+    }
   }
 
   v4l2_requestbuffers req{};

@@ -28,6 +28,7 @@ struct V4l2CaptureConfig {
   // Preference order; the first one the device offers is used.
   FixedVector<PixelFormat, kPixelFormatCount> formats;
   int buffers = 4;  // mmap buffers requested (2..V4l2Capture::kMaxBuffers)
+  int fps = 0;      // frames per second to set; 0 keeps the driver's rate
 };
 
 // Finds the /dev/videoN node whose /sys/class/video4linux/videoN/name is `name`.

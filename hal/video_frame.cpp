@@ -163,12 +163,19 @@ Status convert_to_gray(const RawFrame& frame, const FrameFormat& format, int x0,
   const int bpp = bytes_per_pixel(format.pixel);
   // Y16 is little-endian: the high byte is the second one. YUYV: luma first.
   const int pick = format.pixel == PixelFormat::y16 ? 1 : 0;
+  // Video range 16..235 -> 0..255, rounded and clamped (a 256-entry table on the stack).
+  std::uint8_t stretch[256];
+  for (int v = 0; v < 256; ++v) {
+    int g = v;
+    if (format.limited_range) g = ((v - 16) * 255 + 109) / 219;
+    stretch[v] = static_cast<std::uint8_t>(g < 0 ? 0 : (g > 255 ? 255 : g));
+  }
   for (int y = 0; y < out.height(); ++y) {
     const std::uint8_t* src = frame.data + static_cast<std::size_t>(y) * format.bytes_per_line +
                               static_cast<std::size_t>(x0) * static_cast<std::size_t>(bpp) +
                               static_cast<std::size_t>(pick);
     std::uint8_t* dst = out.row(y);
-    for (int x = 0; x < out.width(); ++x) dst[x] = src[static_cast<std::size_t>(x * bpp)];
+    for (int x = 0; x < out.width(); ++x) dst[x] = stretch[src[static_cast<std::size_t>(x * bpp)]];
   }
   return ok_status();
 }

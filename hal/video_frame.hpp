@@ -32,6 +32,9 @@ struct FrameFormat {
   int height = 0;                    // px
   std::uint32_t bytes_per_line = 0;  // >= width * bytes_per_pixel
   std::uint32_t image_bytes = 0;     // >= bytes_per_line * height
+  // Luma coded 16..235 (video range, usual for YUYV) rather than 0..255: the
+  // conversion to gray stretches it back to full range.
+  bool limited_range = false;
 };
 
 // Checks what a driver answered to a format request: the size must be the one
@@ -93,7 +96,7 @@ class FrameChecker {
 };
 
 // Converts the region of a frame starting at column x0 (in pixels) and as wide
-// and high as `out` into 8-bit gray. The region must lie inside the frame.
+// and high as `out` into 8-bit full-range gray. The region must lie inside the frame.
 Status convert_to_gray(const RawFrame& frame, const FrameFormat& format, int x0, Gray8View out);
 
 // A pixel-interleaved stereo frame (2 bytes per pixel: byte 0 left, byte 1

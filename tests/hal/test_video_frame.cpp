@@ -164,6 +164,17 @@ TEST(ConvertToGray, TakesLumaFromEachFormat) {
     for (int x = 0; x < 4; ++x) EXPECT_EQ(view(x, y), luma[y][x]);
 }
 
+TEST(ConvertToGray, StretchesVideoRangeLumaToFullRange) {
+  std::vector<std::uint8_t> yuyv = {16, 128, 235, 128, 179, 128, 5, 128, 250, 128, 126, 128};
+  FrameFormat f{PixelFormat::yuyv, 6, 1, 12, 12, true};
+  std::array<std::uint8_t, 6> out{};
+  ASSERT_TRUE(convert_to_gray(frame(yuyv, 0, 0), f, 0, Gray8View(out.data(), 6, 1)).ok());
+  EXPECT_EQ(out, (std::array<std::uint8_t, 6>{0, 255, 190, 0, 255, 128}));
+  f.limited_range = false;
+  ASSERT_TRUE(convert_to_gray(frame(yuyv, 0, 0), f, 0, Gray8View(out.data(), 6, 1)).ok());
+  EXPECT_EQ(out, (std::array<std::uint8_t, 6>{16, 235, 179, 5, 250, 126}));
+}
+
 TEST(ConvertToGray, SplitsASideBySidePairAndRefusesRegionsOutside) {
   std::vector<std::uint8_t> sbs = {1, 2, 3, 4, 5, 6, 7, 8};  // 4x2: left 2 columns, right 2
   FrameFormat f{PixelFormat::grey, 4, 2, 4, 8};
