@@ -92,6 +92,7 @@ Status V4l2Capture::open(const V4l2CaptureConfig& config) {
   if (config.buffers < 2 || config.buffers > kMaxBuffers)
     return Error::make(Errc::invalid_argument, "camera.buffers: %d outside 2..%d",
                        config.buffers, kMaxBuffers);
+  gaps_are_faults_ = config.gaps_are_faults;
   if (config.device[0] == '/') {
     std::snprintf(path_.data(), path_.size(), "%s", config.device.data());
   } else {
@@ -237,7 +238,7 @@ Status V4l2Capture::open(const V4l2CaptureConfig& config) {
     memory_[static_cast<std::size_t>(i)] = static_cast<std::uint8_t*>(p);
     length_[static_cast<std::size_t>(i)] = b.length;
   }
-  checker_.reset(format_);
+  checker_.reset(format_, gaps_are_faults_);
   return ok_status();
 }
 
@@ -255,7 +256,7 @@ Status V4l2Capture::start() {
   if (xioctl(fd_, VIDIOC_STREAMON, &type) < 0) return fail_device("VIDIOC_STREAMON", errno);
   streaming_ = true;
   held_ = -1;
-  checker_.reset(format_);
+  checker_.reset(format_, gaps_are_faults_);
   return ok_status();
 }
 
@@ -342,11 +343,12 @@ Result<RawFrame> V4l2Capture::next(int timeout_ms) {
       if (auto s = checker_.check(frame, fault); !s) {
         ++health_.rejected;
         health_.last_fault = fault;
-        if (fault == FrameFault::sequence_gap) health_.frames_lost += 1;  // at least one
+        health_.frames_lost += checker_.lost();
         PETRA_TRY(requeue_held());
         return Error::make(Errc::parse_error, "%s: %s", path_.data(), s.error().message);
       }
       ++health_.frames;
+      health_.frames_lost += checker_.lost();
       return frame;
     }
     // poll() said error and no frame is waiting: the stream stopped or the device went away.
@@ -384,7 +386,7 @@ Result<int> V4l2Capture::flush() {
     ++dropped;
     PETRA_TRY(requeue_held());
   }
-  checker_.reset(format_);
+  checker_.reset(format_, gaps_are_faults_);
   return dropped;
 }
 

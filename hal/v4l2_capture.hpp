@@ -29,6 +29,9 @@ struct V4l2CaptureConfig {
   FixedVector<PixelFormat, kPixelFormatCount> formats;
   int buffers = 4;  // mmap buffers requested (2..V4l2Capture::kMaxBuffers)
   int fps = 0;      // frames per second to set; 0 keeps the driver's rate
+  // Lost frames (sequence gaps) are errors; off for a free-running camera that
+  // is read now and then (they are still counted in CameraHealth::frames_lost).
+  bool gaps_are_faults = true;
 };
 
 // Finds the /dev/videoN node whose /sys/class/video4linux/videoN/name is `name`.
@@ -78,6 +81,7 @@ class V4l2Capture {
   std::array<char, V4l2CaptureConfig::kMaxName> path_{};
   std::array<char, 32> card_{};
   FrameFormat format_{};
+  bool gaps_are_faults_ = true;
   FrameChecker checker_;
   CameraHealth health_;
 };

@@ -31,12 +31,16 @@ Status V4l2StereoCamera::open(const V4l2StereoConfig& config) {
     return Error::make(Errc::invalid_argument, "stereo: max_pair_frames %d outside 1..64",
                        config.max_pair_frames);
   config_ = config;
+  // Free running: frames pass by unread between pairs, so gaps are only counted.
+  const bool triggered = config.trigger != nullptr;
   V4l2CaptureConfig left = config.left;
+  left.gaps_are_faults = triggered;
   left.width = config.width;
   left.height = config.height;
   switch (config.layout) {
     case StereoLayout::two_devices: {
       V4l2CaptureConfig right = config.right;
+      right.gaps_are_faults = triggered;
       right.width = config.width;
       right.height = config.height;
       PETRA_TRY(left_.open(left));

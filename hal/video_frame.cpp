@@ -108,6 +108,7 @@ Status check_negotiated(const FrameFormat& got, PixelFormat want_pixel, int want
 
 Status FrameChecker::check(const RawFrame& frame, FrameFault& fault) {
   fault = FrameFault::none;
+  lost_ = 0;
   const bool had_previous = have_previous_;
   const std::uint32_t prev_seq = last_sequence_;
   const std::int64_t prev_time = last_time_ns_;
@@ -144,6 +145,8 @@ Status FrameChecker::check(const RawFrame& frame, FrameFault& fault) {
                        static_cast<long long>(prev_time));
   }
   if (step != 1) {
+    lost_ = step - 1;
+    if (!gaps_are_faults_) return ok_status();
     fault = FrameFault::sequence_gap;
     return Error::make(Errc::parse_error, "frame %u: sequence gap, %u frame(s) lost after %u",
                        frame.sequence, step - 1, prev_seq);

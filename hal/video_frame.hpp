@@ -78,19 +78,27 @@ struct CameraHealth {
 
 // Checks each frame against the negotiated format and the previous frame.
 // A rejected frame still becomes the reference for the next one, so one fault
-// gives one error, not a cascade.
+// gives one error, not a cascade. Lost frames (a sequence gap) are a fault when
+// every frame matters (triggered capture); a free-running camera read only now
+// and then loses frames by design, so there gaps are only counted.
 class FrameChecker {
  public:
-  void reset(const FrameFormat& format) {
+  void reset(const FrameFormat& format, bool gaps_are_faults = true) {
     format_ = format;
+    gaps_are_faults_ = gaps_are_faults;
     have_previous_ = false;
+    lost_ = 0;
   }
   // Ok, or an error (Errc::parse_error) naming the fault; `fault` says which.
   Status check(const RawFrame& frame, FrameFault& fault);
+  // Frames lost between the previous frame and the one last checked.
+  std::uint32_t lost() const { return lost_; }
 
  private:
   FrameFormat format_{};
+  bool gaps_are_faults_ = true;
   bool have_previous_ = false;
+  std::uint32_t lost_ = 0;
   std::uint32_t last_sequence_ = 0;
   std::int64_t last_time_ns_ = 0;
 };

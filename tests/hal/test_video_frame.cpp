@@ -118,6 +118,20 @@ TEST(FrameChecker, OneFaultIsOneErrorNotACascade) {
   EXPECT_TRUE(c.check(frame(px, 100, 100), fault).ok());
 }
 
+TEST(FrameChecker, GapsOfAFreeRunningCameraAreOnlyCounted) {
+  std::vector<std::uint8_t> px(16 * 8, 7);
+  FrameChecker c;
+  c.reset(grey(16, 8), /*gaps_are_faults=*/false);
+  FrameFault fault;
+  ASSERT_TRUE(c.check(frame(px, 1, 1000), fault).ok());
+  EXPECT_TRUE(c.check(frame(px, 5, 2000), fault).ok());
+  EXPECT_EQ(c.lost(), 3u);
+  EXPECT_TRUE(c.check(frame(px, 6, 3000), fault).ok());
+  EXPECT_EQ(c.lost(), 0u);
+  EXPECT_FALSE(c.check(frame(px, 6, 4000), fault).ok());  // a repeat is still a fault
+  EXPECT_EQ(fault, FrameFault::sequence_backwards);
+}
+
 TEST(FrameChecker, SequenceCounterWrapsLikeTheDriver) {
   std::vector<std::uint8_t> px(16 * 8, 7);
   FrameChecker c;
