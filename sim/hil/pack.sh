@@ -7,6 +7,9 @@
 # Host binaries run unchanged in the guest (same x86-64 Debian userland): each comes with
 # the ldd closure of its shared libraries. The archive is left uncompressed: the guest
 # kernel unpacks it without spending emulated cycles on decompression.
+# Two archives, concatenated (the kernel unpacks one after the other): the base (busybox,
+# modules, tools; cached in the setup cache, keyed by this script, the kernel and the
+# tools) and the project part (programs from BUILD_DIR and the guest scripts, every run).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 build=$(cd "$1" && pwd)
@@ -15,17 +18,24 @@ cache=${PETRA_HIL_DIR:-/var/cache/petra-hil}
 . "$cache/current.env"  # KVER, written by setup.sh
 dir=$cache/$KVER
 kroot=$dir/kroot
-stage=$out/stage
-rm -rf "$stage"
-mkdir -p "$stage"/{usr/bin,usr/sbin,usr/lib,usr/lib64,proc,sys,dev,tmp,run,etc,hil/bin,hil/checks}
-# merged /usr, as on the host, so ldd's paths resolve either way
-for d in bin sbin lib lib64; do ln -s usr/$d "$stage/$d"; done
+tools=(/usr/bin/cansend /usr/bin/candump /usr/bin/cangen /usr/sbin/ip
+  /usr/bin/gpiodetect /usr/bin/gpioinfo /usr/bin/gpioget /usr/bin/gpioset
+  /usr/bin/v4l2-ctl /usr/bin/media-ctl /usr/bin/cam)
+key=$( (cat "$0"; echo "$KVER"; ls -lL --time-style=+%s /bin/busybox "${tools[@]}") | sha256sum | cut -c1-16)
+base=$dir/base-$key.cpio
+base_list=$dir/base-$key.list
 
-# --- busybox --------------------------------------------------------------------
-cp /bin/busybox "$stage/usr/bin/busybox"
-for a in $(/bin/busybox --list); do
-  [ -e "$stage/usr/bin/$a" ] || ln -s busybox "$stage/usr/bin/$a"
-done
+new_stage() {  # new_stage DIR: an empty merged-/usr tree
+  stage=$1
+  rm -rf "$stage"
+  mkdir -p "$stage"/{usr/bin,usr/sbin,usr/lib,usr/lib64,proc,sys,dev,tmp,run,etc,hil/bin,hil/checks}
+  for d in bin sbin lib lib64; do ln -s usr/$d "$stage/$d"; done
+}
+in_base() {  # in_base /lib/x/libc.so.6: is that file in the cached base (merged /usr)?
+  local p=$1
+  case $p in /usr/*) ;; *) p=/usr$p ;; esac
+  [ -f "$base_list" ] && grep -qxF ".$p" "$base_list"
+}
 
 # --- shared-library closure ---------------------------------------------------------
 copy_libs() {  # copy_libs FILE...: the libraries (and the loader) FILE needs
@@ -34,6 +44,7 @@ copy_libs() {  # copy_libs FILE...: the libraries (and the loader) FILE needs
     ldd "$f" 2>/dev/null | awk '/=> \//{print $3} /^[ \t]*\/lib64\//{print $1}' |
       while read -r lib; do
         case $lib in "$cache"/*) continue ;; esac  # unpacked-only packages: copied by hand
+        in_base "$lib" && continue
         [ -e "$stage$lib" ] || { mkdir -p "$stage$(dirname "$lib")"; cp -L "$lib" "$stage$lib"; }
       done
   done
@@ -47,6 +58,13 @@ copy_tool() {  # copy_tool PATH...: a host program at the same path, with its li
     copy_libs "$f"
   done
 }
+
+build_base() {
+# --- busybox --------------------------------------------------------------------
+cp /bin/busybox "$stage/usr/bin/busybox"
+for a in $(/bin/busybox --list); do
+  [ -e "$stage/usr/bin/$a" ] || ln -s busybox "$stage/usr/bin/$a"
+done
 
 # --- kernel modules in dependency order ------------------------------------------
 mkdir -p "$kroot/lib/modules/$KVER/extra"
@@ -63,9 +81,7 @@ done | awk '!seen[$0]++' | while read -r ko; do
 done
 
 # --- tools the checks use -----------------------------------------------------------
-copy_tool /usr/bin/cansend /usr/bin/candump /usr/bin/cangen /usr/sbin/ip \
-  /usr/bin/gpiodetect /usr/bin/gpioinfo /usr/bin/gpioget /usr/bin/gpioset \
-  /usr/bin/v4l2-ctl /usr/bin/media-ctl /usr/bin/cam
+copy_tool "${tools[@]}"
 ipa=/usr/lib/x86_64-linux-gnu/libcamera
 copy_tool "$ipa/ipa_vimc.so" "$ipa/vimc_ipa_proxy"
 cp "$ipa/ipa_vimc.so.sign" "$stage$ipa/"
@@ -79,6 +95,19 @@ ln -sf /usr/bin/udevadm "$stage/usr/lib/systemd/systemd-udevd"
 cp "$u"/usr/lib/x86_64-linux-gnu/systemd/libsystemd-shared-*.so "$stage/usr/lib/x86_64-linux-gnu/systemd/"
 cp "$u"/lib/udev/rules.d/{50-udev-default,60-persistent-v4l}.rules "$stage/usr/lib/udev/rules.d/"
 LD_LIBRARY_PATH=$u/usr/lib/x86_64-linux-gnu/systemd copy_libs "$u/bin/udevadm"
+(cd "$stage" && find . -print0 | cpio --null -o -H newc --quiet) > "$base.tmp"
+(cd "$stage" && find . ! -type d) > "$base_list.tmp"
+rm -f "$dir"/base-*.cpio "$dir"/base-*.list
+mv "$base_list.tmp" "$base_list"
+mv "$base.tmp" "$base"
+rm -rf "$stage"
+}
+if [ ! -f "$base" ] || [ ! -f "$base_list" ]; then
+  new_stage "$out/base"
+  build_base
+fi
+
+new_stage "$out/stage"
 
 # --- the project's programs ---------------------------------------------------------
 # Every hal test program (unit tests run again; device tests run for real here), and the
@@ -102,6 +131,10 @@ cp "$here/guest/lib.sh" "$stage/hil/"
 cp "$here"/guest/checks/*.sh "$stage/hil/checks/"
 chmod +x "$stage/init" "$stage"/hil/checks/*.sh
 
-(cd "$stage" && find . -print0 | cpio --null -o -H newc --quiet) > "$out/initrd.cpio"
-rm -rf "$stage"
+# Only what the base lacks (directories are shared: newc extraction keeps them).
+# The top-level /bin, /lib... links are the base's already.
+(cd "$stage" && find . -mindepth 1 ! -path ./bin ! -path ./sbin ! -path ./lib ! -path ./lib64 -print0 |
+  cpio --null -o -H newc --quiet) > "$out/project.cpio"
+cat "$base" "$out/project.cpio" > "$out/initrd.cpio"
+rm -rf "$stage" "$out/project.cpio"
 echo "pack: $n project programs, initrd $(du -h "$out/initrd.cpio" | cut -f1)"

@@ -22,13 +22,27 @@ say() { echo "hil-setup: $*"; }
 
 # --- host packages ---------------------------------------------------------------
 mapfile -t wanted < <(grep -v '^#' "$repo/toolchain/packages-hil.txt" | sed '/^$/d')
+installed=$(dpkg-query -W -f='${Package} ${Status}\n' "${wanted[@]}" 2>/dev/null |
+  awk '/ install ok installed$/ {print $1}')
 missing=()
 for p in "${wanted[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  grep -qx "$p" <<< "$installed" || missing+=("$p")
 done
-# The guest ABI is whatever linux-image-amd64 points at; an empty answer means no package lists.
-kernel_pkg() { apt-cache depends linux-image-amd64 2>/dev/null |
-  awk '/Depends: linux-image-[0-9]/{print $2; exit}'; }
+# The guest ABI is whatever linux-image-amd64 points at; an empty answer means no package
+# lists. apt-cache takes seconds on a busy machine: the answer is kept until the lists change.
+kernel_pkg() {
+  local stamp
+  stamp=$(stat -c %Y /var/lib/apt/lists 2>/dev/null || echo 0)
+  if [ -f "$cache/kernel.env" ] && grep -qx "stamp=$stamp" "$cache/kernel.env"; then
+    sed -n 's/^pkg=//p' "$cache/kernel.env"
+    return
+  fi
+  local pkg
+  pkg=$(apt-cache depends linux-image-amd64 2>/dev/null |
+    awk '/Depends: linux-image-[0-9]/ {print $2; exit}')
+  [ -n "$pkg" ] && printf 'stamp=%s\npkg=%s\n' "$stamp" "$pkg" > "$cache/kernel.env"
+  echo "$pkg"
+}
 if [ "${#missing[@]}" -gt 0 ] || [ -z "$(kernel_pkg)" ]; then
   $SUDO apt-get update -qq
 fi
@@ -117,4 +131,4 @@ if [ ! -x udevroot/bin/udevadm ]; then
 fi
 
 echo "KVER=$kver" > "$cache/current.env"
-say "ready: kernel $kver in $dir ($(du -sh "$dir" | cut -f1))"
+say "ready: kernel $kver in $dir"

@@ -15,14 +15,19 @@ drivers_gpio() {
   [ -n "$GPIO_CHIP" ] || { echo "no gpio-sim chip"; return 1; }
   gpioinfo "$GPIO_CHIP"
   # the e-stop line follows the simulated pull
-  echo pull-down > "$GPIO_SIM/sim_gpio2/pull"; [ "$(gpioget "$GPIO_CHIP" 2)" = 0 ] || return 1
-  echo pull-up > "$GPIO_SIM/sim_gpio2/pull"; [ "$(gpioget "$GPIO_CHIP" 2)" = 1 ] || return 1
-  # an output is seen on the simulated side while it is held (gpio-sim resets released lines)
+  echo pull-down > "$GPIO_SIM/sim_gpio2/pull"
+  v=$(gpioget "$GPIO_CHIP" 2); echo "pull-down: gpioget $v"; [ "$v" = 0 ] || return 1
+  echo pull-up > "$GPIO_SIM/sim_gpio2/pull"
+  v=$(gpioget "$GPIO_CHIP" 2); echo "pull-up: gpioget $v"; [ "$v" = 1 ] || return 1
+  # an output is seen on the simulated side while it is held (gpio-sim resets released
+  # lines); wait for gpioset to take the line (seconds on a loaded host)
   gpioset --mode=signal "$GPIO_CHIP" 1=1 &
-  local pid=$!
-  sleep 0.3
-  local v
-  v=$(cat "$GPIO_SIM/sim_gpio1/value")
+  local pid=$! i=0
+  v=0
+  while [ $i -lt 50 ] && [ "$v" != 1 ]; do
+    sleep 0.1; v=$(cat "$GPIO_SIM/sim_gpio1/value"); i=$((i + 1))
+  done
+  echo "gpioset 1=1: sim value $v after $i polls"
   kill $pid; wait $pid 2> /dev/null
   [ "$v" = 1 ]
 }
