@@ -15,6 +15,7 @@
 
 #include "algo/core/fixed_vector.hpp"
 #include "algo/core/result.hpp"
+#include "hal/frame_source.hpp"
 #include "hal/video_frame.hpp"
 
 namespace petra::hal {
@@ -37,14 +38,14 @@ struct V4l2CaptureConfig {
 // Finds the /dev/videoN node whose /sys/class/video4linux/videoN/name is `name`.
 Status find_video_node(const char* name, std::array<char, V4l2CaptureConfig::kMaxName>& path);
 
-class V4l2Capture {
+class V4l2Capture final : public FrameSource {
  public:
   static constexpr int kMaxBuffers = 8;
 
   V4l2Capture() = default;
   V4l2Capture(const V4l2Capture&) = delete;
   V4l2Capture& operator=(const V4l2Capture&) = delete;
-  ~V4l2Capture();
+  ~V4l2Capture() override;
 
   Status open(const V4l2CaptureConfig& config);
   Status start();  // STREAMON with every buffer queued
@@ -55,14 +56,14 @@ class V4l2Capture {
 
   // Next frame within timeout_ms (the previously returned frame is given back
   // first). The frame's data stays valid until the next next()/flush()/stop().
-  Result<RawFrame> next(int timeout_ms);
+  Result<RawFrame> next(int timeout_ms) override;
   // Gives back every frame already waiting, so the next frame is a fresh one,
   // and starts a new sequence run (frames lost while nobody was reading are
   // not faults). Returns how many frames were dropped.
-  Result<int> flush();
+  Result<int> flush() override;
 
-  const FrameFormat& format() const { return format_; }
-  const CameraHealth& health() const { return health_; }
+  const FrameFormat& format() const override { return format_; }
+  const CameraHealth& health() const override { return health_; }
   const char* path() const { return path_.data(); }
   const char* card() const { return card_.data(); }
   int buffer_count() const { return buffer_count_; }

@@ -26,32 +26,32 @@ void set_device(V4l2CaptureConfig& c, const std::string& device,
 
 V4l2StereoConfig two_vivids(std::int64_t max_skew_us) {
   V4l2StereoConfig c;
-  c.layout = StereoLayout::two_devices;
+  c.timing.layout = StereoLayout::two_devices;
   set_device(c.left, test::vivid_left(), {PixelFormat::grey});
   set_device(c.right, test::vivid_right(), {PixelFormat::grey});
   c.left.fps = c.right.fps = 25;  // vivid's fastest rate at 640x480: a 40 ms period
-  c.width = 640;
-  c.height = 480;
-  c.timeout_ms = 2000;
-  c.max_skew_us = max_skew_us;
+  c.timing.width = 640;
+  c.timing.height = 480;
+  c.timing.timeout_ms = 2000;
+  c.timing.max_skew_us = max_skew_us;
   return c;
 }
 
 TEST(V4l2StereoConfig, BadSettingsAreRefusedBeforeAnyDeviceIsOpened) {
   V4l2StereoCamera cam;
   auto c = two_vivids(1000);
-  c.width = 0;
+  c.timing.width = 0;
   EXPECT_EQ(cam.open(c).code(), Errc::invalid_argument);
   c = two_vivids(-1);
   EXPECT_EQ(cam.open(c).code(), Errc::invalid_argument);
   c = two_vivids(1000);
-  c.timeout_ms = 0;
+  c.timing.timeout_ms = 0;
   EXPECT_EQ(cam.open(c).code(), Errc::invalid_argument);
   c = two_vivids(1000);
-  c.max_pair_frames = 0;
+  c.timing.max_pair_frames = 0;
   EXPECT_EQ(cam.open(c).code(), Errc::invalid_argument);
   c = two_vivids(1000);
-  c.layout = StereoLayout::pixel_interleaved;  // GREY cannot carry two views
+  c.timing.layout = StereoLayout::pixel_interleaved;  // GREY cannot carry two views
   auto s = cam.open(c);
   EXPECT_EQ(s.code(), Errc::invalid_argument);
   EXPECT_NE(std::strstr(s.error().message, "2-byte"), nullptr) << s.error().message;
@@ -99,7 +99,7 @@ TEST_F(StereoOnVivid, TwoFreeRunningCamerasArePairedWithinTheSkew) {
 TEST_F(StereoOnVivid, AnImpossibleSkewBoundIsRefusedNamingTheSkew) {
   V4l2StereoCamera cam;
   auto c = two_vivids(0);
-  c.max_pair_frames = 3;
+  c.timing.max_pair_frames = 3;
   ASSERT_TRUE(cam.open(c).ok());
   auto info = test::acquire_pair(cam, left(), right());
   ASSERT_FALSE(info.ok());
@@ -114,8 +114,8 @@ TEST_F(StereoOnVivid, TriggeredPairPulsesTheTriggerOnce) {
   SimGpioOutput trigger;
   V4l2StereoCamera cam;
   auto c = two_vivids(20'000);
-  c.trigger = &trigger;
-  c.trigger_width_us = 200;
+  c.timing.trigger = &trigger;
+  c.timing.trigger_width_us = 200;
   ASSERT_TRUE(cam.open(c).ok());
   auto info = test::acquire_pair(cam, left(), right());
   EXPECT_EQ(trigger.rising_edges(), 1u);
@@ -130,10 +130,10 @@ TEST_F(StereoOnVivid, TriggeredPairPulsesTheTriggerOnce) {
 TEST_F(StereoOnVivid, SideBySideFrameIsSplitIntoTwoViews) {
   // One device 1280x720 carrying two 640x720 views.
   V4l2StereoConfig c;
-  c.layout = StereoLayout::side_by_side;
+  c.timing.layout = StereoLayout::side_by_side;
   set_device(c.left, test::vivid_left(), {PixelFormat::grey});
-  c.width = 640;
-  c.height = 720;
+  c.timing.width = 640;
+  c.timing.height = 720;
   V4l2StereoCamera cam;
   auto s = cam.open(c);
   ASSERT_TRUE(s.ok()) << s.error().message;
@@ -147,10 +147,10 @@ TEST_F(StereoOnVivid, SideBySideFrameIsSplitIntoTwoViews) {
 
 TEST_F(StereoOnVivid, PixelInterleavedFrameIsSplitByteWise) {
   V4l2StereoConfig c;
-  c.layout = StereoLayout::pixel_interleaved;
+  c.timing.layout = StereoLayout::pixel_interleaved;
   set_device(c.left, test::vivid_left(), {PixelFormat::grey, PixelFormat::y16});
-  c.width = 640;
-  c.height = 480;
+  c.timing.width = 640;
+  c.timing.height = 480;
   V4l2StereoCamera cam;
   auto s = cam.open(c);
   ASSERT_TRUE(s.ok()) << s.error().message;
