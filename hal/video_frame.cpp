@@ -12,7 +12,8 @@ constexpr std::uint32_t fourcc(char a, char b, char c, char d) {
 }
 
 constexpr PixelFormat kAll[kPixelFormatCount] = {PixelFormat::grey, PixelFormat::y16,
-                                                 PixelFormat::yuyv};
+                                                 PixelFormat::yuyv, PixelFormat::rgb24,
+                                                 PixelFormat::bgr24};
 
 std::uint64_t pixel_bytes(const FrameFormat& f) {
   return static_cast<std::uint64_t>(f.bytes_per_line) * static_cast<std::uint64_t>(f.height);
@@ -28,6 +29,10 @@ const char* pixel_format_name(PixelFormat f) {
       return "Y16";
     case PixelFormat::yuyv:
       return "YUYV";
+    case PixelFormat::rgb24:
+      return "RGB24";
+    case PixelFormat::bgr24:
+      return "BGR24";
   }
   return "?";
 }
@@ -40,6 +45,10 @@ std::uint32_t pixel_format_fourcc(PixelFormat f) {
       return fourcc('Y', '1', '6', ' ');
     case PixelFormat::yuyv:
       return fourcc('Y', 'U', 'Y', 'V');
+    case PixelFormat::rgb24:
+      return fourcc('R', 'G', 'B', '3');
+    case PixelFormat::bgr24:
+      return fourcc('B', 'G', 'R', '3');
   }
   return 0;
 }
@@ -47,18 +56,29 @@ std::uint32_t pixel_format_fourcc(PixelFormat f) {
 Result<PixelFormat> pixel_format_from_name(std::string_view name) {
   for (PixelFormat f : kAll)
     if (name == pixel_format_name(f)) return f;
-  return Error::make(Errc::invalid_argument, "pixel format '%.*s': expected GREY, Y16 or YUYV",
+  return Error::make(Errc::invalid_argument,
+                     "pixel format '%.*s': expected GREY, Y16, YUYV, RGB24 or BGR24",
                      static_cast<int>(name.size() > 16 ? 16 : name.size()), name.data());
 }
 
 Result<PixelFormat> pixel_format_from_fourcc(std::uint32_t code) {
   for (PixelFormat f : kAll)
     if (code == pixel_format_fourcc(f)) return f;
-  return Error::make(Errc::invalid_argument, "pixel format %08x is not GREY, Y16 or YUYV", code);
+  return Error::make(Errc::invalid_argument, "pixel format %08x is not one Petra reads", code);
 }
 
 int bytes_per_pixel(PixelFormat f) {
-  return f == PixelFormat::grey ? 1 : 2;
+  switch (f) {
+    case PixelFormat::grey:
+      return 1;
+    case PixelFormat::y16:
+    case PixelFormat::yuyv:
+      return 2;
+    case PixelFormat::rgb24:
+    case PixelFormat::bgr24:
+      return 3;
+  }
+  return 1;
 }
 
 const char* frame_fault_name(FrameFault f) {
@@ -164,6 +184,20 @@ Status convert_to_gray(const RawFrame& frame, const FrameFormat& format, int x0,
     return Error::make(Errc::invalid_argument, "convert: frame holds %u bytes, needs %llu",
                        frame.bytes_used, static_cast<unsigned long long>(pixel_bytes(format)));
   const int bpp = bytes_per_pixel(format.pixel);
+  if (bpp == 3) {
+    const bool rgb = format.pixel == PixelFormat::rgb24;
+    for (int y = 0; y < out.height(); ++y) {
+      const std::uint8_t* src = frame.data + static_cast<std::size_t>(y) * format.bytes_per_line +
+                                static_cast<std::size_t>(x0) * 3;
+      std::uint8_t* dst = out.row(y);
+      for (int x = 0; x < out.width(); ++x, src += 3) {
+        const unsigned r = rgb ? src[0] : src[2];
+        const unsigned b = rgb ? src[2] : src[0];
+        dst[x] = static_cast<std::uint8_t>((77 * r + 150 * src[1] + 29 * b + 128) >> 8);
+      }
+    }
+    return ok_status();
+  }
   // Y16 is little-endian: the high byte is the second one. YUYV: luma first.
   const int pick = format.pixel == PixelFormat::y16 ? 1 : 0;
   // Video range 16..235 -> 0..255, rounded and clamped (a 256-entry table on the stack).

@@ -15,11 +15,13 @@ namespace petra::hal {
 
 // GREY: 8-bit luma. Y16: 16-bit little-endian luma (the top 8 bits are kept).
 // YUYV: 4:2:2 packed, luma at every even byte (chroma is dropped).
-enum class PixelFormat : std::uint8_t { grey, y16, yuyv };
-inline constexpr int kPixelFormatCount = 3;
+// RGB24 / BGR24: 3 bytes a pixel in that memory order (what libcamera's vimc
+// and many ISPs give); gray = Rec. 601 luma (77 R + 150 G + 29 B) / 256.
+enum class PixelFormat : std::uint8_t { grey, y16, yuyv, rgb24, bgr24 };
+inline constexpr int kPixelFormatCount = 5;
 
 const char* pixel_format_name(PixelFormat f);
-// V4L2 fourcc code of the format ('GREY', 'Y16 ', 'YUYV').
+// V4L2 fourcc code of the format ('GREY', 'Y16 ', 'YUYV', 'RGB3', 'BGR3').
 std::uint32_t pixel_format_fourcc(PixelFormat f);
 Result<PixelFormat> pixel_format_from_name(std::string_view name);
 Result<PixelFormat> pixel_format_from_fourcc(std::uint32_t fourcc);

@@ -30,7 +30,8 @@ RawFrame frame(const std::vector<std::uint8_t>& px, std::uint32_t seq, std::int6
 }
 
 TEST(PixelFormat, NamesAndFourccRoundTrip) {
-  for (PixelFormat f : {PixelFormat::grey, PixelFormat::y16, PixelFormat::yuyv}) {
+  for (PixelFormat f : {PixelFormat::grey, PixelFormat::y16, PixelFormat::yuyv, PixelFormat::rgb24,
+                        PixelFormat::bgr24}) {
     EXPECT_EQ(*pixel_format_from_name(pixel_format_name(f)), f);
     EXPECT_EQ(*pixel_format_from_fourcc(pixel_format_fourcc(f)), f);
   }
@@ -176,6 +177,22 @@ TEST(ConvertToGray, TakesLumaFromEachFormat) {
   ASSERT_TRUE(convert_to_gray(frame(yuyv, 0, 0), fyuyv, 0, view).ok());
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 4; ++x) EXPECT_EQ(view(x, y), luma[y][x]);
+}
+
+TEST(ConvertToGray, ColourIsRec601LumaInEitherByteOrder) {
+  // white, black, pure red, green, blue, and a mid grey
+  std::vector<std::uint8_t> rgb = {255, 255, 255, 0, 0, 0, 255, 0, 0, 0, 255, 0, 0, 0, 255, 128, 128, 128};
+  std::vector<std::uint8_t> bgr;
+  for (std::size_t i = 0; i < rgb.size(); i += 3) bgr.insert(bgr.end(), {rgb[i + 2], rgb[i + 1], rgb[i]});
+  const std::array<std::uint8_t, 6> want{255, 0, 77, 149, 29, 128};
+  std::array<std::uint8_t, 6> out{};
+  FrameFormat f{PixelFormat::rgb24, 6, 1, 18, 18};
+  ASSERT_TRUE(convert_to_gray(frame(rgb, 0, 0), f, 0, Gray8View(out.data(), 6, 1)).ok());
+  EXPECT_EQ(out, want);
+  f.pixel = PixelFormat::bgr24;
+  out.fill(0);
+  ASSERT_TRUE(convert_to_gray(frame(bgr, 0, 0), f, 0, Gray8View(out.data(), 6, 1)).ok());
+  EXPECT_EQ(out, want);
 }
 
 TEST(ConvertToGray, StretchesVideoRangeLumaToFullRange) {
