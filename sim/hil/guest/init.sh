@@ -52,6 +52,7 @@ echo "  gpio: $GPIO_CHIP ($GPIO_SIM)  uptime $(cut -d' ' -f1 /proc/uptime) s"
 
 # --- checks ------------------------------------------------------------------------
 export PETRA_CAN_IF=vcan0
+export LIBCAMERA_LOG_LEVELS='*:ERROR'  # its INFO/WARN lines would drown the test logs
 cd /tmp
 for c in /hil/checks/*.sh; do
   echo "=== $(basename "$c" .sh)  (uptime $(cut -d' ' -f1 /proc/uptime) s)"

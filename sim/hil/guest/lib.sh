@@ -35,6 +35,9 @@ hil_gtest() {  # hil_gtest PROGRAM [gtest args...]
          split(part[2], rest, " "); print part[1], rest[1] }' "$log" > "/tmp/gtest-$name.cases"
   local cases
   cases=$(wc -l < "/tmp/gtest-$name.cases")
+  # Measured figures the tests print ("figure: ...") are kept in the console log.
+  grep '^figure: ' "$log" | sed 's/^/  | /'
+
   while read -r tag test; do
     case $tag in
       OK) hil_pass "$name/$test" ;;
