@@ -18,6 +18,10 @@ int main(int argc, char** argv) {
   petra::cli::Outcome outcome;
   // One line per subcommand, each defined in its own cmd_<name>.cpp.
   petra::cli::add_info(app, outcome);
+  petra::cli::add_sim(app, outcome);
+  petra::cli::add_score(app, outcome);
+  petra::cli::add_stereo(app, outcome);
+  petra::cli::add_middlebury(app, outcome);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

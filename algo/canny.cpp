@@ -1,0 +1,190 @@
+#include "algo/canny.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace petra {
+
+namespace {
+
+constexpr std::size_t kAlignSlack = 64;  // per arena allocation
+constexpr std::uint8_t kWeak = 0x20;     // candidate during hysteresis only
+
+// tan(22.5 deg) and tan(67.5 deg) in Q15, for the sector test.
+constexpr long kTan22Q15 = 13573;
+constexpr long kTan67Q15 = 79109;
+
+std::size_t sz(int w, int h) { return static_cast<std::size_t>(w) * static_cast<std::size_t>(h); }
+
+// Copies source row `y` (clamped) over columns [x0, x0 + n) with border
+// replication, so the filters below need no bounds checks.
+void padded_row(ConstGray8View img, int y, int x0, int n, std::uint8_t* out) {
+  const std::uint8_t* s = img.row(std::clamp(y, 0, img.height() - 1));
+  const int last = img.width() - 1;
+  if (x0 >= 0 && x0 + n - 1 <= last) {
+    std::copy(s + x0, s + x0 + n, out);
+    return;
+  }
+  for (int i = 0; i < n; ++i) out[i] = s[std::clamp(x0 + i, 0, last)];
+}
+
+}  // namespace
+
+std::size_t canny_scratch_bytes(int w, int h) {
+  if (w <= 0 || h <= 0) return 0;
+  return sz(w + 4, h + 4) + 3 * sizeof(std::int16_t) * sz(w + 2, h + 2) +
+         sizeof(std::uint32_t) * sz(w, h) + (w + 8) + 2 * sizeof(std::uint16_t) * (w + 4) * 5 +
+         7 * kAlignSlack;
+}
+
+Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& params, Arena& scratch,
+                         Gray8View edges) {
+  if (area.empty())
+    return Error::make(Errc::invalid_argument, "canny: area %dx%d is empty", area.w, area.h);
+  if (!area.inside(image.width(), image.height()))
+    return Error::make(Errc::out_of_range, "canny: area (%d,%d %dx%d) outside the %dx%d image",
+                       area.x, area.y, area.w, area.h, image.width(), image.height());
+  if (edges.width() != area.w || edges.height() != area.h)
+    return Error::make(Errc::invalid_argument, "canny: edges are %dx%d, area is %dx%d",
+                       edges.width(), edges.height(), area.w, area.h);
+  if (params.low <= 0 || params.high < params.low)
+    return Error::make(Errc::invalid_argument, "canny: thresholds low %d, high %d (need 0 < low <= high)",
+                       params.low, params.high);
+  ArenaScope scope(scratch);
+  const int w = area.w, h = area.h;
+  const int sw = w + 4, sh = h + 4;  // smoothed: area grown by 2
+  const int gw = w + 2, gh = h + 2;  // gradients: area grown by 1
+  auto sm_buf = scratch.allocate<std::uint8_t>(sz(sw, sh), "canny smoothed image");
+  if (!sm_buf) return sm_buf.error();
+  auto gx_buf = scratch.allocate<std::int16_t>(sz(gw, gh), "canny gx");
+  if (!gx_buf) return gx_buf.error();
+  auto gy_buf = scratch.allocate<std::int16_t>(sz(gw, gh), "canny gy");
+  if (!gy_buf) return gy_buf.error();
+  auto mag_buf = scratch.allocate<std::uint16_t>(sz(gw, gh), "canny magnitude");
+  if (!mag_buf) return mag_buf.error();
+  auto stack = scratch.allocate<std::uint32_t>(sz(w, h), "canny stack");
+  if (!stack) return stack.error();
+  auto src_row = scratch.allocate<std::uint8_t>(static_cast<std::size_t>(w + 8), "canny row");
+  if (!src_row) return src_row.error();
+  auto hring = scratch.allocate<std::uint16_t>(static_cast<std::size_t>(sw) * 5, "canny ring");
+  if (!hring) return hring.error();
+
+  // 1. Smoothing, separable binomial [1 4 6 4 1]/16 per axis: horizontal
+  // rows in a ring of five, then the vertical combination.
+  const ImageView<std::uint8_t> sm = ImageView<std::uint8_t>::over(*sm_buf, sw, sh);
+  auto hfilter = [&](int y_img, std::uint16_t* out) {
+    std::uint8_t* s = src_row->data();
+    padded_row(image, y_img, area.x - 4, w + 8, s);
+    for (int i = 0; i < sw; ++i)  // out[i] is column area.x - 2 + i
+      out[i] = static_cast<std::uint16_t>(s[i] + 4 * s[i + 1] + 6 * s[i + 2] + 4 * s[i + 3] + s[i + 4]);
+  };
+  std::uint16_t* ring = hring->data();
+  const int y_first = area.y - 4;  // first source row needed
+  for (int k = 0; k < 4; ++k) hfilter(y_first + k, ring + (k % 5) * sw);
+  for (int r = 0; r < sh; ++r) {
+    hfilter(y_first + r + 4, ring + ((r + 4) % 5) * sw);
+    const std::uint16_t* a = ring + (r % 5) * sw;
+    const std::uint16_t* b = ring + ((r + 1) % 5) * sw;
+    const std::uint16_t* c = ring + ((r + 2) % 5) * sw;
+    const std::uint16_t* d = ring + ((r + 3) % 5) * sw;
+    const std::uint16_t* e = ring + ((r + 4) % 5) * sw;
+    std::uint8_t* o = sm.row(r);
+    for (int i = 0; i < sw; ++i)
+      o[i] = static_cast<std::uint8_t>((a[i] + 4 * b[i] + 6 * c[i] + 4 * d[i] + e[i] + 128) >> 8);
+  }
+
+  // 2. Sobel on the smoothed image.
+  const ImageView<std::int16_t> gx = ImageView<std::int16_t>::over(*gx_buf, gw, gh);
+  const ImageView<std::int16_t> gy = ImageView<std::int16_t>::over(*gy_buf, gw, gh);
+  const ImageView<std::uint16_t> mg = ImageView<std::uint16_t>::over(*mag_buf, gw, gh);
+  for (int j = 0; j < gh; ++j) {
+    const std::uint8_t* __restrict up = sm.row(j);
+    const std::uint8_t* __restrict mid = sm.row(j + 1);
+    const std::uint8_t* __restrict dn = sm.row(j + 2);
+    std::int16_t* __restrict ox = gx.row(j);
+    std::int16_t* __restrict oy = gy.row(j);
+    std::uint16_t* __restrict om = mg.row(j);
+    for (int i = 0; i < gw; ++i) {
+      const int vx = (up[i + 2] + 2 * mid[i + 2] + dn[i + 2]) - (up[i] + 2 * mid[i] + dn[i]);
+      const int vy = (dn[i] + 2 * dn[i + 1] + dn[i + 2]) - (up[i] + 2 * up[i + 1] + up[i + 2]);
+      ox[i] = static_cast<std::int16_t>(vx);
+      oy[i] = static_cast<std::int16_t>(vy);
+      om[i] = static_cast<std::uint16_t>((vx < 0 ? -vx : vx) + (vy < 0 ? -vy : vy));
+    }
+  }
+
+  // 3. Non-maximum suppression; strong pixels seed the stack.
+  auto mag = [&](int i, int j) { return static_cast<int>(mg(i, j)); };
+  CannyStats stats;
+  std::size_t top = 0;
+  for (int j = 0; j < h; ++j) {
+    std::uint8_t* out = edges.row(j);
+    std::fill(out, out + w, std::uint8_t{0});
+    const std::uint16_t* mrow = mg.row(j + 1) + 1;
+    for (int i = 0; i < w; ++i) {
+      if (mrow[i] < params.low) continue;  // most pixels: one compare
+      const int x = i + 1, y = j + 1;       // gradient coordinates
+      const int m = mrow[i];
+      const long ax = std::abs(gx(x, y)), ay = std::abs(gy(x, y));
+      int sector, n1, n2;
+      if (ay * 32768 <= ax * kTan22Q15) {
+        sector = kSectorHorizontal;
+        n1 = mag(x - 1, y);
+        n2 = mag(x + 1, y);
+      } else if (ay * 32768 >= ax * kTan67Q15) {
+        sector = kSectorVertical;
+        n1 = mag(x, y - 1);
+        n2 = mag(x, y + 1);
+      } else if ((gx(x, y) > 0) == (gy(x, y) > 0)) {
+        sector = kSectorDiagonal;
+        n1 = mag(x - 1, y - 1);
+        n2 = mag(x + 1, y + 1);
+      } else {
+        sector = kSectorAntiDiagonal;
+        n1 = mag(x + 1, y - 1);
+        n2 = mag(x - 1, y + 1);
+      }
+      // Strict on one side, so a plateau of two equal pixels keeps one.
+      if (!(m > n1 && m >= n2)) continue;
+      const std::uint8_t code = static_cast<std::uint8_t>(sector | (gx(x, y) < 0 ? kEdgeGxNegative : 0));
+      if (m >= params.high) {
+        out[i] = static_cast<std::uint8_t>(code | kEdgeBit);
+        (*stack)[top++] = static_cast<std::uint32_t>(j * w + i);
+        ++stats.strong_pixels;
+      } else {
+        out[i] = static_cast<std::uint8_t>(code | kWeak);
+      }
+    }
+  }
+
+  // 4. Hysteresis: grow strong edges into 8-connected weak pixels. A pixel is
+  // pushed only when it becomes an edge, so the stack never exceeds w*h.
+  const std::size_t capacity = stack->size();
+  while (top > 0) {
+    const std::uint32_t p = (*stack)[--top];
+    const int j = static_cast<int>(p / static_cast<std::uint32_t>(w));
+    const int i = static_cast<int>(p % static_cast<std::uint32_t>(w));
+    for (int dj = -1; dj <= 1; ++dj) {
+      const int jj = j + dj;
+      if (jj < 0 || jj >= h) continue;
+      std::uint8_t* row = edges.row(jj);
+      for (int di = -1; di <= 1; ++di) {
+        const int ii = i + di;
+        if (ii < 0 || ii >= w || (row[ii] & kWeak) == 0) continue;
+        row[ii] = static_cast<std::uint8_t>((row[ii] & ~kWeak) | kEdgeBit);
+        PETRA_ASSERT(top < capacity);
+        (*stack)[top++] = static_cast<std::uint32_t>(jj * w + ii);
+      }
+    }
+  }
+  for (int j = 0; j < h; ++j) {
+    std::uint8_t* row = edges.row(j);
+    for (int i = 0; i < w; ++i) {
+      if (row[i] & kWeak) row[i] = 0;
+      stats.edge_pixels += is_edge(row[i]);
+    }
+  }
+  return stats;
+}
+
+}  // namespace petra
