@@ -72,7 +72,8 @@ Status GpiodOutput::open(const GpioLineConfig& config, const char* consumer, boo
   close();
   config_ = config;
   PETRA_TRY(find_line(config, chip_, line_));
-  if (gpiod_line_request_output_flags(line_, consumer, request_flags(config), initial ? 1 : 0) < 0) {
+  if (gpiod_line_request_output_flags(line_, consumer, request_flags(config), initial ? 1 : 0) <
+      0) {
     const int err = errno;
     release(chip_, line_);
     return Error::make(Errc::io_error, "gpio %s/%s: cannot request as output: %s",

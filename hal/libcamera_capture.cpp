@@ -6,9 +6,9 @@
 #if PETRA_HAVE_LIBCAMERA
 #include <sys/mman.h>
 
+#include <libcamera/libcamera.h>
 #include <chrono>
 #include <condition_variable>
-#include <libcamera/libcamera.h>
 #include <mutex>
 #include <vector>
 #endif
@@ -114,7 +114,8 @@ Status LibcameraCapture::open(const LibcameraCaptureConfig& cfg) {
   if (cfg.width <= 0 || cfg.height <= 0 || cfg.width > 8192 || cfg.height > 8192)
     return Error::make(Errc::invalid_argument, "camera: size %dx%d outside 1..8192", cfg.width,
                        cfg.height);
-  if (cfg.formats.empty()) return Error::make(Errc::missing_field, "camera.formats: none configured");
+  if (cfg.formats.empty())
+    return Error::make(Errc::missing_field, "camera.formats: none configured");
   if (cfg.buffers < 2 || cfg.buffers > kMaxBuffers)
     return Error::make(Errc::invalid_argument, "camera.buffers: %d outside 2..%d", cfg.buffers,
                        kMaxBuffers);
@@ -289,7 +290,8 @@ void LibcameraCapture::close() {
 Result<RawFrame> LibcameraCapture::next(int timeout_ms) {
   if (!is_open() || !impl_->started)
     return Error::make(Errc::not_ready, "camera: next() while not streaming");
-  if (timeout_ms < 0) return Error::make(Errc::invalid_argument, "camera: timeout_ms %d < 0", timeout_ms);
+  if (timeout_ms < 0)
+    return Error::make(Errc::invalid_argument, "camera: timeout_ms %d < 0", timeout_ms);
   Impl& m = *impl_;
   if (m.held != nullptr) {
     lc::Request* r = m.held;

@@ -18,8 +18,8 @@ const char* stereo_layout_name(StereoLayout layout) {
 
 Status check_stereo_timing(const StereoTiming& t) {
   if (t.width <= 0 || t.height <= 0)
-    return Error::make(Errc::invalid_argument, "stereo: view size %dx%d must be positive",
-                       t.width, t.height);
+    return Error::make(Errc::invalid_argument, "stereo: view size %dx%d must be positive", t.width,
+                       t.height);
   if (t.timeout_ms <= 0 || t.timeout_ms > 60'000)
     return Error::make(Errc::invalid_argument, "stereo: timeout_ms %d outside 1..60000",
                        t.timeout_ms);
@@ -111,9 +111,9 @@ Result<StereoFrameInfo> two_cameras(const StereoTiming& t, FrameSource& left, Fr
 
 }  // namespace
 
-Result<StereoFrameInfo> assemble_pair(const StereoTiming& t, FrameSource& left,
-                                      FrameSource* right, Gray8View left_view,
-                                      Gray8View right_view, StereoHealth& health) {
+Result<StereoFrameInfo> assemble_pair(const StereoTiming& t, FrameSource& left, FrameSource* right,
+                                      Gray8View left_view, Gray8View right_view,
+                                      StereoHealth& health) {
   if (left_view.width() != t.width || left_view.height() != t.height ||
       right_view.width() != t.width || right_view.height() != t.height)
     return Error::make(Errc::invalid_argument, "stereo: views %dx%d and %dx%d, camera gives %dx%d",

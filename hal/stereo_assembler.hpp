@@ -49,8 +49,8 @@ struct StereoHealth {
 
 // One pair into left/right (both t.width x t.height). `right` is null for the
 // one-camera layouts. Faults are counted in `health`.
-Result<StereoFrameInfo> assemble_pair(const StereoTiming& t, FrameSource& left,
-                                      FrameSource* right, Gray8View left_view,
-                                      Gray8View right_view, StereoHealth& health);
+Result<StereoFrameInfo> assemble_pair(const StereoTiming& t, FrameSource& left, FrameSource* right,
+                                      Gray8View left_view, Gray8View right_view,
+                                      StereoHealth& health);
 
 }  // namespace petra::hal

@@ -85,13 +85,13 @@ Status V4l2Capture::open(const V4l2CaptureConfig& config) {
   close();
   if (config.device[0] == '\0') return Error::make(Errc::missing_field, "camera.device: empty");
   if (config.width <= 0 || config.height <= 0 || config.width > 8192 || config.height > 8192)
-    return Error::make(Errc::invalid_argument, "camera: size %dx%d outside 1..8192",
-                       config.width, config.height);
+    return Error::make(Errc::invalid_argument, "camera: size %dx%d outside 1..8192", config.width,
+                       config.height);
   if (config.formats.empty())
     return Error::make(Errc::missing_field, "camera.formats: none configured");
   if (config.buffers < 2 || config.buffers > kMaxBuffers)
-    return Error::make(Errc::invalid_argument, "camera.buffers: %d outside 2..%d",
-                       config.buffers, kMaxBuffers);
+    return Error::make(Errc::invalid_argument, "camera.buffers: %d outside 2..%d", config.buffers,
+                       kMaxBuffers);
   gaps_are_faults_ = config.gaps_are_faults;
   if (config.device[0] == '/') {
     std::snprintf(path_.data(), path_.size(), "%s", config.device.data());
@@ -195,9 +195,11 @@ Status V4l2Capture::open(const V4l2CaptureConfig& config) {
     // The driver picks the nearest rate it has: anything else than asked is refused.
     if ((parm.parm.capture.capability & V4L2_CAP_TIMEPERFRAME) == 0 || tpf.numerator == 0 ||
         static_cast<std::uint64_t>(tpf.denominator) * 100 <
-            static_cast<std::uint64_t>(tpf.numerator) * static_cast<std::uint64_t>(config.fps) * 99 ||
+            static_cast<std::uint64_t>(tpf.numerator) * static_cast<std::uint64_t>(config.fps) *
+                99 ||
         static_cast<std::uint64_t>(tpf.denominator) * 100 >
-            static_cast<std::uint64_t>(tpf.numerator) * static_cast<std::uint64_t>(config.fps) * 101) {
+            static_cast<std::uint64_t>(tpf.numerator) * static_cast<std::uint64_t>(config.fps) *
+                101) {
       close();
       return Error::make(Errc::invalid_argument, "%s: device runs at %u/%u fps, configured %d",
                          path_.data(), tpf.denominator, tpf.numerator, config.fps);
@@ -309,8 +311,8 @@ Status V4l2Capture::dequeue(RawFrame& out, bool& got) {
   }
   if (b.index >= static_cast<std::uint32_t>(buffer_count_)) {
     ++health_.device_errors;
-    return Error::make(Errc::io_error, "%s: driver returned buffer %u of %d", path_.data(),
-                       b.index, buffer_count_);
+    return Error::make(Errc::io_error, "%s: driver returned buffer %u of %d", path_.data(), b.index,
+                       buffer_count_);
   }
   held_ = static_cast<int>(b.index);
   got = true;
@@ -324,13 +326,16 @@ Status V4l2Capture::dequeue(RawFrame& out, bool& got) {
   // gets the dequeue time, so the skew and ordering checks still mean something.
   if ((b.flags & V4L2_BUF_FLAG_TIMESTAMP_MASK) != V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC)
     out.time_ns = monotonic_ns();
-  if (out.bytes_used > length_[b.index]) out.bytes_used = static_cast<std::uint32_t>(length_[b.index]);
+  if (out.bytes_used > length_[b.index])
+    out.bytes_used = static_cast<std::uint32_t>(length_[b.index]);
   return ok_status();
 }
 
 Result<RawFrame> V4l2Capture::next(int timeout_ms) {
-  if (fd_ < 0 || !streaming_) return Error::make(Errc::not_ready, "camera: next() while not streaming");
-  if (timeout_ms < 0) return Error::make(Errc::invalid_argument, "camera: timeout_ms %d < 0", timeout_ms);
+  if (fd_ < 0 || !streaming_)
+    return Error::make(Errc::not_ready, "camera: next() while not streaming");
+  if (timeout_ms < 0)
+    return Error::make(Errc::invalid_argument, "camera: timeout_ms %d < 0", timeout_ms);
   PETRA_TRY(requeue_held());
   const std::int64_t deadline = monotonic_ns() + static_cast<std::int64_t>(timeout_ms) * 1'000'000;
   bool poll_error = false;
@@ -369,13 +374,14 @@ Result<RawFrame> V4l2Capture::next(int timeout_ms) {
     const int wait_ms = static_cast<int>((left_ns + 999'999) / 1'000'000);
     const int r = ::poll(&p, 1, wait_ms);
     if (r < 0 && errno != EINTR) return fail_device("poll", errno);
-    poll_error = r > 0 && (p.revents & (POLLERR | POLLHUP | POLLNVAL)) != 0 &&
-                 (p.revents & POLLIN) == 0;
+    poll_error =
+        r > 0 && (p.revents & (POLLERR | POLLHUP | POLLNVAL)) != 0 && (p.revents & POLLIN) == 0;
   }
 }
 
 Result<int> V4l2Capture::flush() {
-  if (fd_ < 0 || !streaming_) return Error::make(Errc::not_ready, "camera: flush() while not streaming");
+  if (fd_ < 0 || !streaming_)
+    return Error::make(Errc::not_ready, "camera: flush() while not streaming");
   PETRA_TRY(requeue_held());
   int dropped = 0;
   for (int i = 0; i < kMaxBuffers * 2; ++i) {

@@ -11,9 +11,8 @@ constexpr std::uint32_t fourcc(char a, char b, char c, char d) {
          static_cast<std::uint32_t>(static_cast<unsigned char>(d)) << 24;
 }
 
-constexpr PixelFormat kAll[kPixelFormatCount] = {PixelFormat::grey, PixelFormat::y16,
-                                                 PixelFormat::yuyv, PixelFormat::rgb24,
-                                                 PixelFormat::bgr24};
+constexpr PixelFormat kAll[kPixelFormatCount] = {
+    PixelFormat::grey, PixelFormat::y16, PixelFormat::yuyv, PixelFormat::rgb24, PixelFormat::bgr24};
 
 std::uint64_t pixel_bytes(const FrameFormat& f) {
   return static_cast<std::uint64_t>(f.bytes_per_line) * static_cast<std::uint64_t>(f.height);
@@ -113,8 +112,8 @@ Status check_negotiated(const FrameFormat& got, PixelFormat want_pixel, int want
   if (got.width != want_width || got.height != want_height)
     return Error::make(Errc::invalid_argument, "format: device gives %dx%d, configured %dx%d",
                        got.width, got.height, want_width, want_height);
-  const std::uint64_t min_line =
-      static_cast<std::uint64_t>(got.width) * static_cast<std::uint64_t>(bytes_per_pixel(got.pixel));
+  const std::uint64_t min_line = static_cast<std::uint64_t>(got.width) *
+                                 static_cast<std::uint64_t>(bytes_per_pixel(got.pixel));
   if (got.bytes_per_line < min_line)
     return Error::make(Errc::invalid_argument,
                        "format: bytes_per_line %u cannot hold %d %s pixels (%llu bytes)",
@@ -177,9 +176,8 @@ Status FrameChecker::check(const RawFrame& frame, FrameFault& fault) {
 Status convert_to_gray(const RawFrame& frame, const FrameFormat& format, int x0, Gray8View out) {
   if (x0 < 0 || out.width() <= 0 || out.height() <= 0 || x0 + out.width() > format.width ||
       out.height() > format.height)
-    return Error::make(Errc::out_of_range,
-                       "convert: region x0=%d %dx%d outside the %dx%d frame", x0, out.width(),
-                       out.height(), format.width, format.height);
+    return Error::make(Errc::out_of_range, "convert: region x0=%d %dx%d outside the %dx%d frame",
+                       x0, out.width(), out.height(), format.width, format.height);
   if (frame.data == nullptr || frame.bytes_used < pixel_bytes(format))
     return Error::make(Errc::invalid_argument, "convert: frame holds %u bytes, needs %llu",
                        frame.bytes_used, static_cast<unsigned long long>(pixel_bytes(format)));

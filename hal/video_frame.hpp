@@ -49,9 +49,9 @@ Status check_negotiated(const FrameFormat& got, PixelFormat want_pixel, int want
 struct RawFrame {
   const std::uint8_t* data = nullptr;
   std::uint32_t bytes_used = 0;
-  std::uint32_t sequence = 0;    // driver's frame counter
-  std::int64_t time_ns = 0;      // capture time, CLOCK_MONOTONIC
-  bool driver_error = false;     // the driver flagged the buffer as corrupted
+  std::uint32_t sequence = 0;  // driver's frame counter
+  std::int64_t time_ns = 0;    // capture time, CLOCK_MONOTONIC
+  bool driver_error = false;   // the driver flagged the buffer as corrupted
 };
 
 // Why a frame was rejected (the last one is kept in CameraHealth).
@@ -70,8 +70,8 @@ const char* frame_fault_name(FrameFault f);
 
 // Counters for housekeeping, per device.
 struct CameraHealth {
-  std::uint32_t frames = 0;    // frames accepted
-  std::uint32_t rejected = 0;  // frames refused by FrameChecker
+  std::uint32_t frames = 0;       // frames accepted
+  std::uint32_t rejected = 0;     // frames refused by FrameChecker
   std::uint32_t frames_lost = 0;  // sum of sequence gaps
   std::uint32_t timeouts = 0;
   std::uint32_t device_errors = 0;

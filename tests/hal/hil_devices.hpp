@@ -29,11 +29,19 @@ inline std::string env_or(const char* name, const char* fallback) {
 
 // The bench loads vivid with three capture-only instances: 0 and 1 are the
 // stereo pair, 2 is the one the tests may disconnect.
-inline std::string vivid_left() { return env_or("PETRA_TEST_V4L2_LEFT", "vivid-000-vid-cap"); }
-inline std::string vivid_right() { return env_or("PETRA_TEST_V4L2_RIGHT", "vivid-001-vid-cap"); }
-inline std::string vivid_spare() { return env_or("PETRA_TEST_V4L2_SPARE", "vivid-002-vid-cap"); }
+inline std::string vivid_left() {
+  return env_or("PETRA_TEST_V4L2_LEFT", "vivid-000-vid-cap");
+}
+inline std::string vivid_right() {
+  return env_or("PETRA_TEST_V4L2_RIGHT", "vivid-001-vid-cap");
+}
+inline std::string vivid_spare() {
+  return env_or("PETRA_TEST_V4L2_SPARE", "vivid-002-vid-cap");
+}
 // The bench's gpio-sim bank label and line names.
-inline std::string gpio_chip() { return env_or("PETRA_TEST_GPIO_CHIP", "petra-hil"); }
+inline std::string gpio_chip() {
+  return env_or("PETRA_TEST_GPIO_CHIP", "petra-hil");
+}
 
 // "/dev/videoN" for a node name, or "" when there is none.
 inline std::string video_path(const std::string& name) {
@@ -48,16 +56,16 @@ inline std::string video_path(const std::string& name) {
 // that check take the next frame instead (at most 3 times).
 inline Result<hal::RawFrame> next_frame(hal::V4l2Capture& cam, int timeout_ms) {
   auto f = cam.next(timeout_ms);
-  for (int i = 0; i < 3 && !f.ok() && cam.health().last_fault == hal::FrameFault::sequence_backwards;
-       ++i)
+  for (int i = 0;
+       i < 3 && !f.ok() && cam.health().last_fault == hal::FrameFault::sequence_backwards; ++i)
     f = cam.next(timeout_ms);
   return f;
 }
 inline Result<hal::StereoFrameInfo> acquire_pair(hal::V4l2StereoCamera& cam, Gray8View left,
                                                  Gray8View right) {
   auto f = cam.acquire(left, right);
-  for (int i = 0; i < 3 && !f.ok() && cam.health().last_fault == hal::FrameFault::sequence_backwards;
-       ++i)
+  for (int i = 0;
+       i < 3 && !f.ok() && cam.health().last_fault == hal::FrameFault::sequence_backwards; ++i)
     f = cam.acquire(left, right);
   return f;
 }

@@ -84,7 +84,8 @@ TEST_F(GpiodOnGpioSim, ArmPowerOutputDrivesTheLine) {
 
 TEST_F(GpiodOnGpioSim, ActiveLowOutputIsInvertedOnTheWire) {
   GpiodOutput out;
-  ASSERT_TRUE(out.open(line_config(test::gpio_chip(), "arm_power", true), "petra-test", false).ok());
+  ASSERT_TRUE(
+      out.open(line_config(test::gpio_chip(), "arm_power", true), "petra-test", false).ok());
   const std::string value = sim_file("arm_power", "value");
   EXPECT_EQ(test::read_text(value), "1");  // inactive = high
   ASSERT_TRUE(out.set(true).ok());
@@ -93,7 +94,8 @@ TEST_F(GpiodOnGpioSim, ActiveLowOutputIsInvertedOnTheWire) {
 
 TEST_F(GpiodOnGpioSim, TriggerPulseIsSeenOnTheWire) {
   GpiodOutput trigger;
-  ASSERT_TRUE(trigger.open(line_config(test::gpio_chip(), "cam_trigger"), "petra-test", false).ok());
+  ASSERT_TRUE(
+      trigger.open(line_config(test::gpio_chip(), "cam_trigger"), "petra-test", false).ok());
   const std::string value = sim_file("cam_trigger", "value");
   // Watch the wire from the gpio-sim side while the pulse runs.
   std::atomic<bool> stop{false};

@@ -132,8 +132,8 @@ TEST_F(LibcameraOnVimc, SideBySidePairFromOneCamera) {
   t.timeout_ms = 5000;
   std::vector<std::uint8_t> l(kW * kH), r(kW * kH);
   StereoHealth h;
-  auto info = assemble_pair(t, cam, nullptr, Gray8View(l.data(), kW, kH),
-                            Gray8View(r.data(), kW, kH), h);
+  auto info =
+      assemble_pair(t, cam, nullptr, Gray8View(l.data(), kW, kH), Gray8View(r.data(), kW, kH), h);
   ASSERT_TRUE(info.ok()) << info.error().message;
   EXPECT_EQ(h.pairs, 1u);
   EXPECT_NE(l, r) << "the two halves of vimc's pattern should differ";

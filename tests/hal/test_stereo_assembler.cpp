@@ -170,7 +170,8 @@ TEST(StereoAssembler, OneCameraSideBySideAndPixelInterleaved) {
   Views v;
   StereoHealth h;
   ScriptedSource sbs(8, 2, PixelFormat::grey, {{1, 1000, 0}});
-  auto a = assemble_pair(timing(0, StereoLayout::side_by_side), sbs, nullptr, v.left(), v.right(), h);
+  auto a =
+      assemble_pair(timing(0, StereoLayout::side_by_side), sbs, nullptr, v.left(), v.right(), h);
   ASSERT_TRUE(a.ok()) << a.error().message;
   EXPECT_EQ(v.l, (std::array<std::uint8_t, 8>{0, 1, 2, 3, 8, 9, 10, 11}));
   EXPECT_EQ(v.r, (std::array<std::uint8_t, 8>{4, 5, 6, 7, 12, 13, 14, 15}));
@@ -182,10 +183,10 @@ TEST(StereoAssembler, OneCameraSideBySideAndPixelInterleaved) {
   EXPECT_EQ(v.l, (std::array<std::uint8_t, 8>{0, 2, 4, 6, 8, 10, 12, 14}));
   EXPECT_EQ(v.r, (std::array<std::uint8_t, 8>{1, 3, 5, 7, 9, 11, 13, 15}));
   ScriptedSource narrow(4, 2, PixelFormat::grey, {{1, 1000, 0}});
-  EXPECT_EQ(assemble_pair(timing(0, StereoLayout::side_by_side), narrow, nullptr, v.left(),
-                          v.right(), h)
-                .code(),
-            Errc::invalid_argument);
+  EXPECT_EQ(
+      assemble_pair(timing(0, StereoLayout::side_by_side), narrow, nullptr, v.left(), v.right(), h)
+          .code(),
+      Errc::invalid_argument);
 }
 
 TEST(StereoAssembler, WrongViewsAndMissingRightCameraAreRefused) {
@@ -193,9 +194,9 @@ TEST(StereoAssembler, WrongViewsAndMissingRightCameraAreRefused) {
   std::array<std::uint8_t, 8> small{};
   Views v;
   StereoHealth h;
-  EXPECT_EQ(assemble_pair(timing(0), left, &left, Gray8View(small.data(), 2, 2), v.right(), h)
-                .code(),
-            Errc::invalid_argument);
+  EXPECT_EQ(
+      assemble_pair(timing(0), left, &left, Gray8View(small.data(), 2, 2), v.right(), h).code(),
+      Errc::invalid_argument);
   EXPECT_EQ(assemble_pair(timing(0), left, nullptr, v.left(), v.right(), h).code(),
             Errc::invalid_argument);
   EXPECT_EQ(left.reads(), 0u);

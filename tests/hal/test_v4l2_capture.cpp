@@ -248,7 +248,8 @@ TEST(V4l2OnVividSpare, ADisconnectedCameraEndsAsDeviceLost) {
   ASSERT_TRUE(test::next_frame(cam, 2000).ok());
   ASSERT_TRUE(test::set_v4l2_control(spare, "Disconnect", 1));
   Result<RawFrame> f = test::next_frame(cam, 2000);
-  for (int i = 0; i < 8 && f.ok(); ++i) f = test::next_frame(cam, 2000);  // frames already done may still come
+  for (int i = 0; i < 8 && f.ok(); ++i)
+    f = test::next_frame(cam, 2000);  // frames already done may still come
   ASSERT_FALSE(f.ok());
   EXPECT_EQ(f.code(), Errc::io_error) << f.error().message;
   EXPECT_EQ(cam.health().last_fault, FrameFault::device_lost) << f.error().message;

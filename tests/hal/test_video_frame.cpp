@@ -181,9 +181,11 @@ TEST(ConvertToGray, TakesLumaFromEachFormat) {
 
 TEST(ConvertToGray, ColourIsRec601LumaInEitherByteOrder) {
   // white, black, pure red, green, blue, and a mid grey
-  std::vector<std::uint8_t> rgb = {255, 255, 255, 0, 0, 0, 255, 0, 0, 0, 255, 0, 0, 0, 255, 128, 128, 128};
+  std::vector<std::uint8_t> rgb = {255, 255, 255, 0, 0, 0,   255, 0,   0,
+                                   0,   255, 0,   0, 0, 255, 128, 128, 128};
   std::vector<std::uint8_t> bgr;
-  for (std::size_t i = 0; i < rgb.size(); i += 3) bgr.insert(bgr.end(), {rgb[i + 2], rgb[i + 1], rgb[i]});
+  for (std::size_t i = 0; i < rgb.size(); i += 3)
+    bgr.insert(bgr.end(), {rgb[i + 2], rgb[i + 1], rgb[i]});
   const std::array<std::uint8_t, 6> want{255, 0, 77, 149, 29, 128};
   std::array<std::uint8_t, 6> out{};
   FrameFormat f{PixelFormat::rgb24, 6, 1, 18, 18};
