@@ -12,11 +12,6 @@ namespace petra::hal {
 
 namespace {
 
-const char* errno_text(int err) {
-  const char* s = strerrordesc_np(err);
-  return s != nullptr ? s : "unknown error";
-}
-
 Status check_config(const GpioLineConfig& c) {
   if (c.chip[0] == '\0') return Error::make(Errc::missing_field, "gpio: chip is empty");
   if (c.line[0] == '\0')
@@ -25,6 +20,11 @@ Status check_config(const GpioLineConfig& c) {
 }
 
 #if PETRA_HAVE_LIBGPIOD
+const char* errno_text(int err) {
+  const char* s = strerrordesc_np(err);
+  return s != nullptr ? s : "unknown error";
+}
+
 // Opens the chip and finds the named line on it; errors name both.
 Status find_line(const GpioLineConfig& c, gpiod_chip*& chip, gpiod_line*& line) {
   PETRA_TRY(check_config(c));

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "tests/hal/hil_devices.hpp"
+#include "tests/hal/thread_probe.hpp"
 #include "tests/support/heap_counter.hpp"
 
 namespace petra::hal {
@@ -93,6 +94,7 @@ TEST_F(GpiodOnGpioSim, ActiveLowOutputIsInvertedOnTheWire) {
 }
 
 TEST_F(GpiodOnGpioSim, TriggerPulseIsSeenOnTheWire) {
+  PETRA_REQUIRE_THREADS();
   GpiodOutput trigger;
   ASSERT_TRUE(
       trigger.open(line_config(test::gpio_chip(), "cam_trigger"), "petra-test", false).ok());
@@ -127,6 +129,7 @@ TEST_F(GpiodOnGpioSim, TriggerPulseIsSeenOnTheWire) {
 }
 
 TEST_F(GpiodOnGpioSim, EstopInputReadsAndWaitsForTheEdge) {
+  PETRA_REQUIRE_THREADS();
   const std::string pull = sim_file("estop", "pull");
   ASSERT_TRUE(test::write_text(pull, "pull-up"));  // normally closed loop: high = not pressed
   GpiodInput estop;

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <thread>
 
+#include "tests/hal/thread_probe.hpp"
 #include "tests/support/heap_counter.hpp"
 
 namespace petra::hal {
@@ -45,6 +46,7 @@ TEST(GpioPulse, NoHeap) {
 }
 
 TEST(SimGpioInput, EdgesReachAWaitingThreadInOrder) {
+  PETRA_REQUIRE_THREADS();
   SimGpioInput in;
   std::thread outside([&] {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -88,6 +90,7 @@ TEST(SimGpioInput, SameLevelIsNoEdgeAndAFullQueueCountsOverflows) {
 }
 
 TEST(SimGpioInput, DisconnectWakesTheWaiterWithAnError) {
+  PETRA_REQUIRE_THREADS();
   SimGpioInput in;
   std::thread outside([&] {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
