@@ -22,6 +22,11 @@ int main(int argc, char** argv) {
   petra::cli::add_score(app, outcome);
   petra::cli::add_stereo(app, outcome);
   petra::cli::add_middlebury(app, outcome);
+  petra::cli::add_cmd(app, outcome);
+  petra::cli::add_tlm(app, outcome);
+  petra::cli::add_keygen(app, outcome);
+  petra::cli::add_icd(app, outcome);
+  petra::cli::add_demo(app, outcome);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
