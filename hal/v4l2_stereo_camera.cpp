@@ -1,5 +1,7 @@
 #include "hal/v4l2_stereo_camera.hpp"
 
+#include <ctime>
+
 namespace petra::hal {
 
 Status V4l2StereoCamera::open(const V4l2StereoConfig& config) {
@@ -62,12 +64,30 @@ void V4l2StereoCamera::close() {
   sequence_ = 0;
 }
 
-Result<StereoFrameInfo> V4l2StereoCamera::acquire(Gray8View left, Gray8View right) {
+namespace {
+
+std::int64_t clock_ns(clockid_t id) {
+  timespec ts{};
+  clock_gettime(id, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+}  // namespace
+
+Result<FrameMeta> V4l2StereoCamera::acquire(Gray8View left, Gray8View right) {
   if (!left_.is_open()) return Error::make(Errc::not_ready, "stereo: acquire() before open()");
   const bool two = config_.timing.layout == StereoLayout::two_devices;
   auto r = assemble_pair(config_.timing, left_, two ? &right_ : nullptr, left, right, health_);
-  if (r) r->sequence = ++sequence_;
-  return r;
+  if (!r) return r.error();
+  r->sequence = ++sequence_;
+  last_ = *r;
+  const std::int64_t offset = clock_ns(CLOCK_REALTIME) - clock_ns(CLOCK_MONOTONIC);
+  FrameMeta meta;
+  meta.sequence = r->sequence;
+  meta.left_time_ns = r->left_time_ns + offset;
+  meta.right_time_ns = r->right_time_ns + offset;
+  meta.source_index = r->left_sequence;
+  return meta;
 }
 
 }  // namespace petra::hal

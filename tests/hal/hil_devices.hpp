@@ -61,8 +61,8 @@ inline Result<hal::RawFrame> next_frame(hal::V4l2Capture& cam, int timeout_ms) {
     f = cam.next(timeout_ms);
   return f;
 }
-inline Result<hal::StereoFrameInfo> acquire_pair(hal::V4l2StereoCamera& cam, Gray8View left,
-                                                 Gray8View right) {
+inline Result<hal::FrameMeta> acquire_pair(hal::V4l2StereoCamera& cam, Gray8View left,
+                                           Gray8View right) {
   auto f = cam.acquire(left, right);
   for (int i = 0;
        i < 3 && !f.ok() && cam.health().last_fault == hal::FrameFault::sequence_backwards; ++i)

@@ -7,8 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <ctime>
+#include <string>
 #include <vector>
 
+#include "hal/device_config.hpp"
 #include "hal/gpio_sim.hpp"
 #include "hal/stereo_pairing.hpp"
 #include "tests/hal/hil_devices.hpp"
@@ -161,6 +164,32 @@ TEST_F(StereoOnVivid, PixelInterleavedFrameIsSplitByteWise) {
   long differs = 0;
   for (std::size_t k = 0; k < r_.size(); k += 101) differs += r_[k] != r_[0];
   EXPECT_GT(differs, 0);
+}
+
+TEST_F(StereoOnVivid, OpensFromTheConfigurationAndStampsPairsInRealTime) {
+  const std::string text = "{\"kind\":\"v4l2\",\"left\":\"" + test::vivid_left() +
+                           "\",\"right\":\"" + test::vivid_right() +
+                           "\",\"width\":640,\"height\":480,\"formats\":[\"GREY\"],"
+                           "\"fps\":25,\"max_skew_us\":25000,\"timeout_ms\":2000}";
+  std::array<json::Token, 64> tokens{};
+  auto doc = json::Document::parse(text, tokens);
+  ASSERT_TRUE(doc.ok()) << doc.error().message;
+  auto section = parse_v4l2_camera(*doc, 0);
+  ASSERT_TRUE(section.ok()) << section.error().message;
+  V4l2StereoCamera cam;
+  auto s = cam.open(section->config);
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  StereoCamera& generic = cam;  // the executive's interface
+  EXPECT_STREQ(generic.name(), "v4l2");
+  auto meta = test::acquire_pair(cam, left(), right());
+  ASSERT_TRUE(meta.ok()) << meta.error().message;
+  timespec now{};
+  clock_gettime(CLOCK_REALTIME, &now);
+  const std::int64_t now_ns = static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
+  EXPECT_LE(meta->left_time_ns, now_ns);
+  EXPECT_GT(meta->left_time_ns, now_ns - 10'000'000'000);  // taken within the last 10 s
+  EXPECT_EQ(meta->sequence, 1u);
+  EXPECT_EQ(cam.last_info().left_sequence, meta->source_index);
 }
 
 }  // namespace
