@@ -26,6 +26,7 @@ done < /etc/modules.load
 mount -t configfs configfs /sys/kernel/config
 
 # --- the board -------------------------------------------------------------------------
+ip link set lo up  # telecommands and telemetry run over loopback UDP
 ip link add vcan0 type vcan && ip link set vcan0 up
 # gpio-sim chip "petra-hil": the rover's lines by name, as the configuration names them.
 G=/sys/kernel/config/gpio-sim/petra
