@@ -10,11 +10,83 @@ namespace {
 constexpr std::size_t kAlignSlack = 64;  // per arena allocation
 constexpr std::uint8_t kWeak = 0x20;     // candidate during hysteresis only
 
-// tan(22.5 deg) and tan(67.5 deg) in Q15, for the sector test.
-constexpr long kTan22Q15 = 13573;
-constexpr long kTan67Q15 = 79109;
+// Sector boundaries: |gy|/|gx| <= 13/32 (tan 22.1 deg) is horizontal,
+// >= 32/13 (tan 67.9 deg) vertical; 16-bit products keep the test in vector
+// lanes (|g| <= 1020).
+constexpr int kTanNum = 13;
+constexpr int kTanDen = 32;
 
-std::size_t sz(int w, int h) { return static_cast<std::size_t>(w) * static_cast<std::size_t>(h); }
+// The row kernels are out of line: inlined into canny() they are not
+// vectorised by GCC 12.
+[[gnu::noinline]] void vertical_binomial(const std::uint16_t* __restrict a,
+                                         const std::uint16_t* __restrict b,
+                                         const std::uint16_t* __restrict c,
+                                         const std::uint16_t* __restrict d,
+                                         const std::uint16_t* __restrict e, int n,
+                                         std::uint8_t* __restrict o) {
+  for (int i = 0; i < n; ++i)
+    o[i] = static_cast<std::uint8_t>((a[i] + 4 * b[i] + 6 * c[i] + 4 * d[i] + e[i] + 128) >> 8);
+}
+
+// Sobel gradients and L1 magnitude of one row from three smoothed rows.
+[[gnu::noinline]] void sobel_row(const std::uint8_t* __restrict up,
+                                 const std::uint8_t* __restrict mid,
+                                 const std::uint8_t* __restrict dn, int n,
+                                 std::int16_t* __restrict ox, std::int16_t* __restrict oy,
+                                 std::uint16_t* __restrict om) {
+  for (int i = 0; i < n; ++i) {
+    const int vx = (up[i + 2] + 2 * mid[i + 2] + dn[i + 2]) - (up[i] + 2 * mid[i] + dn[i]);
+    const int vy = (dn[i] + 2 * dn[i + 1] + dn[i + 2]) - (up[i] + 2 * up[i + 1] + up[i + 2]);
+    ox[i] = static_cast<std::int16_t>(vx);
+    oy[i] = static_cast<std::int16_t>(vy);
+    om[i] = static_cast<std::uint16_t>((vx < 0 ? -vx : vx) + (vy < 0 ? -vy : vy));
+  }
+}
+
+// Non-maximum suppression of one row. up/mid/dn are the magnitude rows
+// above, at and below, offset so that index i is the pixel's column
+// (i - 1 and i + 1 are valid). Writes 0, or the sector and sign with kWeak
+// or kEdgeBit. Branch-free so the compiler runs it in vector lanes.
+[[gnu::noinline]] void nms_row(const std::int16_t* __restrict gx, const std::int16_t* __restrict gy,
+                               const std::uint16_t* __restrict up,
+                               const std::uint16_t* __restrict mid,
+                               const std::uint16_t* __restrict dn, int w, int low, int high,
+                               std::uint8_t* __restrict out) {
+  const std::int16_t lo = static_cast<std::int16_t>(low), hi = static_cast<std::int16_t>(high);
+  // Every neighbour is loaded and chosen by masks: a select between two
+  // addresses would be a gather, which stops the vectoriser.
+  auto pick = [](std::int16_t mask, std::int16_t a, std::int16_t b) {
+    return static_cast<std::int16_t>((a & mask) | (b & ~mask));
+  };
+  for (int i = 0; i < w; ++i) {
+    const std::int16_t m = static_cast<std::int16_t>(mid[i]);
+    const std::int16_t l = static_cast<std::int16_t>(mid[i - 1]),
+                       r = static_cast<std::int16_t>(mid[i + 1]);
+    const std::int16_t u = static_cast<std::int16_t>(up[i]), d = static_cast<std::int16_t>(dn[i]);
+    const std::int16_t ul = static_cast<std::int16_t>(up[i - 1]),
+                       ur = static_cast<std::int16_t>(up[i + 1]);
+    const std::int16_t dl = static_cast<std::int16_t>(dn[i - 1]),
+                       dr = static_cast<std::int16_t>(dn[i + 1]);
+    const std::int16_t ax = static_cast<std::int16_t>(gx[i] < 0 ? -gx[i] : gx[i]);
+    const std::int16_t ay = static_cast<std::int16_t>(gy[i] < 0 ? -gy[i] : gy[i]);
+    const std::int16_t horizontal = static_cast<std::int16_t>(-(ay * kTanDen <= ax * kTanNum));
+    const std::int16_t vertical = static_cast<std::int16_t>(-(ay * kTanNum >= ax * kTanDen));
+    const std::int16_t same = static_cast<std::int16_t>(-((gx[i] > 0) == (gy[i] > 0)));
+    const std::int16_t n1 = pick(horizontal, l, pick(vertical, u, pick(same, ul, ur)));
+    const std::int16_t n2 = pick(horizontal, r, pick(vertical, d, pick(same, dr, dl)));
+    const std::int16_t sector =
+        pick(horizontal, kSectorHorizontal,
+             pick(vertical, kSectorVertical, pick(same, kSectorDiagonal, kSectorAntiDiagonal)));
+    // Strict on one side, so a plateau of two equal pixels keeps one.
+    const bool keep = m >= lo && m > n1 && m >= n2;
+    const int code = sector | (gx[i] < 0 ? kEdgeGxNegative : 0) | (m >= hi ? kEdgeBit : kWeak);
+    out[i] = static_cast<std::uint8_t>(keep ? code : 0);
+  }
+}
+
+std::size_t sz(int w, int h) {
+  return static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+}
 
 // Copies source row `y` (clamped) over columns [x0, x0 + n) with border
 // replication, so the filters below need no bounds checks.
@@ -48,8 +120,9 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
     return Error::make(Errc::invalid_argument, "canny: edges are %dx%d, area is %dx%d",
                        edges.width(), edges.height(), area.w, area.h);
   if (params.low <= 0 || params.high < params.low)
-    return Error::make(Errc::invalid_argument, "canny: thresholds low %d, high %d (need 0 < low <= high)",
-                       params.low, params.high);
+    return Error::make(Errc::invalid_argument,
+                       "canny: thresholds low %d, high %d (need 0 < low <= high)", params.low,
+                       params.high);
   ArenaScope scope(scratch);
   const int w = area.w, h = area.h;
   const int sw = w + 4, sh = h + 4;  // smoothed: area grown by 2
@@ -76,7 +149,8 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
     std::uint8_t* s = src_row->data();
     padded_row(image, y_img, area.x - 4, w + 8, s);
     for (int i = 0; i < sw; ++i)  // out[i] is column area.x - 2 + i
-      out[i] = static_cast<std::uint16_t>(s[i] + 4 * s[i + 1] + 6 * s[i + 2] + 4 * s[i + 3] + s[i + 4]);
+      out[i] =
+          static_cast<std::uint16_t>(s[i] + 4 * s[i + 1] + 6 * s[i + 2] + 4 * s[i + 3] + s[i + 4]);
   };
   std::uint16_t* ring = hring->data();
   const int y_first = area.y - 4;  // first source row needed
@@ -88,73 +162,29 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
     const std::uint16_t* c = ring + ((r + 2) % 5) * sw;
     const std::uint16_t* d = ring + ((r + 3) % 5) * sw;
     const std::uint16_t* e = ring + ((r + 4) % 5) * sw;
-    std::uint8_t* o = sm.row(r);
-    for (int i = 0; i < sw; ++i)
-      o[i] = static_cast<std::uint8_t>((a[i] + 4 * b[i] + 6 * c[i] + 4 * d[i] + e[i] + 128) >> 8);
+    vertical_binomial(a, b, c, d, e, sw, sm.row(r));
   }
 
   // 2. Sobel on the smoothed image.
   const ImageView<std::int16_t> gx = ImageView<std::int16_t>::over(*gx_buf, gw, gh);
   const ImageView<std::int16_t> gy = ImageView<std::int16_t>::over(*gy_buf, gw, gh);
   const ImageView<std::uint16_t> mg = ImageView<std::uint16_t>::over(*mag_buf, gw, gh);
-  for (int j = 0; j < gh; ++j) {
-    const std::uint8_t* __restrict up = sm.row(j);
-    const std::uint8_t* __restrict mid = sm.row(j + 1);
-    const std::uint8_t* __restrict dn = sm.row(j + 2);
-    std::int16_t* __restrict ox = gx.row(j);
-    std::int16_t* __restrict oy = gy.row(j);
-    std::uint16_t* __restrict om = mg.row(j);
-    for (int i = 0; i < gw; ++i) {
-      const int vx = (up[i + 2] + 2 * mid[i + 2] + dn[i + 2]) - (up[i] + 2 * mid[i] + dn[i]);
-      const int vy = (dn[i] + 2 * dn[i + 1] + dn[i + 2]) - (up[i] + 2 * up[i + 1] + up[i + 2]);
-      ox[i] = static_cast<std::int16_t>(vx);
-      oy[i] = static_cast<std::int16_t>(vy);
-      om[i] = static_cast<std::uint16_t>((vx < 0 ? -vx : vx) + (vy < 0 ? -vy : vy));
-    }
-  }
+  for (int j = 0; j < gh; ++j)
+    sobel_row(sm.row(j), sm.row(j + 1), sm.row(j + 2), gw, gx.row(j), gy.row(j), mg.row(j));
 
-  // 3. Non-maximum suppression; strong pixels seed the stack.
-  auto mag = [&](int i, int j) { return static_cast<int>(mg(i, j)); };
+  // 3. Non-maximum suppression, one row at a time (nms_row, vectorised);
+  // then the strong pixels seed the stack.
   CannyStats stats;
   std::size_t top = 0;
   for (int j = 0; j < h; ++j) {
     std::uint8_t* out = edges.row(j);
-    std::fill(out, out + w, std::uint8_t{0});
-    const std::uint16_t* mrow = mg.row(j + 1) + 1;
-    for (int i = 0; i < w; ++i) {
-      if (mrow[i] < params.low) continue;  // most pixels: one compare
-      const int x = i + 1, y = j + 1;       // gradient coordinates
-      const int m = mrow[i];
-      const long ax = std::abs(gx(x, y)), ay = std::abs(gy(x, y));
-      int sector, n1, n2;
-      if (ay * 32768 <= ax * kTan22Q15) {
-        sector = kSectorHorizontal;
-        n1 = mag(x - 1, y);
-        n2 = mag(x + 1, y);
-      } else if (ay * 32768 >= ax * kTan67Q15) {
-        sector = kSectorVertical;
-        n1 = mag(x, y - 1);
-        n2 = mag(x, y + 1);
-      } else if ((gx(x, y) > 0) == (gy(x, y) > 0)) {
-        sector = kSectorDiagonal;
-        n1 = mag(x - 1, y - 1);
-        n2 = mag(x + 1, y + 1);
-      } else {
-        sector = kSectorAntiDiagonal;
-        n1 = mag(x + 1, y - 1);
-        n2 = mag(x - 1, y + 1);
-      }
-      // Strict on one side, so a plateau of two equal pixels keeps one.
-      if (!(m > n1 && m >= n2)) continue;
-      const std::uint8_t code = static_cast<std::uint8_t>(sector | (gx(x, y) < 0 ? kEdgeGxNegative : 0));
-      if (m >= params.high) {
-        out[i] = static_cast<std::uint8_t>(code | kEdgeBit);
+    nms_row(gx.row(j + 1) + 1, gy.row(j + 1) + 1, mg.row(j) + 1, mg.row(j + 1) + 1,
+            mg.row(j + 2) + 1, w, params.low, params.high, out);
+    for (int i = 0; i < w; ++i)
+      if (out[i] & kEdgeBit) {
         (*stack)[top++] = static_cast<std::uint32_t>(j * w + i);
         ++stats.strong_pixels;
-      } else {
-        out[i] = static_cast<std::uint8_t>(code | kWeak);
       }
-    }
   }
 
   // 4. Hysteresis: grow strong edges into 8-connected weak pixels. A pixel is

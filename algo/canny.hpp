@@ -33,8 +33,12 @@ enum EdgeSector : std::uint8_t {
   kSectorAntiDiagonal = 3,
 };
 
-constexpr bool is_edge(std::uint8_t e) { return (e & kEdgeBit) != 0; }
-constexpr int edge_sector(std::uint8_t e) { return e & kEdgeSectorMask; }
+constexpr bool is_edge(std::uint8_t e) {
+  return (e & kEdgeBit) != 0;
+}
+constexpr int edge_sector(std::uint8_t e) {
+  return e & kEdgeSectorMask;
+}
 
 struct CannyParams {
   // Thresholds on |gx| + |gy| of the smoothed image (Sobel gain 4: a step of

@@ -52,7 +52,9 @@ int zncc(const Window& a, const Window& b) {
 }
 
 // A usable edge has a position along the row: not a horizontal edge.
-bool usable(std::uint8_t code) { return is_edge(code) && edge_sector(code) != kSectorVertical; }
+bool usable(std::uint8_t code) {
+  return is_edge(code) && edge_sector(code) != kSectorVertical;
+}
 
 enum : std::uint8_t { kFromUp = 0, kFromLeft = 1, kMatch = 2 };
 
@@ -93,7 +95,8 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
   for (int j = 0; j < n; ++j) load_window(in.right, (*rx)[j], in.y, (*rw)[j]);
 
   const std::size_t cols = static_cast<std::size_t>(n) + 1;
-  auto back = arena.allocate<std::uint8_t>((static_cast<std::size_t>(m) + 1) * cols, "edge DP table");
+  auto back =
+      arena.allocate<std::uint8_t>((static_cast<std::size_t>(m) + 1) * cols, "edge DP table");
   if (!back) return back.error();
   auto f = arena.allocate<std::int32_t>(2 * cols, "edge DP rows");
   if (!f) return f.error();

@@ -33,15 +33,20 @@ inline std::uint8_t popcount8(std::uint8_t v) {
   return static_cast<std::uint8_t>((v + (v >> 4)) & 0x0F);
 }
 
-inline std::uint8_t min8(std::uint8_t a, std::uint8_t b) { return a < b ? a : b; }
-inline std::uint8_t max8(std::uint8_t a, std::uint8_t b) { return a < b ? b : a; }
+inline std::uint8_t min8(std::uint8_t a, std::uint8_t b) {
+  return a < b ? a : b;
+}
+inline std::uint8_t max8(std::uint8_t a, std::uint8_t b) {
+  return a < b ? b : a;
+}
 
 }  // namespace
 
 void census_row(ConstGray8View image, int y, int x0, int n, std::uint8_t* __restrict inner,
                 std::uint8_t* __restrict outer, std::uint8_t* rows) {
   const int pw = n + 2 * kCensusRadius;
-  for (int r = 0; r < 5; ++r) padded_row(image, y - kCensusRadius + r, x0 - kCensusRadius, pw, rows + r * pw);
+  for (int r = 0; r < 5; ++r)
+    padded_row(image, y - kCensusRadius + r, x0 - kCensusRadius, pw, rows + r * pw);
   const std::uint8_t* __restrict centre = rows + 2 * pw + kCensusRadius;
   for (int i = 0; i < n; ++i) inner[i] = outer[i] = 0;
   for (int b = 0; b < 16; ++b) {
@@ -49,7 +54,8 @@ void census_row(ConstGray8View image, int y, int x0, int n, std::uint8_t* __rest
         rows + (2 + kCensusOffsets[b][1]) * pw + kCensusRadius + kCensusOffsets[b][0];
     std::uint8_t* __restrict plane = b < 8 ? inner : outer;
     const std::uint8_t bit = static_cast<std::uint8_t>(1u << (b & 7));
-    for (int i = 0; i < n; ++i) plane[i] = static_cast<std::uint8_t>(plane[i] | (nb[i] < centre[i] ? bit : 0));
+    for (int i = 0; i < n; ++i)
+      plane[i] = static_cast<std::uint8_t>(plane[i] | (nb[i] < centre[i] ? bit : 0));
   }
 }
 
@@ -88,8 +94,8 @@ void raw_cost_row(const RawRowInputs& in, int k_count, std::uint8_t* raw, std::u
     for (int k = 0; k < stride; ++k) {
       const std::uint8_t ad = static_cast<std::uint8_t>(max8(gl, gr[k]) - min8(gl, gr[k]));
       const std::uint8_t c = static_cast<std::uint8_t>(
-          popcount8(static_cast<std::uint8_t>(ci ^ cri[k])) + popcount8(static_cast<std::uint8_t>(co ^ cro[k])) +
-          (min8(ad, 32) >> 2));
+          popcount8(static_cast<std::uint8_t>(ci ^ cri[k])) +
+          popcount8(static_cast<std::uint8_t>(co ^ cro[k])) + (min8(ad, 32) >> 2));
       // Overrides as branch-free selects: padding lanes, then right samples.
       std::uint8_t v = ov[k] != 0 ? ov[k] : c;
       v = pad[k] != 0 ? pad[k] : v;
@@ -127,9 +133,10 @@ void box_and_shift_row(const std::uint16_t* colsum, int n, int stride_arg, std::
   }
 }
 
-#define PETRA_INSTANTIATE(n)                                                                    \
+#define PETRA_INSTANTIATE(n)                                                                   \
   template void raw_cost_row<n>(const RawRowInputs&, int, std::uint8_t*, std::uint16_t*, int); \
-  template void box_and_shift_row<n>(const std::uint16_t*, int, int, std::uint16_t*, std::uint16_t*);
+  template void box_and_shift_row<n>(const std::uint16_t*, int, int, std::uint16_t*,           \
+                                     std::uint16_t*);
 PETRA_MATCH_LANE_COUNTS(PETRA_INSTANTIATE)
 #undef PETRA_INSTANTIATE
 

@@ -17,7 +17,7 @@
 namespace petra::match {
 
 inline constexpr int kCensusRadius = 2;
-inline constexpr int kRawMax = 24;     // census 16 + intensity 8
+inline constexpr int kRawMax = 24;      // census 16 + intensity 8
 inline constexpr int kRawNeutral = 12;  // a pixel that carries no information (shadow, outside)
 // Padding lanes beyond the disparity range: their aggregated cost (4500)
 // exceeds every real one, so they never win.

@@ -47,16 +47,16 @@ struct Layout {
   std::size_t rows() const {
     const std::size_t cells = z(wc) * z(dp);
     std::size_t b = 0;
-    b += kWindowRows * cells;                             // raw ring
-    b += 2 * cells;                                       // column sums
-    b += 2 * z(w + 4) * z(dp) + 2 * z(w) * z(dp);         // box sums, cost
-    b += 2 * z(w) * z(match::path_row_stride(dp));        // path costs S
-    b += 2 * 2 * z(dp + 2);                               // DP rows
-    b += 5 * z(nrp + 4) + 4 * z(wc) + 6 * z(nrp);         // census, gray, overrides
-    b += 2 * 2 * z(w) + 2 * z(w);                         // bounds, p2
-    b += 2 * 2 * z(w + dp);                               // right winners
-    b += sizeof(match::EdgePair) * z(w);                  // pairs
-    b += 2 * median3x3_scratch(w) + z(w);                 // median rows, shadow row
+    b += kWindowRows * cells;                       // raw ring
+    b += 2 * cells;                                 // column sums
+    b += 2 * z(w + 4) * z(dp) + 2 * z(w) * z(dp);   // box sums, cost
+    b += 2 * z(w) * z(match::path_row_stride(dp));  // path costs S
+    b += 2 * 2 * z(dp + 2);                         // DP rows
+    b += 5 * z(nrp + 4) + 4 * z(wc) + 6 * z(nrp);   // census, gray, overrides
+    b += 2 * 2 * z(w) + 2 * z(w);                   // bounds, p2
+    b += 2 * 2 * z(w + dp);                         // right winners
+    b += sizeof(match::EdgePair) * z(w);            // pairs
+    b += 2 * median3x3_scratch(w) + z(w);           // median rows, shadow row
     b += 24 * kAlignSlack;
     return b + match::edge_row_scratch_bytes(w, band);
   }
@@ -71,7 +71,9 @@ Status take(Arena& arena, std::size_t n, const char* what, std::span<T>& out) {
   return ok_status();
 }
 
-bool shadow_at(const ShadowMask* m, int x, int y) { return m != nullptr && m->is_shadow(x, y); }
+bool shadow_at(const ShadowMask* m, int x, int y) {
+  return m != nullptr && m->is_shadow(x, y);
+}
 
 Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const MatchBudget& budget,
                 const DisparityMap& out, ImageView<std::uint8_t> confidence) {
@@ -109,13 +111,15 @@ Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const M
     return Error::make(Errc::invalid_argument, "match_dp: confidence is %dx%d, ROI is %dx%d",
                        confidence.width(), confidence.height(), roi.w, roi.h);
   if (p.p1 < 0 || p.p2 < p.p1 || p.p2 > match::kMaxP2)
-    return Error::make(Errc::invalid_argument, "match_dp: penalties P1 %d, P2 %d (need 0 <= P1 <= P2 <= %d)",
-                       p.p1, p.p2, match::kMaxP2);
+    return Error::make(Errc::invalid_argument,
+                       "match_dp: penalties P1 %d, P2 %d (need 0 <= P1 <= P2 <= %d)", p.p1, p.p2,
+                       match::kMaxP2);
   if (p.edge_zncc_floor_pct < -100 || p.edge_zncc_floor_pct > 100 || p.edge_uniqueness_pct < 0 ||
       p.edge_uniqueness_pct > 100 || p.uniqueness_pct < 0 || p.uniqueness_pct > 100)
     return Error::make(Errc::invalid_argument, "match_dp: a percentage is outside its range");
   if (p.edge_tolerance_px < 0 || p.lr_tolerance_px < 0 || p.max_mean_cost <= 0)
-    return Error::make(Errc::invalid_argument, "match_dp: tolerances must be >= 0 and the cost ceiling > 0");
+    return Error::make(Errc::invalid_argument,
+                       "match_dp: tolerances must be >= 0 and the cost ceiling > 0");
   return ok_status();
 }
 
@@ -144,7 +148,7 @@ template <int kLanes, class T>
   const std::int16_t* __restrict lane = kLaneNumbers.k;
   T m = kTop;
   for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
-  std::int16_t k1 = 0x7FFF;  // first lane holding the minimum
+  std::int16_t k1 = 0x7FFF;      // first lane holding the minimum
   for (int k = 0; k < n; ++k) {  // masks, not ?:, keep it one basic block
     const std::int16_t hit = static_cast<std::int16_t>(-(v[k] == m));
     const std::int16_t c = static_cast<std::int16_t>((lane[k] & hit) | (0x7FFF & ~hit));
@@ -165,7 +169,8 @@ bool unique_enough(const Winner& w, int pct) {
 }
 
 // out[m] = in[n - 1 - m].
-[[gnu::noinline]] void reverse_copy(const std::uint8_t* __restrict in, int n, std::uint8_t* __restrict out) {
+[[gnu::noinline]] void reverse_copy(const std::uint8_t* __restrict in, int n,
+                                    std::uint8_t* __restrict out) {
   for (int m = 0; m < n; ++m) out[m] = in[n - 1 - m];
 }
 
@@ -174,9 +179,9 @@ bool unique_enough(const Winner& w, int pct) {
 // `lanes` lanes are scanned (padding lanes never win), so no scalar tail;
 // rmin and rk hold w + lanes - 1 entries.
 template <int kLanes>
-[[gnu::noinline]] void right_winners(const std::int16_t* __restrict S, int w, int row_stride, int lanes_arg,
-                                     const std::uint8_t* __restrict skip, std::int16_t* __restrict rmin,
-                                     std::int16_t* __restrict rk) {
+[[gnu::noinline]] void right_winners(const std::int16_t* __restrict S, int w, int row_stride,
+                                     int lanes_arg, const std::uint8_t* __restrict skip,
+                                     std::int16_t* __restrict rmin, std::int16_t* __restrict rk) {
   const int lanes = kLanes > 0 ? kLanes : lanes_arg;
   for (int m = 0; m < w + lanes - 1; ++m) {
     rmin[m] = 0x7FFF;
@@ -214,15 +219,17 @@ namespace {
 // The whole matcher for one lane count (kLanes = Dp, or 0 for any), so every
 // row kernel runs with a compile-time lane count.
 template <int kLanes>
-Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpParams& p, Arena& arena,
-                                DisparityMap& out, ImageView<std::uint8_t> confidence) {
+Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpParams& p,
+                                Arena& arena, DisparityMap& out,
+                                ImageView<std::uint8_t> confidence) {
   const int W = in.left.width();
   const int H = in.left.height();
   const Rect band = right_search_area(roi, p.disp_min, p.disp_max, W);
   if (band.empty())
-    return Error::make(Errc::out_of_range,
-                       "match_dp: disparities [%d, %d] put every match of the ROI outside the right image",
-                       p.disp_min, p.disp_max);
+    return Error::make(
+        Errc::out_of_range,
+        "match_dp: disparities [%d, %d] put every match of the ROI outside the right image",
+        p.disp_min, p.disp_max);
   const Layout L(roi.w, roi.h, p.disp_max - p.disp_min + 1);
   const int w = L.w, h = L.h, D = L.d, Dp = L.dp, wc = L.wc, nrp = L.nrp;
   const int dmin = p.disp_min;
@@ -307,7 +314,7 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
     const int yc = std::clamp(y, 0, H - 1);
     for (int m = 0; m < nrp; ++m) {
       const int x = xr_hi - m;
-      ov[m] = static_cast<std::uint8_t>((m >= nr || x < 0 || x >= W) ? kRawMax
+      ov[m] = static_cast<std::uint8_t>((m >= nr || x < 0 || x >= W)        ? kRawMax
                                         : shadow_at(in.right_shadow, x, yc) ? kRawNeutral
                                                                             : 0);
     }
@@ -316,8 +323,8 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
       const int x = xl_first + i;
       neutral[i] = (x < 0 || x >= W || shadow_at(in.left_shadow, x, yc)) ? 1 : 0;
     }
-    match::RawRowInputs ri{cli.data(), clo.data(), gl.data(), wc, cri.data(), cro.data(), gr.data(), ov.data(),
-                           neutral.data()};
+    match::RawRowInputs ri{cli.data(), clo.data(), gl.data(),     wc, cri.data(), cro.data(),
+                           gr.data(),  ov.data(),  neutral.data()};
     match::raw_cost_row<kLanes>(ri, D, raw, colsum.data(), Dp);
   };
 
@@ -424,7 +431,8 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
 
     // Right view winners along the same path costs (reversed index m).
     for (int i = 0; i < w; ++i) skip[i] = shadow_at(in.left_shadow, roi.x + i, y);
-    right_winners<kLanes>(S.data() + match::kGuardLanes, w, sp, Dp, skip.data(), rmin.data(), rk.data());
+    right_winners<kLanes>(S.data() + match::kGuardLanes, w, sp, Dp, skip.data(), rmin.data(),
+                          rk.data());
 
     // Steps 4-5: select, reject, refine.
     std::int16_t* o = out.q4.row(t);

@@ -30,16 +30,18 @@
 // Memory: all from the caller's Arena, released on return, no heap.
 // match_dp_scratch_bytes(budget) bounds it for any ROI and range within the
 // budget. With w x h the ROI, D the disparity count, Dp = D rounded up to 16,
-// B = w + D - 1 the right search width and wc = w + 8:
-//   edge maps                 w h + B h
-//   Canny (transient)         ~9 B h                     (released before 3)
-//   raw cost ring (9 rows)    9 wc Dp
-//   column sums, box, cost    2 wc Dp + 2 (w + 4) Dp + 2 w Dp
-//   path costs S              2 w Dp
-//   edge DP table per row     (w + 1)(B + 1) + 50 (w + B)
-//   rows (census, bounds...)  ~30 (wc + Dp) + 14 w
-// Flight budget 320 x 320 px, 128 disparities: match_dp_scratch_bytes = 2.9 MB
-// (see docs/matching.md for the table and the measured high-water mark).
+// B = w + D - 1 the right search width and wc = w + 8, the arena holds
+//   edge maps (whole call)       w h + B h
+//   then Canny (transient)       about 11 B h           (one view at a time)
+//   or the row buffers:
+//     raw cost window (9 rows)   9 wc Dp
+//     column sums, box, cost     2 wc Dp + 2 (w + 4) Dp + 2 w Dp
+//     path costs S               2 w (Dp + 16)
+//     edge DP table (per row)    (w + 1)(B + 1) + 50 (w + B) + 8 B
+//     row vectors                about 14 (wc + Dp) + 20 w
+// Flight budget (320 x 320 px, 128 disparities): 1 841 243 bytes (1.76 MiB),
+// the peak being Canny of the right search area; 160 x 160 px with 42
+// disparities: 422 221 bytes. docs/matching.md has the table.
 #pragma once
 
 #include <cstddef>
@@ -65,12 +67,12 @@ struct MatchDpParams {
   int disp_min = 0;  // px, right = left - d
   int disp_max = 63;
   CannyParams canny{};
-  bool edge_constraint = true;  // steps 2-3; off only to measure their effect
+  bool edge_constraint = true;   // steps 2-3; off only to measure their effect
   int edge_zncc_floor_pct = 80;  // correlation floor of an edge pair
   int edge_uniqueness_pct = 10;  // anchor: margin of the dense winner
   int edge_tolerance_px = 1;     // edge localisation slack of the bounds
-  int p1 = 67;                   // DP penalty of a one-pixel step (cost units)
-  int p2 = 800;                  // DP penalty of a jump, before edge lowering
+  int p1 = 100;                  // DP penalty of a one-pixel step (cost units)
+  int p2 = 900;                  // DP penalty of a jump, before edge lowering
   int lr_tolerance_px = 1;
   int uniqueness_pct = 5;
   int max_mean_cost = 10;  // ceiling of the mean raw cost (0..24) in the window
@@ -88,8 +90,8 @@ struct MatchDpStats {
   long rejected_shadow_right = 0;
   long left_edges = 0;
   long right_edges = 0;
-  long edge_pairs = 0;  // from the edge DP
-  long anchors = 0;     // pairs kept as constraints
+  long edge_pairs = 0;                 // from the edge DP
+  long anchors = 0;                    // pairs kept as constraints
   std::size_t scratch_high_water = 0;  // arena bytes used at the peak
 };
 

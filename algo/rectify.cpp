@@ -10,17 +10,17 @@ namespace {
 constexpr int kOne = 1 << kRemapFracBits;
 
 // Source position -> table entry. Positions within half a pixel of the image
-// are clamped inside so that the bilinear 2x2 neighbourhood never leaves it.
+// are clamped onto its border pixels.
 RemapEntry encode(const Eigen::Vector2d& src, int width, int height) {
   RemapEntry e;
   if (!(src.x() >= -0.5 && src.x() <= width - 0.5 && src.y() >= -0.5 && src.y() <= height - 0.5)) {
     e.x_q4 = kRemapOutside;
     return e;
   }
-  const long max_x = static_cast<long>(width - 1) * kOne - 1;
-  const long max_y = static_cast<long>(height - 1) * kOne - 1;
-  const long qx = std::clamp(std::lround(src.x() * kOne), 0L, std::max(max_x, 0L));
-  const long qy = std::clamp(std::lround(src.y() * kOne), 0L, std::max(max_y, 0L));
+  const long max_x = static_cast<long>(width - 1) * kOne;
+  const long max_y = static_cast<long>(height - 1) * kOne;
+  const long qx = std::clamp(std::lround(src.x() * kOne), 0L, max_x);
+  const long qy = std::clamp(std::lround(src.y() * kOne), 0L, max_y);
   e.x_q4 = static_cast<std::int16_t>(qx);
   e.y_q4 = static_cast<std::int16_t>(qy);
   return e;
@@ -44,15 +44,14 @@ Result<Rectifier> Rectifier::create(const StereoRig& rig, std::span<RemapEntry> 
   if (rig.right.width != w || rig.right.height != h)
     return Error::make(Errc::invalid_argument, "rectify: left is %dx%d but right is %dx%d", w, h,
                        rig.right.width, rig.right.height);
-  if (w < 2 || h < 2)
-    return Error::make(Errc::invalid_argument, "rectify: %dx%d image is too small", w, h);
   if (w > kRemapMaxSide || h > kRemapMaxSide)
     return Error::make(Errc::capacity_exceeded, "rectify: %dx%d exceeds the table limit %d px", w,
                        h, kRemapMaxSide);
   const std::size_t n = table_entries(w, h);
   if (left_table.size() < n || right_table.size() < n)
-    return Error::make(Errc::capacity_exceeded, "rectify: tables need %zu entries each, got %zu and %zu",
-                       n, left_table.size(), right_table.size());
+    return Error::make(Errc::capacity_exceeded,
+                       "rectify: tables need %zu entries each, got %zu and %zu", n,
+                       left_table.size(), right_table.size());
   auto geometry = rectify_geometry(rig, w, h);
   if (!geometry) return geometry.error();
 
@@ -102,10 +101,15 @@ Status Rectifier::rectify(StereoSide side, ConstGray8View original, Gray8View re
       }
       const int fx = m.x_q4 & (kOne - 1);
       const int fy = m.y_q4 & (kOne - 1);
-      const std::uint8_t* p = src + (m.y_q4 >> kRemapFracBits) * stride + (m.x_q4 >> kRemapFracBits);
+      const std::uint8_t* p =
+          src + (m.y_q4 >> kRemapFracBits) * stride + (m.x_q4 >> kRemapFracBits);
+      // The second column (row) is read only when its weight is non-zero, so
+      // the last column and row of the image need no margin.
+      const int dx = (fx + kOne - 1) >> kRemapFracBits;
+      const std::ptrdiff_t dy = stride * ((fy + kOne - 1) >> kRemapFracBits);
       // Weights sum to 256: one rounding shift, no division.
-      const int top = p[0] * (kOne - fx) + p[1] * fx;
-      const int bottom = p[stride] * (kOne - fx) + p[stride + 1] * fx;
+      const int top = p[0] * (kOne - fx) + p[dx] * fx;
+      const int bottom = p[dy] * (kOne - fx) + p[dy + dx] * fx;
       out[x] = static_cast<std::uint8_t>((top * (kOne - fy) + bottom * fy + 128) >> 8);
     }
   }

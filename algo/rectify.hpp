@@ -44,7 +44,9 @@ class Rectifier {
 
   // Entries needed per camera (one per pixel).
   static constexpr std::size_t table_entries(int width, int height) {
-    return width > 0 && height > 0 ? static_cast<std::size_t>(width) * static_cast<std::size_t>(height) : 0;
+    return width > 0 && height > 0
+               ? static_cast<std::size_t>(width) * static_cast<std::size_t>(height)
+               : 0;
   }
 
   // Validates the rig (both cameras of one size below kRemapMaxSide) and fills
@@ -79,9 +81,15 @@ class Rectifier {
   }
 
  private:
-  const TsaiCamera& camera(StereoSide s) const { return s == StereoSide::left ? rig_.left : rig_.right; }
-  const RectifiedCamera& rect(StereoSide s) const { return s == StereoSide::left ? pair_.left : pair_.right; }
-  std::span<const RemapEntry> table(StereoSide s) const { return s == StereoSide::left ? left_ : right_; }
+  const TsaiCamera& camera(StereoSide s) const {
+    return s == StereoSide::left ? rig_.left : rig_.right;
+  }
+  const RectifiedCamera& rect(StereoSide s) const {
+    return s == StereoSide::left ? pair_.left : pair_.right;
+  }
+  std::span<const RemapEntry> table(StereoSide s) const {
+    return s == StereoSide::left ? left_ : right_;
+  }
 
   StereoRig rig_;
   RectifiedPair pair_;

@@ -17,13 +17,16 @@ constexpr std::int16_t kGuard = 0x3FFF;
 
 // Values, not references: std::min on references hides a load behind a
 // branch and stops the vectoriser.
-inline std::int16_t min16(std::int16_t a, std::int16_t b) { return a < b ? a : b; }
+inline std::int16_t min16(std::int16_t a, std::int16_t b) {
+  return a < b ? a : b;
+}
 
 // One step of the recursion, returning min_k of the new row:
 //   cur = C + min(prev, prev(k+-1) + P1, mn + P2) - mn,  mn = min_k prev.
 template <int kLanes>
 inline std::int16_t step(const std::int16_t* __restrict prev, const std::uint16_t* __restrict c,
-                         std::int16_t* __restrict cur, int stride_arg, int p1, int p2, std::int16_t mn) {
+                         std::int16_t* __restrict cur, int stride_arg, int p1, int p2,
+                         std::int16_t mn) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   const std::int16_t jump = static_cast<std::int16_t>(mn + p2);
   const std::int16_t pen1 = static_cast<std::int16_t>(p1);
@@ -39,7 +42,8 @@ inline std::int16_t step(const std::int16_t* __restrict prev, const std::uint16_
 }
 
 template <int kLanes>
-inline std::int16_t first(const std::uint16_t* __restrict c, std::int16_t* __restrict cur, int stride_arg) {
+inline std::int16_t first(const std::uint16_t* __restrict c, std::int16_t* __restrict cur,
+                          int stride_arg) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   std::int16_t m = kGuard;
   for (int k = 0; k < stride; ++k) {
@@ -52,8 +56,8 @@ inline std::int16_t first(const std::uint16_t* __restrict c, std::int16_t* __res
 }  // namespace
 
 template <int kLanes>
-void apply_bounds(std::uint16_t* cost, int n, int stride_arg, const std::int16_t* lo, const std::int16_t* hi,
-                  int full_hi) {
+void apply_bounds(std::uint16_t* cost, int n, int stride_arg, const std::int16_t* lo,
+                  const std::int16_t* hi, int full_hi) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   for (int x = 0; x < n; ++x) {
     const int l = lo[x], h = hi[x];
@@ -95,8 +99,9 @@ void scanline_dp(const ScanlineInputs& in, std::int16_t* S, std::int16_t* rows) 
   }
 }
 
-#define PETRA_INSTANTIATE(n)                                                                             \
-  template void apply_bounds<n>(std::uint16_t*, int, int, const std::int16_t*, const std::int16_t*, int); \
+#define PETRA_INSTANTIATE(n)                                                   \
+  template void apply_bounds<n>(std::uint16_t*, int, int, const std::int16_t*, \
+                                const std::int16_t*, int);                     \
   template void scanline_dp<n>(const ScanlineInputs&, std::int16_t*, std::int16_t*);
 PETRA_MATCH_LANE_COUNTS(PETRA_INSTANTIATE)
 #undef PETRA_INSTANTIATE

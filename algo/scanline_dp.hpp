@@ -1,5 +1,6 @@
 // Dynamic programming along one scanline for algo/match_dp: the path cost
-//   L(x, k) = C(x, k) + min(L(x-1, k), L(x-1, k+-1) + P1, min_j L(x-1, j) + P2(x)) - min_j L(x-1, j)
+//   L(x, k) = C(x, k) + min(L(x-1, k), L(x-1, k+-1) + P1, min_j L(x-1, j) + P2(x)) - min_j L(x-1,
+//   j)
 // is run left-to-right and right-to-left and summed, S = L_fwd + L_bwd, so
 // that argmin_k S(x, .) is the disparity of the best path through x (the
 // min-marginal of the scanline's chain). Changing the disparity by one pixel
@@ -27,7 +28,9 @@ void apply_bounds(std::uint16_t* cost, int n, int stride, const std::int16_t* lo
 
 // S rows have kGuardLanes guard lanes before and after the stride lanes.
 inline constexpr int kGuardLanes = 8;
-constexpr int path_row_stride(int stride) { return stride + 2 * kGuardLanes; }
+constexpr int path_row_stride(int stride) {
+  return stride + 2 * kGuardLanes;
+}
 
 struct ScanlineInputs {
   const std::uint16_t* cost;  // n x stride, aggregated matching cost, bounds applied

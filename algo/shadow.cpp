@@ -53,8 +53,8 @@ Result<ShadowThreshold> shadow_threshold(ConstGray8View image, Rect roi, double 
 Result<long> shadow_mask(ConstGray8View image, Rect area, int threshold, Gray8View mask) {
   PETRA_TRY(check_area(image, area, "mask area"));
   if (mask.width() != area.w || mask.height() != area.h)
-    return Error::make(Errc::invalid_argument, "shadow: mask is %dx%d, area is %dx%d",
-                       mask.width(), mask.height(), area.w, area.h);
+    return Error::make(Errc::invalid_argument, "shadow: mask is %dx%d, area is %dx%d", mask.width(),
+                       mask.height(), area.w, area.h);
   if (threshold < -1 || threshold > 255)
     return Error::make(Errc::invalid_argument, "shadow: threshold %d outside [-1, 255]", threshold);
   long count = 0;

@@ -22,7 +22,7 @@ namespace petra {
 inline constexpr std::uint8_t kShadowPixel = 255;
 
 struct ShadowThreshold {
-  int threshold = -1;     // gray level; pixels <= threshold are shadow (-1: none)
+  int threshold = -1;      // gray level; pixels <= threshold are shadow (-1: none)
   long shadow_pixels = 0;  // pixels of the ROI at or below the threshold
   long roi_pixels = 0;
 };

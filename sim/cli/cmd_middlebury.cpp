@@ -35,7 +35,8 @@ int run(const MiddleburyOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     auto run = eval::run_match_dp(data->left.view(), data->right.view(),
                                   Rect{0, 0, data->left.width, data->left.height}, p);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (!run) return fail("middlebury", run.error().message);
     auto score = eval::score_middlebury(run->disparity.view(), *data);
     if (!score) return fail("middlebury", score.error().message);
@@ -51,10 +52,12 @@ int run(const MiddleburyOptions& o) {
 }  // namespace
 
 void add_middlebury(CLI::App& app, Outcome& outcome) {
-  auto* cmd = app.add_subcommand("middlebury", "Score the DP matcher on the Middlebury scenes (bad-1 table)");
+  auto* cmd = app.add_subcommand("middlebury",
+                                 "Score the DP matcher on the Middlebury scenes (bad-1 table)");
   static MiddleburyOptions o;
   cmd->add_option("--data", o.data, "shared data folder holding middlebury/ and middlebury2006/");
-  cmd->add_option("--scene", o.scene, "one scene (tsukuba, venus, sawtooth, map, teddy, cones, Aloe, Baby1)");
+  cmd->add_option("--scene", o.scene,
+                  "one scene (tsukuba, venus, sawtooth, map, teddy, cones, Aloe, Baby1)");
   cmd->add_flag("--no-edges", o.no_edges, "skip the edge constraint (for comparisons)");
   cmd->callback([&outcome] { outcome.exit_code = run(o); });
 }

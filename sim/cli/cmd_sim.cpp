@@ -72,6 +72,7 @@ Result<sim::SceneOptions> to_options(const SceneArgs& a, sim::SceneOptions o) {
 
 // Renders and writes one scene; prints a one-line summary.
 Status render_and_write(const sim::SceneOptions& o, const std::string& dir) {
+  PETRA_TRY(sim::prepare_output_dir(dir));  // fail before the slow part
   const auto t0 = std::chrono::steady_clock::now();
   auto p = sim::render_scene(o);
   if (!p) return p.error();

@@ -6,6 +6,7 @@
 namespace petra::cli {
 
 int fail(const char* cmd, const char* message) {
+  std::fflush(stdout);  // what was printed before the failure comes first in a shared log
   std::fprintf(stderr, "petra %s: %s\n", cmd, message);
   return 1;
 }
@@ -27,6 +28,9 @@ int main(int argc, char** argv) {
   petra::cli::add_keygen(app, outcome);
   petra::cli::add_icd(app, outcome);
   petra::cli::add_demo(app, outcome);
+  petra::cli::add_calib(app, outcome);
+  petra::cli::add_click(app, outcome);
+  petra::cli::add_gnd(app, outcome);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

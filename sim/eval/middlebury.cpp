@@ -53,7 +53,9 @@ Bad1 bad1(ImageView<const float> d, const MiddleburyData& m) {
 
 }  // namespace
 
-std::span<const MiddleburyScene> middlebury_scenes() { return kScenes; }
+std::span<const MiddleburyScene> middlebury_scenes() {
+  return kScenes;
+}
 
 const MiddleburyScene* find_middlebury_scene(const std::string& name) {
   for (const MiddleburyScene& s : kScenes)
@@ -61,7 +63,9 @@ const MiddleburyScene* find_middlebury_scene(const std::string& name) {
   return nullptr;
 }
 
-std::string default_data_root(const char* source_dir) { return std::string(source_dir) + "/../shared/data"; }
+std::string default_data_root(const char* source_dir) {
+  return std::string(source_dir) + "/../shared/data";
+}
 
 Result<MiddleburyData> load_middlebury(const MiddleburyScene& s, const std::string& root) {
   const std::string dir = root + "/" + s.dir + "/";
@@ -76,9 +80,10 @@ Result<MiddleburyData> load_middlebury(const MiddleburyScene& s, const std::stri
   m.left = std::move(*l);
   m.right = std::move(*r);
   m.gt = std::move(*gl);
-  if (m.left.width != m.right.width || m.left.height != m.right.height || m.gt.width != m.left.width ||
-      m.gt.height != m.left.height)
-    return Error::make(Errc::invalid_argument, "middlebury %s: image and ground-truth sizes differ", s.name);
+  if (m.left.width != m.right.width || m.left.height != m.right.height ||
+      m.gt.width != m.left.width || m.gt.height != m.left.height)
+    return Error::make(Errc::invalid_argument, "middlebury %s: image and ground-truth sizes differ",
+                       s.name);
   const int w = m.gt.width, h = m.gt.height;
   const std::size_t n = static_cast<std::size_t>(w) * h;
   m.known.assign(n, 0);
@@ -91,7 +96,8 @@ Result<MiddleburyData> load_middlebury(const MiddleburyScene& s, const std::stri
   auto gr = load_gt(dir + s.gt_right, s.gt_scale);
   if (!gr) return gr.error();
   if (gr->width != w || gr->height != h)
-    return Error::make(Errc::invalid_argument, "middlebury %s: right ground truth size differs", s.name);
+    return Error::make(Errc::invalid_argument, "middlebury %s: right ground truth size differs",
+                       s.name);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * w + x;
@@ -106,8 +112,8 @@ Result<MiddleburyData> load_middlebury(const MiddleburyScene& s, const std::stri
 
 Result<MiddleburyScore> score_middlebury(ImageView<const float> d, const MiddleburyData& m) {
   if (d.width() != m.gt.width || d.height() != m.gt.height)
-    return Error::make(Errc::invalid_argument, "score: disparity is %dx%d, ground truth is %dx%d", d.width(),
-                       d.height(), m.gt.width, m.gt.height);
+    return Error::make(Errc::invalid_argument, "score: disparity is %dx%d, ground truth is %dx%d",
+                       d.width(), d.height(), m.gt.width, m.gt.height);
   MiddleburyScore s;
   s.strict = bad1(d, m);
   long invalid = 0, known = 0;

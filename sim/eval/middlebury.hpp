@@ -19,7 +19,7 @@ namespace petra::eval {
 
 struct MiddleburyScene {
   const char* name;
-  const char* dir;       // under the data root
+  const char* dir;  // under the data root
   const char* left;
   const char* right;
   const char* gt_left;
@@ -55,7 +55,8 @@ struct MiddleburyScore {
 };
 
 // `disparity`: full-size left-view disparity, non-finite = invalid.
-Result<MiddleburyScore> score_middlebury(ImageView<const float> disparity, const MiddleburyData& data);
+Result<MiddleburyScore> score_middlebury(ImageView<const float> disparity,
+                                         const MiddleburyData& data);
 
 // Default data root for tools and tests run from the project directory.
 std::string default_data_root(const char* source_dir);

@@ -3,7 +3,8 @@
 // [i-0.5, i+0.5] x [j-0.5, j+0.5]: 2x2 samples where the pixel sees one
 // surface, NxN (options.edge_supersampling) where a geometric edge (rock
 // outline, facet edge, shadow edge) crosses it or a neighbour. Then sensor
-// noise and 8-bit quantisation. Single-threaded and deterministic.
+// noise and 8-bit quantisation. Single-threaded and deterministic; a pixel's
+// value does not depend on which window of the image is rendered.
 #pragma once
 
 #include <cstdint>
@@ -22,5 +23,7 @@ struct RenderedView {
 enum class Eye { left, right };
 
 RenderedView render_view(const Scene& scene, Eye eye);
+// Only the pixels inside `window` (clipped to the image); the rest stay 0.
+RenderedView render_view(const Scene& scene, Eye eye, const Rect& window);
 
 }  // namespace petra::sim

@@ -49,6 +49,14 @@ int Rng::integer(int lo, int hi) {
   return static_cast<int>(lo + static_cast<long long>(r % span));
 }
 
+double hashed_normal(std::uint64_t key, std::uint64_t index) {
+  const std::uint64_t a = mix64(key ^ mix64(2 * index + 1));
+  const std::uint64_t b = mix64(a ^ 0x6a09e667f3bcc909ull);
+  const double u1 = static_cast<double>(a >> 11) * 0x1.0p-53;
+  const double u2 = static_cast<double>(b >> 11) * 0x1.0p-53;
+  return std::sqrt(-2.0 * std::log(1.0 - u1)) * std::cos(2.0 * M_PI * u2);
+}
+
 double Rng::normal() {
   if (have_spare_) {
     have_spare_ = false;

@@ -14,6 +14,10 @@ std::uint64_t splitmix64(std::uint64_t& state);
 // Stateless mix of one value (SplitMix64 finaliser).
 std::uint64_t mix64(std::uint64_t x);
 
+// A standard normal value that depends only on (key, index): per-pixel sensor
+// noise that is the same whichever part of an image is rendered.
+double hashed_normal(std::uint64_t key, std::uint64_t index);
+
 class Rng {
  public:
   // A stream identified by (seed, stream): different streams of one seed are

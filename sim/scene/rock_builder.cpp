@@ -95,6 +95,20 @@ Result<BuiltRock> build_rock(Rng& rng, const RockSpec& spec) {
 
   auto rock = make_convex_rock(planes, Eigen::Vector3d::Zero(), 2.0 * a);
   if (!rock) return rock.error();
+  // Tangent planes enclose more than the ellipsoid: scale about its centre so
+  // the largest dimension (between the two farthest vertices) is the size asked for.
+  double diameter = 0;
+  for (const auto& f : rock->faces)
+    for (const auto& pa : f.polygon)
+      for (const auto& g : rock->faces)
+        for (const auto& pb : g.polygon) diameter = std::max(diameter, (pa - pb).norm());
+  const double k = spec.size_mm / diameter;
+  for (auto& f : rock->faces) {
+    f.plane.offset_mm *= k;
+    for (auto& p : f.polygon) p *= k;
+  }
+  rock->centre *= k;
+  rock->radius_mm *= k;
   // Sink: the ground cuts the rock 15..35 % of its height above its bottom.
   double zmin = INFINITY, zmax = -INFINITY;
   for (const auto& f : rock->faces)

@@ -14,7 +14,7 @@ namespace petra::sim {
 
 struct RockSpec {
   RockShape shape = RockShape::blocky;
-  double size_mm = 150;  // largest dimension before the cuts
+  double size_mm = 150;  // largest dimension (the two farthest vertices), buried part included
   int flat_faces = 2;
   Eigen::Vector3d toward_cameras = Eigen::Vector3d::UnitZ();  // unit, rock to rig midpoint
 };

@@ -29,7 +29,7 @@ Result<SceneProducts> render_scene(const SceneOptions& options) {
   return p;
 }
 
-Status write_scene(const SceneProducts& p, const std::string& dir) {
+Status prepare_output_dir(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
@@ -38,6 +38,11 @@ Status write_scene(const SceneProducts& p, const std::string& dir) {
   if (ec)
     return Error::make(Errc::io_error, "%s: cannot create directory (%s)", dir.c_str(),
                        ec.message().c_str());
+  return {};
+}
+
+Status write_scene(const SceneProducts& p, const std::string& dir) {
+  PETRA_TRY(prepare_output_dir(dir));
   const std::string d = dir + "/";
   PETRA_TRY(io::write_pgm(d + "left.pgm", p.left.image.view()));
   PETRA_TRY(io::write_pgm(d + "right.pgm", p.right.image.view()));

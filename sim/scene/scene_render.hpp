@@ -30,6 +30,8 @@ struct SceneProducts {
 
 Result<SceneProducts> render_scene(const SceneOptions& options);
 
+// Creates `dir` when missing; fails when it cannot (checked before rendering).
+Status prepare_output_dir(const std::string& dir);
 // Creates `dir` when missing and writes every file; errors name the file.
 Status write_scene(const SceneProducts& products, const std::string& dir);
 

@@ -70,8 +70,8 @@ struct DpRunner {
   DpRunner(int w, int h, int d) : budget{w, h, d}, scratch(petra::match_dp_scratch_bytes(budget)) {
     q4.resize(static_cast<std::size_t>(w) * h);
   }
-  petra::DisparityMap run(petra::ConstGray8View l, petra::ConstGray8View r, petra::Rect roi, int dmin,
-                          int dmax) {
+  petra::DisparityMap run(petra::ConstGray8View l, petra::ConstGray8View r, petra::Rect roi,
+                          int dmin, int dmax) {
     petra::Arena arena(scratch);
     petra::MatchDpParams p;
     p.disp_min = dmin;
@@ -229,8 +229,12 @@ void BM_OpenCv_Roi160(benchmark::State& state, bool sgbm) {
   const MiddleburyData& d = scene("teddy");
   const int margin = kRoiDmin + 48;
   const cv::Rect r(kRoi160.x - margin, kRoi160.y, kRoi160.w + margin, kRoi160.h);
-  cv::Mat l = cv::Mat(d.left.height, d.left.width, CV_8U, const_cast<std::uint8_t*>(d.left.pixels.data()))(r).clone();
-  cv::Mat rr = cv::Mat(d.left.height, d.left.width, CV_8U, const_cast<std::uint8_t*>(d.right.pixels.data()))(r).clone();
+  cv::Mat l = cv::Mat(d.left.height, d.left.width, CV_8U,
+                      const_cast<std::uint8_t*>(d.left.pixels.data()))(r)
+                  .clone();
+  cv::Mat rr = cv::Mat(d.left.height, d.left.width, CV_8U,
+                       const_cast<std::uint8_t*>(d.right.pixels.data()))(r)
+                   .clone();
   auto m = sgbm ? make_sgbm(kRoiDmin, 48) : make_bm(kRoiDmin, 48);
   cv::Mat out;
   for (auto _ : state) {
@@ -244,7 +248,7 @@ BENCHMARK_CAPTURE(BM_OpenCv_Roi160, StereoBM, false)->Unit(benchmark::kMilliseco
 
 // --- Middlebury accuracy and time ----------------------------------------------
 
-#define PETRA_SCENE(name)                                                                       \
+#define PETRA_SCENE(name) \
   BENCHMARK_CAPTURE(BM_MatchDp, name, #name)->Unit(benchmark::kMillisecond)->MinTime(0.5);
 PETRA_SCENE(tsukuba)
 PETRA_SCENE(venus)
@@ -257,9 +261,13 @@ PETRA_SCENE(Baby1)
 #undef PETRA_SCENE
 
 #ifdef PETRA_HAVE_OPENCV
-#define PETRA_PEERS(name)                                                                            \
-  BENCHMARK_CAPTURE(BM_OpenCv, Sgbm_##name, #name, true)->Unit(benchmark::kMillisecond)->MinTime(0.5); \
-  BENCHMARK_CAPTURE(BM_OpenCv, StereoBM_##name, #name, false)->Unit(benchmark::kMillisecond)->MinTime(0.5);
+#define PETRA_PEERS(name)                                     \
+  BENCHMARK_CAPTURE(BM_OpenCv, Sgbm_##name, #name, true)      \
+      ->Unit(benchmark::kMillisecond)                         \
+      ->MinTime(0.5);                                         \
+  BENCHMARK_CAPTURE(BM_OpenCv, StereoBM_##name, #name, false) \
+      ->Unit(benchmark::kMillisecond)                         \
+      ->MinTime(0.5);
 PETRA_PEERS(tsukuba)
 PETRA_PEERS(venus)
 PETRA_PEERS(sawtooth)
