@@ -13,6 +13,7 @@
 #include <cstring>
 #include <thread>
 
+#include "hal/estop_monitor.hpp"
 #include "tests/hal/hil_devices.hpp"
 #include "tests/hal/thread_probe.hpp"
 #include "tests/support/heap_counter.hpp"
@@ -164,6 +165,27 @@ TEST_F(GpiodOnGpioSim, EstopInputReadsAndWaitsForTheEdge) {
   ASSERT_TRUE(*estop.wait_event(ev, 5000));
   EXPECT_EQ(ev.edge, GpioEdge::falling);
   EXPECT_FALSE(*estop.read());
+}
+
+TEST_F(GpiodOnGpioSim, EstopMonitorCatchesAPressReleasedBeforeThePoll) {
+  const std::string pull = sim_file("estop", "pull");
+  ASSERT_TRUE(test::write_text(pull, "pull-up"));
+  GpiodInput estop;
+  ASSERT_TRUE(estop.open(line_config(test::gpio_chip(), "estop", true), "petra-test").ok());
+  EstopMonitor monitor(estop);
+  EXPECT_FALSE(monitor.poll().latched);
+  ASSERT_TRUE(test::write_text(pull, "pull-down"));  // pressed...
+  ASSERT_TRUE(test::write_text(pull, "pull-up"));    // ...and released between two polls
+  EstopState s;
+  {
+    test::HeapScope heap;
+    s = monitor.poll();
+    EXPECT_EQ(heap.allocations(), 0u);
+  }
+  EXPECT_FALSE(s.line_fault) << monitor.last_error().message;
+  EXPECT_FALSE(s.asserted);
+  EXPECT_TRUE(s.latched);
+  EXPECT_EQ(s.presses, 1u);
 }
 
 TEST_F(GpiodOnGpioSim, UnknownLineAndBusyLineAreErrorsNamingThem) {
