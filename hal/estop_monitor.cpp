@@ -14,10 +14,14 @@ EstopState EstopMonitor::poll() {
       break;
     }
     if (!*got) break;
-    if (ev.edge == GpioEdge::rising) {
+    // Kernels report the level found when the edge is handled, so a fast
+    // press-release can arrive as two "falling" edges: a release while
+    // already released means a press was missed in between.
+    if (ev.edge == GpioEdge::rising || !last_level_) {
       ++state_.presses;
       state_.latched = true;
     }
+    last_level_ = ev.edge == GpioEdge::rising;
   }
   auto level = line_.read();
   if (!level) {
@@ -25,6 +29,7 @@ EstopState EstopMonitor::poll() {
     state_.line_fault = true;
   }
   state_.asserted = state_.line_fault || (level.ok() && *level);
+  if (level.ok()) last_level_ = *level;
   if (state_.asserted) state_.latched = true;
   return state_;
 }

@@ -31,6 +31,7 @@ class EstopMonitor {
  private:
   GpioInput& line_;
   EstopState state_;
+  bool last_level_ = false;  // as of the last edge or read
   Error error_{};
 };
 
