@@ -32,16 +32,19 @@ if [ "${PETRA_SKIP_HIL:-0}" = 1 ]; then
 fi
 [ -d "$build/tests" ] || { echo "hil: no build in $build (cmake --preset dev && cmake --build build/dev)"; exit 2; }
 mkdir -p "$out"
+cache=${PETRA_HIL_DIR:-/var/cache/petra-hil}
+mkdir -p "$cache"
 t0=$(date +%s.%N)
 elapsed() { awk -v a="$1" -v b="$(date +%s.%N)" 'BEGIN {printf "%.1f", b - a}'; }
 
-bash "$here/setup.sh" > "$out/setup.log" 2>&1 || { tail -20 "$out/setup.log"; echo "hil: setup failed ($out/setup.log)"; exit 2; }
+# Several checkouts may run the bench at once: the shared cache is prepared under a lock.
+flock "$cache/.lock" bash "$here/setup.sh" > "$out/setup.log" 2>&1 || { tail -20 "$out/setup.log"; echo "hil: setup failed ($out/setup.log)"; exit 2; }
 t_setup=$(elapsed "$t0")
 t1=$(date +%s.%N)
-bash "$here/pack.sh" "$build" "$out" > "$out/pack.log" 2>&1 || { tail -20 "$out/pack.log"; echo "hil: packing failed ($out/pack.log)"; exit 2; }
+flock "$cache/.lock" bash "$here/pack.sh" "$build" "$out" > "$out/pack.log" 2>&1 || { tail -20 "$out/pack.log"; echo "hil: packing failed ($out/pack.log)"; exit 2; }
 t_pack=$(elapsed "$t1")
-. "${PETRA_HIL_DIR:-/var/cache/petra-hil}/current.env"
-kernel=${PETRA_HIL_DIR:-/var/cache/petra-hil}/$KVER/vmlinux
+. "$cache/current.env"
+kernel=$cache/$KVER/vmlinux
 echo "hil: setup ${t_setup} s, pack ${t_pack} s ($(tail -1 "$out/pack.log")); booting $KVER under qemu"
 
 t2=$(date +%s.%N)
