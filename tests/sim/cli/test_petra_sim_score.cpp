@@ -2,6 +2,7 @@
 // exit status 0 / 1 (bad input, one line on stderr) / 2 (a limit exceeded).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -18,7 +19,10 @@ namespace fs = std::filesystem;
 // The petra executable built beside this test (build/<preset>/sim/petra).
 fs::path petra() { return fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "sim" / "petra"; }
 
-fs::path tmp(const std::string& name) { return fs::temp_directory_path() / ("petra_cli_" + name); }
+// Per process: ctest runs the tests of this file in parallel processes.
+fs::path tmp(const std::string& name) {
+  return fs::temp_directory_path() / ("petra_cli_" + std::to_string(getpid()) + "_" + name);
+}
 
 std::string slurp(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);

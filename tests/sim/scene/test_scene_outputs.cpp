@@ -1,6 +1,7 @@
 // `petra sim scene` outputs: the same seed and options give identical bytes,
 // other seeds give other scenes, and every file reads back as documented.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -28,7 +29,9 @@ std::string bytes(const fs::path& p) {
 }
 
 fs::path temp_dir(const char* name) {
-  const fs::path d = fs::temp_directory_path() / (std::string("petra_scene_") + name);
+  // Per process: ctest runs the tests of this file in parallel processes.
+  const fs::path d = fs::temp_directory_path() /
+                     ("petra_scene_" + std::to_string(getpid()) + "_" + name);
   fs::remove_all(d);
   return d;
 }
