@@ -18,9 +18,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* const kFiles[] = {"left.pgm",        "right.pgm",           "left.png",
-                              "right.png",       "calib.json",          "truth.json",
-                              "disparity_truth.pfm", "shadow_truth.pgm", "shadow_truth_right.pgm",
+const char* const kFiles[] = {"left.pgm",
+                              "right.pgm",
+                              "left.png",
+                              "right.png",
+                              "calib.json",
+                              "truth.json",
+                              "disparity_truth.pfm",
+                              "shadow_truth.pgm",
+                              "shadow_truth_right.pgm",
                               "shadow_truth_rectified.pgm"};
 
 std::string bytes(const fs::path& p) {
@@ -30,8 +36,8 @@ std::string bytes(const fs::path& p) {
 
 fs::path temp_dir(const char* name) {
   // Per process: ctest runs the tests of this file in parallel processes.
-  const fs::path d = fs::temp_directory_path() /
-                     ("petra_scene_" + std::to_string(getpid()) + "_" + name);
+  const fs::path d =
+      fs::temp_directory_path() / ("petra_scene_" + std::to_string(getpid()) + "_" + name);
   fs::remove_all(d);
   return d;
 }
