@@ -1,0 +1,180 @@
+// Dense stereo by graph cuts with explicit occlusions (Kolmogorov & Zabih,
+// ICCV 2001; the IPOL 2014 article by Kolmogorov, Monasse and Tan describes the
+// method in detail). docs/graphcut.md explains the energy and our choices.
+//
+// An assignment a = (p, d) pairs left pixel p = (x, y) with right pixel
+// q = (x - d, y). A configuration is a set of active assignments with at most
+// one per left and one per right pixel (uniqueness); a pixel in none is
+// occluded. Energy, in integer cost units of 1/4 gray level squared:
+//   E = sum over active a of (D(a) - K)                      data + occlusion
+//     + sum over neighbouring pairs {(p,d),(p',d)} of V * [exactly one active]
+//   D = min(BT, clip)^2, BT = Birchfield-Tomasi distance of the gray values
+//       (half-pixel samples towards the 4 neighbours, so it tolerates half a
+//       pixel of sampling or vertical rectification error),
+//   V = lambda1 if both |I_L(p)-I_L(p')| and |I_R(q)-I_R(q')| are below the
+//       edge threshold, else lambda2 (smoothness drops across intensity edges).
+// Parameters left at kAuto follow the original method: K = mean over pixels of
+// the k-th smallest D (k = (#disparities+2)/4, at least 3), lambda = K/5,
+// lambda1 = 3 lambda, lambda2 = lambda, threshold 8, clip 30.
+// Minimised by alpha-expansion: for each disparity alpha (seeded random or
+// fixed order) the best configuration reachable by deactivating assignments
+// and activating assignments of disparity alpha is one min cut (algo/maxflow).
+// Cycles over all disparities repeat until one brings no decrease or
+// max_cycles is reached.
+//
+// Shadow pixels (nonzero in a mask) are marked occluded: every assignment that
+// touches a shadow pixel, left or right, is left out of the problem, so shadow
+// pixels get no disparity (as SEED.md asks) and their neighbours are neither
+// pulled towards nor pushed away from them by the smoothness term.
+//
+// Inputs:  rectified left/right gray images of equal size (full images: the
+//          right search strip and the half-pixel samples may lie outside the
+//          ROI), optional shadow masks of the same size, the ROI in the left
+//          image, disparity range [disp_min, disp_max] (d = x_left - x_right).
+// Output:  DisparityMap over the ROI: Q4 disparities, kInvalidDisparity where
+//          occluded or shadowed.
+// Memory:  all from the Arena at init, for a budget (max ROI width, height,
+//          disparity count): bytes_needed() =
+//            173 B per ROI pixel (of which the max-flow graph: 2 nodes of 76 B)
+//            + 9 B per right strip pixel (height x (width + disparities - 1)).
+//          Flight default 320 x 320 ROI, 128 disparities: 19.0 MB (18.1 MiB).
+//          match() never allocates.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "algo/core/arena.hpp"
+#include "algo/core/fixed_vector.hpp"
+#include "algo/core/image_view.hpp"
+#include "algo/core/result.hpp"
+#include "algo/disparity.hpp"
+#include "algo/match_graphcut_terms.hpp"
+#include "algo/maxflow.hpp"
+
+namespace petra {
+
+inline constexpr std::int32_t kGraphCutAuto = -1;
+inline constexpr int kGraphCutMaxCycles = 32;
+
+// One expansion as seen by an observer (tests and tools): labels are per ROI
+// pixel, row-major, -1 occluded, else d - disp_min.
+struct GraphCutStep {
+  int cycle = 0;
+  int disparity = 0;
+  bool skipped = false;  // nothing changed since this disparity's last expansion
+  bool applied = false;  // the move decreased the energy and was taken
+  std::int64_t energy_before = 0;
+  std::int64_t energy_after = 0;
+  std::span<const std::int16_t> labels;
+  int width = 0;
+  int height = 0;
+};
+
+struct GraphCutObserver {
+  void (*on_expansion)(void* context, const GraphCutStep& step) = nullptr;
+  void* context = nullptr;
+};
+
+struct GraphCutParams {
+  int disp_min = 0;
+  int disp_max = 15;
+  int max_cycles = 4;        // 1..kGraphCutMaxCycles
+  bool random_order = true;  // a new seeded permutation of the disparities each cycle
+  std::uint32_t seed = 1;
+  std::int32_t occlusion_k = kGraphCutAuto;  // K > 0, cost units
+  std::int32_t lambda = kGraphCutAuto;       // >= 0; default K/5
+  std::int32_t lambda1 = kGraphCutAuto;      // >= 0; default 3 lambda
+  std::int32_t lambda2 = kGraphCutAuto;      // >= 0; default lambda
+  int edge_threshold = 8;                    // gray levels, 1..255
+  int data_clip = 30;                        // gray levels, 1..90
+  // Fixes, before each cut, alpha assignments that no neighbour can make worth
+  // activating (an exact reduction: the minimum is unchanged). Off only to test it.
+  bool prune = true;
+  GraphCutObserver observer{};
+};
+
+struct GraphCutBudget {
+  int max_width = 320;
+  int max_height = 320;
+  int max_disparities = 128;
+};
+
+struct GraphCutReport {
+  std::int32_t occlusion_k = 0;  // the parameters used (after automatic choice)
+  std::int32_t lambda1 = 0;
+  std::int32_t lambda2 = 0;
+  int cycles = 0;              // cycles run
+  int expansions = 0;          // min cuts solved
+  int expansions_skipped = 0;  // provably unchanged, not solved
+  bool converged = false;      // the last cycle brought no decrease
+  std::int64_t energy = 0;     // final energy (the all-occluded start is 0)
+  FixedVector<std::int64_t, kGraphCutMaxCycles> cycle_energy;  // after each cycle
+  std::int64_t graph_nodes = 0;  // summed over expansions (work measure)
+  long matched_pixels = 0;
+  long occluded_pixels = 0;
+  long shadow_pixels = 0;
+};
+
+class GraphCutMatcher {
+ public:
+  static std::size_t bytes_needed(const GraphCutBudget& budget);
+
+  // Carves all state from `arena` (errors: budget out of range, arena too small).
+  Status init(Arena& arena, const GraphCutBudget& budget);
+
+  // Matches the ROI; `out.q4` must be roi.w x roi.h and `out.roi` is set to roi.
+  // Masks: empty views for none, else the images' size, nonzero = shadow.
+  Result<GraphCutReport> match(ConstGray8View left, ConstGray8View right, Rect roi,
+                               const GraphCutParams& params, DisparityMap& out,
+                               ConstGray8View left_shadow = {},
+                               ConstGray8View right_shadow = {});
+
+  const GraphCutBudget& budget() const { return budget_; }
+
+ private:
+  using Sample = gc::Sample;
+  // Per-pixel flags: edge to the right / lower neighbour, unusable (shadow).
+  static constexpr std::uint8_t kEdgeRight = 1;
+  static constexpr std::uint8_t kEdgeDown = 2;
+  static constexpr std::uint8_t kUnusable = 4;
+  static constexpr std::int16_t kOccluded = -1;
+
+  Status validate(ConstGray8View left, ConstGray8View right, Rect roi,
+                  const GraphCutParams& params, const DisparityMap& out,
+                  ConstGray8View left_shadow, ConstGray8View right_shadow) const;
+  void prepare(ConstGray8View left, ConstGray8View right, Rect roi, const GraphCutParams& params,
+               ConstGray8View left_shadow, ConstGray8View right_shadow);
+  std::int32_t automatic_k() const;
+  std::int64_t energy() const;
+  // One alpha-expansion; returns the energy change applied (<= 0).
+  std::int64_t expand(int alpha, std::int64_t& nodes_used);
+
+  GraphCutBudget budget_{};
+  MaxFlow maxflow_;
+  std::span<Sample> left_;    // ROI pixels
+  std::span<Sample> right_;   // right strip pixels
+  std::span<std::uint8_t> left_flags_;
+  std::span<std::uint8_t> right_flags_;
+  std::span<std::int16_t> label_;       // per ROI pixel: kOccluded or d - disp_min
+  std::span<std::int16_t> cost_;        // D of the active assignment
+  std::span<std::int16_t> alpha_cost_;  // D of (p, alpha) for the current expansion
+  std::span<std::int32_t> alpha_node_;  // node id, or a code (see expansion)
+  std::span<std::int32_t> old_node_;
+  std::span<std::int16_t> owner_;       // per strip pixel: ROI x of its match, or -1
+  std::span<std::int16_t> order_;       // disparity order of a cycle
+  std::span<std::int32_t> last_change_;  // change counter at each disparity's last expansion
+
+  // The current problem.
+  int w_ = 0, h_ = 0;           // ROI size
+  int roi_x_ = 0;               // ROI x in the image
+  int image_w_ = 0;
+  int strip_x0_ = 0, strip_w_ = 0;  // right strip: image columns [x0, x0 + w)
+  int disp_min_ = 0, num_disp_ = 0;
+  std::int32_t k_ = 0, lambda1_ = 0, lambda2_ = 0;
+  std::int32_t clip2_ = 0;      // clip in doubled gray levels
+  bool prune_ = true;
+};
+
+}  // namespace petra
