@@ -13,7 +13,6 @@ namespace {
 constexpr int kAlignSlack = 16;
 constexpr int kMaxDisparityMagnitude = 2047;  // Q4 in int16
 constexpr std::int32_t kMaxWeight = 1 << 20;  // keeps every capacity sum inside int32
-constexpr int kGraphDegree = 6;               // 4 neighbours + 2 uniqueness links
 
 struct Sizes {
   std::size_t roi, strip, disparities;
@@ -40,11 +39,11 @@ std::size_t GraphCutMatcher::bytes_needed(const GraphCutBudget& budget) {
   if (budget.max_width <= 0 || budget.max_height <= 0 || budget.max_disparities <= 0) return 0;
   const Sizes s = sizes_of(budget);
   std::size_t bytes = 0;
-  bytes += s.roi * (sizeof(Sample) + 1 + 3 * sizeof(std::int16_t) + 2 * sizeof(std::int32_t));
+  bytes += s.roi * (sizeof(Sample) + 1 + 3 * sizeof(std::int16_t) + 6 * sizeof(std::int32_t));
   bytes += s.strip * (sizeof(Sample) + 1 + sizeof(std::int16_t));
   bytes += s.disparities * (sizeof(std::int16_t) + sizeof(std::int32_t));
-  bytes += 12 * kAlignSlack;
-  bytes += MaxFlow::bytes_needed(static_cast<std::int32_t>(2 * s.roi), kGraphDegree);
+  bytes += 16 * kAlignSlack;
+  bytes += MaxFlow<6>::bytes_needed(static_cast<std::int32_t>(2 * s.roi));
   return bytes;
 }
 
@@ -78,11 +77,15 @@ Status GraphCutMatcher::init(Arena& arena, const GraphCutBudget& budget) {
   PETRA_GC_TAKE(alpha_cost_, std::int16_t, s.roi, "alpha costs");
   PETRA_GC_TAKE(alpha_node_, std::int32_t, s.roi, "alpha nodes");
   PETRA_GC_TAKE(old_node_, std::int32_t, s.roi, "old nodes");
+  PETRA_GC_TAKE(alpha_slack_, std::int32_t, s.roi, "alpha slack");
+  PETRA_GC_TAKE(old_slack_, std::int32_t, s.roi, "old slack");
+  PETRA_GC_TAKE(old_keep_, std::int32_t, s.roi, "keep costs");
+  PETRA_GC_TAKE(worklist_, std::int32_t, s.roi, "worklist");
   PETRA_GC_TAKE(owner_, std::int16_t, s.strip, "right owners");
   PETRA_GC_TAKE(order_, std::int16_t, s.disparities, "order");
   PETRA_GC_TAKE(last_change_, std::int32_t, s.disparities, "change stamps");
 #undef PETRA_GC_TAKE
-  PETRA_TRY(maxflow_.init(arena, static_cast<std::int32_t>(2 * s.roi), kGraphDegree));
+  PETRA_TRY(maxflow_.init(arena, static_cast<std::int32_t>(2 * s.roi)));
   budget_ = budget;
   return ok_status();
 }

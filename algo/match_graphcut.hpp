@@ -89,8 +89,8 @@ struct GraphCutParams {
   std::int32_t lambda2 = kGraphCutAuto;      // >= 0; default lambda
   int edge_threshold = 8;                    // gray levels, 1..255
   int data_clip = 30;                        // gray levels, 1..90
-  // Fixes, before each cut, alpha assignments that no neighbour can make worth
-  // activating (an exact reduction: the minimum is unchanged). Off only to test it.
+  // Fixes, before each cut, the assignments whose choice is already decided
+  // (an exact reduction: the minimum is unchanged). Off only to test it.
   bool prune = true;
   GraphCutObserver observer{};
 };
@@ -152,7 +152,7 @@ class GraphCutMatcher {
   std::int64_t expand(int alpha, std::int64_t& nodes_used);
 
   GraphCutBudget budget_{};
-  MaxFlow maxflow_;
+  MaxFlow<6> maxflow_;  // 4 neighbours + 2 uniqueness links per node
   std::span<Sample> left_;    // ROI pixels
   std::span<Sample> right_;   // right strip pixels
   std::span<std::uint8_t> left_flags_;
@@ -162,6 +162,10 @@ class GraphCutMatcher {
   std::span<std::int16_t> alpha_cost_;  // D of (p, alpha) for the current expansion
   std::span<std::int32_t> alpha_node_;  // node id, or a code (see expansion)
   std::span<std::int32_t> old_node_;
+  std::span<std::int32_t> alpha_slack_;  // reduction bookkeeping (see expansion)
+  std::span<std::int32_t> old_slack_;
+  std::span<std::int32_t> old_keep_;     // cost of keeping the active assignment
+  std::span<std::int32_t> worklist_;
   std::span<std::int16_t> owner_;       // per strip pixel: ROI x of its match, or -1
   std::span<std::int16_t> order_;       // disparity order of a cycle
   std::span<std::int32_t> last_change_;  // change counter at each disparity's last expansion

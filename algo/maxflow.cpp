@@ -4,48 +4,52 @@
 
 namespace petra {
 
-std::size_t MaxFlow::bytes_needed(std::int32_t max_nodes, int max_degree) {
-  if (max_nodes <= 0 || max_degree <= 0) return 0;
+template <int D>
+std::size_t MaxFlow<D>::bytes_needed(std::int32_t max_nodes) {
+  if (max_nodes <= 0) return 0;
   const auto n = static_cast<std::size_t>(max_nodes);
-  const auto d = static_cast<std::size_t>(max_degree);
-  // Three blocks, each padded for its alignment.
-  return n * sizeof(Node) + n * d * sizeof(Arc) + n * sizeof(std::int32_t) + 3 * alignof(Node);
+  return n * (sizeof(Record) + 1 + 2 * sizeof(std::int32_t)) + 4 * alignof(Record);
 }
 
-Status MaxFlow::init(Arena& arena, std::int32_t max_nodes, int max_degree) {
-  if (max_nodes <= 0 || max_nodes >= (1 << 27)) {
+template <int D>
+Status MaxFlow<D>::init(Arena& arena, std::int32_t max_nodes) {
+  if (max_nodes <= 0 || max_nodes > kMaxNodes) {
     return Error::make(Errc::out_of_range, "maxflow: max_nodes %d outside 1..%d", max_nodes,
-                       (1 << 27) - 1);
+                       kMaxNodes);
   }
-  if (max_degree <= 0 || max_degree > kMaxDegreeLimit) {
-    return Error::make(Errc::out_of_range, "maxflow: max_degree %d outside 1..%d", max_degree,
-                       kMaxDegreeLimit);
-  }
-  auto nodes = arena.allocate<Node>(static_cast<std::size_t>(max_nodes), "maxflow nodes");
-  if (!nodes) return nodes.error();
-  auto arcs = arena.allocate<Arc>(
-      static_cast<std::size_t>(max_nodes) * static_cast<std::size_t>(max_degree), "maxflow arcs");
-  if (!arcs) return arcs.error();
-  auto orphans =
-      arena.allocate<std::int32_t>(static_cast<std::size_t>(max_nodes), "maxflow orphan queue");
+  const auto n = static_cast<std::size_t>(max_nodes);
+  auto records = arena.allocate<Record>(n, "maxflow nodes");
+  if (!records) return records.error();
+  auto degree = arena.allocate<std::uint8_t>(n, "maxflow degrees");
+  if (!degree) return degree.error();
+  auto active = arena.allocate<std::int32_t>(n, "maxflow active queue");
+  if (!active) return active.error();
+  auto orphans = arena.allocate<std::int32_t>(n, "maxflow orphan queue");
   if (!orphans) return orphans.error();
-  nodes_ = *nodes;
-  arcs_ = *arcs;
+  records_ = *records;
+  degree_ = *degree;
+  active_ = *active;
   orphans_ = *orphans;
   max_nodes_ = max_nodes;
-  max_degree_ = max_degree;
   return reset(0);
 }
 
-Status MaxFlow::reset(std::int32_t num_nodes) {
+template <int D>
+Status MaxFlow<D>::reset(std::int32_t num_nodes) {
   if (num_nodes < 0 || num_nodes > max_nodes_) {
     return Error::make(Errc::capacity_exceeded, "maxflow: %d nodes requested, budget %d",
                        num_nodes, max_nodes_);
   }
   num_nodes_ = num_nodes;
-  const Node blank{kFree, kNotActive, 0, 0, 0, 0, 0, 0};
-  std::fill_n(nodes_.data(), num_nodes, blank);
-  active_first_ = active_last_ = -1;
+  for (std::int32_t i = 0; i < num_nodes; ++i) {
+    Record& r = records_[i];
+    r.node = Node{kFree, 0, 0, 0};
+    // Unused slots point back to themselves with no capacity: loops can scan
+    // every slot, no degree test in the hot paths.
+    for (int s = 0; s < D; ++s) r.arcs[s] = Arc{static_cast<std::uint32_t>(arc_id(i, s)), 0};
+  }
+  std::fill_n(degree_.data(), num_nodes, std::uint8_t{0});
+  active_head_ = active_count_ = 0;
   orphan_head_ = orphan_count_ = 0;
   time_ = 0;
   flow_ = 0;
@@ -53,9 +57,10 @@ Status MaxFlow::reset(std::int32_t num_nodes) {
   return ok_status();
 }
 
-void MaxFlow::add_terminal_weights(std::int32_t node, Capacity source_cap, Capacity sink_cap) {
+template <int D>
+void MaxFlow<D>::add_terminal_weights(std::int32_t node, Capacity source_cap, Capacity sink_cap) {
   PETRA_ASSERT(node >= 0 && node < num_nodes_ && source_cap >= 0 && sink_cap >= 0);
-  Node& n = nodes_[node];
+  Node& n = records_[node].node;
   std::int64_t cs = source_cap;
   std::int64_t ct = sink_cap;
   if (n.tr_cap > 0) {
@@ -69,51 +74,47 @@ void MaxFlow::add_terminal_weights(std::int32_t node, Capacity source_cap, Capac
   n.tr_cap = static_cast<Capacity>(net);
 }
 
-bool MaxFlow::add_edge(std::int32_t i, std::int32_t j, Capacity cap, Capacity rev_cap) {
+template <int D>
+bool MaxFlow<D>::add_edge(std::int32_t i, std::int32_t j, Capacity cap, Capacity rev_cap) {
   PETRA_ASSERT(i >= 0 && i < num_nodes_ && j >= 0 && j < num_nodes_ && i != j);
   PETRA_ASSERT(cap >= 0 && rev_cap >= 0);
-  Node& ni = nodes_[i];
-  Node& nj = nodes_[j];
-  if (ni.degree >= max_degree_ || nj.degree >= max_degree_) return false;
-  const std::uint32_t si = ni.degree++;
-  const std::uint32_t sj = nj.degree++;
-  arcs_[static_cast<std::size_t>(i) * max_degree_ + si] = {(static_cast<std::uint32_t>(j) << 4) | sj,
-                                                           cap};
-  arcs_[static_cast<std::size_t>(j) * max_degree_ + sj] = {(static_cast<std::uint32_t>(i) << 4) | si,
-                                                           rev_cap};
+  if (degree_[i] >= D || degree_[j] >= D) return false;
+  const int si = degree_[i]++;
+  const int sj = degree_[j]++;
+  records_[i].arcs[si] = Arc{static_cast<std::uint32_t>(arc_id(j, sj)), cap};
+  records_[j].arcs[sj] = Arc{static_cast<std::uint32_t>(arc_id(i, si)), rev_cap};
   return true;
 }
 
-void MaxFlow::set_active(std::int32_t i) {
-  Node& n = nodes_[i];
-  if (n.next != kNotActive) return;
-  n.next = i;  // last of the queue points to itself
-  if (active_last_ >= 0) {
-    nodes_[active_last_].next = i;
-  } else {
-    active_first_ = i;
-  }
-  active_last_ = i;
+template <int D>
+void MaxFlow<D>::set_active(std::int32_t i) {
+  Node& n = records_[i].node;
+  if ((n.bits & kActiveBit) != 0) return;
+  if (n.is_sink() ? !grow_sink_ : !grow_source_) return;  // that tree stays as it is
+  n.bits |= kActiveBit;
+  std::int32_t tail = active_head_ + active_count_;
+  if (tail >= num_nodes_) tail -= num_nodes_;
+  active_[tail] = i;
+  ++active_count_;
 }
 
 // Pops active nodes until one still belongs to a tree.
-std::int32_t MaxFlow::next_active() {
-  for (;;) {
-    const std::int32_t i = active_first_;
-    if (i < 0) return -1;
-    Node& n = nodes_[i];
-    if (n.next == i) {
-      active_first_ = active_last_ = -1;
-    } else {
-      active_first_ = n.next;
-    }
-    n.next = kNotActive;
+template <int D>
+std::int32_t MaxFlow<D>::next_active() {
+  while (active_count_ > 0) {
+    const std::int32_t i = active_[active_head_];
+    if (++active_head_ == num_nodes_) active_head_ = 0;
+    --active_count_;
+    Node& n = records_[i].node;
+    n.bits &= ~kActiveBit;
     if (n.parent != kFree) return i;
   }
+  return -1;
 }
 
-void MaxFlow::make_orphan(std::int32_t i) {
-  nodes_[i].parent = kOrphan;
+template <int D>
+void MaxFlow<D>::make_orphan(std::int32_t i) {
+  records_[i].node.parent = kOrphan;
   PETRA_ASSERT(orphan_count_ < num_nodes_);
   std::int32_t tail = orphan_head_ + orphan_count_;
   if (tail >= num_nodes_) tail -= num_nodes_;
@@ -121,50 +122,78 @@ void MaxFlow::make_orphan(std::int32_t i) {
   ++orphan_count_;
 }
 
+// Sends flow along every path source -> i -> j -> sink that the terminal links
+// allow, before any search: in the matcher's graphs much of the flow takes
+// such two-node paths (a current match and a competing new one), and one pass
+// in node order is far cheaper than one tree search per path.
+template <int D>
+void MaxFlow<D>::push_short_paths() {
+  for (std::int32_t i = 0; i < num_nodes_; ++i) {
+    Record& r = records_[i];
+    if (r.node.tr_cap <= 0) continue;
+    for (int s = 0; s < D && r.node.tr_cap > 0; ++s) {
+      Arc& a = r.arcs[s];
+      if (a.r_cap == 0) continue;
+      Node& m = records_[head_of(a)].node;
+      if (m.tr_cap >= 0) continue;
+      const Capacity f = std::min({r.node.tr_cap, a.r_cap, -m.tr_cap});
+      r.node.tr_cap -= f;
+      m.tr_cap += f;
+      a.r_cap -= f;
+      arc(static_cast<std::int32_t>(a.sister)).r_cap += f;
+      flow_ += f;
+    }
+  }
+}
+
 // Grows the tree of node i by one layer; returns the arc joining the two
 // trees (oriented source tree -> sink tree) or -1.
-std::int32_t MaxFlow::grow(std::int32_t i) {
-  const Node& n = nodes_[i];
-  const std::int32_t first = i * max_degree_;
-  const std::int32_t last = first + n.degree;
-  if (n.is_sink == 0) {
-    for (std::int32_t a = first; a < last; ++a) {
-      if (arcs_[a].r_cap == 0) continue;
-      const std::int32_t j = head(a);
-      Node& m = nodes_[j];
+template <int D>
+std::int32_t MaxFlow<D>::grow(std::int32_t i) {
+  Record& r = records_[i];
+  const Node& n = r.node;
+  const std::int32_t child_dist = n.dist() + 1;
+  if (!n.is_sink()) {
+    for (int s = 0; s < D; ++s) {
+      const Arc& a = r.arcs[s];
+      if (a.r_cap == 0) continue;
+      const std::int32_t j = head_of(a);
+      Node& m = records_[j].node;
       if (m.parent == kFree) {
-        m.is_sink = 0;
-        m.parent = sister(a);
+        m.bits &= ~kSinkBit;
+        m.parent = static_cast<std::int32_t>(a.sister);
         m.stamp = n.stamp;
-        m.dist = n.dist + 1;
+        m.set_dist(child_dist);
         set_active(j);
-      } else if (m.is_sink != 0) {
-        return a;
-      } else if (m.stamp <= n.stamp && m.dist > n.dist) {
+      } else if (m.is_sink()) {
+        return arc_id(i, s);
+      } else if (m.stamp <= n.stamp && m.dist() > n.dist()) {
         // A shorter route to the source: shorter paths augment faster.
-        m.parent = sister(a);
+        m.parent = static_cast<std::int32_t>(a.sister);
         m.stamp = n.stamp;
-        m.dist = n.dist + 1;
+        m.set_dist(child_dist);
       }
     }
   } else {
-    for (std::int32_t a = first; a < last; ++a) {
-      const std::int32_t s = sister(a);
-      if (arcs_[s].r_cap == 0) continue;
-      const std::int32_t j = head(a);
-      Node& m = nodes_[j];
+    for (int s = 0; s < D; ++s) {
+      const Arc& a = r.arcs[s];
+      const std::int32_t j = head_of(a);
+      Record& rj = records_[j];
+      const Arc& back = rj.arcs[a.sister & 7];  // j -> i, in j's own record
+      if (back.r_cap == 0) continue;
+      Node& m = rj.node;
       if (m.parent == kFree) {
-        m.is_sink = 1;
-        m.parent = s;
+        m.bits |= kSinkBit;
+        m.parent = static_cast<std::int32_t>(a.sister);
         m.stamp = n.stamp;
-        m.dist = n.dist + 1;
+        m.set_dist(child_dist);
         set_active(j);
-      } else if (m.is_sink == 0) {
-        return s;
-      } else if (m.stamp <= n.stamp && m.dist > n.dist) {
-        m.parent = s;
+      } else if (!m.is_sink()) {
+        return static_cast<std::int32_t>(a.sister);
+      } else if (m.stamp <= n.stamp && m.dist() > n.dist()) {
+        m.parent = static_cast<std::int32_t>(a.sister);
         m.stamp = n.stamp;
-        m.dist = n.dist + 1;
+        m.set_dist(child_dist);
       }
     }
   }
@@ -173,47 +202,50 @@ std::int32_t MaxFlow::grow(std::int32_t i) {
 
 // Pushes the bottleneck along source -> ... -> middle -> ... -> sink; nodes
 // whose tree arc saturates become orphans.
-void MaxFlow::augment(std::int32_t middle) {
-  const std::int32_t s_end = head(sister(middle));
-  const std::int32_t t_end = head(middle);
-  Capacity b = arcs_[middle].r_cap;
+template <int D>
+void MaxFlow<D>::augment(std::int32_t middle) {
+  Arc& mid = arc(middle);
+  const std::int32_t s_end = middle >> 3;
+  const std::int32_t t_end = head_of(mid);
+  Capacity b = mid.r_cap;
   std::int32_t i = s_end;
-  for (std::int32_t a = nodes_[i].parent; a != kTerminal; a = nodes_[i].parent) {
-    b = std::min(b, arcs_[sister(a)].r_cap);
-    i = head(a);
+  for (std::int32_t a = records_[i].node.parent; a != kTerminal; a = records_[i].node.parent) {
+    b = std::min(b, arc(static_cast<std::int32_t>(arc(a).sister)).r_cap);
+    i = head_of(arc(a));
   }
-  b = std::min(b, nodes_[i].tr_cap);
+  b = std::min(b, records_[i].node.tr_cap);
   i = t_end;
-  for (std::int32_t a = nodes_[i].parent; a != kTerminal; a = nodes_[i].parent) {
-    b = std::min(b, arcs_[a].r_cap);
-    i = head(a);
+  for (std::int32_t a = records_[i].node.parent; a != kTerminal; a = records_[i].node.parent) {
+    b = std::min(b, arc(a).r_cap);
+    i = head_of(arc(a));
   }
-  b = std::min(b, -nodes_[i].tr_cap);
+  b = std::min(b, -records_[i].node.tr_cap);
 
-  arcs_[sister(middle)].r_cap += b;
-  arcs_[middle].r_cap -= b;
+  arc(static_cast<std::int32_t>(mid.sister)).r_cap += b;
+  mid.r_cap -= b;
   i = s_end;
-  for (std::int32_t a = nodes_[i].parent; a != kTerminal; a = nodes_[i].parent) {
-    const std::int32_t s = sister(a);
-    arcs_[a].r_cap += b;
-    arcs_[s].r_cap -= b;
-    const std::int32_t up = head(a);
-    if (arcs_[s].r_cap == 0) make_orphan(i);
-    i = up;
+  for (std::int32_t a = records_[i].node.parent; a != kTerminal; a = records_[i].node.parent) {
+    Arc& up = arc(a);
+    Arc& down = arc(static_cast<std::int32_t>(up.sister));
+    up.r_cap += b;
+    down.r_cap -= b;
+    const std::int32_t parent = head_of(up);
+    if (down.r_cap == 0) make_orphan(i);
+    i = parent;
   }
-  nodes_[i].tr_cap -= b;
-  if (nodes_[i].tr_cap == 0) make_orphan(i);
+  records_[i].node.tr_cap -= b;
+  if (records_[i].node.tr_cap == 0) make_orphan(i);
   i = t_end;
-  for (std::int32_t a = nodes_[i].parent; a != kTerminal; a = nodes_[i].parent) {
-    const std::int32_t s = sister(a);
-    arcs_[s].r_cap += b;
-    arcs_[a].r_cap -= b;
-    const std::int32_t up = head(a);
-    if (arcs_[a].r_cap == 0) make_orphan(i);
-    i = up;
+  for (std::int32_t a = records_[i].node.parent; a != kTerminal; a = records_[i].node.parent) {
+    Arc& up = arc(a);
+    arc(static_cast<std::int32_t>(up.sister)).r_cap += b;
+    up.r_cap -= b;
+    const std::int32_t parent = head_of(up);
+    if (up.r_cap == 0) make_orphan(i);
+    i = parent;
   }
-  nodes_[i].tr_cap += b;
-  if (nodes_[i].tr_cap == 0) make_orphan(i);
+  records_[i].node.tr_cap += b;
+  if (records_[i].node.tr_cap == 0) make_orphan(i);
   flow_ += b;
   ++augmentations_;
 }
@@ -221,127 +253,132 @@ void MaxFlow::augment(std::int32_t middle) {
 // Distance from j to its terminal along tree arcs, or kNoDist when the path
 // meets an orphan. Valid paths are stamped with the current time so later
 // checks stop early.
-std::int32_t MaxFlow::origin_distance(std::int32_t j) {
+template <int D>
+std::int32_t MaxFlow<D>::origin_distance(std::int32_t j) {
   std::int32_t d = 0;
   std::int32_t k = j;
   for (;;) {
-    Node& n = nodes_[k];
+    Node& n = records_[k].node;
     if (n.stamp == time_) {
-      d += n.dist;
+      d += n.dist();
       break;
     }
     const std::int32_t a = n.parent;
     ++d;
     if (a == kTerminal) {
       n.stamp = time_;
-      n.dist = 1;
+      n.set_dist(1);
       break;
     }
     if (a < 0) return kNoDist;  // an orphan on the way
-    k = head(a);
+    k = head_of(arc(a));
   }
   const std::int32_t total = d;
-  for (k = j; nodes_[k].stamp != time_; k = head(nodes_[k].parent)) {
-    nodes_[k].stamp = time_;
-    nodes_[k].dist = d--;
+  for (k = j; records_[k].node.stamp != time_; k = head_of(arc(records_[k].node.parent))) {
+    records_[k].node.stamp = time_;
+    records_[k].node.set_dist(d--);
   }
   return total;
 }
 
-void MaxFlow::adopt_source_orphan(std::int32_t i) {
-  const std::int32_t first = i * max_degree_;
-  const std::int32_t last = first + nodes_[i].degree;
+// Finds a new parent for orphan i in its own tree (one whose path still
+// reaches the terminal, preferring the shortest), or frees it.
+template <int D>
+template <bool kSink>
+void MaxFlow<D>::adopt(std::int32_t i) {
+  Record& r = records_[i];
   std::int32_t best = -1;
   std::int32_t best_dist = kNoDist;
-  for (std::int32_t a = first; a < last; ++a) {
-    if (arcs_[sister(a)].r_cap == 0) continue;
-    const std::int32_t j = head(a);
-    const Node& m = nodes_[j];
-    if (m.is_sink != 0 || m.parent == kFree) continue;
+  // A tree that does not grow only marks the nodes its terminal feeds
+  // directly; an orphan of it is simply freed (the growing tree finds a
+  // route through it if there is one).
+  const bool own_tree_grows = kSink ? grow_sink_ : grow_source_;
+  for (int s = 0; s < (own_tree_grows ? D : 0); ++s) {
+    const Arc& a = r.arcs[s];
+    const std::int32_t j = head_of(a);
+    Record& rj = records_[j];
+    // Source tree: flow would come j -> i; sink tree: i -> j.
+    const Capacity residual = kSink ? a.r_cap : rj.arcs[a.sister & 7].r_cap;
+    if (residual == 0) continue;
+    const Node& m = rj.node;
+    if (m.is_sink() != kSink || m.parent == kFree) continue;
     const std::int32_t d = origin_distance(j);
     if (d < best_dist) {
-      best = a;
+      best = arc_id(i, s);
       best_dist = d;
     }
   }
   if (best >= 0) {
-    nodes_[i].parent = best;
-    nodes_[i].stamp = time_;
-    nodes_[i].dist = best_dist + 1;
+    r.node.parent = best;
+    r.node.stamp = time_;
+    r.node.set_dist(best_dist + 1);
     return;
   }
-  // No way back to the source: i leaves the tree, its children are orphaned and
-  // the neighbours that could reach it again are re-activated.
-  for (std::int32_t a = first; a < last; ++a) {
-    const std::int32_t j = head(a);
-    const Node& m = nodes_[j];
-    if (m.is_sink != 0 || m.parent == kFree) continue;
-    if (arcs_[sister(a)].r_cap > 0) set_active(j);
-    if (m.parent >= 0 && head(m.parent) == i) make_orphan(j);
-  }
-  nodes_[i].parent = kFree;
-}
-
-void MaxFlow::adopt_sink_orphan(std::int32_t i) {
-  const std::int32_t first = i * max_degree_;
-  const std::int32_t last = first + nodes_[i].degree;
-  std::int32_t best = -1;
-  std::int32_t best_dist = kNoDist;
-  for (std::int32_t a = first; a < last; ++a) {
-    if (arcs_[a].r_cap == 0) continue;
-    const std::int32_t j = head(a);
-    const Node& m = nodes_[j];
-    if (m.is_sink == 0 || m.parent == kFree) continue;
-    const std::int32_t d = origin_distance(j);
-    if (d < best_dist) {
-      best = a;
-      best_dist = d;
+  // No way back to the terminal: i leaves the tree, its children are orphaned
+  // and the neighbours that could take it in again are re-activated. When
+  // only the other tree grows, that tree must be able to take i in instead.
+  for (int s = 0; s < D; ++s) {
+    const Arc& a = r.arcs[s];
+    const std::int32_t j = head_of(a);
+    if (j == i) continue;  // unused slot
+    Record& rj = records_[j];
+    const Node& m = rj.node;
+    if (m.parent == kFree) continue;
+    const Capacity into_i = rj.arcs[a.sister & 7].r_cap;  // j -> i
+    if (m.is_sink() == kSink) {
+      if ((kSink ? a.r_cap : into_i) > 0) set_active(j);
+      if (m.parent >= 0 && head_of(arc(m.parent)) == i) make_orphan(j);
+    } else if (!own_tree_grows && (kSink ? into_i : a.r_cap) > 0) {
+      set_active(j);
     }
   }
-  if (best >= 0) {
-    nodes_[i].parent = best;
-    nodes_[i].stamp = time_;
-    nodes_[i].dist = best_dist + 1;
-    return;
-  }
-  for (std::int32_t a = first; a < last; ++a) {
-    const std::int32_t j = head(a);
-    const Node& m = nodes_[j];
-    if (m.is_sink == 0 || m.parent == kFree) continue;
-    if (arcs_[a].r_cap > 0) set_active(j);
-    if (m.parent >= 0 && head(m.parent) == i) make_orphan(j);
-  }
-  nodes_[i].parent = kFree;
+  r.node.parent = kFree;
 }
 
-void MaxFlow::adopt_orphans() {
+template <int D>
+void MaxFlow<D>::adopt_orphans() {
   while (orphan_count_ > 0) {
     const std::int32_t i = orphans_[orphan_head_];
     if (++orphan_head_ == num_nodes_) orphan_head_ = 0;
     --orphan_count_;
-    if (nodes_[i].is_sink != 0) {
-      adopt_sink_orphan(i);
+    if (records_[i].node.is_sink()) {
+      adopt<true>(i);
     } else {
-      adopt_source_orphan(i);
+      adopt<false>(i);
     }
   }
 }
 
-MaxFlow::Flow MaxFlow::solve() {
-  active_first_ = active_last_ = -1;
+template <int D>
+typename MaxFlow<D>::Flow MaxFlow<D>::solve() {
+  push_short_paths();
+  active_head_ = active_count_ = 0;
   orphan_head_ = orphan_count_ = 0;
   time_ = 0;
   augmentations_ = 0;
+  // Which trees to grow. When one terminal keeps far fewer links than the
+  // other, only its tree is grown: a path is found as soon as it touches a
+  // node of the other terminal, and the large tree (often the whole graph)
+  // is never built. Both ways end with one tree closed, so the cut is minimum.
+  std::int32_t sources = 0;
+  std::int32_t sinks = 0;
   for (std::int32_t i = 0; i < num_nodes_; ++i) {
-    Node& n = nodes_[i];
-    n.next = kNotActive;
+    const Capacity c = records_[i].node.tr_cap;
+    sources += c > 0 ? 1 : 0;
+    sinks += c < 0 ? 1 : 0;
+  }
+  grow_source_ = sources <= 4 * sinks;
+  grow_sink_ = sinks <= 4 * sources;
+  for (std::int32_t i = 0; i < num_nodes_; ++i) {
+    Node& n = records_[i].node;
     n.stamp = 0;
-    n.dist = 1;
     if (n.tr_cap != 0) {
-      n.is_sink = static_cast<std::uint8_t>(n.tr_cap < 0);
+      const bool sink = n.tr_cap < 0;
+      n.bits = (1u << 2) | (sink ? kSinkBit : 0u);
       n.parent = kTerminal;
-      set_active(i);
+      if (sink ? grow_sink_ : grow_source_) set_active(i);
     } else {
+      n.bits = 0;
       n.parent = kFree;
     }
   }
@@ -349,8 +386,8 @@ MaxFlow::Flow MaxFlow::solve() {
   for (;;) {
     std::int32_t i = current;
     if (i >= 0) {
-      nodes_[i].next = kNotActive;
-      if (nodes_[i].parent == kFree) i = -1;
+      records_[i].node.bits &= ~kActiveBit;
+      if (records_[i].node.parent == kFree) i = -1;
     }
     if (i < 0) {
       i = next_active();
@@ -361,7 +398,7 @@ MaxFlow::Flow MaxFlow::solve() {
       current = -1;
       continue;
     }
-    nodes_[i].next = i;  // counts as active while we augment, so it is not queued twice
+    records_[i].node.bits |= kActiveBit;  // not queued twice while we augment
     current = i;
     ++time_;
     augment(middle);
@@ -369,5 +406,10 @@ MaxFlow::Flow MaxFlow::solve() {
   }
   return flow_;
 }
+
+template class MaxFlow<2>;
+template class MaxFlow<4>;
+template class MaxFlow<6>;
+template class MaxFlow<8>;
 
 }  // namespace petra

@@ -7,13 +7,16 @@
 //          integer capacities >= 0 (use kInfiniteCapacity for hard constraints).
 // Outputs: the maximum flow value (= minimum cut cost) and, per node, its side
 //          of a minimum cut (source side unless it can still reach the sink).
-// Memory:  storage comes from an Arena at init, sized by the maximum node count
-//          and the maximum number of edge ends per node (max_degree <= 16):
-//          bytes_needed() = max_nodes * (24 + 4 + 8 * max_degree) + alignment.
+// Memory:  from an Arena at init, for a maximum node count:
+//          bytes_needed(n) = n * (sizeof(Record) + 9) + alignment, where a
+//          Record holds a node (16 B) and its kMaxDegree arc slots (8 B each):
+//          64 B for the degree-6 graphs of the graph-cut matcher.
 //          reset()/add_*()/solve() never allocate, so one solver serves every
 //          graph of a run (e.g. each alpha-expansion of the graph-cut matcher).
-// Edges are stored in per-node slots (no linked lists): node i owns arcs
-// [i*max_degree, i*max_degree + degree(i)), so a node's arcs share cache lines.
+// Layout:  a node and its arcs share one record (one cache line at degree 6):
+//          growing a tree from a node and checking a neighbour's reverse arc
+//          each touch a single line. Arc ids are (node << 3 | slot), and an
+//          arc stores its sister's id, so reverse arcs cost no lookup.
 #pragma once
 
 #include <cstddef>
@@ -25,7 +28,10 @@
 
 namespace petra {
 
+template <int kMaxDegree>
 class MaxFlow {
+  static_assert(kMaxDegree >= 1 && kMaxDegree <= 8, "arc ids keep 3 bits for the slot");
+
  public:
   using Capacity = std::int32_t;
   using Flow = std::int64_t;
@@ -33,13 +39,12 @@ class MaxFlow {
   // Large enough that no finite cut reaches it in the graphs we build, small
   // enough that residual updates never overflow int32.
   static constexpr Capacity kInfiniteCapacity = 1 << 29;
-  static constexpr int kMaxDegreeLimit = 16;
+  static constexpr std::int32_t kMaxNodes = (1 << 27) - 1;
 
-  static std::size_t bytes_needed(std::int32_t max_nodes, int max_degree);
+  static std::size_t bytes_needed(std::int32_t max_nodes);
 
-  // Takes its storage from `arena` (errors: non-positive sizes, degree above
-  // kMaxDegreeLimit, arena too small).
-  Status init(Arena& arena, std::int32_t max_nodes, int max_degree);
+  // Takes its storage from `arena` (errors: node count out of range, arena too small).
+  Status init(Arena& arena, std::int32_t max_nodes);
 
   // Starts a new graph of `num_nodes` isolated nodes with zero capacities.
   Status reset(std::int32_t num_nodes);
@@ -50,80 +55,89 @@ class MaxFlow {
 
   // Adds arc i->j with capacity `cap` and arc j->i with `rev_cap` (i != j).
   // Each call uses one edge slot of i and one of j: returns false, and changes
-  // nothing, when either node already has max_degree slots in use.
+  // nothing, when either node already has kMaxDegree slots in use.
   [[nodiscard]] bool add_edge(std::int32_t i, std::int32_t j, Capacity cap, Capacity rev_cap);
 
   // Computes the maximum flow of the current graph (call once per reset).
   Flow solve();
 
   // After solve(): true when the node is on the sink side of the minimum cut.
+  // Free nodes (in neither tree) go with the terminal whose tree was not
+  // grown to completion: the grown tree is the closed one.
   bool in_sink_side(std::int32_t node) const {
-    const Node& n = nodes_[node];
-    return n.parent != kFree && n.is_sink != 0;
+    const Node& n = records_[node].node;
+    return n.parent == kFree ? !grow_sink_ : (n.bits & kSinkBit) != 0;
   }
 
   std::int32_t num_nodes() const { return num_nodes_; }
   std::int32_t max_nodes() const { return max_nodes_; }
-  int max_degree() const { return max_degree_; }
-  int degree(std::int32_t node) const { return nodes_[node].degree; }
-  // Augmenting paths found by the last solve() (a measure of its work).
+  int degree(std::int32_t node) const { return degree_[node]; }
+  // Augmenting paths found by the tree search in the last solve() (a measure of its work).
   std::int64_t augmentations() const { return augmentations_; }
 
  private:
-  // Parent codes (arc indices are >= 0).
+  // Parent codes (arc ids are >= 0).
   static constexpr std::int32_t kFree = -1;      // in no tree
   static constexpr std::int32_t kTerminal = -2;  // child of its terminal
   static constexpr std::int32_t kOrphan = -3;    // lost its parent, pending adoption
-  static constexpr std::int32_t kNotActive = -1;
-  static constexpr std::int32_t kNoDist = 1 << 30;
+  static constexpr std::uint32_t kSinkBit = 1u;
+  static constexpr std::uint32_t kActiveBit = 2u;
+  static constexpr std::int32_t kNoDist = 1 << 29;
 
   struct Node {
     std::int32_t parent;  // arc from this node to its parent in its tree, or a code
-    std::int32_t next;    // next active node; itself when last; kNotActive
-    std::int32_t stamp;   // time its distance to the terminal was last verified
-    std::int32_t dist;    // distance to the terminal along tree arcs
     Capacity tr_cap;      // > 0: residual source->node, < 0: residual node->sink
-    std::uint8_t is_sink;
-    std::uint8_t degree;
-    std::uint16_t unused;
+    std::int32_t stamp;   // time its distance to the terminal was last verified
+    std::uint32_t bits;   // distance to the terminal << 2 | kActiveBit | kSinkBit
+    std::int32_t dist() const { return static_cast<std::int32_t>(bits >> 2); }
+    void set_dist(std::int32_t d) { bits = (static_cast<std::uint32_t>(d) << 2) | (bits & 3u); }
+    bool is_sink() const { return (bits & kSinkBit) != 0; }
   };
-  // head_slot = (head << 4) | slot of the sister arc among head's arcs.
   struct Arc {
-    std::uint32_t head_slot;
+    std::uint32_t sister;  // id of the reverse arc; its node is the head of this one
     Capacity r_cap;
   };
+  static constexpr std::size_t kRecordBytes = sizeof(Node) + kMaxDegree * sizeof(Arc);
+  struct alignas(kRecordBytes % 64 == 0 ? 64 : 16) Record {
+    Node node;
+    Arc arcs[kMaxDegree];
+  };
 
-  std::int32_t head(std::int32_t a) const {
-    return static_cast<std::int32_t>(arcs_[a].head_slot >> 4);
-  }
-  std::int32_t sister(std::int32_t a) const {
-    const std::uint32_t hs = arcs_[a].head_slot;
-    return static_cast<std::int32_t>(hs >> 4) * max_degree_ + static_cast<std::int32_t>(hs & 15u);
-  }
+  Arc& arc(std::int32_t id) { return records_[id >> 3].arcs[id & 7]; }
+  static std::int32_t head_of(const Arc& a) { return static_cast<std::int32_t>(a.sister >> 3); }
+  static std::int32_t arc_id(std::int32_t node, int slot) { return (node << 3) | slot; }
 
   void set_active(std::int32_t i);
   std::int32_t next_active();
   void make_orphan(std::int32_t i);
+  void push_short_paths();
   std::int32_t grow(std::int32_t i);
   void augment(std::int32_t middle);
   void adopt_orphans();
-  void adopt_source_orphan(std::int32_t i);
-  void adopt_sink_orphan(std::int32_t i);
+  template <bool kSink>
+  void adopt(std::int32_t i);
   std::int32_t origin_distance(std::int32_t j);
 
-  std::span<Node> nodes_;
-  std::span<Arc> arcs_;
-  std::span<std::int32_t> orphans_;  // circular FIFO, at most one entry per node
+  std::span<Record> records_;
+  std::span<std::uint8_t> degree_;   // slots in use per node
+  std::span<std::int32_t> active_;   // circular FIFO of active nodes
+  std::span<std::int32_t> orphans_;  // circular FIFO of orphans
   std::int32_t max_nodes_ = 0;
-  int max_degree_ = 0;
   std::int32_t num_nodes_ = 0;
-  std::int32_t active_first_ = -1;
-  std::int32_t active_last_ = -1;
+  std::int32_t active_head_ = 0;
+  std::int32_t active_count_ = 0;
   std::int32_t orphan_head_ = 0;
   std::int32_t orphan_count_ = 0;
   std::int32_t time_ = 0;
+  bool grow_source_ = true;
+  bool grow_sink_ = true;
   Flow flow_ = 0;
   std::int64_t augmentations_ = 0;
 };
+
+extern template class MaxFlow<2>;
+extern template class MaxFlow<4>;
+extern template class MaxFlow<6>;
+extern template class MaxFlow<8>;
 
 }  // namespace petra
