@@ -39,10 +39,10 @@ std::size_t GraphCutMatcher::bytes_needed(const GraphCutBudget& budget) {
   if (budget.max_width <= 0 || budget.max_height <= 0 || budget.max_disparities <= 0) return 0;
   const Sizes s = sizes_of(budget);
   std::size_t bytes = 0;
-  bytes += s.roi * (sizeof(Sample) + 1 + 3 * sizeof(std::int16_t) + 6 * sizeof(std::int32_t));
-  bytes += s.strip * (sizeof(Sample) + 1 + sizeof(std::int16_t));
+  bytes += s.roi * (sizeof(Sample) + 3 + 3 * sizeof(std::int16_t) + 8 * sizeof(std::int32_t));
+  bytes += s.strip * (sizeof(Sample) + 1 + sizeof(std::int16_t) + sizeof(std::int32_t));
   bytes += s.disparities * (sizeof(std::int16_t) + sizeof(std::int32_t));
-  bytes += 16 * kAlignSlack;
+  bytes += 20 * kAlignSlack;
   bytes += MaxFlow<6>::bytes_needed(static_cast<std::int32_t>(2 * s.roi));
   return bytes;
 }
@@ -79,8 +79,12 @@ Status GraphCutMatcher::init(Arena& arena, const GraphCutBudget& budget) {
   PETRA_GC_TAKE(old_node_, std::int32_t, s.roi, "old nodes");
   PETRA_GC_TAKE(alpha_slack_, std::int32_t, s.roi, "alpha slack");
   PETRA_GC_TAKE(old_slack_, std::int32_t, s.roi, "old slack");
-  PETRA_GC_TAKE(old_keep_, std::int32_t, s.roi, "keep costs");
+  PETRA_GC_TAKE(keep_, std::int32_t, s.roi, "keep costs");
   PETRA_GC_TAKE(worklist_, std::int32_t, s.roi, "worklist");
+  PETRA_GC_TAKE(alpha_edges_, std::uint8_t, s.roi, "alpha edges");
+  PETRA_GC_TAKE(old_edges_, std::uint8_t, s.roi, "old edges");
+  PETRA_GC_TAKE(node_pixel_, std::int32_t, 2 * s.roi, "node pixels");
+  PETRA_GC_TAKE(right_best_, std::int32_t, s.strip, "right best costs");
   PETRA_GC_TAKE(owner_, std::int16_t, s.strip, "right owners");
   PETRA_GC_TAKE(order_, std::int16_t, s.disparities, "order");
   PETRA_GC_TAKE(last_change_, std::int32_t, s.disparities, "change stamps");
@@ -226,6 +230,125 @@ std::int32_t GraphCutMatcher::automatic_k() const {
   return 0;
 }
 
+// Starting labelling: winner-take-all over 5x5 sums of the data cost, kept
+// where the left and right winners agree (so it satisfies uniqueness), else
+// occluded. Scratch: alpha_cost_ (costs), keep_ (row sums), alpha_slack_
+// (window sums), old_slack_ (left best), right_best_ (right best).
+void GraphCutMatcher::block_matching_labels() {
+  constexpr int kRadius = 2;
+  const int n = w_ * h_;
+  const std::int32_t invalid_cost = clip2_ * clip2_;
+  std::fill_n(old_slack_.begin(), n, INT32_MAX);
+  std::fill_n(right_best_.begin(), h_ * strip_w_, INT32_MAX);
+  std::fill_n(owner_.begin(), h_ * strip_w_, std::int16_t{-1});
+  std::fill_n(label_.begin(), n, kOccluded);
+  std::int32_t* row_sum = keep_.data();
+  std::int32_t* window = alpha_slack_.data();
+  for (int di = 0; di < num_disp_; ++di) {
+    const int d = disp_min_ + di;
+    for (int y = 0; y < h_; ++y) {
+      const int qrow = y * strip_w_ + roi_x_ - d - strip_x0_;
+      for (int x = 0; x < w_; ++x) {
+        const int p = y * w_ + x;
+        const int qx = roi_x_ + x - d;
+        const bool valid = qx >= 0 && qx < image_w_ &&
+                           ((left_flags_[p] | right_flags_[qrow + x]) & kUnusable) == 0;
+        alpha_cost_[p] = static_cast<std::int16_t>(
+            valid ? gc::bt_cost(left_[p], right_[qrow + x], clip2_) : invalid_cost);
+      }
+      // Horizontal window sums (clamped at the ROI border).
+      std::int32_t acc = 0;
+      for (int x = 0; x <= std::min(kRadius, w_ - 1); ++x) acc += alpha_cost_[y * w_ + x];
+      for (int x = 0; x < w_; ++x) {
+        row_sum[y * w_ + x] = acc;
+        if (x + kRadius + 1 < w_) acc += alpha_cost_[y * w_ + x + kRadius + 1];
+        if (x - kRadius >= 0) acc -= alpha_cost_[y * w_ + x - kRadius];
+      }
+    }
+    for (int x = 0; x < w_; ++x) {
+      std::int32_t acc = 0;
+      for (int y = 0; y <= std::min(kRadius, h_ - 1); ++y) acc += row_sum[y * w_ + x];
+      for (int y = 0; y < h_; ++y) {
+        window[y * w_ + x] = acc;
+        if (y + kRadius + 1 < h_) acc += row_sum[(y + kRadius + 1) * w_ + x];
+        if (y - kRadius >= 0) acc -= row_sum[(y - kRadius) * w_ + x];
+      }
+    }
+    for (int y = 0; y < h_; ++y) {
+      for (int x = 0; x < w_; ++x) {
+        const int p = y * w_ + x;
+        const int qx = roi_x_ + x - d;
+        if (qx < 0 || qx >= image_w_) continue;
+        const std::int32_t c = window[p];
+        if (c < old_slack_[p]) {
+          old_slack_[p] = c;
+          label_[p] = static_cast<std::int16_t>(di);
+        }
+        const int q = y * strip_w_ + qx - strip_x0_;
+        if (c < right_best_[q]) {
+          right_best_[q] = c;
+          owner_[q] = static_cast<std::int16_t>(di);
+        }
+      }
+    }
+  }
+  // Keep the left winners the right side agrees with; owners become left x.
+  for (int y = 0; y < h_; ++y) {
+    for (int x = 0; x < w_; ++x) {
+      const int p = y * w_ + x;
+      const int l = label_[p];
+      if (l < 0) continue;
+      const int qx = roi_x_ + x - (disp_min_ + l);
+      const int q = y * strip_w_ + qx - strip_x0_;
+      const bool usable = ((left_flags_[p] | right_flags_[q]) & kUnusable) == 0;
+      if (!usable || owner_[q] != l) label_[p] = kOccluded;
+    }
+  }
+  std::fill_n(owner_.begin(), h_ * strip_w_, std::int16_t{-1});
+  for (int y = 0; y < h_; ++y) {
+    for (int x = 0; x < w_; ++x) {
+      const int p = y * w_ + x;
+      const int l = label_[p];
+      if (l < 0) continue;
+      const int q = y * strip_w_ + roi_x_ + x - (disp_min_ + l) - strip_x0_;
+      PETRA_ASSERT(owner_[q] < 0);
+      owner_[q] = static_cast<std::int16_t>(x);
+      cost_[p] = static_cast<std::int16_t>(gc::bt_cost(left_[p], right_[q], clip2_));
+    }
+  }
+}
+
+void GraphCutMatcher::refresh_pixel(int p, int x, int y) {
+  const int lab = label_[p];
+  if (lab < 0) return;
+  const std::uint8_t* lf = left_flags_.data();
+  const std::uint8_t* rf = right_flags_.data();
+  const int qx = roi_x_ + x - (disp_min_ + lab);
+  const int q = y * strip_w_ + qx - strip_x0_;
+  auto weight = [&](int bits, std::uint8_t edge) { return (bits & edge) != 0 ? lambda2_ : lambda1_; };
+  auto usable = [&](int pp, int qq) { return ((lf[pp] | rf[qq]) & kUnusable) == 0; };
+  std::int32_t keep = cost_[p] - k_;
+  if (x > 0 && label_[p - 1] != lab && qx > 0 && usable(p - 1, q - 1)) {
+    keep += weight(lf[p - 1] | rf[q - 1], kEdgeRight);
+  }
+  if (x + 1 < w_ && label_[p + 1] != lab && qx + 1 < image_w_ && usable(p + 1, q + 1)) {
+    keep += weight(lf[p] | rf[q], kEdgeRight);
+  }
+  if (y > 0 && label_[p - w_] != lab && usable(p - w_, q - strip_w_)) {
+    keep += weight(lf[p - w_] | rf[q - strip_w_], kEdgeDown);
+  }
+  if (y + 1 < h_ && label_[p + w_] != lab && usable(p + w_, q + strip_w_)) {
+    keep += weight(lf[p] | rf[q], kEdgeDown);
+  }
+  keep_[p] = keep;
+  old_edges_[p] = static_cast<std::uint8_t>((lf[p] | rf[q]) & (kEdgeRight | kEdgeDown));
+}
+
+void GraphCutMatcher::refresh_all() {
+  for (int y = 0; y < h_; ++y)
+    for (int x = 0; x < w_; ++x) refresh_pixel(y * w_ + x, x, y);
+}
+
 // Full energy of the current labelling (also the check of the tracked value).
 std::int64_t GraphCutMatcher::energy() const {
   auto valid = [&](int x, int y, int d_index) {
@@ -284,12 +407,32 @@ Result<GraphCutReport> GraphCutMatcher::match(ConstGray8View left, ConstGray8Vie
   report.lambda2 = lambda2_;
 
   const int n = w_ * h_;
-  std::fill_n(label_.begin(), n, kOccluded);
-  std::fill_n(owner_.begin(), h_ * strip_w_, std::int16_t{-1});
+  std::int64_t e = 0;  // the all-occluded start
+  if (params.block_matching_start) {
+    block_matching_labels();
+    e = energy();
+  } else {
+    std::fill_n(label_.begin(), n, kOccluded);
+    std::fill_n(owner_.begin(), h_ * strip_w_, std::int16_t{-1});
+  }
+  report.energy_start = e;
+  refresh_all();
   std::fill_n(last_change_.begin(), num_disp_, -1);
 
+  auto notify = [&](GraphCutStep& step) {
+    if (params.observer.on_expansion == nullptr) return;
+    step.labels = std::span<const std::int16_t>(label_.data(), static_cast<std::size_t>(n));
+    step.width = w_;
+    step.height = h_;
+    params.observer.on_expansion(params.observer.context, step);
+  };
+  GraphCutStep start;
+  start.cycle = -1;
+  start.skipped = true;
+  start.energy_before = start.energy_after = e;
+  notify(start);
+
   std::uint32_t rng = params.seed != 0 ? params.seed : 0x9E3779B9u;
-  std::int64_t e = 0;  // the all-occluded start
   std::int32_t changes = 0;
   for (int cycle = 0; cycle < params.max_cycles; ++cycle) {
     for (int i = 0; i < num_disp_; ++i) order_[i] = static_cast<std::int16_t>(i);
@@ -323,12 +466,7 @@ Result<GraphCutReport> GraphCutMatcher::match(ConstGray8View left, ConstGray8Vie
         last_change_[alpha] = changes;
       }
       step.energy_after = e;
-      if (params.observer.on_expansion != nullptr) {
-        step.labels = std::span<const std::int16_t>(label_.data(), static_cast<std::size_t>(n));
-        step.width = w_;
-        step.height = h_;
-        params.observer.on_expansion(params.observer.context, step);
-      }
+      notify(step);
     }
     ++report.cycles;
     (void)report.cycle_energy.push_back(e);

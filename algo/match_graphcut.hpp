@@ -59,7 +59,8 @@ inline constexpr std::int32_t kGraphCutAuto = -1;
 inline constexpr int kGraphCutMaxCycles = 32;
 
 // One expansion as seen by an observer (tests and tools): labels are per ROI
-// pixel, row-major, -1 occluded, else d - disp_min.
+// pixel, row-major, -1 occluded, else d - disp_min. The starting labelling
+// is reported first, as a step of cycle -1.
 struct GraphCutStep {
   int cycle = 0;
   int disparity = 0;
@@ -89,6 +90,10 @@ struct GraphCutParams {
   std::int32_t lambda2 = kGraphCutAuto;      // >= 0; default lambda
   int edge_threshold = 8;                    // gray levels, 1..255
   int data_clip = 30;                        // gray levels, 1..90
+  // Start from a left-right checked 5x5 block matching of the data term
+  // instead of "everything occluded" (the reference's start): the expansions
+  // then refine a labelling instead of building it, which is much faster.
+  bool block_matching_start = true;
   // Fixes, before each cut, the assignments whose choice is already decided
   // (an exact reduction: the minimum is unchanged). Off only to test it.
   bool prune = true;
@@ -109,7 +114,8 @@ struct GraphCutReport {
   int expansions = 0;          // min cuts solved
   int expansions_skipped = 0;  // provably unchanged, not solved
   bool converged = false;      // the last cycle brought no decrease
-  std::int64_t energy = 0;     // final energy (the all-occluded start is 0)
+  std::int64_t energy_start = 0;  // energy of the starting labelling (all occluded: 0)
+  std::int64_t energy = 0;        // final energy
   FixedVector<std::int64_t, kGraphCutMaxCycles> cycle_energy;  // after each cycle
   std::int64_t graph_nodes = 0;  // summed over expansions (work measure)
   long matched_pixels = 0;
@@ -147,6 +153,10 @@ class GraphCutMatcher {
   void prepare(ConstGray8View left, ConstGray8View right, Rect roi, const GraphCutParams& params,
                ConstGray8View left_shadow, ConstGray8View right_shadow);
   std::int32_t automatic_k() const;
+  void block_matching_labels();
+  // Cached terms of the active assignment of pixel p (see keep_).
+  void refresh_pixel(int p, int x, int y);
+  void refresh_all();
   std::int64_t energy() const;
   // One alpha-expansion; returns the energy change applied (<= 0).
   std::int64_t expand(int alpha, std::int64_t& nodes_used);
@@ -164,8 +174,15 @@ class GraphCutMatcher {
   std::span<std::int32_t> old_node_;
   std::span<std::int32_t> alpha_slack_;  // reduction bookkeeping (see expansion)
   std::span<std::int32_t> old_slack_;
-  std::span<std::int32_t> old_keep_;     // cost of keeping the active assignment
   std::span<std::int32_t> worklist_;
+  std::span<std::uint8_t> alpha_edges_;  // edge bits of (p, alpha) for the current expansion
+  std::span<std::int32_t> node_pixel_;   // per graph node: 2 * pixel + (1 if old node)
+  // Kept up to date with the labelling (refreshed where labels change):
+  // keep_ = D - K of p's active assignment plus the Potts weights towards
+  // neighbours that do not share its disparity; old_edges_ = its edge bits.
+  std::span<std::int32_t> keep_;
+  std::span<std::uint8_t> old_edges_;
+  std::span<std::int32_t> right_best_;  // per strip pixel, for the starting labelling
   std::span<std::int16_t> owner_;       // per strip pixel: ROI x of its match, or -1
   std::span<std::int16_t> order_;       // disparity order of a cycle
   std::span<std::int32_t> last_change_;  // change counter at each disparity's last expansion

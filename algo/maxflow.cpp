@@ -40,50 +40,14 @@ Status MaxFlow<D>::reset(std::int32_t num_nodes) {
     return Error::make(Errc::capacity_exceeded, "maxflow: %d nodes requested, budget %d",
                        num_nodes, max_nodes_);
   }
-  num_nodes_ = num_nodes;
-  for (std::int32_t i = 0; i < num_nodes; ++i) {
-    Record& r = records_[i];
-    r.node = Node{kFree, 0, 0, 0};
-    // Unused slots point back to themselves with no capacity: loops can scan
-    // every slot, no degree test in the hot paths.
-    for (int s = 0; s < D; ++s) r.arcs[s] = Arc{static_cast<std::uint32_t>(arc_id(i, s)), 0};
-  }
-  std::fill_n(degree_.data(), num_nodes, std::uint8_t{0});
+  num_nodes_ = 0;
   active_head_ = active_count_ = 0;
   orphan_head_ = orphan_count_ = 0;
   time_ = 0;
   flow_ = 0;
   augmentations_ = 0;
+  for (std::int32_t i = 0; i < num_nodes; ++i) (void)add_node();
   return ok_status();
-}
-
-template <int D>
-void MaxFlow<D>::add_terminal_weights(std::int32_t node, Capacity source_cap, Capacity sink_cap) {
-  PETRA_ASSERT(node >= 0 && node < num_nodes_ && source_cap >= 0 && sink_cap >= 0);
-  Node& n = records_[node].node;
-  std::int64_t cs = source_cap;
-  std::int64_t ct = sink_cap;
-  if (n.tr_cap > 0) {
-    cs += n.tr_cap;
-  } else {
-    ct -= n.tr_cap;
-  }
-  flow_ += std::min(cs, ct);
-  const std::int64_t net = cs - ct;
-  PETRA_ASSERT(net < (std::int64_t{1} << 31) && net > -(std::int64_t{1} << 31));
-  n.tr_cap = static_cast<Capacity>(net);
-}
-
-template <int D>
-bool MaxFlow<D>::add_edge(std::int32_t i, std::int32_t j, Capacity cap, Capacity rev_cap) {
-  PETRA_ASSERT(i >= 0 && i < num_nodes_ && j >= 0 && j < num_nodes_ && i != j);
-  PETRA_ASSERT(cap >= 0 && rev_cap >= 0);
-  if (degree_[i] >= D || degree_[j] >= D) return false;
-  const int si = degree_[i]++;
-  const int sj = degree_[j]++;
-  records_[i].arcs[si] = Arc{static_cast<std::uint32_t>(arc_id(j, sj)), cap};
-  records_[j].arcs[sj] = Arc{static_cast<std::uint32_t>(arc_id(i, si)), rev_cap};
-  return true;
 }
 
 template <int D>

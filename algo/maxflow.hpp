@@ -49,14 +49,55 @@ class MaxFlow {
   // Starts a new graph of `num_nodes` isolated nodes with zero capacities.
   Status reset(std::int32_t num_nodes);
 
+  // Appends one isolated node and returns its id (the caller keeps within
+  // max_nodes: asserted). With reset(0), graphs can be built node by node.
+  std::int32_t add_node() {
+    PETRA_ASSERT(num_nodes_ < max_nodes_);
+    const std::int32_t i = num_nodes_++;
+    Record& r = records_[i];
+    r.node = Node{kFree, 0, 0, 0};
+    // Unused slots point back to themselves with no capacity: loops scan
+    // every slot, with no degree test in the hot paths.
+    for (int s = 0; s < kMaxDegree; ++s) r.arcs[s] = Arc{static_cast<std::uint32_t>(arc_id(i, s)), 0};
+    degree_[i] = 0;
+    return i;
+  }
+
   // Adds capacity source->node and node->sink (both >= 0). Opposite terminal
   // capacities cancel at once (their common part is flow already sent).
-  void add_terminal_weights(std::int32_t node, Capacity source_cap, Capacity sink_cap);
+  void add_terminal_weights(std::int32_t node, Capacity source_cap, Capacity sink_cap) {
+    PETRA_ASSERT(static_cast<std::uint32_t>(node) < static_cast<std::uint32_t>(num_nodes_) &&
+                 (source_cap | sink_cap) >= 0);
+    Node& n = records_[node].node;
+    std::int64_t cs = source_cap;
+    std::int64_t ct = sink_cap;
+    if (n.tr_cap > 0) {
+      cs += n.tr_cap;
+    } else {
+      ct -= n.tr_cap;
+    }
+    flow_ += cs < ct ? cs : ct;
+    const std::int64_t net = cs - ct;
+    PETRA_ASSERT(net < (std::int64_t{1} << 31) && net > -(std::int64_t{1} << 31));
+    n.tr_cap = static_cast<Capacity>(net);
+  }
 
   // Adds arc i->j with capacity `cap` and arc j->i with `rev_cap` (i != j).
   // Each call uses one edge slot of i and one of j: returns false, and changes
   // nothing, when either node already has kMaxDegree slots in use.
-  [[nodiscard]] bool add_edge(std::int32_t i, std::int32_t j, Capacity cap, Capacity rev_cap);
+  [[nodiscard]] bool add_edge(std::int32_t i, std::int32_t j, Capacity cap, Capacity rev_cap) {
+    PETRA_ASSERT(static_cast<std::uint32_t>(i) < static_cast<std::uint32_t>(num_nodes_) &&
+                 static_cast<std::uint32_t>(j) < static_cast<std::uint32_t>(num_nodes_) &&
+                 i != j && (cap | rev_cap) >= 0);
+    const int si = degree_[i];
+    const int sj = degree_[j];
+    if (si >= kMaxDegree || sj >= kMaxDegree) return false;
+    degree_[i] = static_cast<std::uint8_t>(si + 1);
+    degree_[j] = static_cast<std::uint8_t>(sj + 1);
+    records_[i].arcs[si] = Arc{static_cast<std::uint32_t>(arc_id(j, sj)), cap};
+    records_[j].arcs[sj] = Arc{static_cast<std::uint32_t>(arc_id(i, si)), rev_cap};
+    return true;
+  }
 
   // Computes the maximum flow of the current graph (call once per reset).
   Flow solve();

@@ -86,6 +86,9 @@ TEST(GraphCutMiddlebury, Explore) {
   if (only == nullptr) GTEST_SKIP();
   GraphCutParams p;
   if (const char* c = std::getenv("PETRA_GC_CYCLES")) p.max_cycles = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_PRUNE")) p.prune = std::atoi(c) != 0;
+  if (const char* c = std::getenv("PETRA_GC_BM")) p.block_matching_start = std::atoi(c) != 0;
+  if (const char* c = std::getenv("PETRA_GC_RANDOM")) p.random_order = std::atoi(c) != 0;
   for (const auto& s : test::middlebury_scenes()) {
     if (std::string(only).find(s.name) == std::string::npos) continue;
     run_scene(s, p);
