@@ -95,7 +95,7 @@ Status GraphCutMatcher::init(Arena& arena, const GraphCutBudget& budget) {
 }
 
 Status GraphCutMatcher::validate(ConstGray8View left, ConstGray8View right, Rect roi,
-                                 const GraphCutParams& params, const DisparityMap& out,
+                                 const GraphCutParams& params, const DisparityMap* out,
                                  ConstGray8View left_shadow, ConstGray8View right_shadow) const {
   if (label_.empty()) return Error::make(Errc::not_ready, "graphcut: match() before init()");
   if (left.empty() || right.empty()) {
@@ -158,9 +158,9 @@ Status GraphCutMatcher::validate(ConstGray8View left, ConstGray8View right, Rect
     return Error::make(Errc::out_of_range, "graphcut: data_clip %d outside 1..90",
                        params.data_clip);
   }
-  if (out.q4.width() != roi.w || out.q4.height() != roi.h) {
+  if (out != nullptr && (out->q4.width() != roi.w || out->q4.height() != roi.h)) {
     return Error::make(Errc::invalid_argument, "graphcut: output %dx%d, roi %dx%d",
-                       out.q4.width(), out.q4.height(), roi.w, roi.h);
+                       out->q4.width(), out->q4.height(), roi.w, roi.h);
   }
   return ok_status();
 }
@@ -384,11 +384,27 @@ std::int64_t GraphCutMatcher::energy() const {
   return e;
 }
 
+Result<std::int32_t> GraphCutMatcher::automatic_occlusion_k(ConstGray8View left,
+                                                           ConstGray8View right, Rect roi,
+                                                           const GraphCutParams& params,
+                                                           ConstGray8View left_shadow,
+                                                           ConstGray8View right_shadow) {
+  PETRA_TRY(validate(left, right, roi, params, nullptr, left_shadow, right_shadow));
+  prepare(left, right, roi, params, left_shadow, right_shadow);
+  const std::int32_t k = automatic_k();
+  if (k <= 0) {
+    return Error::make(Errc::degenerate,
+                       "graphcut: no pixel of the roi has %d valid disparities to choose K",
+                       std::min(num_disp_, 3));
+  }
+  return std::min(k, kMaxWeight);
+}
+
 Result<GraphCutReport> GraphCutMatcher::match(ConstGray8View left, ConstGray8View right,
                                               Rect roi, const GraphCutParams& params,
                                               DisparityMap& out, ConstGray8View left_shadow,
                                               ConstGray8View right_shadow) {
-  PETRA_TRY(validate(left, right, roi, params, out, left_shadow, right_shadow));
+  PETRA_TRY(validate(left, right, roi, params, &out, left_shadow, right_shadow));
   prepare(left, right, roi, params, left_shadow, right_shadow);
 
   GraphCutReport report;

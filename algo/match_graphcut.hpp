@@ -137,6 +137,13 @@ class GraphCutMatcher {
                                ConstGray8View left_shadow = {},
                                ConstGray8View right_shadow = {});
 
+  // The automatic K of these images and parameters (what match() would use
+  // with occlusion_k left at kGraphCutAuto), for tools that report or scale it.
+  Result<std::int32_t> automatic_occlusion_k(ConstGray8View left, ConstGray8View right, Rect roi,
+                                             const GraphCutParams& params,
+                                             ConstGray8View left_shadow = {},
+                                             ConstGray8View right_shadow = {});
+
   const GraphCutBudget& budget() const { return budget_; }
 
  private:
@@ -148,7 +155,7 @@ class GraphCutMatcher {
   static constexpr std::int16_t kOccluded = -1;
 
   Status validate(ConstGray8View left, ConstGray8View right, Rect roi,
-                  const GraphCutParams& params, const DisparityMap& out,
+                  const GraphCutParams& params, const DisparityMap* out,
                   ConstGray8View left_shadow, ConstGray8View right_shadow) const;
   void prepare(ConstGray8View left, ConstGray8View right, Rect roi, const GraphCutParams& params,
                ConstGray8View left_shadow, ConstGray8View right_shadow);

@@ -76,13 +76,23 @@ std::int32_t MaxFlow<D>::next_active() {
   return -1;
 }
 
+// Orphans of an augmentation go to the front, the one nearest its terminal
+// first: once it has a parent again, the orphans below it can reach the
+// terminal through it instead of being freed. Orphans found while adopting
+// go to the back.
 template <int D>
-void MaxFlow<D>::make_orphan(std::int32_t i) {
+void MaxFlow<D>::make_orphan(std::int32_t i, bool front) {
   records_[i].node.parent = kOrphan;
+  ++orphans_seen_;
   PETRA_ASSERT(orphan_count_ < num_nodes_);
-  std::int32_t tail = orphan_head_ + orphan_count_;
-  if (tail >= num_nodes_) tail -= num_nodes_;
-  orphans_[tail] = i;
+  if (front) {
+    orphan_head_ = orphan_head_ == 0 ? num_nodes_ - 1 : orphan_head_ - 1;
+    orphans_[orphan_head_] = i;
+  } else {
+    std::int32_t tail = orphan_head_ + orphan_count_;
+    if (tail >= num_nodes_) tail -= num_nodes_;
+    orphans_[tail] = i;
+  }
   ++orphan_count_;
 }
 
@@ -194,22 +204,22 @@ void MaxFlow<D>::augment(std::int32_t middle) {
     up.r_cap += b;
     down.r_cap -= b;
     const std::int32_t parent = head_of(up);
-    if (down.r_cap == 0) make_orphan(i);
+    if (down.r_cap == 0) make_orphan(i, true);
     i = parent;
   }
   records_[i].node.tr_cap -= b;
-  if (records_[i].node.tr_cap == 0) make_orphan(i);
+  if (records_[i].node.tr_cap == 0) make_orphan(i, true);
   i = t_end;
   for (std::int32_t a = records_[i].node.parent; a != kTerminal; a = records_[i].node.parent) {
     Arc& up = arc(a);
     arc(static_cast<std::int32_t>(up.sister)).r_cap += b;
     up.r_cap -= b;
     const std::int32_t parent = head_of(up);
-    if (up.r_cap == 0) make_orphan(i);
+    if (up.r_cap == 0) make_orphan(i, true);
     i = parent;
   }
   records_[i].node.tr_cap += b;
-  if (records_[i].node.tr_cap == 0) make_orphan(i);
+  if (records_[i].node.tr_cap == 0) make_orphan(i, true);
   flow_ += b;
   ++augmentations_;
 }
@@ -291,7 +301,7 @@ void MaxFlow<D>::adopt(std::int32_t i) {
     const Capacity into_i = rj.arcs[a.sister & 7].r_cap;  // j -> i
     if (m.is_sink() == kSink) {
       if ((kSink ? a.r_cap : into_i) > 0) set_active(j);
-      if (m.parent >= 0 && head_of(arc(m.parent)) == i) make_orphan(j);
+      if (m.parent >= 0 && head_of(arc(m.parent)) == i) make_orphan(j, false);
     } else if (!own_tree_grows && (kSink ? into_i : a.r_cap) > 0) {
       set_active(j);
     }
@@ -320,6 +330,7 @@ typename MaxFlow<D>::Flow MaxFlow<D>::solve() {
   orphan_head_ = orphan_count_ = 0;
   time_ = 0;
   augmentations_ = 0;
+  orphans_seen_ = 0;
   // Which trees to grow. When one terminal keeps far fewer links than the
   // other, only its tree is grown: a path is found as soon as it touches a
   // node of the other terminal, and the large tree (often the whole graph)
@@ -331,8 +342,9 @@ typename MaxFlow<D>::Flow MaxFlow<D>::solve() {
     sources += c > 0 ? 1 : 0;
     sinks += c < 0 ? 1 : 0;
   }
-  grow_source_ = sources <= 4 * sinks;
-  grow_sink_ = sinks <= 4 * sources;
+  const std::int64_t ratio = one_sided_ratio_;
+  grow_source_ = ratio == 0 || sources <= ratio * sinks;
+  grow_sink_ = ratio == 0 || sinks <= ratio * sources;
   for (std::int32_t i = 0; i < num_nodes_; ++i) {
     Node& n = records_[i].node;
     n.stamp = 0;
@@ -367,6 +379,17 @@ typename MaxFlow<D>::Flow MaxFlow<D>::solve() {
     ++time_;
     augment(middle);
     adopt_orphans();
+    // A lone tree with few roots can be deep, and saturating a root then
+    // orphans it wholesale, again and again. Past a budget of orphans, let
+    // the other tree grow too (every node of it is activated, which is all
+    // the two-tree search needs to stay exact).
+    if ((!grow_source_ || !grow_sink_) &&
+        orphans_seen_ > orphan_budget_ * static_cast<std::int64_t>(num_nodes_)) {
+      grow_source_ = grow_sink_ = true;
+      for (std::int32_t k = 0; k < num_nodes_; ++k) {
+        if (records_[k].node.parent != kFree) set_active(k);
+      }
+    }
   }
   return flow_;
 }

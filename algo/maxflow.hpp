@@ -99,6 +99,15 @@ class MaxFlow {
     return true;
   }
 
+  // Search policy (defaults suit the graph-cut matcher; tests vary them to
+  // reach every path): grow only the tree of the terminal with fewer links
+  // when the other has more than `ratio` times as many (0: always both), and
+  // fall back to both trees after `orphan_budget` orphans per node.
+  void set_search_policy(int ratio, int orphan_budget) {
+    one_sided_ratio_ = ratio;
+    orphan_budget_ = orphan_budget;
+  }
+
   // Computes the maximum flow of the current graph (call once per reset).
   Flow solve();
 
@@ -150,7 +159,7 @@ class MaxFlow {
 
   void set_active(std::int32_t i);
   std::int32_t next_active();
-  void make_orphan(std::int32_t i);
+  void make_orphan(std::int32_t i, bool front);
   void push_short_paths();
   std::int32_t grow(std::int32_t i);
   void augment(std::int32_t middle);
@@ -174,6 +183,9 @@ class MaxFlow {
   bool grow_sink_ = true;
   Flow flow_ = 0;
   std::int64_t augmentations_ = 0;
+  std::int64_t orphans_seen_ = 0;
+  int one_sided_ratio_ = 8;
+  int orphan_budget_ = 2;
 };
 
 extern template class MaxFlow<2>;

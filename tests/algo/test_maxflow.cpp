@@ -146,6 +146,33 @@ TEST(MaxFlow, EqualsBruteForceOnGrids) {
   }
 }
 
+// The same check under every search policy: both trees always, one tree
+// whenever the terminals are unbalanced, and one tree with an immediate
+// fallback to both (orphan budget 0). Terminal links are skewed so one side
+// is much smaller, as in the matcher's later expansions.
+TEST(MaxFlow, EverySearchPolicyFindsTheMinimumCut) {
+  StaticArena<1 << 16> storage;
+  MaxFlow<6> mf;
+  ASSERT_TRUE(mf.init(storage.arena(), 12).ok());
+  std::mt19937 rng(4242);
+  const int policies[3][2] = {{0, 2}, {1, 1000}, {1, 0}};
+  for (int round = 0; round < 1800; ++round) {
+    const int n = 2 + round % 11;
+    SmallGraph g = random_graph(rng, n, 1 + round % 6, 20, round % 3 == 0);
+    // Keep a sink link on about one node in four (or source, every other round).
+    for (int k = 0; k < n; ++k) {
+      if (rng() % 4 != 0) (round % 2 == 0 ? g.sink : g.source)[k] = 0;
+    }
+    const std::int64_t expected = brute_force_min_cut(g);
+    for (const auto& policy : policies) {
+      mf.set_search_policy(policy[0], policy[1]);
+      load(mf, g);
+      ASSERT_EQ(mf.solve(), expected) << "round " << round << " policy " << policy[0];
+      ASSERT_EQ(cut_of_solver_sides(g, mf), expected) << "round " << round << " policy " << policy[0];
+    }
+  }
+}
+
 TEST(MaxFlow, EmptyAndTerminalOnlyGraphs) {
   StaticArena<4096> storage;
   MaxFlow<2> mf;

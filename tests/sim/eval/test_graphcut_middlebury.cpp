@@ -54,6 +54,18 @@ Outcome run_scene(const test::MiddleburyScene& s, const GraphCutParams& base) {
   GraphCutParams p = base;
   p.disp_min = s.disp_min;
   p.disp_max = s.disp_max;
+  // Exploration knobs: K scaled (percent), lambda = K / divisor.
+  const char* kmul = std::getenv("PETRA_GC_KMUL");
+  const char* ldiv = std::getenv("PETRA_GC_LDIV");
+  if (kmul != nullptr || ldiv != nullptr) {
+    auto k = m.automatic_occlusion_k(sc.left.view(), sc.right.view(), {0, 0, w, h}, p);
+    EXPECT_TRUE(k.ok());
+    const int kk = *k * (kmul ? std::atoi(kmul) : 100) / 100;
+    p.occlusion_k = kk;
+    p.lambda = std::max(1, kk * 10 / (ldiv ? std::atoi(ldiv) : 50));
+  }
+  if (const char* t = std::getenv("PETRA_GC_THR")) p.edge_threshold = std::atoi(t);
+  if (const char* c = std::getenv("PETRA_GC_CLIP")) p.data_clip = std::atoi(c);
   // CPU time of this thread: the machine is shared, wall time is not ours.
   auto cpu_now = [] {
     timespec ts{};
