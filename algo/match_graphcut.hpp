@@ -20,7 +20,8 @@
 // fixed order) the best configuration reachable by deactivating assignments
 // and activating assignments of disparity alpha is one min cut (algo/maxflow).
 // Cycles over all disparities repeat until one brings no decrease or
-// max_cycles is reached.
+// max_cycles (default 2) is reached. The start is a left-right checked 5x5
+// block matching of D (or, optionally, all occluded as in the reference).
 //
 // Shadow pixels (nonzero in a mask) are marked occluded: every assignment that
 // touches a shadow pixel, left or right, is left out of the problem, so shadow
@@ -35,9 +36,10 @@
 //          occluded or shadowed.
 // Memory:  all from the Arena at init, for a budget (max ROI width, height,
 //          disparity count): bytes_needed() =
-//            173 B per ROI pixel (of which the max-flow graph: 2 nodes of 76 B)
-//            + 9 B per right strip pixel (height x (width + disparities - 1)).
-//          Flight default 320 x 320 ROI, 128 disparities: 19.0 MB (18.1 MiB).
+//            193 B per ROI pixel (146 B of it the max-flow graph: up to two
+//            nodes per pixel, 73 B each)
+//            + 13 B per right strip pixel (height x (width + disparities - 1)).
+//          Flight default 320 x 320 ROI, 128 disparities: 21.6 MB.
 //          match() never allocates.
 #pragma once
 
@@ -81,7 +83,7 @@ struct GraphCutObserver {
 struct GraphCutParams {
   int disp_min = 0;
   int disp_max = 15;
-  int max_cycles = 4;        // 1..kGraphCutMaxCycles
+  int max_cycles = 2;        // 1..kGraphCutMaxCycles (docs/graphcut.md: why 2)
   bool random_order = true;  // a new seeded permutation of the disparities each cycle
   std::uint32_t seed = 1;
   std::int32_t occlusion_k = kGraphCutAuto;  // K > 0, cost units

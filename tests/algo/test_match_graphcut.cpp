@@ -498,7 +498,7 @@ TEST(MatchGraphCut, BadInputIsRefusedWithTheFieldNamed) {
 TEST(MatchGraphCut, FlightBudgetFitsItsStatedMemory) {
   const GraphCutBudget flight;  // 320 x 320 ROI, 128 disparities
   const std::size_t bytes = GraphCutMatcher::bytes_needed(flight);
-  EXPECT_LT(bytes, std::size_t{21'500'000});  // docs/graphcut.md: 21.4 MB
+  EXPECT_LT(bytes, std::size_t{21'700'000});  // docs/graphcut.md: 21.6 MB
   std::vector<std::byte> block(bytes);
   Arena arena(block);
   GraphCutMatcher m;
