@@ -84,6 +84,21 @@ Outcome run_scene(const test::MiddleburyScene& s, const GraphCutParams& base) {
   o.report = *rep;
   o.seconds = t1 - t0;
   o.bad = test::score_bad1(s, sc, out);
+  if (const char* dump = std::getenv("PETRA_GC_DUMP")) {
+    io::GrayImage img(w, h);
+    for (int i = 0; i < w * h; ++i) {
+      const int q = q4[i];
+      img.pixels[i] = static_cast<std::uint8_t>(
+          is_valid_disparity(static_cast<std::int16_t>(q)) ? 40 + 215 * (q / 16 - s.disp_min) / std::max(1, s.disp_max - s.disp_min) : 0);
+    }
+    (void)io::write_png(std::string(dump) + "/" + s.name + ".png", img.view());
+    io::GrayImage gt(w, h);
+    for (int i = 0; i < w * h; ++i) {
+      const double g = sc.gt_left.pixels[i] / s.scale;
+      gt.pixels[i] = static_cast<std::uint8_t>(sc.gt_left.pixels[i] == 0 ? 0 : 40 + 215 * (g - s.disp_min) / std::max(1, s.disp_max - s.disp_min));
+    }
+    (void)io::write_png(std::string(dump) + "/" + s.name + "_gt.png", gt.view());
+  }
   std::printf("%-8s strict %5.2f / %5.2f  filled %5.2f / %5.2f (nonocc / all)  K %d l1 %d l2 %d  "
               "cycles %d exp %d skip %d  E %lld  nodes/exp %lld  %.3f s\n",
               s.name.c_str(), o.bad.strict_nonocc, o.bad.strict_all, o.bad.filled_nonocc,
@@ -93,6 +108,47 @@ Outcome run_scene(const test::MiddleburyScene& s, const GraphCutParams& base) {
   return o;
 }
 
+// Accuracy on the project's convention with the default parameters (seed 1).
+// Where the matcher meets a target of the issue the bound is that target;
+// where it does not, the bound is a regression guard just above the measured
+// figure and the comment says so (docs/graphcut.md, docs/performance.md).
+// The whole-image runs take a few seconds each: the matcher is compiled with
+// -O2 even in Debug (algo/CMakeLists.txt); Aloe and Baby1 run in the benchmark.
+struct Bound {
+  const char* scene;
+  double strict_nonocc, filled_nonocc, filled_all;
+};
+constexpr Bound kBounds[] = {
+    // strict: reference 4.26 (not met, 4.28: guard); filled all: published 2.01.
+    {"tsukuba", 4.40, 6.15, 2.01},
+    // strict: reference 1.73; filled nonocc: OpenCV SGBM 1.22 (stricter than published 1.64).
+    {"venus", 1.73, 1.22, 100},
+    // strict: reference 13.06 (not met, 13.32: guard); filled nonocc: SGBM 13.13
+    // (published 11.2 not met, 12.70).
+    {"teddy", 13.50, 13.13, 100},
+    // strict: reference 7.57; filled nonocc: published 5.36 and SGBM 6.20 not
+    // met (6.28): guard.
+    {"cones", 7.57, 6.45, 100},
+    // No published or reference figures: SGBM from the same benchmark run.
+    {"sawtooth", 6.41, 1.22, 100},
+    {"map", 11.88, 1.01, 100},
+};
+
+TEST(GraphCutMiddlebury, Bad1WithinTargetsOrGuards) {
+  for (const Bound& b : kBounds) {
+    for (const auto& s : test::middlebury_scenes()) {
+      if (s.name != b.scene) continue;
+      const Outcome o = run_scene(s, GraphCutParams{});
+      EXPECT_LE(o.bad.strict_nonocc, b.strict_nonocc) << s.name;
+      EXPECT_LE(o.bad.filled_nonocc, b.filled_nonocc) << s.name;
+      EXPECT_LE(o.bad.filled_all, b.filled_all) << s.name;
+      EXPECT_EQ(o.report.cycles, 2) << s.name;
+    }
+  }
+}
+
+// Exploration for tuning and the documentation: PETRA_GC_SCENES=tsukuba,cones
+// (and the PETRA_GC_* knobs above) prints figures; skipped otherwise.
 TEST(GraphCutMiddlebury, Explore) {
   const char* only = std::getenv("PETRA_GC_SCENES");
   if (only == nullptr) GTEST_SKIP();
@@ -101,6 +157,7 @@ TEST(GraphCutMiddlebury, Explore) {
   if (const char* c = std::getenv("PETRA_GC_PRUNE")) p.prune = std::atoi(c) != 0;
   if (const char* c = std::getenv("PETRA_GC_BM")) p.block_matching_start = std::atoi(c) != 0;
   if (const char* c = std::getenv("PETRA_GC_RANDOM")) p.random_order = std::atoi(c) != 0;
+  if (const char* c = std::getenv("PETRA_GC_SEED")) p.seed = static_cast<std::uint32_t>(std::atoi(c));
   for (const auto& s : test::middlebury_scenes()) {
     if (std::string(only).find(s.name) == std::string::npos) continue;
     run_scene(s, p);
