@@ -13,6 +13,17 @@ struct Outcome {
 };
 
 void add_info(CLI::App& app, Outcome& outcome);
+void add_sim(CLI::App& app, Outcome& outcome);
+void add_score(CLI::App& app, Outcome& outcome);
+void add_stereo(CLI::App& app, Outcome& outcome);
+void add_middlebury(CLI::App& app, Outcome& outcome);
+void add_cmd(CLI::App& app, Outcome& outcome);
+void add_tlm(CLI::App& app, Outcome& outcome);
+void add_keygen(CLI::App& app, Outcome& outcome);
+void add_icd(CLI::App& app, Outcome& outcome);
+void add_demo(CLI::App& app, Outcome& outcome);
+void add_calib(CLI::App& app, Outcome& outcome);
+void add_click(CLI::App& app, Outcome& outcome);
 
 // Prints "petra <cmd>: <message>" on stderr and returns the exit code 1.
 int fail(const char* cmd, const char* message);

@@ -6,6 +6,7 @@
 namespace petra::cli {
 
 int fail(const char* cmd, const char* message) {
+  std::fflush(stdout);  // what was printed before the failure comes first in a shared log
   std::fprintf(stderr, "petra %s: %s\n", cmd, message);
   return 1;
 }
@@ -18,6 +19,17 @@ int main(int argc, char** argv) {
   petra::cli::Outcome outcome;
   // One line per subcommand, each defined in its own cmd_<name>.cpp.
   petra::cli::add_info(app, outcome);
+  petra::cli::add_sim(app, outcome);
+  petra::cli::add_score(app, outcome);
+  petra::cli::add_stereo(app, outcome);
+  petra::cli::add_middlebury(app, outcome);
+  petra::cli::add_cmd(app, outcome);
+  petra::cli::add_tlm(app, outcome);
+  petra::cli::add_keygen(app, outcome);
+  petra::cli::add_icd(app, outcome);
+  petra::cli::add_demo(app, outcome);
+  petra::cli::add_calib(app, outcome);
+  petra::cli::add_click(app, outcome);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,6 +1,12 @@
 #include "sim/io/image_io.hpp"
 
 #include <png.h>
+// libjpeg's header needs size_t and FILE declared first.
+#include <csetjmp>
+#include <cstddef>
+#include <cstdio>
+
+#include <jpeglib.h>
 
 #include <cmath>
 #include <cstdio>
@@ -48,7 +54,8 @@ bool pnm_token(const std::string& data, std::size_t& pos, std::string& out) {
       break;
     }
   }
-  while (pos < data.size() && !std::isspace(static_cast<unsigned char>(data[pos]))) out += data[pos++];
+  while (pos < data.size() && !std::isspace(static_cast<unsigned char>(data[pos])))
+    out += data[pos++];
   return !out.empty();
 }
 
@@ -60,7 +67,9 @@ bool parse_uint(const std::string& s, long max, long& v) {
   return v <= max;
 }
 
-bool parse_positive(const std::string& s, long max, long& v) { return parse_uint(s, max, v) && v > 0; }
+bool parse_positive(const std::string& s, long max, long& v) {
+  return parse_uint(s, max, v) && v > 0;
+}
 
 Result<Decoded> decode_pnm(const std::string& path, const std::string& data) {
   std::size_t pos = 0;
@@ -97,7 +106,8 @@ Result<Decoded> decode_pnm(const std::string& path, const std::string& data) {
     }
   } else {
     const std::size_t bytes = maxval > 255 ? 2 : 1;
-    if (data.size() < pos || data.size() - pos < n * bytes) return format_error(path, "truncated pixel data");
+    if (data.size() < pos || data.size() - pos < n * bytes)
+      return format_error(path, "truncated pixel data");
     for (std::size_t i = 0; i < n; ++i) {
       long v = bytes == 1 ? static_cast<unsigned char>(data[pos + i])
                           : (static_cast<unsigned char>(data[pos + 2 * i]) << 8) |
@@ -136,13 +146,81 @@ Result<Decoded> decode_png(const std::string& path) {
   return d;
 }
 
-Result<Decoded> decode_any(const std::string& path) {
+// --- JPEG ----------------------------------------------------------------------
+
+// libjpeg reports fatal errors through error_exit, which must not return: it
+// jumps back to decode_jpeg_into. Only trivially destructible locals live
+// between setjmp and longjmp, so no destructor is skipped.
+struct JpegErrorManager {
+  jpeg_error_mgr base;
+  std::jmp_buf jump;
+  char message[JMSG_LENGTH_MAX];
+};
+
+void jpeg_error_exit(j_common_ptr cinfo) {
+  auto* err = reinterpret_cast<JpegErrorManager*>(cinfo->err);  // NOLINT: libjpeg's C idiom
+  (*cinfo->err->format_message)(cinfo, err->message);
+  std::longjmp(err->jump, 1);
+}
+
+void jpeg_silent(j_common_ptr, int) {}  // warnings (e.g. extraneous bytes) are not errors
+
+// Decodes into d; returns false with err.message set on failure. Gray output
+// is libjpeg's luminance channel, as OpenCV's imread(..., IMREAD_GRAYSCALE).
+// d lives in the caller's frame, so its destructor is never skipped.
+bool decode_jpeg_into(const std::string& data, bool gray, Decoded& d, JpegErrorManager& err) {
+  jpeg_decompress_struct cinfo;
+  cinfo.err = jpeg_std_error(&err.base);
+  err.base.error_exit = jpeg_error_exit;
+  err.base.emit_message = jpeg_silent;
+  err.message[0] = '\0';
+  if (setjmp(err.jump)) {
+    jpeg_destroy_decompress(&cinfo);
+    return false;
+  }
+  jpeg_create_decompress(&cinfo);
+  jpeg_mem_src(&cinfo, reinterpret_cast<const unsigned char*>(data.data()),  // NOLINT
+               static_cast<unsigned long>(data.size()));
+  jpeg_read_header(&cinfo, TRUE);
+  if (cinfo.image_width == 0 || cinfo.image_height == 0 || cinfo.image_width > (1u << 15) ||
+      cinfo.image_height > (1u << 15)) {
+    std::snprintf(err.message, sizeof err.message, "JPEG size out of range");
+    jpeg_destroy_decompress(&cinfo);
+    return false;
+  }
+  cinfo.out_color_space = gray ? JCS_GRAYSCALE : JCS_RGB;
+  jpeg_start_decompress(&cinfo);
+  d.width = static_cast<int>(cinfo.output_width);
+  d.height = static_cast<int>(cinfo.output_height);
+  d.channels = cinfo.output_components;
+  const std::size_t row_bytes = static_cast<std::size_t>(d.width) * d.channels;
+  d.samples.resize(row_bytes * d.height);
+  while (cinfo.output_scanline < cinfo.output_height) {
+    JSAMPROW row = d.samples.data() + static_cast<std::size_t>(cinfo.output_scanline) * row_bytes;
+    jpeg_read_scanlines(&cinfo, &row, 1);
+  }
+  jpeg_finish_decompress(&cinfo);
+  jpeg_destroy_decompress(&cinfo);
+  return true;
+}
+
+Result<Decoded> decode_jpeg(const std::string& path, const std::string& data, bool gray) {
+  Decoded d;
+  JpegErrorManager err;
+  if (!decode_jpeg_into(data, gray, d, err))
+    return format_error(path, err.message[0] ? err.message : "corrupt JPEG");
+  return d;
+}
+
+Result<Decoded> decode_any(const std::string& path, bool gray) {
   auto data = read_text_file(path);
   if (!data) return data.error();
   if (data->size() >= 8 && std::memcmp(data->data(), "\x89PNG\r\n\x1a\n", 8) == 0)
     return decode_png(path);
+  if (data->size() >= 3 && std::memcmp(data->data(), "\xff\xd8\xff", 3) == 0)
+    return decode_jpeg(path, *data, gray);
   if (data->size() >= 2 && (*data)[0] == 'P') return decode_pnm(path, *data);
-  return format_error(path, "unknown image format (expected PGM, PPM or PNG)");
+  return format_error(path, "unknown image format (expected PGM, PPM, PNG or JPEG)");
 }
 
 Status write_png_raw(const std::string& path, int w, int h, bool colour, const std::uint8_t* data,
@@ -153,7 +231,8 @@ Status write_png_raw(const std::string& path, int w, int h, bool colour, const s
   img.width = static_cast<png_uint_32>(w);
   img.height = static_cast<png_uint_32>(h);
   img.format = colour ? PNG_FORMAT_RGB : PNG_FORMAT_GRAY;
-  if (!png_image_write_to_file(&img, path.c_str(), 0, data, static_cast<png_int_32>(row_stride), nullptr))
+  if (!png_image_write_to_file(&img, path.c_str(), 0, data, static_cast<png_int_32>(row_stride),
+                               nullptr))
     return file_error(path, img.message[0] ? img.message : "cannot write PNG");
   return {};
 }
@@ -161,7 +240,7 @@ Status write_png_raw(const std::string& path, int w, int h, bool colour, const s
 }  // namespace
 
 Result<GrayImage> read_gray_image(const std::string& path) {
-  auto d = decode_any(path);
+  auto d = decode_any(path, true);
   if (!d) return d.error();
   GrayImage g(d->width, d->height);
   const std::size_t n = g.pixels.size();
@@ -177,7 +256,7 @@ Result<GrayImage> read_gray_image(const std::string& path) {
 }
 
 Result<RgbImage> read_rgb_image(const std::string& path) {
-  auto d = decode_any(path);
+  auto d = decode_any(path, false);
   if (!d) return d.error();
   RgbImage out(d->width, d->height);
   const std::size_t n = static_cast<std::size_t>(d->width) * d->height;
@@ -212,10 +291,13 @@ Result<FloatImage> read_pfm(const std::string& path) {
   if (!data) return data.error();
   std::size_t pos = 0;
   std::string magic, tok;
-  if (!pnm_token(*data, pos, magic) || magic != "Pf") return format_error(path, "not a gray PFM (Pf)");
+  if (!pnm_token(*data, pos, magic) || magic != "Pf")
+    return format_error(path, "not a gray PFM (Pf)");
   long w = 0, h = 0;
-  if (!pnm_token(*data, pos, tok) || !parse_positive(tok, 1 << 15, w)) return format_error(path, "bad width");
-  if (!pnm_token(*data, pos, tok) || !parse_positive(tok, 1 << 15, h)) return format_error(path, "bad height");
+  if (!pnm_token(*data, pos, tok) || !parse_positive(tok, 1 << 15, w))
+    return format_error(path, "bad width");
+  if (!pnm_token(*data, pos, tok) || !parse_positive(tok, 1 << 15, h))
+    return format_error(path, "bad height");
   if (!pnm_token(*data, pos, tok)) return format_error(path, "missing scale");
   double scale = 0;
   try {
@@ -227,14 +309,16 @@ Result<FloatImage> read_pfm(const std::string& path) {
   ++pos;
   const bool little = scale < 0;
   const std::size_t n = static_cast<std::size_t>(w) * h;
-  if (data->size() < pos || data->size() - pos < n * 4) return format_error(path, "truncated pixel data");
+  if (data->size() < pos || data->size() - pos < n * 4)
+    return format_error(path, "truncated pixel data");
   FloatImage img(static_cast<int>(w), static_cast<int>(h));
   for (long y = 0; y < h; ++y)
     for (long x = 0; x < w; ++x) {
       const unsigned char* b = reinterpret_cast<const unsigned char*>(data->data()) + pos +
                                (static_cast<std::size_t>(h - 1 - y) * w + x) * 4;
-      std::uint32_t u = little ? (b[0] | b[1] << 8 | b[2] << 16 | static_cast<std::uint32_t>(b[3]) << 24)
-                               : (b[3] | b[2] << 8 | b[1] << 16 | static_cast<std::uint32_t>(b[0]) << 24);
+      std::uint32_t u =
+          little ? (b[0] | b[1] << 8 | b[2] << 16 | static_cast<std::uint32_t>(b[3]) << 24)
+                 : (b[3] | b[2] << 8 | b[1] << 16 | static_cast<std::uint32_t>(b[0]) << 24);
       float v;
       std::memcpy(&v, &u, 4);
       img.data[static_cast<std::size_t>(y) * w + x] = v;
@@ -251,9 +335,11 @@ Status write_pfm(const std::string& path, ImageView<const float> image) {
     for (int x = 0; x < image.width(); ++x) {
       std::uint32_t u;
       std::memcpy(&u, &image(x, y), 4);
-      for (int k = 0; k < 4; ++k) row[static_cast<std::size_t>(x) * 4 + k] = static_cast<unsigned char>(u >> (8 * k));
+      for (int k = 0; k < 4; ++k)
+        row[static_cast<std::size_t>(x) * 4 + k] = static_cast<unsigned char>(u >> (8 * k));
     }
-    if (std::fwrite(row.data(), 1, row.size(), f.get()) != row.size()) return file_error(path, "short write");
+    if (std::fwrite(row.data(), 1, row.size(), f.get()) != row.size())
+      return file_error(path, "short write");
   }
   if (std::fflush(f.get()) != 0) return file_error(path, "flush failed");
   return {};
@@ -281,7 +367,8 @@ Status write_text_file(const std::string& path, std::string_view text) {
 Status write_binary_file(const std::string& path, const void* data, std::size_t bytes) {
   auto f = open_file(path, "wb");
   if (!f) return file_error(path, std::strerror(errno));
-  if (bytes > 0 && std::fwrite(data, 1, bytes, f.get()) != bytes) return file_error(path, "short write");
+  if (bytes > 0 && std::fwrite(data, 1, bytes, f.get()) != bytes)
+    return file_error(path, "short write");
   if (std::fflush(f.get()) != 0) return file_error(path, "flush failed");
   return {};
 }

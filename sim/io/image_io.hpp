@@ -3,6 +3,8 @@
 //   read_gray_image: PGM (P2, P5; 8 or 16 bit), PPM (P3, P6) and PNG (gray,
 //     gray+alpha, RGB, RGBA, palette; 8 or 16 bit). Colour becomes gray with
 //     OpenCV's fixed-point BT.601 weights, so both see identical gray images.
+//     JPEG (baseline and progressive, via libjpeg): gray is libjpeg's
+//     luminance output, exactly what OpenCV's imread(IMREAD_GRAYSCALE) gives.
 //   PFM: Middlebury convention ("Pf", little-endian scale -1, rows bottom to
 //     top), invalid = +inf.
 #pragma once

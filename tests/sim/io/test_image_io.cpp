@@ -41,8 +41,8 @@ TEST(ImageIo, PfmRoundTripKeepsInfAndRowOrder) {
   ASSERT_TRUE(write_pfm(tmp("d.pfm"), d.view()).ok());
   auto r = read_pfm(tmp("d.pfm"));
   ASSERT_TRUE(r.ok()) << r.error().message;
-  EXPECT_EQ(r->data[0], 0.25f);          // top-left
-  EXPECT_EQ(r->view()(4, 2), 24.25f);    // bottom-right
+  EXPECT_EQ(r->data[0], 0.25f);        // top-left
+  EXPECT_EQ(r->view()(4, 2), 24.25f);  // bottom-right
   EXPECT_TRUE(std::isinf(r->view()(2, 1)));
 }
 
@@ -63,6 +63,35 @@ TEST(ImageIo, ReadsMiddleburyFormats) {
   auto gt = read_gray_image(data + "map/disp0.pgm");
   ASSERT_TRUE(gt.ok());
   EXPECT_EQ(gt->width, 284);
+}
+
+TEST(ImageIo, ReadsJpeg) {
+  const std::string data = std::string(PETRA_SOURCE_DIR) + "/../shared/data/chessboard-opencv/";
+  auto g = read_gray_image(data + "left01.jpg");
+  ASSERT_TRUE(g.ok()) << g.error().message;
+  EXPECT_EQ(g->width, 640);
+  EXPECT_EQ(g->height, 480);
+  auto rgb = read_rgb_image(data + "left01.jpg");
+  ASSERT_TRUE(rgb.ok()) << rgb.error().message;
+  // A gray JPEG expands to equal channels that match the gray read.
+  const std::uint8_t* p = rgb->at(320, 240);
+  EXPECT_EQ(p[0], p[1]);
+  EXPECT_EQ(p[0], g->view()(320, 240));
+}
+
+TEST(ImageIo, DamagedJpegNamesTheProblem) {
+  const std::string data = std::string(PETRA_SOURCE_DIR) + "/../shared/data/chessboard-opencv/";
+  auto bytes = read_text_file(data + "left01.jpg");
+  ASSERT_TRUE(bytes.ok());
+  // Cut inside the header: libjpeg stops with a reason; never a crash.
+  ASSERT_TRUE(write_text_file(tmp("cut.jpg"), bytes->substr(0, 100)).ok());
+  auto r = read_gray_image(tmp("cut.jpg"));
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.code(), Errc::parse_error);
+  EXPECT_NE(std::string(r.error().message).find("cut.jpg"), std::string::npos) << r.error().message;
+  // Just the start-of-image marker.
+  ASSERT_TRUE(write_text_file(tmp("soi.jpg"), "\xff\xd8\xff\xe0").ok());
+  EXPECT_EQ(read_gray_image(tmp("soi.jpg")).code(), Errc::parse_error);
 }
 
 TEST(ImageIo, GrayConversionMatchesOpenCvWeights) {

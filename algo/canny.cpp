@@ -1,0 +1,220 @@
+#include "algo/canny.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace petra {
+
+namespace {
+
+constexpr std::size_t kAlignSlack = 64;  // per arena allocation
+constexpr std::uint8_t kWeak = 0x20;     // candidate during hysteresis only
+
+// Sector boundaries: |gy|/|gx| <= 13/32 (tan 22.1 deg) is horizontal,
+// >= 32/13 (tan 67.9 deg) vertical; 16-bit products keep the test in vector
+// lanes (|g| <= 1020).
+constexpr int kTanNum = 13;
+constexpr int kTanDen = 32;
+
+// The row kernels are out of line: inlined into canny() they are not
+// vectorised by GCC 12.
+[[gnu::noinline]] void vertical_binomial(const std::uint16_t* __restrict a,
+                                         const std::uint16_t* __restrict b,
+                                         const std::uint16_t* __restrict c,
+                                         const std::uint16_t* __restrict d,
+                                         const std::uint16_t* __restrict e, int n,
+                                         std::uint8_t* __restrict o) {
+  for (int i = 0; i < n; ++i)
+    o[i] = static_cast<std::uint8_t>((a[i] + 4 * b[i] + 6 * c[i] + 4 * d[i] + e[i] + 128) >> 8);
+}
+
+// Sobel gradients and L1 magnitude of one row from three smoothed rows.
+[[gnu::noinline]] void sobel_row(const std::uint8_t* __restrict up,
+                                 const std::uint8_t* __restrict mid,
+                                 const std::uint8_t* __restrict dn, int n,
+                                 std::int16_t* __restrict ox, std::int16_t* __restrict oy,
+                                 std::uint16_t* __restrict om) {
+  for (int i = 0; i < n; ++i) {
+    const int vx = (up[i + 2] + 2 * mid[i + 2] + dn[i + 2]) - (up[i] + 2 * mid[i] + dn[i]);
+    const int vy = (dn[i] + 2 * dn[i + 1] + dn[i + 2]) - (up[i] + 2 * up[i + 1] + up[i + 2]);
+    ox[i] = static_cast<std::int16_t>(vx);
+    oy[i] = static_cast<std::int16_t>(vy);
+    om[i] = static_cast<std::uint16_t>((vx < 0 ? -vx : vx) + (vy < 0 ? -vy : vy));
+  }
+}
+
+// Non-maximum suppression of one row. up/mid/dn are the magnitude rows
+// above, at and below, offset so that index i is the pixel's column
+// (i - 1 and i + 1 are valid). Writes 0, or the sector and sign with kWeak
+// or kEdgeBit. Branch-free so the compiler runs it in vector lanes.
+[[gnu::noinline]] void nms_row(const std::int16_t* __restrict gx, const std::int16_t* __restrict gy,
+                               const std::uint16_t* __restrict up,
+                               const std::uint16_t* __restrict mid,
+                               const std::uint16_t* __restrict dn, int w, int low, int high,
+                               std::uint8_t* __restrict out) {
+  const std::int16_t lo = static_cast<std::int16_t>(low), hi = static_cast<std::int16_t>(high);
+  // Every neighbour is loaded and chosen by masks: a select between two
+  // addresses would be a gather, which stops the vectoriser.
+  auto pick = [](std::int16_t mask, std::int16_t a, std::int16_t b) {
+    return static_cast<std::int16_t>((a & mask) | (b & ~mask));
+  };
+  for (int i = 0; i < w; ++i) {
+    const std::int16_t m = static_cast<std::int16_t>(mid[i]);
+    const std::int16_t l = static_cast<std::int16_t>(mid[i - 1]),
+                       r = static_cast<std::int16_t>(mid[i + 1]);
+    const std::int16_t u = static_cast<std::int16_t>(up[i]), d = static_cast<std::int16_t>(dn[i]);
+    const std::int16_t ul = static_cast<std::int16_t>(up[i - 1]),
+                       ur = static_cast<std::int16_t>(up[i + 1]);
+    const std::int16_t dl = static_cast<std::int16_t>(dn[i - 1]),
+                       dr = static_cast<std::int16_t>(dn[i + 1]);
+    const std::int16_t ax = static_cast<std::int16_t>(gx[i] < 0 ? -gx[i] : gx[i]);
+    const std::int16_t ay = static_cast<std::int16_t>(gy[i] < 0 ? -gy[i] : gy[i]);
+    const std::int16_t horizontal = static_cast<std::int16_t>(-(ay * kTanDen <= ax * kTanNum));
+    const std::int16_t vertical = static_cast<std::int16_t>(-(ay * kTanNum >= ax * kTanDen));
+    const std::int16_t same = static_cast<std::int16_t>(-((gx[i] > 0) == (gy[i] > 0)));
+    const std::int16_t n1 = pick(horizontal, l, pick(vertical, u, pick(same, ul, ur)));
+    const std::int16_t n2 = pick(horizontal, r, pick(vertical, d, pick(same, dr, dl)));
+    const std::int16_t sector =
+        pick(horizontal, kSectorHorizontal,
+             pick(vertical, kSectorVertical, pick(same, kSectorDiagonal, kSectorAntiDiagonal)));
+    // Strict on one side, so a plateau of two equal pixels keeps one.
+    const bool keep = m >= lo && m > n1 && m >= n2;
+    const int code = sector | (gx[i] < 0 ? kEdgeGxNegative : 0) | (m >= hi ? kEdgeBit : kWeak);
+    out[i] = static_cast<std::uint8_t>(keep ? code : 0);
+  }
+}
+
+std::size_t sz(int w, int h) {
+  return static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+}
+
+// Copies source row `y` (clamped) over columns [x0, x0 + n) with border
+// replication, so the filters below need no bounds checks.
+void padded_row(ConstGray8View img, int y, int x0, int n, std::uint8_t* out) {
+  const std::uint8_t* s = img.row(std::clamp(y, 0, img.height() - 1));
+  const int last = img.width() - 1;
+  if (x0 >= 0 && x0 + n - 1 <= last) {
+    std::copy(s + x0, s + x0 + n, out);
+    return;
+  }
+  for (int i = 0; i < n; ++i) out[i] = s[std::clamp(x0 + i, 0, last)];
+}
+
+}  // namespace
+
+std::size_t canny_scratch_bytes(int w, int h) {
+  if (w <= 0 || h <= 0) return 0;
+  return sz(w + 4, h + 4) + 3 * sizeof(std::int16_t) * sz(w + 2, h + 2) +
+         sizeof(std::uint32_t) * sz(w, h) + (w + 8) + 2 * sizeof(std::uint16_t) * (w + 4) * 5 +
+         7 * kAlignSlack;
+}
+
+Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& params, Arena& scratch,
+                         Gray8View edges) {
+  if (area.empty())
+    return Error::make(Errc::invalid_argument, "canny: area %dx%d is empty", area.w, area.h);
+  if (!area.inside(image.width(), image.height()))
+    return Error::make(Errc::out_of_range, "canny: area (%d,%d %dx%d) outside the %dx%d image",
+                       area.x, area.y, area.w, area.h, image.width(), image.height());
+  if (edges.width() != area.w || edges.height() != area.h)
+    return Error::make(Errc::invalid_argument, "canny: edges are %dx%d, area is %dx%d",
+                       edges.width(), edges.height(), area.w, area.h);
+  if (params.low <= 0 || params.high < params.low)
+    return Error::make(Errc::invalid_argument,
+                       "canny: thresholds low %d, high %d (need 0 < low <= high)", params.low,
+                       params.high);
+  ArenaScope scope(scratch);
+  const int w = area.w, h = area.h;
+  const int sw = w + 4, sh = h + 4;  // smoothed: area grown by 2
+  const int gw = w + 2, gh = h + 2;  // gradients: area grown by 1
+  auto sm_buf = scratch.allocate<std::uint8_t>(sz(sw, sh), "canny smoothed image");
+  if (!sm_buf) return sm_buf.error();
+  auto gx_buf = scratch.allocate<std::int16_t>(sz(gw, gh), "canny gx");
+  if (!gx_buf) return gx_buf.error();
+  auto gy_buf = scratch.allocate<std::int16_t>(sz(gw, gh), "canny gy");
+  if (!gy_buf) return gy_buf.error();
+  auto mag_buf = scratch.allocate<std::uint16_t>(sz(gw, gh), "canny magnitude");
+  if (!mag_buf) return mag_buf.error();
+  auto stack = scratch.allocate<std::uint32_t>(sz(w, h), "canny stack");
+  if (!stack) return stack.error();
+  auto src_row = scratch.allocate<std::uint8_t>(static_cast<std::size_t>(w + 8), "canny row");
+  if (!src_row) return src_row.error();
+  auto hring = scratch.allocate<std::uint16_t>(static_cast<std::size_t>(sw) * 5, "canny ring");
+  if (!hring) return hring.error();
+
+  // 1. Smoothing, separable binomial [1 4 6 4 1]/16 per axis: horizontal
+  // rows in a ring of five, then the vertical combination.
+  const ImageView<std::uint8_t> sm = ImageView<std::uint8_t>::over(*sm_buf, sw, sh);
+  auto hfilter = [&](int y_img, std::uint16_t* out) {
+    std::uint8_t* s = src_row->data();
+    padded_row(image, y_img, area.x - 4, w + 8, s);
+    for (int i = 0; i < sw; ++i)  // out[i] is column area.x - 2 + i
+      out[i] =
+          static_cast<std::uint16_t>(s[i] + 4 * s[i + 1] + 6 * s[i + 2] + 4 * s[i + 3] + s[i + 4]);
+  };
+  std::uint16_t* ring = hring->data();
+  const int y_first = area.y - 4;  // first source row needed
+  for (int k = 0; k < 4; ++k) hfilter(y_first + k, ring + (k % 5) * sw);
+  for (int r = 0; r < sh; ++r) {
+    hfilter(y_first + r + 4, ring + ((r + 4) % 5) * sw);
+    const std::uint16_t* a = ring + (r % 5) * sw;
+    const std::uint16_t* b = ring + ((r + 1) % 5) * sw;
+    const std::uint16_t* c = ring + ((r + 2) % 5) * sw;
+    const std::uint16_t* d = ring + ((r + 3) % 5) * sw;
+    const std::uint16_t* e = ring + ((r + 4) % 5) * sw;
+    vertical_binomial(a, b, c, d, e, sw, sm.row(r));
+  }
+
+  // 2. Sobel on the smoothed image.
+  const ImageView<std::int16_t> gx = ImageView<std::int16_t>::over(*gx_buf, gw, gh);
+  const ImageView<std::int16_t> gy = ImageView<std::int16_t>::over(*gy_buf, gw, gh);
+  const ImageView<std::uint16_t> mg = ImageView<std::uint16_t>::over(*mag_buf, gw, gh);
+  for (int j = 0; j < gh; ++j)
+    sobel_row(sm.row(j), sm.row(j + 1), sm.row(j + 2), gw, gx.row(j), gy.row(j), mg.row(j));
+
+  // 3. Non-maximum suppression, one row at a time (nms_row, vectorised);
+  // then the strong pixels seed the stack.
+  CannyStats stats;
+  std::size_t top = 0;
+  for (int j = 0; j < h; ++j) {
+    std::uint8_t* out = edges.row(j);
+    nms_row(gx.row(j + 1) + 1, gy.row(j + 1) + 1, mg.row(j) + 1, mg.row(j + 1) + 1,
+            mg.row(j + 2) + 1, w, params.low, params.high, out);
+    for (int i = 0; i < w; ++i)
+      if (out[i] & kEdgeBit) {
+        (*stack)[top++] = static_cast<std::uint32_t>(j * w + i);
+        ++stats.strong_pixels;
+      }
+  }
+
+  // 4. Hysteresis: grow strong edges into 8-connected weak pixels. A pixel is
+  // pushed only when it becomes an edge, so the stack never exceeds w*h.
+  const std::size_t capacity = stack->size();
+  while (top > 0) {
+    const std::uint32_t p = (*stack)[--top];
+    const int j = static_cast<int>(p / static_cast<std::uint32_t>(w));
+    const int i = static_cast<int>(p % static_cast<std::uint32_t>(w));
+    for (int dj = -1; dj <= 1; ++dj) {
+      const int jj = j + dj;
+      if (jj < 0 || jj >= h) continue;
+      std::uint8_t* row = edges.row(jj);
+      for (int di = -1; di <= 1; ++di) {
+        const int ii = i + di;
+        if (ii < 0 || ii >= w || (row[ii] & kWeak) == 0) continue;
+        row[ii] = static_cast<std::uint8_t>((row[ii] & ~kWeak) | kEdgeBit);
+        PETRA_ASSERT(top < capacity);
+        (*stack)[top++] = static_cast<std::uint32_t>(jj * w + ii);
+      }
+    }
+  }
+  for (int j = 0; j < h; ++j) {
+    std::uint8_t* row = edges.row(j);
+    for (int i = 0; i < w; ++i) {
+      if (row[i] & kWeak) row[i] = 0;
+      stats.edge_pixels += is_edge(row[i]);
+    }
+  }
+  return stats;
+}
+
+}  // namespace petra

@@ -1,0 +1,163 @@
+#include "algo/edge_pairs.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "algo/canny.hpp"
+
+namespace petra::match {
+
+namespace {
+
+constexpr int kWin = 2 * kZnccRadius + 1;
+constexpr int kN = kWin * kWin;
+// Windows whose variance (times kN^2) is below this carry no texture: a
+// standard deviation under 1.5 gray levels.
+constexpr long kMinVariance = static_cast<long>(kN) * kN * 9 / 4;
+constexpr std::size_t kAlignSlack = 64;
+
+struct Window {
+  std::uint8_t px[kN];
+  long sum;
+  long var;   // kN * sum(p^2) - sum(p)^2
+  double sd;  // sqrt(var), once per window instead of once per pair
+};
+
+void load_window(ConstGray8View img, int x, int y, Window& w) {
+  long s = 0, ss = 0;
+  int n = 0;
+  for (int dy = -kZnccRadius; dy <= kZnccRadius; ++dy) {
+    const std::uint8_t* row = img.row(std::clamp(y + dy, 0, img.height() - 1));
+    for (int dx = -kZnccRadius; dx <= kZnccRadius; ++dx) {
+      const std::uint8_t p = row[std::clamp(x + dx, 0, img.width() - 1)];
+      w.px[n++] = p;
+      s += p;
+      ss += p * p;
+    }
+  }
+  w.sum = s;
+  w.var = kN * ss - s * s;
+  w.sd = std::sqrt(static_cast<double>(w.var));
+}
+
+int zncc(const Window& a, const Window& b) {
+  if (a.var < kMinVariance || b.var < kMinVariance) return 0;
+  long cross = 0;
+  for (int i = 0; i < kN; ++i) cross += a.px[i] * b.px[i];
+  const long num = kN * cross - a.sum * b.sum;
+  // var products stay below 2^50: the product of the roots is exact enough.
+  const long den = std::lround(a.sd * b.sd);
+  if (den <= 0) return 0;
+  return static_cast<int>(num * kZnccOne / den);
+}
+
+// A usable edge has a position along the row: not a horizontal edge.
+bool usable(std::uint8_t code) {
+  return is_edge(code) && edge_sector(code) != kSectorVertical;
+}
+
+enum : std::uint8_t { kFromUp = 0, kFromLeft = 1, kMatch = 2 };
+
+}  // namespace
+
+int zncc_q10(ConstGray8View left, int xl, ConstGray8View right, int xr, int y) {
+  Window a, b;
+  load_window(left, xl, y, a);
+  load_window(right, xr, y, b);
+  return zncc(a, b);
+}
+
+std::size_t edge_row_scratch_bytes(int left_n, int right_n) {
+  const std::size_t m = static_cast<std::size_t>(std::max(left_n, 0));
+  const std::size_t n = static_cast<std::size_t>(std::max(right_n, 0));
+  return (m + 1) * (n + 1) + (m + n) * (sizeof(Window) + sizeof(std::int16_t)) +
+         2 * (n + 1) * sizeof(std::int32_t) + 6 * kAlignSlack;
+}
+
+Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<EdgePair> pairs) {
+  ArenaScope scope(arena);
+  auto lx = arena.allocate<std::int16_t>(static_cast<std::size_t>(in.left_n), "edge list left");
+  if (!lx) return lx.error();
+  auto rx = arena.allocate<std::int16_t>(static_cast<std::size_t>(in.right_n), "edge list right");
+  if (!rx) return rx.error();
+  int m = 0, n = 0;
+  for (int i = 0; i < in.left_n; ++i)
+    if (usable(in.left_edges[i])) (*lx)[m++] = static_cast<std::int16_t>(in.left_x0 + i);
+  for (int j = 0; j < in.right_n; ++j)
+    if (usable(in.right_edges[j])) (*rx)[n++] = static_cast<std::int16_t>(in.right_x0 + j);
+  if (m == 0 || n == 0) return 0;
+
+  auto lw = arena.allocate<Window>(static_cast<std::size_t>(m), "edge windows left");
+  if (!lw) return lw.error();
+  auto rw = arena.allocate<Window>(static_cast<std::size_t>(n), "edge windows right");
+  if (!rw) return rw.error();
+  for (int i = 0; i < m; ++i) load_window(in.left, (*lx)[i], in.y, (*lw)[i]);
+  for (int j = 0; j < n; ++j) load_window(in.right, (*rx)[j], in.y, (*rw)[j]);
+
+  const std::size_t cols = static_cast<std::size_t>(n) + 1;
+  auto back =
+      arena.allocate<std::uint8_t>((static_cast<std::size_t>(m) + 1) * cols, "edge DP table");
+  if (!back) return back.error();
+  auto f = arena.allocate<std::int32_t>(2 * cols, "edge DP rows");
+  if (!f) return f.error();
+  std::int32_t* prev = f->data();
+  std::int32_t* cur = f->data() + cols;
+  std::fill(prev, prev + cols, 0);
+
+  // F(i, j): best score pairing the first i left and first j right edges in
+  // order. O(m n) per row; only pairs within the disparity range are scored.
+  for (int i = 1; i <= m; ++i) {
+    const int xl = (*lx)[i - 1];
+    const std::uint8_t gl = in.left_edges[xl - in.left_x0] & kEdgeGxNegative;
+    cur[0] = 0;
+    std::uint8_t* brow = back->data() + static_cast<std::size_t>(i) * cols;
+    for (int j = 1; j <= n; ++j) {
+      std::int32_t best = prev[j];
+      std::uint8_t from = kFromUp;
+      if (cur[j - 1] > best) {
+        best = cur[j - 1];
+        from = kFromLeft;
+      }
+      const int xr = (*rx)[j - 1];
+      const int d = xl - xr;
+      if (d >= in.disp_min && d <= in.disp_max &&
+          (in.right_edges[xr - in.right_x0] & kEdgeGxNegative) == gl) {
+        const int z = zncc((*lw)[i - 1], (*rw)[j - 1]);
+        if (z >= in.zncc_floor_q10 && prev[j - 1] + (z - in.zncc_floor_q10) + 1 > best) {
+          best = prev[j - 1] + (z - in.zncc_floor_q10) + 1;  // +1: a pair at the floor still counts
+          from = kMatch;
+        }
+      }
+      cur[j] = best;
+      brow[j] = from;
+    }
+    std::swap(prev, cur);
+  }
+
+  // Backtrack from (m, n); pairs come out right to left.
+  int count = 0;
+  int i = m, j = n;
+  while (i > 0 && j > 0) {
+    const std::uint8_t from = (*back)[static_cast<std::size_t>(i) * cols + j];
+    if (from == kMatch) {
+      if (count >= static_cast<int>(pairs.size()))
+        return Error::make(Errc::capacity_exceeded, "edge pairs: more than %zu pairs on row %d",
+                           pairs.size(), in.y);
+      EdgePair p;
+      p.x_left = (*lx)[i - 1];
+      p.x_right = (*rx)[j - 1];
+      p.zncc_q10 = static_cast<std::int16_t>(zncc((*lw)[i - 1], (*rw)[j - 1]));
+      pairs[static_cast<std::size_t>(count++)] = p;
+      --i;
+      --j;
+    } else if (from == kFromUp) {
+      --i;
+    } else {
+      --j;
+    }
+  }
+  std::reverse(pairs.begin(), pairs.begin() + count);
+  return count;
+}
+
+}  // namespace petra::match

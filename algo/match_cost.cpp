@@ -1,0 +1,143 @@
+#include "algo/match_cost.hpp"
+
+#include <algorithm>
+
+#include "algo/core/assert.hpp"
+
+namespace petra::match {
+
+namespace {
+
+// (dx, dy) of the 16 census neighbours.
+constexpr int kCensusOffsets[16][2] = {
+    {-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1},
+    {-2, -2}, {0, -2}, {2, -2}, {-2, 0}, {2, 0}, {-2, 2}, {0, 2}, {2, 2},
+};
+
+void padded_row(ConstGray8View img, int y, int x0, int n, std::uint8_t* out) {
+  const std::uint8_t* s = img.row(std::clamp(y, 0, img.height() - 1));
+  const int last = img.width() - 1;
+  // Fast path for the interior; replication only where the span leaves the image.
+  if (x0 >= 0 && x0 + n - 1 <= last) {
+    std::copy(s + x0, s + x0 + n, out);
+    return;
+  }
+  for (int i = 0; i < n; ++i) out[i] = s[std::clamp(x0 + i, 0, last)];
+}
+
+// Bit count of a byte by halving steps (no multiply, no table), so the
+// compiler keeps it in byte lanes on any target.
+inline std::uint8_t popcount8(std::uint8_t v) {
+  v = static_cast<std::uint8_t>(v - ((v >> 1) & 0x55));
+  v = static_cast<std::uint8_t>((v & 0x33) + ((v >> 2) & 0x33));
+  return static_cast<std::uint8_t>((v + (v >> 4)) & 0x0F);
+}
+
+inline std::uint8_t min8(std::uint8_t a, std::uint8_t b) {
+  return a < b ? a : b;
+}
+inline std::uint8_t max8(std::uint8_t a, std::uint8_t b) {
+  return a < b ? b : a;
+}
+
+}  // namespace
+
+void census_row(ConstGray8View image, int y, int x0, int n, std::uint8_t* __restrict inner,
+                std::uint8_t* __restrict outer, std::uint8_t* rows) {
+  const int pw = n + 2 * kCensusRadius;
+  for (int r = 0; r < 5; ++r)
+    padded_row(image, y - kCensusRadius + r, x0 - kCensusRadius, pw, rows + r * pw);
+  const std::uint8_t* __restrict centre = rows + 2 * pw + kCensusRadius;
+  for (int i = 0; i < n; ++i) inner[i] = outer[i] = 0;
+  for (int b = 0; b < 16; ++b) {
+    const std::uint8_t* __restrict nb =
+        rows + (2 + kCensusOffsets[b][1]) * pw + kCensusRadius + kCensusOffsets[b][0];
+    std::uint8_t* __restrict plane = b < 8 ? inner : outer;
+    const std::uint8_t bit = static_cast<std::uint8_t>(1u << (b & 7));
+    for (int i = 0; i < n; ++i)
+      plane[i] = static_cast<std::uint8_t>(plane[i] | (nb[i] < centre[i] ? bit : 0));
+  }
+}
+
+void gray_row(ConstGray8View image, int y, int x0, int n, std::uint8_t* gray) {
+  padded_row(image, y, x0, n, gray);
+}
+
+template <int kLanes>
+void raw_cost_row(const RawRowInputs& in, int k_count, std::uint8_t* raw, std::uint16_t* colsum,
+                  int stride_arg) {
+  const int stride = kLanes > 0 ? kLanes : stride_arg;
+  PETRA_ASSERT(k_count <= stride && stride <= kMaxLanes);
+  std::uint8_t pad[kMaxLanes];  // kRawPad on the lanes beyond the range
+  for (int k = 0; k < stride; ++k) pad[k] = k < k_count ? 0 : kRawPad;
+  for (int i = 0; i < in.n_left; ++i) {
+    std::uint8_t* __restrict out = raw + static_cast<std::ptrdiff_t>(i) * stride;
+    std::uint16_t* __restrict sum = colsum + static_cast<std::ptrdiff_t>(i) * stride;
+    // All `stride` lanes in one vectorised loop (no scalar tail); the lanes
+    // beyond k_count keep kRawPad.
+    if (in.neutral_left[i]) {
+      for (int k = 0; k < stride; ++k) {
+        const std::uint8_t v = pad[k] != 0 ? pad[k] : std::uint8_t{kRawNeutral};
+        sum[k] = static_cast<std::uint16_t>(sum[k] + v - out[k]);
+        out[k] = v;
+      }
+      continue;
+    }
+    const int base = in.n_left - 1 - i;
+    const std::uint8_t ci = in.census_inner_left[i];
+    const std::uint8_t co = in.census_outer_left[i];
+    const std::uint8_t gl = in.gray_left[i];
+    const std::uint8_t* __restrict cri = in.census_inner_right_rev + base;
+    const std::uint8_t* __restrict cro = in.census_outer_right_rev + base;
+    const std::uint8_t* __restrict gr = in.gray_right_rev + base;
+    const std::uint8_t* __restrict ov = in.override_rev + base;
+    for (int k = 0; k < stride; ++k) {
+      const std::uint8_t ad = static_cast<std::uint8_t>(max8(gl, gr[k]) - min8(gl, gr[k]));
+      const std::uint8_t c = static_cast<std::uint8_t>(
+          popcount8(static_cast<std::uint8_t>(ci ^ cri[k])) +
+          popcount8(static_cast<std::uint8_t>(co ^ cro[k])) + (min8(ad, 32) >> 2));
+      // Overrides as branch-free selects: padding lanes, then right samples.
+      std::uint8_t v = ov[k] != 0 ? ov[k] : c;
+      v = pad[k] != 0 ? pad[k] : v;
+      sum[k] = static_cast<std::uint16_t>(sum[k] + v - out[k]);
+      out[k] = v;
+    }
+  }
+}
+
+template <int kLanes>
+void box_and_shift_row(const std::uint16_t* colsum, int n, int stride_arg, std::uint16_t* hs,
+                       std::uint16_t* agg) {
+  const int stride = kLanes > 0 ? kLanes : stride_arg;
+  const int nh = n + 2 * kShiftRadiusX;
+  // Box sums by a running sum along x, vectorised over k.
+  for (int k = 0; k < stride; ++k)
+    hs[k] = static_cast<std::uint16_t>(colsum[k] + colsum[stride + k] + colsum[2 * stride + k] +
+                                       colsum[3 * stride + k] + colsum[4 * stride + k]);
+  for (int j = 1; j < nh; ++j) {
+    const std::uint16_t* __restrict prev = hs + static_cast<std::ptrdiff_t>(j - 1) * stride;
+    const std::uint16_t* __restrict add = colsum + static_cast<std::ptrdiff_t>(j + 4) * stride;
+    const std::uint16_t* __restrict sub = colsum + static_cast<std::ptrdiff_t>(j - 1) * stride;
+    std::uint16_t* __restrict cur = hs + static_cast<std::ptrdiff_t>(j) * stride;
+    for (int k = 0; k < stride; ++k) cur[k] = static_cast<std::uint16_t>(prev[k] + add[k] - sub[k]);
+  }
+  // Minimum over five box positions: min(min(h0,h1), min(h2,h3), h4).
+  for (int i = 0; i < n; ++i) {
+    const std::uint16_t* __restrict h0 = hs + static_cast<std::ptrdiff_t>(i) * stride;
+    std::uint16_t* __restrict out = agg + static_cast<std::ptrdiff_t>(i) * stride;
+    for (int k = 0; k < stride; ++k) {
+      const std::uint16_t a = std::min(h0[k], h0[stride + k]);
+      const std::uint16_t b = std::min(h0[2 * stride + k], h0[3 * stride + k]);
+      out[k] = std::min(std::min(a, b), h0[4 * stride + k]);
+    }
+  }
+}
+
+#define PETRA_INSTANTIATE(n)                                                                   \
+  template void raw_cost_row<n>(const RawRowInputs&, int, std::uint8_t*, std::uint16_t*, int); \
+  template void box_and_shift_row<n>(const std::uint16_t*, int, int, std::uint16_t*,           \
+                                     std::uint16_t*);
+PETRA_MATCH_LANE_COUNTS(PETRA_INSTANTIATE)
+#undef PETRA_INSTANTIATE
+
+}  // namespace petra::match

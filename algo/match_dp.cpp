@@ -1,0 +1,516 @@
+#include "algo/match_dp.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <span>
+
+#include "algo/disparity_median.hpp"
+#include "algo/edge_pairs.hpp"
+#include "algo/match_cost.hpp"
+#include "algo/scanline_dp.hpp"
+
+namespace petra {
+
+namespace {
+
+using match::kMarginX;
+using match::kRawMax;
+using match::kRawNeutral;
+using match::kWindowRows;
+
+constexpr std::size_t kAlignSlack = 64;  // per arena allocation
+constexpr int kLaneMultiple = 16;
+constexpr int kMaxAbsDisparity = 2047;  // Q4 in int16
+constexpr int kWindowPixels = (2 * match::kBoxRadiusX + 1) * kWindowRows;
+// A textureless ROI has fewer edge pixels than this (and than 1 in 500).
+constexpr long kMinEdgePixels = 8;
+
+// Sizes of every buffer of one call, shared by the budget function and the
+// allocations so the two cannot drift apart.
+struct Layout {
+  int w = 0, h = 0, d = 0, dp = 0, band = 0, wc = 0, nrp = 0;
+
+  Layout(int width, int height, int disparities)
+      : w(width),
+        h(height),
+        d(disparities),
+        dp((disparities + kLaneMultiple - 1) / kLaneMultiple * kLaneMultiple),
+        band(width + disparities - 1),
+        wc(width + 2 * kMarginX),
+        nrp(wc + dp - 1) {}
+
+  static std::size_t z(long v) { return static_cast<std::size_t>(v); }
+  std::size_t edge_maps() const { return z(w) * z(h) + z(band) * z(h) + 2 * kAlignSlack; }
+  std::size_t canny() const { return canny_scratch_bytes(std::max(w, band), h); }
+  std::size_t rows() const {
+    const std::size_t cells = z(wc) * z(dp);
+    std::size_t b = 0;
+    b += kWindowRows * cells;                       // raw ring
+    b += 2 * cells;                                 // column sums
+    b += 2 * z(w + 4) * z(dp) + 2 * z(w) * z(dp);   // box sums, cost
+    b += 2 * z(w) * z(match::path_row_stride(dp));  // path costs S
+    b += 2 * 2 * z(dp + 2);                         // DP rows
+    b += 5 * z(nrp + 4) + 4 * z(wc) + 6 * z(nrp);   // census, gray, overrides
+    b += 2 * 2 * z(w) + 2 * z(w);                   // bounds, p2
+    b += 2 * 2 * z(w + dp);                         // right winners
+    b += sizeof(match::EdgePair) * z(w);            // pairs
+    b += 2 * median3x3_scratch(w) + z(w);           // median rows, shadow row
+    b += 24 * kAlignSlack;
+    return b + match::edge_row_scratch_bytes(w, band);
+  }
+  std::size_t total() const { return edge_maps() + std::max(canny(), rows()); }
+};
+
+template <class T>
+Status take(Arena& arena, std::size_t n, const char* what, std::span<T>& out) {
+  auto r = arena.allocate<T>(n, what);
+  if (!r) return r.error();
+  out = *r;
+  return ok_status();
+}
+
+bool shadow_at(const ShadowMask* m, int x, int y) {
+  return m != nullptr && m->is_shadow(x, y);
+}
+
+Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const MatchBudget& budget,
+                const DisparityMap& out, ImageView<std::uint8_t> confidence) {
+  if (in.left.empty() || in.right.empty())
+    return Error::make(Errc::invalid_argument, "match_dp: empty image");
+  if (in.left.width() != in.right.width() || in.left.height() != in.right.height())
+    return Error::make(Errc::invalid_argument, "match_dp: left image is %dx%d but right is %dx%d",
+                       in.left.width(), in.left.height(), in.right.width(), in.right.height());
+  if (p.disp_min > p.disp_max)
+    return Error::make(Errc::invalid_argument, "match_dp: disparity range [%d, %d] is empty",
+                       p.disp_min, p.disp_max);
+  if (std::abs(p.disp_min) > kMaxAbsDisparity || std::abs(p.disp_max) > kMaxAbsDisparity)
+    return Error::make(Errc::out_of_range, "match_dp: disparity range [%d, %d] beyond +-%d px",
+                       p.disp_min, p.disp_max, kMaxAbsDisparity);
+  const int d = p.disp_max - p.disp_min + 1;
+  if (budget.max_width <= 0 || budget.max_height <= 0 || budget.max_disparities <= 0)
+    return Error::make(Errc::invalid_argument, "match_dp: budget %dx%d, %d disparities is empty",
+                       budget.max_width, budget.max_height, budget.max_disparities);
+  if (d > budget.max_disparities)
+    return Error::make(Errc::capacity_exceeded,
+                       "match_dp: disparity range of %d exceeds the budget of %d", d,
+                       budget.max_disparities);
+  if (roi.empty())
+    return Error::make(Errc::invalid_argument, "match_dp: ROI %dx%d is empty", roi.w, roi.h);
+  if (!roi.inside(in.left.width(), in.left.height()))
+    return Error::make(Errc::out_of_range, "match_dp: ROI (%d,%d %dx%d) is outside the %dx%d image",
+                       roi.x, roi.y, roi.w, roi.h, in.left.width(), in.left.height());
+  if (roi.w > budget.max_width || roi.h > budget.max_height)
+    return Error::make(Errc::capacity_exceeded, "match_dp: ROI %dx%d exceeds the budget of %dx%d",
+                       roi.w, roi.h, budget.max_width, budget.max_height);
+  if (out.q4.width() != roi.w || out.q4.height() != roi.h)
+    return Error::make(Errc::invalid_argument, "match_dp: output is %dx%d, ROI is %dx%d",
+                       out.q4.width(), out.q4.height(), roi.w, roi.h);
+  if (!confidence.empty() && (confidence.width() != roi.w || confidence.height() != roi.h))
+    return Error::make(Errc::invalid_argument, "match_dp: confidence is %dx%d, ROI is %dx%d",
+                       confidence.width(), confidence.height(), roi.w, roi.h);
+  if (p.p1 < 0 || p.p2 < p.p1 || p.p2 > match::kMaxP2)
+    return Error::make(Errc::invalid_argument,
+                       "match_dp: penalties P1 %d, P2 %d (need 0 <= P1 <= P2 <= %d)", p.p1, p.p2,
+                       match::kMaxP2);
+  if (p.edge_zncc_floor_pct < -100 || p.edge_zncc_floor_pct > 100 || p.edge_uniqueness_pct < 0 ||
+      p.edge_uniqueness_pct > 100 || p.uniqueness_pct < 0 || p.uniqueness_pct > 100)
+    return Error::make(Errc::invalid_argument, "match_dp: a percentage is outside its range");
+  if (p.edge_tolerance_px < 0 || p.lr_tolerance_px < 0 || p.max_mean_cost <= 0)
+    return Error::make(Errc::invalid_argument,
+                       "match_dp: tolerances must be >= 0 and the cost ceiling > 0");
+  return ok_status();
+}
+
+// Best lane, its value and the best value more than one lane away, over
+// v[0..n). Written as three branch-free reductions the compiler vectorises.
+struct Winner {
+  int k = 0;
+  int best = 0;
+  int second = 0;
+};
+
+// Lane numbers as data: the reductions below compare them with loaded
+// values instead of an induction variable, which keeps them vectorised.
+struct LaneNumbers {
+  std::int16_t k[match::kMaxLanes];
+  constexpr LaneNumbers() : k() {
+    for (int i = 0; i < match::kMaxLanes; ++i) k[i] = static_cast<std::int16_t>(i);
+  }
+};
+constexpr LaneNumbers kLaneNumbers{};
+
+template <int kLanes, class T>
+[[gnu::noinline]] Winner winner(const T* __restrict v, int n_arg) {
+  const int n = kLanes > 0 ? kLanes : n_arg;
+  constexpr T kTop = std::numeric_limits<T>::max();
+  const std::int16_t* __restrict lane = kLaneNumbers.k;
+  T m = kTop;
+  for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
+  std::int16_t k1 = 0x7FFF;      // first lane holding the minimum
+  for (int k = 0; k < n; ++k) {  // masks, not ?:, keep it one basic block
+    const std::int16_t hit = static_cast<std::int16_t>(-(v[k] == m));
+    const std::int16_t c = static_cast<std::int16_t>((lane[k] & hit) | (0x7FFF & ~hit));
+    k1 = c < k1 ? c : k1;
+  }
+  const std::int16_t lo = static_cast<std::int16_t>(k1 - 1), hi = static_cast<std::int16_t>(k1 + 1);
+  T m2 = kTop;  // best more than one lane away
+  for (int k = 0; k < n; ++k) {
+    const T near = static_cast<T>(-((lane[k] >= lo) & (lane[k] <= hi)));
+    const T c = static_cast<T>((v[k] & ~near) | (kTop & near));
+    m2 = c < m2 ? c : m2;
+  }
+  return Winner{k1, m, m2};
+}
+
+bool unique_enough(const Winner& w, int pct) {
+  return static_cast<long>(w.second - w.best) * 100 >= static_cast<long>(pct) * w.second;
+}
+
+// out[m] = in[n - 1 - m].
+[[gnu::noinline]] void reverse_copy(const std::uint8_t* __restrict in, int n,
+                                    std::uint8_t* __restrict out) {
+  for (int m = 0; m < n; ++m) out[m] = in[n - 1 - m];
+}
+
+// Right-view winners: for right pixel (reversed index m), the lane k of the
+// smallest path cost over the left pixels i with m = (w - 1 - i) + k. All
+// `lanes` lanes are scanned (padding lanes never win), so no scalar tail;
+// rmin and rk hold w + lanes - 1 entries.
+template <int kLanes>
+[[gnu::noinline]] void right_winners(const std::int16_t* __restrict S, int w, int row_stride,
+                                     int lanes_arg, const std::uint8_t* __restrict skip,
+                                     std::int16_t* __restrict rmin, std::int16_t* __restrict rk) {
+  const int lanes = kLanes > 0 ? kLanes : lanes_arg;
+  for (int m = 0; m < w + lanes - 1; ++m) {
+    rmin[m] = 0x7FFF;
+    rk[m] = -1;
+  }
+  for (int i = 0; i < w; ++i) {
+    if (skip[i]) continue;
+    const std::int16_t* __restrict s = S + static_cast<std::size_t>(i) * row_stride;
+    std::int16_t* __restrict rm = rmin + (w - 1 - i);
+    std::int16_t* __restrict rl = rk + (w - 1 - i);
+    for (int k = 0; k < lanes; ++k) {
+      const bool better = s[k] < rm[k];
+      rm[k] = better ? s[k] : rm[k];
+      rl[k] = better ? static_cast<std::int16_t>(k) : rl[k];
+    }
+  }
+}
+
+}  // namespace
+
+std::size_t match_dp_scratch_bytes(const MatchBudget& b) {
+  if (b.max_width <= 0 || b.max_height <= 0 || b.max_disparities <= 0) return 0;
+  return Layout(b.max_width, b.max_height, b.max_disparities).total();
+}
+
+Rect right_search_area(Rect roi, int disp_min, int disp_max, int image_width) {
+  const int x0 = std::max(0, roi.x - disp_max);
+  const int x1 = std::min(image_width - 1, roi.x + roi.w - 1 - disp_min);
+  if (roi.empty() || x1 < x0) return Rect{roi.x, roi.y, 0, 0};
+  return Rect{x0, roi.y, x1 - x0 + 1, roi.h};
+}
+
+namespace {
+
+// The whole matcher for one lane count (kLanes = Dp, or 0 for any), so every
+// row kernel runs with a compile-time lane count.
+template <int kLanes>
+Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpParams& p,
+                                Arena& arena, DisparityMap& out,
+                                ImageView<std::uint8_t> confidence) {
+  const int W = in.left.width();
+  const int H = in.left.height();
+  const Rect band = right_search_area(roi, p.disp_min, p.disp_max, W);
+  if (band.empty())
+    return Error::make(
+        Errc::out_of_range,
+        "match_dp: disparities [%d, %d] put every match of the ROI outside the right image",
+        p.disp_min, p.disp_max);
+  const Layout L(roi.w, roi.h, p.disp_max - p.disp_min + 1);
+  const int w = L.w, h = L.h, D = L.d, Dp = L.dp, wc = L.wc, nrp = L.nrp;
+  const int dmin = p.disp_min;
+
+  ArenaScope scope(arena);
+  const std::size_t used_at_entry = arena.used();
+  MatchDpStats st;
+  st.roi_pixels = roi.area();
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) st.shadow_left += shadow_at(in.left_shadow, roi.x + x, roi.y + y);
+  if (st.shadow_left == st.roi_pixels)
+    return Error::make(Errc::degenerate, "match_dp: all %ld pixels of the ROI are shadow",
+                       st.roi_pixels);
+
+  // Step 1: Canny in both views.
+  std::span<std::uint8_t> edges_left, edges_right;
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w) * h, "left edge map", edges_left));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(band.w) * h, "right edge map", edges_right));
+  const Gray8View el = Gray8View::over(edges_left, w, h);
+  const Gray8View er = Gray8View::over(edges_right, band.w, h);
+  {
+    auto s = canny(in.left, roi, p.canny, arena, el);
+    if (!s) return s.error();
+    st.left_edges = s->edge_pixels;
+  }
+  const long need_edges = std::max(kMinEdgePixels, st.roi_pixels / 500);
+  if (st.left_edges < need_edges)
+    return Error::make(Errc::degenerate,
+                       "match_dp: ROI is textureless (%ld edge pixels, need %ld): nothing to match",
+                       st.left_edges, need_edges);
+  if (p.edge_constraint) {
+    auto s = canny(in.right, band, p.canny, arena, er);
+    if (!s) return s.error();
+    st.right_edges = s->edge_pixels;
+  }
+
+  // Row buffers.
+  std::span<std::uint8_t> ring, census_rows, skip, cli, clo, gl, cri, cro, gr, ov, t1, t2, neutral;
+  std::span<std::uint16_t> colsum, hs, agg, p2;
+  std::span<std::int16_t> S, dp_rows, lo, hi, rmin, rk, med;
+  std::span<match::EdgePair> pairs;
+  const std::size_t cells = static_cast<std::size_t>(wc) * Dp;
+  PETRA_TRY(take(arena, kWindowRows * cells, "raw cost ring", ring));
+  PETRA_TRY(take(arena, cells, "column sums", colsum));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w + 4) * Dp, "box sums", hs));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w) * Dp, "aggregated cost", agg));
+  const int sp = match::path_row_stride(Dp);
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w) * sp, "path costs", S));
+  PETRA_TRY(take(arena, 2 * static_cast<std::size_t>(Dp + 2), "DP rows", dp_rows));
+  PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(nrp + 4), "census rows", census_rows));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census inner", cli));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census outer", clo));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left gray", gl));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left neutral", neutral));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right census inner", cri));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right census outer", cro));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right gray", gr));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right override", ov));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right row 1", t1));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right row 2", t2));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "lower bounds", lo));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "upper bounds", hi));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "jump penalties", p2));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w + Dp), "right winners", rmin));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w + Dp), "right winner lanes", rk));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "edge pairs", pairs));
+  PETRA_TRY(take(arena, median3x3_scratch(w), "median rows", med));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "shadow row", skip));
+
+  // Raw cost of image row y into `raw` ([i][k], column i = left x0 - 4 + i).
+  const int xl_first = roi.x - kMarginX;
+  const int xr_hi = roi.x + w - 1 + kMarginX - dmin;  // right column of reversed index 0
+  const int nr = wc + D - 1;                          // reversed indices inside the range
+  auto raw_row = [&](int y, std::uint8_t* raw) {
+    match::census_row(in.left, y, xl_first, wc, cli.data(), clo.data(), census_rows.data());
+    match::gray_row(in.left, y, xl_first, wc, gl.data());
+    match::census_row(in.right, y, xr_hi - nrp + 1, nrp, t1.data(), t2.data(), census_rows.data());
+    reverse_copy(t1.data(), nrp, cri.data());
+    reverse_copy(t2.data(), nrp, cro.data());
+    match::gray_row(in.right, y, xr_hi - nrp + 1, nrp, t1.data());
+    reverse_copy(t1.data(), nrp, gr.data());
+    const int yc = std::clamp(y, 0, H - 1);
+    for (int m = 0; m < nrp; ++m) {
+      const int x = xr_hi - m;
+      ov[m] = static_cast<std::uint8_t>((m >= nr || x < 0 || x >= W)        ? kRawMax
+                                        : shadow_at(in.right_shadow, x, yc) ? kRawNeutral
+                                                                            : 0);
+    }
+    // Left pixels outside the image or in shadow carry no information.
+    for (int i = 0; i < wc; ++i) {
+      const int x = xl_first + i;
+      neutral[i] = (x < 0 || x >= W || shadow_at(in.left_shadow, x, yc)) ? 1 : 0;
+    }
+    match::RawRowInputs ri{cli.data(), clo.data(), gl.data(),     wc, cri.data(), cro.data(),
+                           gr.data(),  ov.data(),  neutral.data()};
+    match::raw_cost_row<kLanes>(ri, D, raw, colsum.data(), Dp);
+  };
+
+  // Fill the window for the first ROI row (ring and sums start at zero).
+  for (int r = 0; r < kWindowRows; ++r)
+    raw_row(roi.y - match::kBoxRadiusY + r, ring.data() + static_cast<std::size_t>(r) * cells);
+
+  // p2 lowered at intensity edges: P2 * 8 / (8 + |dI|), never below P1 + 1.
+  const int p2_floor = std::min(p.p2, p.p1 + 1);
+  const int tol = p.edge_tolerance_px;
+  const long cost_ceiling = static_cast<long>(p.max_mean_cost) * kWindowPixels;
+  const int zfloor = p.edge_zncc_floor_pct * match::kZnccOne / 100;
+
+  for (int t = 0; t < h; ++t) {
+    const int y = roi.y + t;
+    if (t > 0) {  // slide the window down one row
+      std::uint8_t* slot = ring.data() + static_cast<std::size_t>((t - 1) % kWindowRows) * cells;
+      raw_row(y + match::kBoxRadiusY, slot);  // replaces the row leaving the window
+    }
+    match::box_and_shift_row<kLanes>(colsum.data(), w, Dp, hs.data(), agg.data());
+
+    // Steps 2-3: edge pairs -> anchors -> bounds (lanes k = d - dmin).
+    for (int i = 0; i < w; ++i) {
+      lo[i] = 0;
+      hi[i] = static_cast<std::int16_t>(D - 1);
+    }
+    if (p.edge_constraint) {
+      match::EdgeRowInputs ei;
+      ei.left = in.left;
+      ei.right = in.right;
+      ei.y = y;
+      ei.left_edges = el.row(t);
+      ei.left_x0 = roi.x;
+      ei.left_n = w;
+      ei.right_edges = er.row(t);
+      ei.right_x0 = band.x;
+      ei.right_n = band.w;
+      ei.disp_min = p.disp_min;
+      ei.disp_max = p.disp_max;
+      ei.zncc_floor_q10 = zfloor;
+      auto n_pairs = match::match_edge_row(ei, arena, pairs);
+      if (!n_pairs) return n_pairs.error();
+      st.edge_pairs += *n_pairs;
+      // Keep pairs the dense cost confirms from both views.
+      int n_anchor = 0;
+      for (int a = 0; a < *n_pairs; ++a) {
+        const match::EdgePair e = pairs[static_cast<std::size_t>(a)];
+        const int i = e.x_left - roi.x;
+        const int kp = e.x_left - e.x_right - dmin;
+        const Winner wl = winner<0>(agg.data() + static_cast<std::size_t>(i) * Dp, D);
+        if (std::abs(wl.k - kp) > tol || !unique_enough(wl, p.edge_uniqueness_pct)) continue;
+        int kr = -1, best = 0;
+        for (int k = 0; k < D; ++k) {
+          const int ii = e.x_right - roi.x + dmin + k;
+          if (ii < 0 || ii >= w) continue;
+          const int v = agg[static_cast<std::size_t>(ii) * Dp + k];
+          if (kr < 0 || v < best) {
+            best = v;
+            kr = k;
+          }
+        }
+        if (kr < 0 || std::abs(kr - kp) > tol) continue;
+        pairs[static_cast<std::size_t>(n_anchor++)] = e;
+      }
+      st.anchors += n_anchor;
+      // Ordering: between anchors a and b the right match lies strictly
+      // between their right points; at an anchor, its disparity.
+      for (int a = 0; a <= n_anchor; ++a) {
+        const bool has_prev = a > 0;
+        const bool has_next = a < n_anchor;
+        const match::EdgePair* pa = has_prev ? &pairs[static_cast<std::size_t>(a - 1)] : nullptr;
+        const match::EdgePair* pb = has_next ? &pairs[static_cast<std::size_t>(a)] : nullptr;
+        const int i0 = has_prev ? pa->x_left - roi.x + 1 : 0;
+        const int i1 = has_next ? pb->x_left - roi.x : w;  // exclusive
+        for (int i = i0; i < i1; ++i) {
+          const int x = roi.x + i;
+          int klo = 0, khi = D - 1;
+          if (has_next) klo = std::max(klo, x - pb->x_right + 1 - tol - dmin);
+          if (has_prev) khi = std::min(khi, x - pa->x_right - 1 + tol - dmin);
+          if (klo <= khi) {
+            lo[i] = static_cast<std::int16_t>(klo);
+            hi[i] = static_cast<std::int16_t>(khi);
+          }
+        }
+        if (has_next) {
+          const int i = pb->x_left - roi.x;
+          const int k = pb->x_left - pb->x_right - dmin;
+          lo[i] = static_cast<std::int16_t>(std::max(0, k - tol));
+          hi[i] = static_cast<std::int16_t>(std::min(D - 1, k + tol));
+        }
+      }
+    }
+
+    // Step 3: scanline DP over the aggregated cost.
+    const std::uint8_t* img_row = in.left.row(y) + roi.x;
+    for (int i = 1; i < w; ++i) {
+      const int g = std::abs(img_row[i] - img_row[i - 1]);
+      p2[i] = static_cast<std::uint16_t>(std::max(p2_floor, p.p2 * 8 / (8 + g)));
+    }
+    p2[0] = static_cast<std::uint16_t>(p.p2);
+    match::apply_bounds<kLanes>(agg.data(), w, Dp, lo.data(), hi.data(), D - 1);
+    match::ScanlineInputs si{agg.data(), w, Dp, p2.data(), p.p1};
+    match::scanline_dp<kLanes>(si, S.data(), dp_rows.data());
+
+    // Right view winners along the same path costs (reversed index m).
+    for (int i = 0; i < w; ++i) skip[i] = shadow_at(in.left_shadow, roi.x + i, y);
+    right_winners<kLanes>(S.data() + match::kGuardLanes, w, sp, Dp, skip.data(), rmin.data(),
+                          rk.data());
+
+    // Steps 4-5: select, reject, refine.
+    std::int16_t* o = out.q4.row(t);
+    std::uint8_t* conf = confidence.empty() ? nullptr : confidence.row(t);
+    for (int i = 0; i < w; ++i) {
+      const int x = roi.x + i;
+      o[i] = kInvalidDisparity;
+      if (conf) conf[i] = 0;
+      if (shadow_at(in.left_shadow, x, y)) continue;
+      const std::int16_t* s = S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
+      const int klo = lo[i], khi = hi[i];
+      // Lanes outside [klo, khi] carry kForbiddenCost and never win.
+      const Winner win = winner<kLanes>(s, Dp);
+      const int k1 = win.k;
+      const int d = dmin + k1;
+      if (x - d < 0 || x - d >= W) {
+        ++st.rejected_range;
+        continue;
+      }
+      if (std::abs(rk[static_cast<std::size_t>(w - 1 - i + k1)] - k1) > p.lr_tolerance_px) {
+        ++st.rejected_lr;
+        continue;
+      }
+      if (!unique_enough(win, p.uniqueness_pct)) {
+        ++st.rejected_uniqueness;
+        continue;
+      }
+      if (agg[static_cast<std::size_t>(i) * Dp + k1] > cost_ceiling) {
+        ++st.rejected_cost;
+        continue;
+      }
+      if (shadow_at(in.right_shadow, x - d, y)) {
+        ++st.rejected_shadow_right;
+        continue;
+      }
+      int q = d * kDisparityScale;
+      if (k1 > klo && k1 < khi) {
+        const int a = s[k1 - 1], b = s[k1], c = s[k1 + 1];
+        const int den = a + c - 2 * b;
+        if (den > 0) {
+          const int num = 8 * (a - c);  // offset (a - c) / (2 den) px, in 1/16 px
+          const int off = (num >= 0 ? num + den / 2 : num - den / 2) / den;
+          q += std::clamp(off, -8, 8);
+        }
+      }
+      o[i] = static_cast<std::int16_t>(q);
+      if (conf) {
+        const int margin = 255 * (win.second - win.best) / std::max(win.second, 1);
+        conf[i] = static_cast<std::uint8_t>(std::clamp(margin, 1, 255));
+      }
+    }
+  }
+
+  if (p.median) PETRA_TRY(median3x3_valid(out.q4, med));
+  for (int t = 0; t < h; ++t) {
+    const std::int16_t* o = out.q4.row(t);
+    for (int i = 0; i < w; ++i) st.matched += is_valid_disparity(o[i]);
+  }
+  out.roi = roi;
+  st.scratch_high_water = arena.high_water() - used_at_entry;
+  return st;
+}
+
+}  // namespace
+
+Result<MatchDpStats> match_dp(const StereoInput& in, Rect roi, const MatchDpParams& p,
+                              const MatchBudget& budget, Arena& arena, DisparityMap& out,
+                              ImageView<std::uint8_t> confidence) {
+  PETRA_TRY(validate(in, roi, p, budget, out, confidence));
+  switch (Layout(roi.w, roi.h, p.disp_max - p.disp_min + 1).dp) {
+#define PETRA_CASE(n) \
+  case n:             \
+    return match_impl<n>(in, roi, p, arena, out, confidence);
+    PETRA_MATCH_LANE_COUNTS(PETRA_CASE)
+#undef PETRA_CASE
+    default:
+      return match_impl<0>(in, roi, p, arena, out, confidence);
+  }
+}
+
+}  // namespace petra

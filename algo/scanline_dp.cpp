@@ -1,0 +1,109 @@
+#include "algo/scanline_dp.hpp"
+
+#include <algorithm>
+
+#include "algo/core/assert.hpp"
+#include "algo/match_cost.hpp"
+
+namespace petra::match {
+
+static_assert(2 * (kAggregatedMax + kMaxP2) < kForbiddenCost, "forbidden cells must never win");
+static_assert(2 * (kAggregatedMax + 2 * kForbiddenCost + kMaxP2) < 32767, "path costs fit int16");
+
+namespace {
+
+// Beyond the disparity lanes: never the minimum, and guard + P1 stays in int16.
+constexpr std::int16_t kGuard = 0x3FFF;
+
+// Values, not references: std::min on references hides a load behind a
+// branch and stops the vectoriser.
+inline std::int16_t min16(std::int16_t a, std::int16_t b) {
+  return a < b ? a : b;
+}
+
+// One step of the recursion, returning min_k of the new row:
+//   cur = C + min(prev, prev(k+-1) + P1, mn + P2) - mn,  mn = min_k prev.
+template <int kLanes>
+inline std::int16_t step(const std::int16_t* __restrict prev, const std::uint16_t* __restrict c,
+                         std::int16_t* __restrict cur, int stride_arg, int p1, int p2,
+                         std::int16_t mn) {
+  const int stride = kLanes > 0 ? kLanes : stride_arg;
+  const std::int16_t jump = static_cast<std::int16_t>(mn + p2);
+  const std::int16_t pen1 = static_cast<std::int16_t>(p1);
+  std::int16_t m = kGuard;
+  for (int k = 0; k < stride; ++k) {
+    const std::int16_t near = static_cast<std::int16_t>(min16(prev[k - 1], prev[k + 1]) + pen1);
+    const std::int16_t best = min16(min16(prev[k], near), jump);
+    const std::int16_t v = static_cast<std::int16_t>(c[k] + best - mn);
+    cur[k] = v;
+    m = min16(m, v);
+  }
+  return m;
+}
+
+template <int kLanes>
+inline std::int16_t first(const std::uint16_t* __restrict c, std::int16_t* __restrict cur,
+                          int stride_arg) {
+  const int stride = kLanes > 0 ? kLanes : stride_arg;
+  std::int16_t m = kGuard;
+  for (int k = 0; k < stride; ++k) {
+    cur[k] = static_cast<std::int16_t>(c[k]);
+    m = min16(m, cur[k]);
+  }
+  return m;
+}
+
+}  // namespace
+
+template <int kLanes>
+void apply_bounds(std::uint16_t* cost, int n, int stride_arg, const std::int16_t* lo,
+                  const std::int16_t* hi, int full_hi) {
+  const int stride = kLanes > 0 ? kLanes : stride_arg;
+  for (int x = 0; x < n; ++x) {
+    const int l = lo[x], h = hi[x];
+    if (l <= 0 && h >= full_hi) continue;
+    std::uint16_t* __restrict c = cost + static_cast<std::ptrdiff_t>(x) * stride;
+    for (int k = 0; k < stride; ++k)
+      c[k] = static_cast<std::uint16_t>(c[k] + ((k < l || k > h) ? kForbiddenCost : 0));
+  }
+}
+
+template <int kLanes>
+void scanline_dp(const ScanlineInputs& in, std::int16_t* S, std::int16_t* rows) {
+  PETRA_ASSERT(in.n > 0 && in.stride > 0 && in.p1 >= 0);
+  PETRA_ASSERT(kLanes == 0 || in.stride == kLanes);
+  const int stride = kLanes > 0 ? kLanes : in.stride;
+  const int sp = path_row_stride(stride);
+  auto cost = [&](int x) { return in.cost + static_cast<std::ptrdiff_t>(x) * stride; };
+  auto srow = [&](int x) { return S + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes; };
+
+  // Forward pass, straight into S: S = L_fwd.
+  for (int x = 0; x < in.n; ++x) srow(x)[-1] = srow(x)[stride] = kGuard;
+  std::int16_t mn = first<kLanes>(cost(0), srow(0), stride);
+  for (int x = 1; x < in.n; ++x) {
+    PETRA_ASSERT(in.p2[x] <= kMaxP2);
+    mn = step<kLanes>(srow(x - 1), cost(x), srow(x), stride, in.p1, in.p2[x], mn);
+  }
+  // Backward pass in two scratch rows, added in place: S = L_fwd + L_bwd.
+  std::int16_t* a = rows + 1;
+  std::int16_t* b = rows + stride + 3;
+  a[-1] = a[stride] = b[-1] = b[stride] = kGuard;
+  mn = first<kLanes>(cost(in.n - 1), a, stride);
+  std::int16_t* s_last = srow(in.n - 1);
+  for (int k = 0; k < stride; ++k) s_last[k] = static_cast<std::int16_t>(s_last[k] + a[k]);
+  for (int x = in.n - 2; x >= 0; --x) {
+    mn = step<kLanes>(a, cost(x), b, stride, in.p1, in.p2[x + 1], mn);
+    std::int16_t* __restrict s = srow(x);
+    for (int k = 0; k < stride; ++k) s[k] = static_cast<std::int16_t>(s[k] + b[k]);
+    std::swap(a, b);
+  }
+}
+
+#define PETRA_INSTANTIATE(n)                                                   \
+  template void apply_bounds<n>(std::uint16_t*, int, int, const std::int16_t*, \
+                                const std::int16_t*, int);                     \
+  template void scanline_dp<n>(const ScanlineInputs&, std::int16_t*, std::int16_t*);
+PETRA_MATCH_LANE_COUNTS(PETRA_INSTANTIATE)
+#undef PETRA_INSTANTIATE
+
+}  // namespace petra::match

@@ -1,0 +1,174 @@
+#include "fsw/config.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string_view>
+
+#include "algo/core/json_reader.hpp"
+#include "hal/file_io.hpp"
+
+namespace petra::fsw {
+
+namespace {
+
+using json::Document;
+using json::Type;
+
+struct Reader {
+  const Document& doc;
+  const char* base_dir;
+
+  Status number(std::uint32_t obj, const char* section, const char* key, double lo, double hi,
+                double& out, bool required = false) const {
+    const std::uint32_t t = doc.find(obj, key);
+    if (t == 0) {
+      if (required) return Error::make(Errc::missing_field, "config: %s.%s: missing", section, key);
+      return {};
+    }
+    if (doc.token(t).type != Type::number)
+      return Error::make(Errc::wrong_type, "config: %s.%s: expected a number", section, key);
+    const double v = doc.token(t).number;
+    if (v < lo || v > hi)
+      return Error::make(Errc::out_of_range, "config: %s.%s = %g outside %g..%g", section, key, v,
+                         lo, hi);
+    out = v;
+    return {};
+  }
+
+  template <std::size_t N>
+  Status text(std::uint32_t obj, const char* section, const char* key, std::array<char, N>& out,
+              bool required, bool is_path) const {
+    const std::uint32_t t = doc.find(obj, key);
+    if (t == 0) {
+      if (required) return Error::make(Errc::missing_field, "config: %s.%s: missing", section, key);
+      return {};
+    }
+    if (doc.token(t).type != Type::string)
+      return Error::make(Errc::wrong_type, "config: %s.%s: expected a string", section, key);
+    const std::string_view s = doc.text_of(t);
+    char raw[256];
+    if (s.size() >= sizeof(raw) || s.empty())
+      return Error::make(Errc::invalid_argument, "config: %s.%s: empty or too long", section, key);
+    std::memcpy(raw, s.data(), s.size());
+    raw[s.size()] = '\0';
+    if (is_path) {
+      const Status st = hal::join_path(base_dir, raw, out);
+      if (!st)
+        return Error::make(Errc::invalid_argument, "config: %s.%s: %s", section, key,
+                           st.error().message);
+    } else {
+      if (s.size() >= N)
+        return Error::make(Errc::invalid_argument, "config: %s.%s: too long", section, key);
+      std::memcpy(out.data(), raw, s.size() + 1);
+    }
+    return {};
+  }
+};
+
+template <class T>
+Status get_int(const Reader& r, std::uint32_t obj, const char* section, const char* key, double lo,
+               double hi, T& out) {
+  double v = static_cast<double>(out);
+  PETRA_TRY(r.number(obj, section, key, lo, hi, v));
+  if (v != static_cast<double>(static_cast<long long>(v)))
+    return Error::make(Errc::invalid_argument, "config: %s.%s: must be a whole number", section,
+                       key);
+  out = static_cast<T>(v);
+  return {};
+}
+
+Status object_or_absent(const Document& doc, std::uint32_t t, const char* name) {
+  if (t != 0 && doc.token(t).type != Type::object)
+    return Error::make(Errc::wrong_type, "config: %s: expected an object", name);
+  return {};
+}
+
+}  // namespace
+
+Result<FswConfig> parse_config(const char* text, std::size_t size, const char* base_dir) {
+  auto tokens = std::make_unique<json::Token[]>(4096);  // init only
+  auto doc =
+      Document::parse(std::string_view(text, size), std::span<json::Token>(tokens.get(), 4096));
+  if (!doc) return Error::make(Errc::parse_error, "config: %s", doc.error().message);
+  if (doc->token(0).type != Type::object)
+    return Error::make(Errc::wrong_type, "config: top level must be an object");
+  FswConfig c;
+  std::snprintf(c.cmd_host.data(), c.cmd_host.size(), "127.0.0.1");
+  std::snprintf(c.tlm_host.data(), c.tlm_host.size(), "127.0.0.1");
+  const Reader r{*doc, base_dir};
+
+  const std::uint32_t up = doc->find(0, "uplink");
+  const std::uint32_t down = doc->find(0, "downlink");
+  const std::uint32_t loop = doc->find(0, "loop");
+  const std::uint32_t budget = doc->find(0, "budget");
+  const std::uint32_t camera = doc->find(0, "camera");
+  PETRA_TRY(object_or_absent(*doc, up, "uplink"));
+  PETRA_TRY(object_or_absent(*doc, down, "downlink"));
+  PETRA_TRY(object_or_absent(*doc, loop, "loop"));
+  PETRA_TRY(object_or_absent(*doc, budget, "budget"));
+  PETRA_TRY(object_or_absent(*doc, camera, "camera"));
+  if (up == 0) return Error::make(Errc::missing_field, "config: uplink: missing");
+  if (camera == 0) return Error::make(Errc::missing_field, "config: camera: missing");
+
+  PETRA_TRY(r.text(up, "uplink", "host", c.cmd_host, false, false));
+  PETRA_TRY(get_int(r, up, "uplink", "port", 0, 65535, c.cmd_port));
+  PETRA_TRY(r.text(up, "uplink", "key_file", c.key_file, true, true));
+  PETRA_TRY(r.text(up, "uplink", "counter_file", c.counter_file, false, true));
+  if (down != 0) {
+    PETRA_TRY(r.text(down, "downlink", "host", c.tlm_host, false, false));
+    PETRA_TRY(get_int(r, down, "downlink", "port", 1, 65535, c.tlm_port));
+  }
+  if (loop != 0) {
+    PETRA_TRY(get_int(r, loop, "loop", "cycle_ms", 1, 1000, c.cycle_ms));
+    PETRA_TRY(get_int(r, loop, "loop", "commands_per_cycle", 1, 256, c.commands_per_cycle));
+    PETRA_TRY(get_int(r, loop, "loop", "health_period_ms", 10, 60000, c.health_period_ms));
+    PETRA_TRY(r.text(loop, "loop", "watchdog_device", c.watchdog_device, false, true));
+    const std::uint32_t lock = doc->find(loop, "lock_memory");
+    if (lock != 0) {
+      if (doc->token(lock).type != Type::boolean)
+        return Error::make(Errc::wrong_type, "config: loop.lock_memory: expected true or false");
+      c.lock_memory = doc->token(lock).number != 0.0;
+    }
+  }
+  if (budget != 0) {
+    Budget& b = c.budget;
+    PETRA_TRY(get_int(r, budget, "budget", "image_width", 16, 8192, b.image_width));
+    PETRA_TRY(get_int(r, budget, "budget", "image_height", 16, 8192, b.image_height));
+    double arena_mb = static_cast<double>(b.arena_bytes >> 20);
+    PETRA_TRY(r.number(budget, "budget", "arena_mb", 1, 4096, arena_mb));
+    b.arena_bytes = static_cast<std::size_t>(arena_mb * 1048576.0);
+    PETRA_TRY(get_int(r, budget, "budget", "tlm_queue_packets", 32, 65535, b.tlm_queue_packets));
+    double stack_kb = static_cast<double>(b.worker_stack_bytes >> 10);
+    PETRA_TRY(r.number(budget, "budget", "worker_stack_kb", 64, 65536, stack_kb));
+    b.worker_stack_bytes = static_cast<std::size_t>(stack_kb) << 10;
+    PETRA_TRY(get_int(r, budget, "budget", "cloud_points", 0, 1000000, b.cloud_points));
+  }
+  char kind[16] = "file";
+  std::array<char, 16> kind_field{};
+  PETRA_TRY(r.text(camera, "camera", "kind", kind_field, false, false));
+  if (kind_field[0] != '\0') std::snprintf(kind, sizeof(kind), "%s", kind_field.data());
+  if (std::strcmp(kind, "file") != 0)
+    return Error::make(Errc::invalid_argument, "config: camera.kind '%s': this build has 'file'",
+                       kind);
+  PETRA_TRY(r.text(camera, "camera", "dir", c.camera_dir, true, true));
+  PETRA_TRY(r.text(0, "", "calib", c.calib_file, false, true));
+  PETRA_TRY(r.text(0, "", "params", c.param_file, false, true));
+  return c;
+}
+
+Result<FswConfig> load_config(const char* path) {
+  auto buf = std::make_unique<char[]>(65536);  // init only
+  auto n = hal::read_small_file(path, std::span<char>(buf.get(), 65536));
+  if (!n) return n.error();
+  char dir[256];
+  std::snprintf(dir, sizeof(dir), "%s", path);
+  char* slash = std::strrchr(dir, '/');
+  if (slash != nullptr)
+    *slash = '\0';
+  else
+    std::snprintf(dir, sizeof(dir), ".");
+  return parse_config(buf.get(), *n, dir);
+}
+
+}  // namespace petra::fsw

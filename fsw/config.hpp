@@ -1,0 +1,50 @@
+// The executive's configuration (`petra-fsw --config FILE`, JSON, format in
+// docs/icd.md "petra-fsw configuration"): links, files, loop rates and the
+// memory budget every buffer is sized from at init. Relative paths are taken
+// relative to the configuration file's folder.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "algo/core/result.hpp"
+
+namespace petra::fsw {
+
+using Path = std::array<char, 256>;
+using Host = std::array<char, 64>;
+
+struct Budget {
+  int image_width = 1024;  // largest frame the camera may deliver
+  int image_height = 768;
+  std::size_t arena_bytes = 64u << 20;  // pipeline arena (one evaluation)
+  std::size_t tlm_queue_packets = 256;  // downlink queue slots
+  std::size_t worker_stack_bytes = 1u << 20;
+  std::size_t cloud_points = 8192;  // point cloud product capacity
+};
+
+struct FswConfig {
+  Host cmd_host{};  // command port: bind address and port
+  std::uint16_t cmd_port = 47100;
+  Host tlm_host{};  // telemetry destination
+  std::uint16_t tlm_port = 47101;
+  Path key_file{};              // uplink HMAC key (64 hex digits); required
+  Path counter_file{};          // last accepted command counter, kept across reboots; optional
+  Path param_file{};            // parameter defaults; optional
+  Path calib_file{};            // calib.json for the pipeline; optional
+  Path camera_dir{};            // file camera folder; required
+  Path watchdog_device{};       // e.g. /dev/watchdog; optional (none on development hosts)
+  std::uint32_t cycle_ms = 10;  // minor frame
+  std::uint32_t commands_per_cycle = 8;  // uplink datagrams serviced per cycle at most
+  std::uint32_t health_period_ms = 500;
+  bool lock_memory = false;  // mlockall after init (needs CAP_IPC_LOCK)
+  Budget budget;
+};
+
+// Parses the JSON text; `base_dir` resolves relative paths. Errors name the field.
+Result<FswConfig> parse_config(const char* text, std::size_t size, const char* base_dir);
+// Reads and parses a configuration file.
+Result<FswConfig> load_config(const char* path);
+
+}  // namespace petra::fsw

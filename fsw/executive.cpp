@@ -1,0 +1,312 @@
+#include "fsw/executive.hpp"
+
+#include <sys/mman.h>
+#include <time.h>
+
+#include <cstdio>
+#include <cstring>
+
+#include "algo/calib_json.hpp"
+#include "hal/file_io.hpp"
+
+namespace petra::fsw {
+
+namespace {
+constexpr std::int64_t kMs = 1000000;
+constexpr std::size_t kQueueReserve = 16;  // slots products leave free for events and HK
+
+std::size_t align_up(std::size_t n) {
+  return (n + 63) / 64 * 64;
+}
+}  // namespace
+
+Executive::~Executive() {
+  shutdown();
+}
+
+void Executive::shutdown() {
+  if (initialised_) watchdog_.disarm();  // a deliberate stop is not a hang
+  runner_.shutdown();
+  uplink_.close();
+  downlink_.close();
+}
+
+tlm::TmTime Executive::now_tm() const {
+  return tm_time(deps_.clock->realtime_ns());
+}
+
+Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
+  const Budget& b = config.budget;
+  const auto frame =
+      static_cast<std::size_t>(b.image_width) * static_cast<std::size_t>(b.image_height);
+  const auto product_sizes =
+      ProductStreamer::bytes_needed(b.image_width, b.image_height, b.cloud_points);
+  const std::size_t queue_bytes = tlm::TlmQueue::bytes_for(b.tlm_queue_packets);
+  const std::size_t rx_bytes = cmd::kMaxCommandBytes + 1;  // one more: oversize shows as TOO_LONG
+  std::size_t total = 2 * align_up(frame) + align_up(queue_bytes) +
+                      align_up(b.tlm_queue_packets * sizeof(std::uint16_t)) + align_up(rx_bytes) +
+                      align_up(arena_bytes);
+  for (std::size_t s : product_sizes) total += align_up(s);
+
+  memory_.reset(new (std::nothrow) std::byte[total]);
+  if (!memory_)
+    return Error::make(Errc::capacity_exceeded, "init: cannot allocate %zu bytes", total);
+  std::memset(memory_.get(), 0, total);  // touch every page now: resident memory stays flat
+  memory_bytes_ = total;
+
+  std::size_t at = 0;
+  auto take = [&](std::size_t n) {
+    std::byte* p = memory_.get() + at;
+    at += align_up(n);
+    return p;
+  };
+  left_ = Gray8View(reinterpret_cast<std::uint8_t*>(take(frame)), deps_.camera->width(),
+                    deps_.camera->height());
+  right_ = Gray8View(reinterpret_cast<std::uint8_t*>(take(frame)), deps_.camera->width(),
+                     deps_.camera->height());
+  auto* queue_mem = reinterpret_cast<std::uint8_t*>(take(queue_bytes));
+  auto* lengths =
+      reinterpret_cast<std::uint16_t*>(take(b.tlm_queue_packets * sizeof(std::uint16_t)));
+  queue_.init({queue_mem, queue_bytes}, {lengths, b.tlm_queue_packets});
+  rx_ = {reinterpret_cast<std::uint8_t*>(take(rx_bytes)), rx_bytes};
+  std::array<std::span<std::uint8_t>, kProductKinds> product_mem{};
+  for (std::size_t k = 0; k < kProductKinds; ++k)
+    product_mem[k] = {reinterpret_cast<std::uint8_t*>(take(product_sizes[k])), product_sizes[k]};
+  products_.init(product_mem);
+  std::byte* arena = take(arena_bytes);
+  PETRA_ASSERT(at <= total);
+  return runner_.init(deps_.job, {arena, arena_bytes}, b.worker_stack_bytes, &health_, deps_.clock);
+}
+
+void Executive::store_counter() {
+  if (!counter_store_.is_open()) return;
+  const Status s = counter_store_.store(cmd_.last_counter);
+  if (!s && !counter_store_failed_) {
+    counter_store_failed_ = true;  // one event, not one per command
+    events_.raise(EventId::COUNTER_STORE_FAILED, static_cast<std::int32_t>(s.code()));
+  }
+}
+
+Status Executive::init(const FswConfig& config, const Dependencies& deps) {
+  if (deps.camera == nullptr || deps.clock == nullptr)
+    return Error::make(Errc::invalid_argument, "init: a camera and a clock are required");
+  config_ = config;
+  deps_ = deps;
+  boot_ns_ = deps.clock->monotonic_ns();
+  const Budget& b = config.budget;
+  if (deps.camera->width() > b.image_width || deps.camera->height() > b.image_height)
+    return Error::make(Errc::capacity_exceeded,
+                       "init: camera frames %dx%d exceed budget.image_width/height %dx%d",
+                       deps.camera->width(), deps.camera->height(), b.image_width, b.image_height);
+
+  PETRA_TRY(cmd::auth_init());
+  auto key = cmd::load_key_file(config.key_file.data());
+  if (!key) return key.error();
+  key_ = *key;
+  if (config.counter_file[0] != '\0') {
+    auto last = counter_store_.open(config.counter_file.data());
+    if (!last) return last.error();
+    cmd_.last_counter = *last;
+  }
+
+  int params_loaded = 0;
+  if (config.param_file[0] != '\0') {
+    auto text = std::make_unique<char[]>(65536);  // init only
+    auto n = hal::read_small_file(config.param_file.data(), {text.get(), 65536});
+    if (!n) return n.error();
+    auto loaded = params_.load_defaults(text.get(), *n);
+    if (!loaded)
+      return Error::make(loaded.code(), "%s: %s", config.param_file.data(), loaded.error().message);
+    params_loaded = *loaded;
+  }
+  if (config.calib_file[0] != '\0') {
+    auto text = std::make_unique<char[]>(65536);
+    auto n = hal::read_small_file(config.calib_file.data(), {text.get(), 65536});
+    if (!n) return n.error();
+    auto rig = parse_calib_json(std::string_view(text.get(), *n));
+    if (!rig)
+      return Error::make(rig.code(), "%s: %s", config.calib_file.data(), rig.error().message);
+    rig_ = *rig;
+    has_rig_ = true;
+  }
+
+  const PipelineBudget pb{b.image_width, b.image_height, b.cloud_points};
+  const std::size_t arena_bytes = deps.job != nullptr ? deps.job->arena_bytes(pb) : 0;
+  if (arena_bytes > b.arena_bytes)
+    return Error::make(Errc::capacity_exceeded,
+                       "init: pipeline '%s' needs %zu arena bytes, budget.arena_mb gives %zu",
+                       deps.job->name(), arena_bytes, b.arena_bytes);
+  PETRA_TRY(allocate(config, deps.job != nullptr ? b.arena_bytes : 0));
+
+  PETRA_TRY(uplink_.open(config.cmd_host.data(), config.cmd_port));
+  uplink_.set_receive_buffer(1 << 18);  // a burst of commands waits for the next cycles
+  PETRA_TRY(downlink_.open("0.0.0.0", 0));
+  PETRA_TRY(downlink_.set_peer(config.tlm_host.data(), config.tlm_port));
+  downlink_.set_send_buffer(1 << 20);
+
+  if (config.watchdog_device[0] != '\0') PETRA_TRY(watchdog_.open(config.watchdog_device.data()));
+  events_.init(&queue_, deps.clock);
+  modes_.init(&events_);
+  health_.reset(deps.clock->monotonic_ns());
+  update_periods();
+  if (config.lock_memory && ::mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
+    std::fprintf(stderr, "petra-fsw: mlockall refused; memory not locked\n");
+
+  events_.raise(EventId::BOOT_COMPLETE, static_cast<std::int32_t>(memory_bytes_),
+                static_cast<std::int32_t>(runner_.arena_capacity()), params_loaded);
+  modes_.request(Mode::IDLE, 0);
+  initialised_ = true;
+  return {};
+}
+
+void Executive::update_periods() {
+  const std::uint32_t cycle = config_.cycle_ms;
+  const auto hk = static_cast<std::uint32_t>(params_.get_int(ParamId::HK_PERIOD_MS)) / cycle;
+  const std::uint32_t health = config_.health_period_ms / cycle;
+  groups_ = {{{Component::UPLINK, &Executive::service_uplink, 1},
+              {Component::PIPELINE, &Executive::poll_pipeline, 1},
+              {Component::ARM, &Executive::poll_arm, 1},
+              {Component::PRODUCTS, &Executive::pump_products, 1},
+              {Component::HOUSEKEEPING, &Executive::send_housekeeping, hk > 0 ? hk : 1},
+              {Component::WORKER, &Executive::check_health, health > 0 ? health : 1},
+              {Component::DOWNLINK, &Executive::flush_downlink, 1}}};
+  const std::int64_t base = params_.get_int(ParamId::HEARTBEAT_TIMEOUT_MS) * kMs;
+  for (const RateGroup& g : groups_)
+    heartbeat_timeout_ns_[static_cast<std::size_t>(g.component)] =
+        base + static_cast<std::int64_t>(g.period_cycles * cycle) * kMs;
+  // The worker beats every 100 ms from its own thread.
+  heartbeat_timeout_ns_[static_cast<std::size_t>(Component::WORKER)] = base;
+}
+
+void Executive::run_cycle() {
+  const std::int64_t start = deps_.clock->monotonic_ns();
+  for (const RateGroup& g : groups_) {
+    if (loop_.cycles % g.period_cycles != 0) continue;
+    (this->*g.run)();
+    // check_health is listed under WORKER only to give it a slot; the worker beats itself.
+    if (g.component != Component::WORKER) health_.beat(g.component, deps_.clock->monotonic_ns());
+  }
+  ++loop_.cycles;
+  watchdog_.kick();  // the loop came round: a hung loop stops kicking
+  const std::int64_t end = deps_.clock->monotonic_ns();
+  const auto us = static_cast<std::uint32_t>((end - start) / 1000);
+  if (us > loop_.max_cycle_us) loop_.max_cycle_us = us;
+  if (us > config_.cycle_ms * 1000) {
+    ++loop_.overruns;
+    if (end - last_overrun_event_ns_ > 1000 * kMs) {  // at most one event a second
+      last_overrun_event_ns_ = end;
+      events_.raise(EventId::CYCLE_OVERRUN, static_cast<std::int32_t>(us),
+                    static_cast<std::int32_t>(config_.cycle_ms * 1000));
+    }
+  }
+}
+
+void Executive::run(const volatile std::sig_atomic_t* stop) {
+  const std::int64_t period = static_cast<std::int64_t>(config_.cycle_ms) * kMs;
+  timespec next{};
+  clock_gettime(CLOCK_MONOTONIC, &next);
+  while (*stop == 0) {
+    run_cycle();
+    next.tv_nsec += period;
+    while (next.tv_nsec >= 1000000000L) {
+      next.tv_nsec -= 1000000000L;
+      next.tv_sec += 1;
+    }
+    timespec now{};
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    if (now.tv_sec > next.tv_sec || (now.tv_sec == next.tv_sec && now.tv_nsec > next.tv_nsec))
+      next = now;  // overran: start the next frame now, do not try to catch up
+    else
+      clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
+  }
+}
+
+void Executive::service_uplink() {
+  for (std::uint32_t i = 0; i < config_.commands_per_cycle; ++i) {
+    auto n = uplink_.receive(rx_);
+    if (!n || *n == 0) return;
+    const std::size_t size = *n < rx_.size() ? *n : rx_.size();
+    handle_datagram(rx_.first(size));
+  }
+}
+
+void Executive::poll_arm() {
+  if (!pending_arm_.active || deps_.arm == nullptr) return;
+  const ArmProgress p = deps_.arm->poll();
+  if (p == ArmProgress::MOVING) return;
+  if (p == ArmProgress::REACHED)
+    complete(pending_arm_.function_code, pending_arm_.counter);
+  else
+    fail(pending_arm_.function_code, pending_arm_.counter, Reason::ABORTED);
+  pending_arm_.active = false;
+  if (modes_.mode() == Mode::ARM_MOVING) modes_.request(Mode::IDLE, 0);
+}
+
+void Executive::pump_products() {
+  products_.pump(queue_, now_tm(),
+                 static_cast<std::size_t>(params_.get_int(ParamId::PRODUCT_CHUNKS_PER_CYCLE)),
+                 kQueueReserve);
+}
+
+void Executive::send_housekeeping() {
+  tlm::Housekeeping hk;
+  hk.mode = static_cast<std::uint8_t>(modes_.mode());
+  hk.uptime_s = static_cast<std::uint32_t>((deps_.clock->monotonic_ns() - boot_ns_) / (1000 * kMs));
+  hk.cycles = loop_.cycles;
+  hk.cycle_overruns = loop_.overruns;
+  hk.max_cycle_us = loop_.max_cycle_us;
+  hk.cmd_received = cmd_.received;
+  hk.cmd_accepted = cmd_.accepted;
+  hk.cmd_rejected = cmd_.rejected;
+  hk.cmd_completed = cmd_.completed;
+  hk.cmd_failed = cmd_.failed;
+  hk.last_counter = cmd_.last_counter;
+  hk.last_function_code = cmd_.last_function_code;
+  hk.last_reason = static_cast<std::uint8_t>(cmd_.last_reason);
+  hk.tlm_sent = loop_.tlm_sent;
+  hk.tlm_dropped = queue_.dropped();
+  hk.tlm_send_errors = loop_.tlm_send_errors;
+  hk.tlm_queue_high_water = static_cast<std::uint16_t>(queue_.high_water());
+  hk.events = events_.total();
+  hk.faults = loop_.faults;
+  hk.memory_bytes = static_cast<std::uint32_t>(memory_bytes_);
+  hk.arena_bytes = static_cast<std::uint32_t>(runner_.arena_capacity());
+  hk.arena_high_water_bytes = static_cast<std::uint32_t>(runner_.arena_high_water());
+  hk.frames = loop_.frames;
+  hk.evaluations = loop_.evaluations;
+  hk.eval_running = runner_.busy() ? 1 : 0;
+  hk.eval_elapsed_ms =
+      runner_.busy() && pending_eval_.active
+          ? static_cast<std::uint32_t>((deps_.clock->monotonic_ns() - eval_started_ns_) / kMs)
+          : eval_elapsed_ms_;
+  hk.step_us = step_us_;
+  queue_.push(hk, now_tm());
+}
+
+void Executive::check_health() {
+  const std::int64_t now = deps_.clock->monotonic_ns();
+  std::int64_t silent = 0;
+  const int late = health_.check(now, heartbeat_timeout_ns_, silent);
+  if (late < 0) return;
+  ++loop_.faults;
+  events_.raise(EventId::HEARTBEAT_LOST, late, static_cast<std::int32_t>(silent / kMs));
+  enter_safe();
+}
+
+void Executive::flush_downlink() {
+  while (!queue_.empty()) {  // bounded by the queue capacity
+    const hal::SendResult r = downlink_.send(queue_.front());
+    if (r == hal::SendResult::would_block) break;  // never block: try again next cycle
+    if (r == hal::SendResult::sent)
+      ++loop_.tlm_sent;
+    else
+      ++loop_.tlm_send_errors;
+    queue_.pop();
+  }
+  if (queue_.dropped() != reported_drops_ && queue_.free_slots() > kQueueReserve) {
+    reported_drops_ = queue_.dropped();
+    events_.raise(EventId::TLM_DROPPED, static_cast<std::int32_t>(reported_drops_));
+  }
+}
+
+}  // namespace petra::fsw

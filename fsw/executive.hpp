@@ -1,0 +1,192 @@
+// Executive: the flight loop. init() loads everything and allocates every
+// buffer from the configured budget; after it, run_cycle() runs the due rate
+// groups of one minor frame and allocates nothing:
+//   uplink (every cycle)      receive, validate, acknowledge, dispatch commands
+//   pipeline (every cycle)    collect a finished evaluation, enforce its timeout
+//   arm (every cycle)         poll a running arm motion
+//   products (every cycle)    queue product chunks while the downlink has room
+//   housekeeping (HK_PERIOD_MS)  one HK packet
+//   health (health_period_ms) heartbeats; a silent component means SAFE
+//   downlink (every cycle)    send queued telemetry without blocking
+// Components: ModeManager, EventLog, ParamTable, Health, PipelineRunner,
+// ProductStreamer, TlmQueue; devices come in through Dependencies.
+#pragma once
+
+#include <csignal>
+#include <cstdint>
+#include <memory>
+
+#include "algo/camera_model.hpp"
+#include "cmd/auth.hpp"
+#include "cmd/validator.hpp"
+#include "fsw/arm_port.hpp"
+#include "fsw/config.hpp"
+#include "fsw/counter_store.hpp"
+#include "fsw/event_log.hpp"
+#include "fsw/health.hpp"
+#include "fsw/mode_manager.hpp"
+#include "fsw/param_table.hpp"
+#include "fsw/pipeline_runner.hpp"
+#include "fsw/product_streamer.hpp"
+#include "hal/clock.hpp"
+#include "hal/stereo_camera.hpp"
+#include "hal/udp_link.hpp"
+#include "hal/watchdog.hpp"
+#include "tlm/tlm_queue.hpp"
+
+namespace petra::fsw {
+
+struct Dependencies {
+  hal::StereoCamera* camera = nullptr;  // required
+  const hal::Clock* clock = nullptr;    // required
+  PipelineJob* job = nullptr;           // optional: without it EVALUATE fails NO_PIPELINE
+  ArmPort* arm = nullptr;               // optional: without it arm commands fail ARM_UNAVAILABLE
+};
+
+struct CommandCounters {
+  std::uint32_t received = 0;
+  std::uint32_t accepted = 0;
+  std::uint32_t rejected = 0;
+  std::uint32_t completed = 0;
+  std::uint32_t failed = 0;
+  std::uint32_t last_counter = 0;
+  std::uint8_t last_function_code = 0;
+  Reason last_reason = Reason::NONE;
+};
+
+struct LoopCounters {
+  std::uint32_t cycles = 0;
+  std::uint32_t overruns = 0;
+  std::uint32_t max_cycle_us = 0;
+  std::uint32_t tlm_sent = 0;
+  std::uint32_t tlm_send_errors = 0;
+  std::uint32_t faults = 0;
+  std::uint32_t frames = 0;
+  std::uint32_t evaluations = 0;
+};
+
+class Executive {
+ public:
+  Executive() = default;
+  ~Executive();
+  Executive(const Executive&) = delete;
+  Executive& operator=(const Executive&) = delete;
+
+  Status init(const FswConfig& config, const Dependencies& deps);
+  void run_cycle();
+  // Cycles at the configured period until *stop is non-zero.
+  void run(const volatile std::sig_atomic_t* stop);
+  void shutdown();
+
+  Mode mode() const { return modes_.mode(); }
+  const CommandCounters& command_counters() const { return cmd_; }
+  const LoopCounters& loop_counters() const { return loop_; }
+  const EventLog& events() const { return events_; }
+  const ParamTable& params() const { return params_; }
+  const tlm::TlmQueue& downlink_queue() const { return queue_; }
+  std::size_t memory_bytes() const { return memory_bytes_; }
+  std::uint16_t command_port() const { return uplink_.local_port(); }
+  unsigned watchdog_kicks() const { return watchdog_.kicks(); }
+  bool evaluation_running() const { return runner_.busy(); }
+
+ private:
+  struct RateGroup {
+    Component component;
+    void (Executive::*run)();
+    std::uint32_t period_cycles;
+  };
+  struct Pending {  // an accepted command still running
+    bool active = false;
+    std::uint8_t function_code = 0;
+    std::uint32_t counter = 0;
+  };
+  struct Selection {
+    bool valid = false;
+    Rect roi;
+    int planes = 0;
+    bool has_click = false;
+    int click_u_px = 0;
+    int click_v_px = 0;
+  };
+
+  Status allocate(const FswConfig& config, std::size_t arena_bytes);
+  void store_counter();
+  void update_periods();
+
+  // Rate groups.
+  void service_uplink();
+  void poll_pipeline();
+  void poll_arm();
+  void pump_products();
+  void send_housekeeping();
+  void check_health();
+  void flush_downlink();
+
+  // Command handling (fsw/dispatcher.cpp).
+  void handle_datagram(std::span<const std::uint8_t> datagram);
+  void dispatch(const cmd::Command& c);
+  void ack(std::uint8_t fc, std::uint32_t counter, AckStage stage, Reason reason,
+           std::uint16_t detail);
+  void complete(std::uint8_t fc, std::uint32_t counter);
+  void fail(std::uint8_t fc, std::uint32_t counter, Reason reason);
+  void handler_rejects(const cmd::Command& c, Reason reason, std::uint16_t detail);
+  void on_set_param(const cmd::Command& c);
+  void on_acquire(const cmd::Command& c);
+  void on_evaluate(const cmd::Command& c);
+  void on_arm(const cmd::Command& c);
+  void on_abort(const cmd::Command& c);
+  void on_set_mode(const cmd::Command& c);
+  Status acquire_pair();
+  void send_param(std::uint16_t id);
+  void stop_activity(Reason why);
+  void enter_safe();
+  void publish_evaluation();
+  tlm::TmTime now_tm() const;
+
+  FswConfig config_{};
+  Dependencies deps_{};
+  cmd::AuthKey key_{};
+  StereoRig rig_{};
+  bool has_rig_ = false;
+
+  ModeManager modes_;
+  EventLog events_;
+  ParamTable params_;
+  Health health_;
+  PipelineRunner runner_;
+  ProductStreamer products_;
+  tlm::TlmQueue queue_;
+  hal::UdpLink uplink_;
+  hal::UdpLink downlink_;
+  hal::LinuxWatchdog watchdog_;
+  CounterStore counter_store_;
+
+  std::unique_ptr<std::byte[]> memory_;  // every buffer, allocated once in init()
+  std::size_t memory_bytes_ = 0;
+  Gray8View left_;
+  Gray8View right_;
+  std::span<std::uint8_t> rx_;
+  bool has_frame_ = false;
+  std::uint32_t frame_seq_ = 0;
+
+  std::array<RateGroup, 7> groups_{};
+  std::array<std::int64_t, kComponentCount> heartbeat_timeout_ns_{};
+  CommandCounters cmd_;
+  LoopCounters loop_;
+  Selection selection_;
+  Pending pending_eval_;
+  Pending pending_arm_;
+  std::uint32_t eval_id_ = 0;
+  std::int64_t eval_started_ns_ = 0;
+  std::uint32_t eval_elapsed_ms_ = 0;
+  std::array<std::uint32_t, kStepSlots> step_us_{};
+  std::uint32_t acquire_us_ = 0;
+  FixedVector<PlaneOut, kMaxPlanes> last_planes_;
+  std::int64_t boot_ns_ = 0;
+  std::int64_t last_overrun_event_ns_ = 0;
+  bool counter_store_failed_ = false;
+  std::uint32_t reported_drops_ = 0;
+  bool initialised_ = false;
+};
+
+}  // namespace petra::fsw

@@ -1,0 +1,9 @@
+#include "fsw/pipeline_factory.hpp"
+
+namespace petra::fsw {
+
+PipelineJob* flight_pipeline() {
+  return nullptr;
+}
+
+}  // namespace petra::fsw

@@ -1,0 +1,13 @@
+// The pipeline job the flight build runs. One place to plug the algo/
+// pipeline in: until it lands, there is none and EVALUATE fails with
+// NO_PIPELINE (an honest answer, never made-up planes).
+#pragma once
+
+#include "fsw/pipeline_job.hpp"
+
+namespace petra::fsw {
+
+// The job with static storage, or nullptr when this build has no pipeline.
+PipelineJob* flight_pipeline();
+
+}  // namespace petra::fsw

@@ -1,0 +1,98 @@
+// The narrow interface between the executive and the image pipeline. The
+// PipelineRunner owns the memory and the worker thread; a PipelineJob is the
+// computation: it states its memory need once at init, then runs one
+// evaluation at a time on the worker thread, taking every byte from the arena
+// it is given (reset before each run) and polling `cancel` between steps.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "algo/core/arena.hpp"
+#include "algo/core/fixed_vector.hpp"
+#include "algo/core/image_view.hpp"
+#include "algo/core/result.hpp"
+#include "tlm/tlm_defs.hpp"
+
+namespace petra {
+struct StereoRig;
+}
+
+namespace petra::fsw {
+
+inline constexpr std::size_t kMaxPlanes = 8;
+inline constexpr std::size_t kStepSlots = PETRA_STEP_SLOTS;
+
+enum class Step : std::uint8_t {
+#define PETRA_STEP_ENUM(NAME, slot) NAME = slot,
+  PETRA_PIPELINE_STEPS(PETRA_STEP_ENUM)
+#undef PETRA_STEP_ENUM
+};
+
+// Memory the job may size itself for (from the configuration's budget).
+struct PipelineBudget {
+  int max_width = 0;
+  int max_height = 0;
+  std::size_t max_cloud_points = 0;
+};
+
+// One evaluation request: the pair, the operator's selection and the
+// parameters in force when EVALUATE was accepted.
+struct EvalRequest {
+  std::uint32_t eval_id = 0;
+  std::uint32_t frame = 0;
+  ConstGray8View left;
+  ConstGray8View right;
+  const StereoRig* rig = nullptr;  // nullptr when no calib file is configured
+  Rect roi;
+  int planes = 0;  // c
+  bool has_click = false;
+  int click_u_px = 0;
+  int click_v_px = 0;
+  int match_method = 0;  // 0 DP, 1 graph cut
+  int disp_min_px = 0;
+  int disp_max_px = 0;
+  double shadow_fraction = 0;
+  double min_plane_area_mm2 = 0;
+};
+
+struct PlaneOut {
+  std::array<double, 3> normal{};
+  std::array<double, 3> centroid_mm{};
+  double area_mm2 = 0;
+  double flatness_rms_mm = 0;
+  std::uint32_t triangles = 0;
+};
+
+struct EvalOutput {
+  FixedVector<PlaneOut, kMaxPlanes> planes;  // ranked, best first
+  std::array<double, 3> ground_normal{};
+  double ground_d_mm = 0;
+  std::uint32_t ground_points = 0;
+  std::uint32_t dense_points = 0;
+  std::uint32_t filtered_points = 0;
+  float disparity_min = 0;
+  float disparity_max = 0;
+  std::array<std::uint32_t, kStepSlots> step_us{};
+  Step failed_step = Step::ACQUIRE;  // meaningful when run() fails
+  // Products, pointing into the arena (valid until the next run); empty when absent.
+  ConstGray8View disparity_gray;              // disparity as 8-bit gray, ROI-sized
+  ImageView<const std::uint8_t> overlay_rgb;  // width = 3 * pixels, interleaved RGB
+  std::span<const float> cloud_xyz_mm;        // x, y, z per point
+};
+
+class PipelineJob {
+ public:
+  virtual ~PipelineJob() = default;
+  virtual const char* name() const = 0;
+  // Largest arena one run needs for this budget (asked once, at init).
+  virtual std::size_t arena_bytes(const PipelineBudget& budget) const = 0;
+  // Runs one evaluation on the worker thread. `out` starts cleared.
+  virtual Status run(const EvalRequest& request, Arena& arena, const std::atomic<bool>& cancel,
+                     EvalOutput& out) = 0;
+};
+
+}  // namespace petra::fsw

@@ -1,0 +1,65 @@
+// ProductStreamer: downlinks products (left image, disparity and overlay
+// thumbnails, point cloud) as PRODUCT packets of 1024 data bytes, a few per
+// cycle and only while the downlink queue has room beyond a reserve, so a
+// large product never crowds out events and housekeeping. Each kind has its
+// own buffer sized at init; staging a kind again replaces what was left of it.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "algo/core/image_view.hpp"
+#include "tlm/tlm_queue.hpp"
+
+namespace petra::fsw {
+
+enum class ProductKind : std::uint8_t {
+  LEFT_IMAGE = 1,
+  DISPARITY = 2,
+  OVERLAY = 3,
+  POINT_CLOUD = 4
+};
+enum class ProductFormat : std::uint8_t { GRAY8 = 1, RGB8 = 2, XYZ_F32 = 3 };
+inline constexpr std::size_t kProductKinds = 4;
+
+class ProductStreamer {
+ public:
+  // memory[k]: buffer of kind k+1 (bytes_needed below).
+  void init(std::array<std::span<std::uint8_t>, kProductKinds> memory);
+
+  // Buffer sizes for a budget.
+  static std::array<std::size_t, kProductKinds> bytes_needed(int max_width, int max_height,
+                                                             std::size_t cloud_points);
+
+  // Copies an image subsampled by `step` (gray: channels 1, rgb: 3).
+  bool stage_image(ProductKind kind, std::uint32_t id, ImageView<const std::uint8_t> image,
+                   int channels, int step);
+  // Copies up to max_points points (uniformly subsampled) as big-endian f32.
+  bool stage_cloud(std::uint32_t id, std::span<const float> xyz, std::size_t max_points);
+
+  // Queues at most max_chunks chunks, keeping `reserve` queue slots free.
+  void pump(tlm::TlmQueue& queue, tlm::TmTime time, std::size_t max_chunks, std::size_t reserve);
+  bool idle() const;
+  void cancel_all();
+  std::uint32_t chunks_sent() const { return chunks_sent_; }
+
+ private:
+  struct Stream {
+    std::span<std::uint8_t> buffer;
+    std::size_t size = 0;
+    std::uint32_t id = 0;
+    std::uint16_t width = 0;
+    std::uint16_t height = 0;
+    ProductFormat format = ProductFormat::GRAY8;
+    std::uint16_t chunks = 0;
+    std::uint16_t next_chunk = 0;
+    bool active = false;
+  };
+  std::array<Stream, kProductKinds> streams_{};
+  std::size_t rr_ = 0;  // round robin between kinds
+  std::uint32_t chunks_sent_ = 0;
+};
+
+}  // namespace petra::fsw

@@ -1,0 +1,65 @@
+// `petra middlebury`: scores the onboard matcher on the Middlebury scenes of
+// the shared data (convention of sim/eval/middlebury.hpp) and prints the
+// bad-1 table, strict and filled. The benchmark tests/bench/bench_stereo.cpp
+// adds the OpenCV peers and timing.
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include "sim/cli/commands.hpp"
+#include "sim/eval/middlebury.hpp"
+#include "sim/eval/run_match_dp.hpp"
+
+namespace petra::cli {
+
+namespace {
+
+struct MiddleburyOptions {
+  std::string data = "../shared/data";  // run from the project directory
+  std::string scene;
+  bool no_edges = false;
+};
+
+int run(const MiddleburyOptions& o) {
+  std::printf("%-9s %9s %9s %9s %9s %8s %8s %8s\n", "scene", "strict-no", "strict-al", "filled-no",
+              "filled-al", "invalid%", "anchors", "ms");
+  int scored = 0;
+  for (const eval::MiddleburyScene& s : eval::middlebury_scenes()) {
+    if (!o.scene.empty() && o.scene != s.name) continue;
+    auto data = eval::load_middlebury(s, o.data);
+    if (!data) return fail("middlebury", data.error().message);
+    MatchDpParams p;
+    p.disp_min = 0;
+    p.disp_max = s.disp_max;
+    p.edge_constraint = !o.no_edges;
+    const auto t0 = std::chrono::steady_clock::now();
+    auto run = eval::run_match_dp(data->left.view(), data->right.view(),
+                                  Rect{0, 0, data->left.width, data->left.height}, p);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (!run) return fail("middlebury", run.error().message);
+    auto score = eval::score_middlebury(run->disparity.view(), *data);
+    if (!score) return fail("middlebury", score.error().message);
+    std::printf("%-9s %9.2f %9.2f %9.2f %9.2f %8.2f %8ld %8.1f\n", s.name, score->strict.nonocc,
+                score->strict.all, score->filled.nonocc, score->filled.all, score->invalid_pct,
+                run->stats.anchors, ms);
+    ++scored;
+  }
+  if (scored == 0) return fail("middlebury", ("unknown scene \"" + o.scene + "\"").c_str());
+  return 0;
+}
+
+}  // namespace
+
+void add_middlebury(CLI::App& app, Outcome& outcome) {
+  auto* cmd = app.add_subcommand("middlebury",
+                                 "Score the DP matcher on the Middlebury scenes (bad-1 table)");
+  static MiddleburyOptions o;
+  cmd->add_option("--data", o.data, "shared data folder holding middlebury/ and middlebury2006/");
+  cmd->add_option("--scene", o.scene,
+                  "one scene (tsukuba, venus, sawtooth, map, teddy, cones, Aloe, Baby1)");
+  cmd->add_flag("--no-edges", o.no_edges, "skip the edge constraint (for comparisons)");
+  cmd->callback([&outcome] { outcome.exit_code = run(o); });
+}
+
+}  // namespace petra::cli

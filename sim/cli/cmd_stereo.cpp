@@ -1,0 +1,64 @@
+// `petra stereo`: match a stereo pair with the onboard matcher and write the
+// left-view disparity as a Middlebury PFM (docs/icd.md). The work is in
+// sim/stereo/stereo_tool; this file is the command line.
+#include <cstdio>
+#include <exception>
+
+#include "sim/cli/commands.hpp"
+#include "sim/stereo/stereo_tool.hpp"
+
+namespace petra::cli {
+
+namespace {
+
+int run(const stereo::StereoToolOptions& o) {
+  auto r = stereo::run_stereo_tool(o);
+  if (!r) return fail("stereo", r.error().message);
+  const MatchDpStats& s = r->stats;
+  std::printf(
+      "stereo: ROI %d,%d %dx%d, disparities %d..%d: %ld of %ld px matched (%.1f%%) in %.1f ms\n",
+      r->roi.x, r->roi.y, r->roi.w, r->roi.h, o.disp_min, o.disp_max, s.matched, s.roi_pixels,
+      100.0 * static_cast<double>(s.matched) / static_cast<double>(s.roi_pixels), r->match_ms);
+  std::printf(
+      "stereo: edges %ld left / %ld right, %ld edge pairs, %ld anchors; rejected: left-right %ld, "
+      "uniqueness %ld, cost %ld, range %ld, shadow %ld + %ld\n",
+      s.left_edges, s.right_edges, s.edge_pairs, s.anchors, s.rejected_lr, s.rejected_uniqueness,
+      s.rejected_cost, s.rejected_range, s.shadow_left, s.rejected_shadow_right);
+  return 0;
+}
+
+}  // namespace
+
+void add_stereo(CLI::App& app, Outcome& outcome) {
+  auto* cmd =
+      app.add_subcommand("stereo", "Match a stereo pair; write the left-view disparity (PFM)");
+  static stereo::StereoToolOptions o;
+  static bool no_edges = false;
+  cmd->add_option("--left", o.left, "left image (PGM, PPM or PNG)")->required();
+  cmd->add_option("--right", o.right, "right image")->required();
+  cmd->add_option("--method", o.method,
+                  "matcher: dp (edge-constrained scanline DP) or gc (graph cut)")
+      ->check(CLI::IsMember({"dp", "gc"}));
+  cmd->add_option("--disp-min", o.disp_min, "smallest disparity, px (right x = left x - d)")
+      ->required();
+  cmd->add_option("--disp-max", o.disp_max, "largest disparity, px")->required();
+  cmd->add_option("--roi", o.roi, "x,y,w,h in the (original) left image; default: whole image");
+  cmd->add_option("--calib", o.calib, "calib.json: rectify the pair first");
+  cmd->add_option("--shadow-fraction", o.shadow_fraction,
+                  "prior shadow fraction p in [0, 1); 0 = none");
+  cmd->add_flag("--fill", o.fill,
+                "fill invalid pixels with the smaller nearest valid disparity on the row");
+  cmd->add_option("--out", o.out, "output disparity, Middlebury PFM (invalid = inf)")->required();
+  cmd->add_option("--confidence", o.confidence, "optional confidence image (PNG, 0 = invalid)");
+  cmd->add_flag("--no-edges", no_edges, "skip the edge constraint (for comparisons only)");
+  cmd->callback([&outcome] {
+    o.edge_constraint = !no_edges;
+    try {
+      outcome.exit_code = run(o);
+    } catch (const std::exception& e) {
+      outcome.exit_code = fail("stereo", e.what());
+    }
+  });
+}
+
+}  // namespace petra::cli

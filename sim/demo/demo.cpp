@@ -1,0 +1,313 @@
+#include "sim/demo/demo.hpp"
+
+#include <signal.h>
+#include <sodium.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "algo/core/json_reader.hpp"
+#include "cmd/command_packet.hpp"
+#include "hal/udp_link.hpp"
+#include "sim/ground/product_assembler.hpp"
+#include "sim/ground/tlm_format.hpp"
+#include "sim/io/image_io.hpp"
+#include "tlm/event_defs.hpp"
+
+namespace petra::demo {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+struct Scene {
+  fs::path left, right, calib;
+  Rect roi;
+  int planes = 2;
+  bool has_click = false;
+  int click_u = 0, click_v = 0;
+};
+
+std::string read_all(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::optional<fs::path> find_image(const fs::path& dir, const std::string& stem) {
+  for (const char* ext : {".png", ".pgm", ".ppm"})
+    if (fs::exists(dir / (stem + ext))) return dir / (stem + ext);
+  return std::nullopt;
+}
+
+Result<Scene> load_scene(const fs::path& dir) {
+  Scene s;
+  auto l = find_image(dir, "left");
+  auto r = find_image(dir, "right");
+  if (!l || !r)
+    return Error::make(Errc::missing_field,
+                       "scene %s: needs left and right images (.png/.pgm/.ppm)", dir.c_str());
+  s.left = *l;
+  s.right = *r;
+  if (fs::exists(dir / "calib.json")) s.calib = dir / "calib.json";
+  const std::string truth = read_all(dir / "truth.json");
+  if (truth.empty())
+    return Error::make(Errc::missing_field, "scene %s: truth.json with roi and planes needed",
+                       dir.c_str());
+  std::vector<json::Token> tokens(4096);
+  auto doc = json::Document::parse(truth, tokens);
+  if (!doc) return Error::make(Errc::parse_error, "truth.json: %s", doc.error().message);
+  const std::uint32_t roi = doc->find(0, "roi");
+  if (roi == 0 || doc->token(roi).count != 4)
+    return Error::make(Errc::missing_field, "truth.json: roi [x,y,w,h] missing");
+  int v[4];
+  for (std::uint32_t i = 0; i < 4; ++i)
+    v[i] = static_cast<int>(doc->token(doc->element(roi, i)).number);
+  s.roi = Rect{v[0], v[1], v[2], v[3]};
+  if (const std::uint32_t c = doc->find(0, "planes");
+      c != 0 && doc->token(c).type == json::Type::number)
+    s.planes = static_cast<int>(doc->token(c).number);
+  if (const std::uint32_t k = doc->find(0, "click"); k != 0 && doc->token(k).count == 2) {
+    s.has_click = true;
+    s.click_u = static_cast<int>(doc->token(doc->element(k, 0)).number);
+    s.click_v = static_cast<int>(doc->token(doc->element(k, 1)).number);
+  }
+  return s;
+}
+
+std::string find_fsw(const Options& o) {
+  if (!o.fsw_binary.empty()) return o.fsw_binary;
+  const fs::path self = fs::canonical("/proc/self/exe");
+  for (const fs::path& p :
+       {self.parent_path().parent_path() / "fsw" / "petra-fsw", self.parent_path() / "petra-fsw"})
+    if (fs::exists(p)) return p.string();
+  return "petra-fsw";
+}
+
+std::uint16_t free_port() {
+  hal::UdpLink l;
+  if (!l.open("127.0.0.1", 0)) return 0;
+  return l.local_port();
+}
+
+class Session {
+ public:
+  ~Session() { stop(); }
+  bool start(const std::string& fsw, const fs::path& config, const fs::path& log) {
+    pid_ = fork();
+    if (pid_ == 0) {
+      const std::string cmd =
+          "exec '" + fsw + "' --config '" + config.string() + "' 2>'" + log.string() + "'";
+      execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    return pid_ > 0;
+  }
+  bool alive() { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
+  void stop() {
+    if (pid_ <= 0) return;
+    kill(pid_, SIGTERM);
+    waitpid(pid_, nullptr, 0);
+    pid_ = -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+};
+
+}  // namespace
+
+int run(const Options& o, std::FILE* out) {
+  auto fail = [out](const std::string& why) {
+    std::fprintf(out, "demo stopped: %s\n", why.c_str());
+    return 1;
+  };
+  const fs::path dir = fs::absolute(o.out_dir);
+  fs::create_directories(dir / "pairs");
+
+  // 1. The scene.
+  fs::path scene_dir = o.scene_dir;
+  if (scene_dir.empty()) {
+    scene_dir = dir / "scene";
+    const std::string sim = "'" + o.self_binary + "' sim scene --seed " + std::to_string(o.seed) +
+                            " --out '" + scene_dir.string() + "' >/dev/null 2>&1";
+    if (std::system(sim.c_str()) != 0)
+      return fail(
+          "no scene: the scene simulator (`petra sim scene`) is not in this build; give a scene "
+          "folder with --scene DIR (left.png, right.png, calib.json, truth.json)");
+    std::fprintf(out, "1. scene: simulated with seed %d in %s\n", o.seed, scene_dir.c_str());
+  } else {
+    std::fprintf(out, "1. scene: %s\n", scene_dir.c_str());
+  }
+  auto scene = load_scene(scene_dir);
+  if (!scene) return fail(scene.error().message);
+  auto left = io::read_gray_image(scene->left.string());
+  auto right = io::read_gray_image(scene->right.string());
+  if (!left) return fail(left.error().message);
+  if (!right) return fail(right.error().message);
+  if (!io::write_pgm((dir / "pairs/left.pgm").string(), left->view()) ||
+      !io::write_pgm((dir / "pairs/right.pgm").string(), right->view()))
+    return fail("cannot write the camera folder " + (dir / "pairs").string());
+
+  {
+    // What the operator selected, drawn on the left image.
+    io::RgbImage pic(left->width, left->height);
+    for (int y = 0; y < left->height; ++y)
+      for (int x = 0; x < left->width; ++x) {
+        const std::uint8_t g = left->view()(x, y);
+        std::uint8_t* px = pic.at(x, y);
+        px[0] = px[1] = px[2] = g;
+        const Rect& r = scene->roi;
+        const bool edge = (x >= r.x - 1 && x <= r.x + r.w && (y == r.y - 1 || y == r.y + r.h)) ||
+                          (y >= r.y - 1 && y <= r.y + r.h && (x == r.x - 1 || x == r.x + r.w));
+        if (edge) px[0] = 255, px[1] = 200, px[2] = 0;
+      }
+    if (io::write_png((dir / "roi.png").string(), pic))
+      std::fprintf(out, "   the operator's ROI on the left image: %s\n", (dir / "roi.png").c_str());
+  }
+
+  // 2. Key, configuration, petra-fsw.
+  if (sodium_init() < 0) return fail("libsodium failed to initialise");
+  cmd::AuthKey key;
+  randombytes_buf(key.bytes.data(), key.bytes.size());
+  {
+    char hex[65];
+    sodium_bin2hex(hex, sizeof(hex), key.bytes.data(), key.bytes.size());
+    std::ofstream(dir / "petra.key") << hex << "\n";
+  }
+  const std::uint16_t cmd_port = free_port();
+  const std::uint16_t tlm_port = free_port();
+  hal::UdpLink tlm;
+  if (!tlm.open("127.0.0.1", tlm_port)) return fail("cannot listen for telemetry");
+  {
+    std::ofstream cfg(dir / "fsw.json");
+    cfg << R"({"uplink":{"host":"127.0.0.1","port":)" << cmd_port
+        << R"(,"key_file":"petra.key"},"downlink":{"host":"127.0.0.1","port":)" << tlm_port
+        << R"(},"budget":{"image_width":)" << left->width << R"(,"image_height":)" << left->height
+        << R"(,"arena_mb":512},"camera":{"kind":"file","dir":"pairs"})";
+    if (!scene->calib.empty()) cfg << R"(,"calib":")" << scene->calib.string() << "\"";
+    cfg << "}\n";
+  }
+  Session fsw;
+  const std::string fsw_bin = find_fsw(o);
+  if (!fsw.start(fsw_bin, dir / "fsw.json", dir / "fsw.log"))
+    return fail("cannot start " + fsw_bin);
+  std::fprintf(out, "2. petra-fsw started (%s): commands on udp %u, telemetry on udp %u, log %s\n",
+               fsw_bin.c_str(), cmd_port, tlm_port, (dir / "fsw.log").c_str());
+
+  hal::UdpLink up;
+  if (!up.open("127.0.0.1", 0) || !up.set_peer("127.0.0.1", cmd_port))
+    return fail("cannot open the uplink");
+  std::uint32_t counter = 0;
+  auto send = [&](cmd::Command c) {
+    c.counter = ++counter;
+    std::vector<std::uint8_t> p(cmd::kMaxCommandBytes);
+    auto n = cmd::encode_command_packet(c, static_cast<std::uint16_t>(counter), key, p);
+    if (n) up.send(std::span(p).first(*n));
+    return c.counter;
+  };
+
+  ground::ProductAssembler assembler;
+  std::vector<tlm::GrindPlane> planes;
+  std::optional<tlm::EvalResult> result;
+  std::optional<tlm::GroundPlane> ground;
+  std::map<std::uint32_t, tlm::Ack> final_ack;
+  std::vector<std::string> pictures;
+  bool booted = false;
+  std::vector<std::uint8_t> buf(4096);
+  auto pump = [&](int ms) {
+    const auto until = Clock::now() + std::chrono::milliseconds(ms);
+    while (Clock::now() < until) {
+      auto n = tlm.receive_wait(buf, 20);
+      if (!n || *n == 0) continue;
+      auto p = tlm::decode_tm(std::span(buf).first(std::min(*n, buf.size())));
+      if (!p) continue;
+      if (const auto* e = std::get_if<tlm::Event>(&p->body)) {
+        if (e->event_id == static_cast<std::uint16_t>(EventId::BOOT_COMPLETE)) booted = true;
+        if (e->event_id != static_cast<std::uint16_t>(EventId::PRODUCT_SENT))
+          std::fprintf(out, "   event: %s\n", ground::event_text(*e).c_str());
+      } else if (const auto* a = std::get_if<tlm::Ack>(&p->body)) {
+        if (a->stage != static_cast<std::uint8_t>(AckStage::ACCEPTED)) final_ack[a->counter] = *a;
+      } else if (const auto* g = std::get_if<tlm::GrindPlane>(&p->body)) {
+        planes.push_back(*g);
+      } else if (const auto* r = std::get_if<tlm::EvalResult>(&p->body)) {
+        result = *r;
+      } else if (const auto* gp = std::get_if<tlm::GroundPlane>(&p->body)) {
+        ground = *gp;
+      } else if (const auto* c = std::get_if<tlm::Product>(&p->body)) {
+        if (auto done = assembler.add(*c))
+          pictures.push_back(ground::write_product(*done, dir.string()));
+      }
+    }
+  };
+  for (int i = 0; i < 50 && !booted && fsw.alive(); ++i) pump(100);
+  if (!booted)
+    return fail("petra-fsw did not boot; see " + (dir / "fsw.log").string() + ": " +
+                read_all(dir / "fsw.log"));
+
+  // 3. The operator's commands.
+  cmd::SelectRoiArgs sel;
+  sel.x_px = static_cast<std::uint16_t>(scene->roi.x);
+  sel.y_px = static_cast<std::uint16_t>(scene->roi.y);
+  sel.w_px = static_cast<std::uint16_t>(scene->roi.w);
+  sel.h_px = static_cast<std::uint16_t>(scene->roi.h);
+  sel.planes = static_cast<std::uint8_t>(scene->planes);
+  sel.has_click = scene->has_click ? 1 : 0;
+  sel.click_u_px = static_cast<std::uint16_t>(scene->click_u);
+  sel.click_v_px = static_cast<std::uint16_t>(scene->click_v);
+  std::fprintf(out, "3. sent SELECT_ROI x %d, y %d, %d x %d px, c = %d (signed, counter %u)\n",
+               scene->roi.x, scene->roi.y, scene->roi.w, scene->roi.h, scene->planes, counter + 1);
+  const std::uint32_t sel_counter = send({cmd::FunctionCode::SELECT_ROI, 0, sel});
+  const std::uint32_t eval_counter = send({cmd::FunctionCode::EVALUATE, 0, cmd::EvaluateArgs{1}});
+  std::fprintf(out, "4. sent EVALUATE (take a new pair first); waiting for the grind planes...\n");
+  const auto deadline = Clock::now() + std::chrono::seconds(o.timeout_s);
+  while (!final_ack.count(eval_counter) && Clock::now() < deadline && fsw.alive()) pump(200);
+  if (final_ack.count(sel_counter) &&
+      final_ack[sel_counter].stage != static_cast<std::uint8_t>(AckStage::COMPLETED))
+    return fail(std::string("SELECT_ROI refused: ") +
+                reason_name(static_cast<Reason>(final_ack[sel_counter].reason)));
+  if (!final_ack.count(eval_counter))
+    return fail("no answer to EVALUATE within " + std::to_string(o.timeout_s) + " s");
+  const tlm::Ack ack = final_ack[eval_counter];
+  if (ack.stage != static_cast<std::uint8_t>(AckStage::COMPLETED)) {
+    const Reason why = static_cast<Reason>(ack.reason);
+    return fail(std::string("EVALUATE ") + ack_stage_name(static_cast<AckStage>(ack.stage)) + ": " +
+                reason_name(why) +
+                (why == Reason::NO_PIPELINE ? " (this build has no evaluation pipeline yet)" : ""));
+  }
+  pump(3000);  // the products follow the planes
+
+  // 5. What came back.
+  std::fprintf(
+      out,
+      "5. evaluation %u: %u of %u grind planes in %u ms (%u dense points, %u after filtering)\n",
+      result ? result->eval_id : 0, result ? result->planes_found : 0,
+      result ? result->planes_requested : 0, result ? result->total_ms : 0,
+      result ? result->dense_points : 0, result ? result->filtered_points : 0);
+  for (const auto& p : planes)
+    std::fprintf(out,
+                 "   plane %u: normal (%.3f, %.3f, %.3f), centroid (%.1f, %.1f, %.1f) mm, area "
+                 "%.0f mm2, flatness %.2f mm\n",
+                 p.rank, p.normal[0], p.normal[1], p.normal[2], p.centroid_mm[0], p.centroid_mm[1],
+                 p.centroid_mm[2], p.area_mm2, p.flatness_rms_mm);
+  if (ground)
+    std::fprintf(out, "   ground: normal (%.3f, %.3f, %.3f), d %.1f mm\n", ground->normal[0],
+                 ground->normal[1], ground->normal[2], ground->d_mm);
+  std::fprintf(out, "6. pictures and products in %s:\n", dir.c_str());
+  for (const auto& p : pictures) std::fprintf(out, "   %s\n", p.c_str());
+  fsw.stop();
+  return planes.empty() ? 1 : 0;
+}
+
+}  // namespace petra::demo

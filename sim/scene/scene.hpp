@@ -1,0 +1,55 @@
+// A synthetic scene: the stereo rig, one convex rock partly sunk into flat
+// ground, the sun, the surface materials and the sensor. World frame: ground
+// frame, z up, ground plane z = 0, origin on the ground below the rig
+// midpoint, y roughly along the cameras' heading (docs/scene.md).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+
+#include "algo/camera_model.hpp"
+#include "algo/core/result.hpp"
+#include "sim/scene/convex_rock.hpp"
+#include "sim/scene/scene_options.hpp"
+#include "sim/scene/texture.hpp"
+
+namespace petra::sim {
+
+inline constexpr int kImageWidth = 1024;
+inline constexpr int kImageHeight = 768;
+
+struct Scene {
+  SceneOptions options;  // as given
+  // Resolved choices (drawn or given).
+  Boundary boundary = Boundary::clear;
+  RockShape shape = RockShape::blocky;
+  int flat_faces = 2;
+  double sun_elevation_deg = 45;
+  double sun_azimuth_deg = 180;  // from the rig-to-rock heading, counter-clockwise from above
+  double rock_size_mm = 150;
+  double rock_distance_mm = 700;
+  double camera_height_mm = 550;
+
+  StereoRig rig;
+  ConvexRock rock;
+  Eigen::Vector3d rock_centre_mm = Eigen::Vector3d::Zero();  // centre of the rock's ellipsoid
+  Eigen::Vector3d sun_dir = Eigen::Vector3d::UnitZ();        // unit, from the scene toward the sun
+  double ambient = 0.3;       // sky irradiance relative to the sun's at normal incidence
+  double sky_radiance = 1.0;  // what a ray that misses the ground sees
+  double tone_ratio = 1.0;  // rock's mean brightness / the ground's, as the left camera sees them
+  TextureRecipe ground;
+  TextureRecipe rock_surface;
+  double gain_dn = 200;  // DN per unit radiance (exposure)
+  int attempts = 1;      // placements tried before one met every requirement
+};
+
+// Builds the scene for options.seed and the options; deterministic. Fails
+// with a message naming the option when the options are invalid or no
+// placement meets the requirements (rock and shadow in both views, flat faces
+// visible and larger than every other facet).
+Result<Scene> make_scene(const SceneOptions& options);
+
+// Camera's ray angle per pixel (mm on a surface 1 mm away, at normal incidence).
+inline double pixel_angle(const TsaiCamera& cam) { return cam.dy_mm / cam.f_mm; }
+
+}  // namespace petra::sim

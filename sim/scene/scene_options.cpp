@@ -1,0 +1,78 @@
+#include "sim/scene/scene_options.hpp"
+
+#include <cmath>
+
+namespace petra::sim {
+
+const char* boundary_name(Boundary b) { return b == Boundary::clear ? "clear" : "weak"; }
+
+const char* shape_name(RockShape s) {
+  switch (s) {
+    case RockShape::blocky:
+      return "blocky";
+    case RockShape::rounded:
+      return "rounded";
+    case RockShape::slab:
+      return "slab";
+  }
+  return "?";
+}
+
+Result<Boundary> parse_boundary(std::string_view text) {
+  if (text == "clear") return Boundary::clear;
+  if (text == "weak") return Boundary::weak;
+  return Error::make(Errc::invalid_argument, "boundary: expected clear or weak, got '%.*s'",
+                     static_cast<int>(text.size() > 40 ? 40 : text.size()), text.data());
+}
+
+Result<RockShape> parse_shape(std::string_view text) {
+  if (text == "blocky") return RockShape::blocky;
+  if (text == "rounded") return RockShape::rounded;
+  if (text == "slab") return RockShape::slab;
+  return Error::make(Errc::invalid_argument, "shape: expected blocky, rounded or slab, got '%.*s'",
+                     static_cast<int>(text.size() > 40 ? 40 : text.size()), text.data());
+}
+
+namespace {
+
+Status in_range(const std::optional<double>& v, double lo, double hi, const char* name,
+                const char* unit) {
+  if (v && !(std::isfinite(*v) && *v >= lo && *v <= hi))
+    return Error::make(Errc::out_of_range, "%s = %g outside %g..%g %s", name, *v, lo, hi, unit);
+  return {};
+}
+
+}  // namespace
+
+Status validate(const SceneOptions& o) {
+  if (o.seed > kMaxSeed)
+    return Error::make(Errc::out_of_range, "seed = %llu outside 0..%llu",
+                       static_cast<unsigned long long>(o.seed),
+                       static_cast<unsigned long long>(kMaxSeed));
+  if (o.flat_faces && (*o.flat_faces < 2 || *o.flat_faces > 3))
+    return Error::make(Errc::out_of_range, "flat-faces = %d: must be 2 or 3", *o.flat_faces);
+  PETRA_TRY(in_range(o.sun_elevation_deg, kMinSunElevationDeg, kMaxSunElevationDeg,
+                     "sun-elevation", "deg"));
+  PETRA_TRY(in_range(o.sun_azimuth_deg, -360, 360, "sun-azimuth", "deg"));
+  PETRA_TRY(in_range(o.rock_size_mm, kMinRockSizeMm, kMaxRockSizeMm, "rock-size", "mm"));
+  PETRA_TRY(in_range(o.rock_distance_mm, kMinRockDistanceMm, kMaxRockDistanceMm, "rock-distance",
+                     "mm"));
+  PETRA_TRY(in_range(o.camera_height_mm, kMinCameraHeightMm, kMaxCameraHeightMm, "camera-height",
+                     "mm"));
+  if (!(std::isfinite(o.noise_sigma_dn) && o.noise_sigma_dn >= 0 && o.noise_sigma_dn <= kMaxNoiseDn))
+    return Error::make(Errc::out_of_range, "noise = %g outside 0..%g DN", o.noise_sigma_dn,
+                       kMaxNoiseDn);
+  if (o.edge_supersampling < 2 || o.edge_supersampling > 16)
+    return Error::make(Errc::out_of_range, "edge supersampling = %d outside 2..16",
+                       o.edge_supersampling);
+  // The rock must lie ahead of the rig, not below it: its centre sits at most
+  // ~150 mm above the ground, so the distance must clearly exceed the height.
+  if (o.rock_distance_mm && o.camera_height_mm &&
+      *o.camera_height_mm > 0.85 * *o.rock_distance_mm)
+    return Error::make(Errc::invalid_argument,
+                       "camera-height %g mm too large for rock-distance %g mm (max 0.85 x distance)",
+                       *o.camera_height_mm, *o.rock_distance_mm);
+  return {};
+}
+
+}  // namespace petra::sim

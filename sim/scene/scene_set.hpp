@@ -1,0 +1,17 @@
+// The standard set of scenes that tests and benchmarks regenerate on the fly
+// (rendered images are never committed): fixed seeds covering both boundary
+// cases, four sun elevations, the three rock shapes and 2 or 3 flat faces.
+#pragma once
+
+#include <vector>
+
+#include "sim/scene/scene_options.hpp"
+
+namespace petra::sim {
+
+inline constexpr int kStandardSetSize = 24;
+
+// Entry k (0-based) has seed 1000 + k; everything not listed is drawn from it.
+std::vector<SceneOptions> standard_scene_set();
+
+}  // namespace petra::sim

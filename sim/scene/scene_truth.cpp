@@ -1,0 +1,153 @@
+#include "sim/scene/scene_truth.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "algo/core/json_writer.hpp"
+
+namespace petra::sim {
+
+namespace {
+
+Rect clip_box(double u0, double v0, double u1, double v1, int w, int h) {
+  const int x0 = std::max(0, static_cast<int>(std::floor(u0)));
+  const int y0 = std::max(0, static_cast<int>(std::floor(v0)));
+  const int x1 = std::min(w - 1, static_cast<int>(std::ceil(u1)));
+  const int y1 = std::min(h - 1, static_cast<int>(std::ceil(v1)));
+  return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+}
+
+Rect left_roi(const Scene& s) {
+  auto pts = rock_outline_points(s.rock, 16);
+  const auto shadow = polygon_edge_points(shadow_region(s.rock, s.sun_dir), 16);
+  pts.insert(pts.end(), shadow.begin(), shadow.end());
+  double u0 = INFINITY, v0 = INFINITY, u1 = -INFINITY, v1 = -INFINITY;
+  for (const auto& p : pts) {
+    auto uv = project(s.rig.left, p);
+    if (!uv) continue;
+    u0 = std::min(u0, uv->x());
+    v0 = std::min(v0, uv->y());
+    u1 = std::max(u1, uv->x());
+    v1 = std::max(v1, uv->y());
+  }
+  // A margin of ground all round: 12 % of the larger side, at least 20 px.
+  const double m = std::max(20.0, 0.12 * std::max(u1 - u0, v1 - v0));
+  return clip_box(u0 - m, v0 - m, u1 + m, v1 + m, s.rig.left.width, s.rig.left.height);
+}
+
+Rect rectified_box(const Scene& s, const RectifiedPair& pair, const Rect& roi) {
+  double u0 = INFINITY, v0 = INFINITY, u1 = -INFINITY, v1 = -INFINITY;
+  auto add = [&](double u, double v) {
+    auto r = original_to_rectified(s.rig.left, pair.left, {u, v});
+    if (!r) return;
+    u0 = std::min(u0, r->x());
+    v0 = std::min(v0, r->y());
+    u1 = std::max(u1, r->x());
+    v1 = std::max(v1, r->y());
+  };
+  // Distortion bends the ROI's sides: walk along them.
+  for (int x = roi.x; x < roi.x + roi.w; ++x) {
+    add(x, roi.y);
+    add(x, roi.y + roi.h - 1);
+  }
+  for (int y = roi.y; y < roi.y + roi.h; ++y) {
+    add(roi.x, y);
+    add(roi.x + roi.w - 1, y);
+  }
+  return clip_box(u0, v0, u1, v1, pair.left.width, pair.left.height);
+}
+
+void vec3(json::Writer& w, const Eigen::Vector3d& v) {
+  w.begin_array().number(v.x()).number(v.y()).number(v.z()).end_array();
+}
+
+void rect(json::Writer& w, const Rect& r) {
+  w.begin_array().integer(r.x).integer(r.y).integer(r.w).integer(r.h).end_array();
+}
+
+}  // namespace
+
+SceneTruth compute_truth(const Scene& s, const RectifiedTruth& rect_truth) {
+  SceneTruth t;
+  t.planes = s.flat_faces;
+  t.facets = visible_facets(s);
+  t.roi = left_roi(s);
+  t.roi_rectified = rectified_box(s, rect_truth.pair, t.roi);
+  double lo = INFINITY, hi = -INFINITY;
+  const auto view = rect_truth.disparity.view();
+  for (int y = t.roi_rectified.y; y < t.roi_rectified.y + t.roi_rectified.h; ++y)
+    for (int x = t.roi_rectified.x; x < t.roi_rectified.x + t.roi_rectified.w; ++x) {
+      const double d = view(x, y);
+      if (!std::isfinite(d)) continue;
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+    }
+  t.disparity_min = std::isfinite(lo) ? lo : 0.0;
+  t.disparity_max = std::isfinite(hi) ? hi : 0.0;
+  return t;
+}
+
+Result<std::string> format_truth_json(const Scene& s, const SceneTruth& t) {
+  std::vector<char> buf(std::size_t{1} << 20);
+  json::Writer w({buf.data(), buf.size()});
+  w.begin_object();
+  w.key("roi");
+  rect(w, t.roi);
+  w.raw("\n");
+  w.key("planes").integer(t.planes);
+  w.key("facets").begin_array();
+  for (const auto& f : t.facets) {
+    w.raw("\n ");
+    w.begin_object();
+    w.key("normal");
+    vec3(w, f.normal);
+    w.key("centroid_mm");
+    vec3(w, f.centroid);
+    w.key("polygon_mm").begin_array();
+    for (const auto& p : f.polygon) vec3(w, p);
+    w.end_array();
+    w.key("visible_area_mm2").number(f.area_mm2);
+    w.key("grind_face").boolean(f.grind_face);
+    w.end_object();
+  }
+  w.end_array();
+  w.raw("\n");
+  // Ground plane n.X + d = 0 (world frame: the ground is z = 0).
+  w.key("ground").begin_object();
+  w.key("normal");
+  vec3(w, Eigen::Vector3d::UnitZ());
+  w.key("d_mm").number(0.0);
+  w.end_object();
+  w.raw("\n");
+  w.key("sun_dir");
+  vec3(w, s.sun_dir);
+  w.key("seed").integer(static_cast<long long>(s.options.seed));
+  w.raw("\n");
+  w.key("roi_rectified");
+  rect(w, t.roi_rectified);
+  w.key("disparity_range").begin_array().number(t.disparity_min).number(t.disparity_max).end_array();
+  w.raw("\n");
+  w.key("scene").begin_object();
+  w.key("boundary").string(boundary_name(s.boundary));
+  w.key("shape").string(shape_name(s.shape));
+  w.key("flat_faces").integer(s.flat_faces);
+  w.key("sun_elevation_deg").number(s.sun_elevation_deg);
+  w.key("sun_azimuth_deg").number(s.sun_azimuth_deg);
+  w.key("rock_size_mm").number(s.rock_size_mm);
+  w.key("rock_distance_mm").number(s.rock_distance_mm);
+  w.key("camera_height_mm").number(s.camera_height_mm);
+  w.key("tone_ratio").number(s.tone_ratio);
+  w.key("rock_centre_mm");
+  vec3(w, s.rock_centre_mm);
+  w.key("noise_dn").number(s.options.noise_sigma_dn);
+  w.key("texture").boolean(s.options.texture);
+  w.end_object();
+  w.end_object();
+  w.raw("\n");
+  auto n = w.finish();
+  if (!n) return n.error();
+  return std::string(buf.data(), *n);
+}
+
+}  // namespace petra::sim

@@ -1,0 +1,30 @@
+// The scene's ground truth for scoring (truth.json, docs/scene.md): the ROI an
+// operator would drag, the facets both cameras see (largest first, the c flat
+// grind faces first of all), the ground plane and the sun.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "algo/core/image_view.hpp"
+#include "sim/scene/disparity_truth.hpp"
+#include "sim/scene/scene.hpp"
+#include "sim/scene/scene_geometry.hpp"
+
+namespace petra::sim {
+
+struct SceneTruth {
+  Rect roi;            // original left image: rock, its shadow and a margin of ground
+  Rect roi_rectified;  // bounding box of roi in the rectified left image
+  int planes = 2;      // c: the designed flat faces
+  std::vector<VisibleFacet> facets;
+  double disparity_min = 0;  // valid truth disparities inside roi_rectified (px)
+  double disparity_max = 0;
+};
+
+SceneTruth compute_truth(const Scene& scene, const RectifiedTruth& rect);
+
+// truth.json text (contract fields plus optional extras).
+Result<std::string> format_truth_json(const Scene& scene, const SceneTruth& truth);
+
+}  // namespace petra::sim

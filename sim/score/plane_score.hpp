@@ -1,0 +1,45 @@
+// Scores grind planes (planes.json) against the simulator's truth: the
+// truth's first `planes` facets (the designed flat faces) are each matched to
+// at most one output plane. The matching minimises, over all one-to-one
+// assignments that match as many facets as possible, the sum of
+//   distance from the plane's centroid to the facet polygon (mm)
+//   + 1 mm per degree between the normals,
+// so a plane is matched by where it is even when its normal is wrong.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "sim/score/planes_file.hpp"
+#include "sim/score/truth_file.hpp"
+
+namespace petra::sim {
+
+inline constexpr double kMatchMmPerDeg = 1.0;
+
+struct FacetScore {
+  int facet = 0;    // index into truth facets
+  int plane = -1;   // matched output plane, -1 when none is left
+  double normal_error_deg = 0;        // angle between the unit normals (180 = flipped)
+  double centroid_plane_distance_mm = 0;  // |n . (centroid - facet point)|
+  double centroid_outside_mm = 0;     // in-plane distance from the facet polygon (0 = on it)
+  bool centroid_on_facet = false;     // centroid's projection lies on the facet polygon
+};
+
+struct GroundScore {
+  double normal_error_deg = 0;  // between the plane normals, orientation ignored
+  double height_error_mm = 0;   // output plane's distance from the truth ground below the rock
+};
+
+struct PlaneScore {
+  int truth_planes = 0;
+  int output_planes = 0;
+  bool count_agrees = false;
+  std::vector<FacetScore> facets;  // one per scored truth facet, in truth order
+  std::vector<int> extra_planes;   // output planes matched to no facet
+  std::optional<GroundScore> ground;
+};
+
+PlaneScore score_planes(const TruthFile& truth, const PlanesFile& planes);
+
+}  // namespace petra::sim

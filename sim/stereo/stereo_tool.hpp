@@ -1,0 +1,38 @@
+// The work behind `petra stereo` (docs/icd.md), as a library function so
+// tests can drive it: read the pair, rectify with calib.json if given, shadow
+// masks for a prior fraction p, run the DP matcher with a budget sized for
+// the problem, optionally fill, write the PFM. Every failure is an Error
+// naming the input at fault; nothing is written then.
+#pragma once
+
+#include <string>
+
+#include "algo/core/image_view.hpp"
+#include "algo/core/result.hpp"
+#include "algo/match_dp.hpp"
+
+namespace petra::stereo {
+
+struct StereoToolOptions {
+  std::string left, right;  // PGM, PPM or PNG; colour becomes gray
+  std::string method = "dp";
+  int disp_min = 0;
+  int disp_max = 0;
+  std::string roi;    // "x,y,w,h" in the original left image; empty = whole image
+  std::string calib;  // calib.json; empty = the pair is already rectified
+  double shadow_fraction = 0.0;
+  bool fill = false;
+  bool edge_constraint = true;
+  std::string out;         // disparity PFM
+  std::string confidence;  // optional PNG
+};
+
+struct StereoToolReport {
+  Rect roi;  // in the matched (rectified) frame
+  MatchDpStats stats;
+  double match_ms = 0;
+};
+
+Result<StereoToolReport> run_stereo_tool(const StereoToolOptions& options);
+
+}  // namespace petra::stereo

@@ -1,0 +1,78 @@
+#include "algo/scanline_dp.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+namespace petra::match {
+namespace {
+
+constexpr int kLanes = 16;
+constexpr int kSp = path_row_stride(kLanes);
+
+struct Row {
+  int n;
+  std::vector<std::uint16_t> cost, p2;
+  std::vector<std::int16_t> lo, hi, S, scratch;
+  explicit Row(int n_)
+      : n(n_),
+        cost(static_cast<std::size_t>(n_) * kLanes),
+        p2(n_),
+        lo(n_, 0),
+        hi(n_, kLanes - 1),
+        S(static_cast<std::size_t>(n_) * kSp),
+        scratch(2 * (kLanes + 2)) {}
+  int best(int x) const {
+    const std::int16_t* s = S.data() + static_cast<std::size_t>(x) * kSp + kGuardLanes;
+    int k = 0;
+    for (int j = 1; j < kLanes; ++j)
+      if (s[j] < s[k]) k = j;
+    return k;
+  }
+  void run(int p1, int p2v) {
+    for (auto& v : p2) v = static_cast<std::uint16_t>(p2v);
+    apply_bounds<kLanes>(cost.data(), n, kLanes, lo.data(), hi.data(), kLanes - 1);
+    scanline_dp<kLanes>({cost.data(), n, kLanes, p2.data(), p1}, S.data(), scratch.data());
+  }
+};
+
+TEST(ScanlineDp, WithoutPenaltiesEachColumnTakesItsCheapestLane) {
+  Row r(40);
+  std::mt19937 rng(1);
+  for (auto& c : r.cost) c = static_cast<std::uint16_t>(rng() % 1000);
+  r.run(0, 0);
+  for (int x = 0; x < r.n; ++x) {
+    const std::uint16_t* c = r.cost.data() + static_cast<std::size_t>(x) * kLanes;
+    EXPECT_EQ(c[r.best(x)], *std::min_element(c, c + kLanes)) << x;
+  }
+}
+
+TEST(ScanlineDp, PenaltiesSmoothAwayAOneColumnOutlier) {
+  Row r(30);
+  for (int x = 0; x < r.n; ++x)
+    for (int k = 0; k < kLanes; ++k)
+      r.cost[static_cast<std::size_t>(x) * kLanes + k] = k == 5 ? 100 : 300;
+  // Column 12 prefers lane 11 slightly.
+  for (int k = 0; k < kLanes; ++k) r.cost[12 * kLanes + k] = k == 11 ? 250 : 300;
+  r.run(20, 200);
+  for (int x = 0; x < r.n; ++x) EXPECT_EQ(r.best(x), 5) << x;
+}
+
+TEST(ScanlineDp, ForbiddenLanesNeverWin) {
+  Row r(30);
+  std::mt19937 rng(4);
+  for (auto& c : r.cost) c = static_cast<std::uint16_t>(rng() % 1080);
+  for (int x = 0; x < r.n; ++x) {
+    r.lo[static_cast<std::size_t>(x)] = static_cast<std::int16_t>(x % 8);
+    r.hi[static_cast<std::size_t>(x)] = static_cast<std::int16_t>(x % 8 + 3);
+  }
+  r.run(67, 800);
+  for (int x = 0; x < r.n; ++x) {
+    EXPECT_GE(r.best(x), x % 8);
+    EXPECT_LE(r.best(x), x % 8 + 3);
+  }
+}
+
+}  // namespace
+}  // namespace petra::match

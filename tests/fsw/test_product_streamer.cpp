@@ -1,0 +1,86 @@
+#include "fsw/product_streamer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace petra::fsw {
+namespace {
+
+struct Fixture {
+  Fixture(std::size_t slots) : storage(tlm::TlmQueue::bytes_for(slots)), lengths(slots) {
+    queue.init(storage, lengths);
+    const auto sizes = ProductStreamer::bytes_needed(64, 48, 100);
+    for (std::size_t k = 0; k < kProductKinds; ++k) {
+      mem[k].resize(sizes[k]);
+      spans[k] = mem[k];
+    }
+    streamer.init(spans);
+  }
+  std::vector<tlm::Product> drain() {
+    std::vector<tlm::Product> out;
+    while (!queue.empty()) {
+      auto p = tlm::decode_tm(queue.front());
+      EXPECT_TRUE(p.ok());
+      out.push_back(std::get<tlm::Product>(p->body));
+      queue.pop();
+    }
+    return out;
+  }
+  std::vector<std::uint8_t> storage;
+  std::vector<std::uint16_t> lengths;
+  tlm::TlmQueue queue;
+  std::array<std::vector<std::uint8_t>, kProductKinds> mem;
+  std::array<std::span<std::uint8_t>, kProductKinds> spans;
+  ProductStreamer streamer;
+};
+
+TEST(ProductStreamer, SubsampledImageArrivesWholeInChunks) {
+  Fixture f(64);
+  std::vector<std::uint8_t> img(64 * 48);
+  for (std::size_t i = 0; i < img.size(); ++i) img[i] = static_cast<std::uint8_t>(i % 251);
+  ASSERT_TRUE(
+      f.streamer.stage_image(ProductKind::DISPARITY, 7, ConstGray8View(img.data(), 64, 48), 1, 2));
+  f.streamer.pump(f.queue, {}, 100, 0);
+  EXPECT_TRUE(f.streamer.idle());
+  const auto chunks = f.drain();
+  ASSERT_EQ(chunks.size(), 1u);  // 32 x 24 = 768 bytes: one chunk
+  EXPECT_EQ(chunks[0].width, 32);
+  EXPECT_EQ(chunks[0].height, 24);
+  EXPECT_EQ(chunks[0].data_len, 768);
+  EXPECT_EQ(chunks[0].data[33], img[64 * 2 + 2]);  // (x 1, y 1) of the thumbnail
+}
+
+TEST(ProductStreamer, NeverTakesTheReservedQueueSlots) {
+  Fixture f(8);
+  std::vector<std::uint8_t> img(64 * 48, 9);
+  ASSERT_TRUE(
+      f.streamer.stage_image(ProductKind::LEFT_IMAGE, 1, ConstGray8View(img.data(), 64, 48), 1, 1));
+  f.streamer.pump(f.queue, {}, 100, 6);
+  EXPECT_EQ(f.queue.size(), 2u);  // 8 slots, 6 kept free
+  EXPECT_EQ(f.queue.dropped(), 0u);
+  EXPECT_FALSE(f.streamer.idle());
+  auto first = f.drain();
+  f.streamer.pump(f.queue, {}, 100, 6);
+  auto second = f.drain();
+  EXPECT_EQ(first.size() + second.size(), 3u);  // 3072 bytes = 3 chunks
+  EXPECT_EQ(second.back().chunk + 1, second.back().chunks);
+}
+
+TEST(ProductStreamer, PointCloudIsSubsampledToItsLimitAsBigEndianFloats) {
+  Fixture f(64);
+  std::vector<float> xyz;
+  for (int i = 0; i < 300; ++i) xyz.insert(xyz.end(), {float(i), 1.5f, -2.0f});
+  ASSERT_TRUE(f.streamer.stage_cloud(3, xyz, 100));
+  f.streamer.pump(f.queue, {}, 100, 0);
+  const auto chunks = f.drain();
+  ASSERT_EQ(chunks.size(), 2u);  // 100 points x 12 bytes
+  EXPECT_EQ(chunks[0].width, 100);
+  EXPECT_EQ(chunks[0].total_bytes, 1200u);
+  // second point is source point 3: x = 3.0f = 0x40400000
+  EXPECT_EQ(chunks[0].data[12], 0x40);
+  EXPECT_EQ(chunks[0].data[13], 0x40);
+}
+
+}  // namespace
+}  // namespace petra::fsw

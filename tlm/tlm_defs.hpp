@@ -1,0 +1,134 @@
+// THE definition of every telemetry packet: APID, meaning and fields with
+// types, units and ranges. Codecs (tlm/telemetry.hpp), docs/icd.md and
+// docs/petra.xtce.xml are derived from these lists.
+//
+// X(Name, NAME, apid, "meaning", FIELDS)
+// FIELDS: F(type, name, count, unit, min, max, "meaning")
+#pragma once
+
+#include "cmd/field.hpp"
+
+#define PETRA_U32_MAX 4294967295.0
+
+// Pipeline steps whose times housekeeping and EVAL_RESULT carry (index = slot).
+#define PETRA_PIPELINE_STEPS(X) \
+  X(ACQUIRE, 0)                 \
+  X(RECTIFY, 1)                 \
+  X(SHADOW, 2)                  \
+  X(MATCH, 3)                   \
+  X(RECONSTRUCT, 4)             \
+  X(SEGMENT, 5)                 \
+  X(PLANES, 6)                  \
+  X(PRODUCTS, 7)
+#define PETRA_STEP_SLOTS 8
+
+#define PETRA_HK_FIELDS(F)                                                                       \
+  F(u8, mode, 1, "enum", 0, 5, "current mode (docs/executive.md)")                               \
+  F(u32, uptime_s, 1, "s", 0, PETRA_U32_MAX, "time since boot")                                  \
+  F(u32, cycles, 1, "", 0, PETRA_U32_MAX, "loop cycles since boot")                              \
+  F(u32, cycle_overruns, 1, "", 0, PETRA_U32_MAX, "cycles that took longer than the period")     \
+  F(u32, max_cycle_us, 1, "us", 0, PETRA_U32_MAX, "longest cycle since the counters were reset") \
+  F(u32, cmd_received, 1, "", 0, PETRA_U32_MAX, "datagrams received on the command port")        \
+  F(u32, cmd_accepted, 1, "", 0, PETRA_U32_MAX, "commands that passed validation")               \
+  F(u32, cmd_rejected, 1, "", 0, PETRA_U32_MAX, "commands rejected (one REJECTED ack each)")     \
+  F(u32, cmd_completed, 1, "", 0, PETRA_U32_MAX, "accepted commands that completed")             \
+  F(u32, cmd_failed, 1, "", 0, PETRA_U32_MAX, "accepted commands that failed")                   \
+  F(u32, last_counter, 1, "", 0, PETRA_U32_MAX, "last authenticated command counter")            \
+  F(u8, last_function_code, 1, "", 0, 255, "function code of the last command seen")             \
+  F(u8, last_reason, 1, "enum", 0, 255, "reason of the last rejection or failure")               \
+  F(u32, tlm_sent, 1, "", 0, PETRA_U32_MAX, "telemetry packets sent")                            \
+  F(u32, tlm_dropped, 1, "", 0, PETRA_U32_MAX, "telemetry packets dropped: queue full")          \
+  F(u32, tlm_send_errors, 1, "", 0, PETRA_U32_MAX, "telemetry packets the socket refused")       \
+  F(u16, tlm_queue_high_water, 1, "", 0, 65535, "most packets waiting in the queue")             \
+  F(u32, events, 1, "", 0, PETRA_U32_MAX, "events raised since boot")                            \
+  F(u32, faults, 1, "", 0, PETRA_U32_MAX, "faults (heartbeat lost, timeouts) since boot")        \
+  F(u32, memory_bytes, 1, "bytes", 0, PETRA_U32_MAX, "memory allocated at init (all budgets)")   \
+  F(u32, arena_bytes, 1, "bytes", 0, PETRA_U32_MAX, "pipeline arena capacity")                   \
+  F(u32, arena_high_water_bytes, 1, "bytes", 0, PETRA_U32_MAX, "most arena bytes ever in use")   \
+  F(u32, frames, 1, "", 0, PETRA_U32_MAX, "stereo pairs acquired")                               \
+  F(u32, evaluations, 1, "", 0, PETRA_U32_MAX, "evaluations started")                            \
+  F(u8, eval_running, 1, "bool", 0, 1, "1 while the pipeline worker is busy")                    \
+  F(u32, eval_elapsed_ms, 1, "ms", 0, PETRA_U32_MAX,                                             \
+    "time spent in the running or last evaluation")                                              \
+  F(u32, step_us, PETRA_STEP_SLOTS, "us", 0, PETRA_U32_MAX,                                      \
+    "time per pipeline step of the last evaluation (ACQUIRE, RECTIFY, SHADOW, MATCH, "           \
+    "RECONSTRUCT, SEGMENT, PLANES, PRODUCTS)")
+
+#define PETRA_EVENT_FIELDS(F)                                                      \
+  F(u16, event_id, 1, "enum", 0, 65535, "event id (docs/icd.md: events)")          \
+  F(u8, severity, 1, "enum", 0, 4, "0 DEBUG, 1 INFO, 2 WARNING, 3 ERROR, 4 FATAL") \
+  F(i32, args, 4, "", -2147483648.0, 2147483647.0, "arguments of the event text")
+
+#define PETRA_ACK_FIELDS(F)                                                                 \
+  F(u8, function_code, 1, "", 0, 255, "function code of the command (0: not readable)")     \
+  F(u32, counter, 1, "", 0, PETRA_U32_MAX, "its command counter (0 before authentication)") \
+  F(u8, stage, 1, "enum", 1, 4, "1 ACCEPTED, 2 REJECTED, 3 COMPLETED, 4 FAILED")            \
+  F(u8, reason, 1, "enum", 0, 255, "reason code when REJECTED or FAILED (docs/icd.md)")     \
+  F(u16, detail, 1, "", 0, 65535, "field index, mode or parameter id, per reason")
+
+#define PETRA_PARAM_VALUE_FIELDS(F)                 \
+  F(u16, param_id, 1, "", 1, 65535, "parameter id") \
+  F(f64, value, 1, "param", -1e9, 1e9, "current value, in the parameter's unit")
+
+#define PETRA_EVAL_RESULT_FIELDS(F)                                                               \
+  F(u32, eval_id, 1, "", 0, PETRA_U32_MAX, "evaluation number since boot")                        \
+  F(u32, frame, 1, "", 0, PETRA_U32_MAX, "stereo pair it ran on")                                 \
+  F(u8, status, 1, "enum", 0, 3, "0 all c planes, 1 fewer planes qualified, 2 failed, 3 aborted") \
+  F(u8, reason, 1, "enum", 0, 255, "failure reason when status is 2 or 3")                        \
+  F(u16, roi_px, 4, "px", 0, 8192, "ROI x, y, w, h in the left image")                            \
+  F(u8, planes_requested, 1, "", 0, 8, "the operator's c")                                        \
+  F(u8, planes_found, 1, "", 0, 8, "grind planes that qualified (GRIND_PLANE packets follow)")    \
+  F(u32, dense_points, 1, "", 0, PETRA_U32_MAX, "3D points before the mean filter")               \
+  F(u32, filtered_points, 1, "", 0, PETRA_U32_MAX, "3D points after the mean filter")             \
+  F(f32, disparity_min, 1, "px", -1e6, 1e6, "smallest disparity found in the ROI")                \
+  F(f32, disparity_max, 1, "px", -1e6, 1e6, "largest disparity found in the ROI")                 \
+  F(u32, total_ms, 1, "ms", 0, PETRA_U32_MAX, "wall time of the evaluation")                      \
+  F(u32, step_us, PETRA_STEP_SLOTS, "us", 0, PETRA_U32_MAX,                                       \
+    "time per pipeline step (as housekeeping)")
+
+#define PETRA_GRIND_PLANE_FIELDS(F)                                                      \
+  F(u32, eval_id, 1, "", 0, PETRA_U32_MAX, "evaluation it belongs to")                   \
+  F(u8, rank, 1, "", 0, 7, "0 = best")                                                   \
+  F(u8, plane_count, 1, "", 0, 8, "planes in this evaluation")                           \
+  F(f64, normal, 3, "1", -1, 1, "unit normal, out of the rock, calibration world frame") \
+  F(f64, centroid_mm, 3, "mm", -1e7, 1e7, "centroid of the plane's triangles")           \
+  F(f64, area_mm2, 1, "mm2", 0, 1e12, "supporting area")                                 \
+  F(f64, flatness_rms_mm, 1, "mm", 0, 1e6, "RMS distance of its points to the plane")    \
+  F(u32, triangles, 1, "", 0, PETRA_U32_MAX, "mesh triangles supporting it")
+
+#define PETRA_GROUND_PLANE_FIELDS(F)                                        \
+  F(u32, eval_id, 1, "", 0, PETRA_U32_MAX, "evaluation it belongs to")      \
+  F(f64, normal, 3, "1", -1, 1, "unit normal (n . X + d = 0, world frame)") \
+  F(f64, d_mm, 1, "mm", -1e7, 1e7, "plane offset")                          \
+  F(u32, points, 1, "", 0, PETRA_U32_MAX, "3D points classified as ground")
+
+#define PETRA_PRODUCT_DATA_BYTES 1024
+#define PETRA_PRODUCT_FIELDS(F)                                                                  \
+  F(u8, product, 1, "enum", 1, 4, "1 LEFT_IMAGE, 2 DISPARITY, 3 OVERLAY, 4 POINT_CLOUD")         \
+  F(u8, format, 1, "enum", 1, 3, "1 gray8 rows, 2 rgb8 rows, 3 xyz f32 mm triples (big-endian)") \
+  F(u32, id, 1, "", 0, PETRA_U32_MAX, "frame (LEFT_IMAGE) or evaluation id")                     \
+  F(u16, chunk, 1, "", 0, 65535, "chunk index, 0 first")                                         \
+  F(u16, chunks, 1, "", 1, 65535, "chunks in the product")                                       \
+  F(u32, total_bytes, 1, "bytes", 0, PETRA_U32_MAX, "product size")                              \
+  F(u16, width, 1, "px", 0, 65535, "image width (point cloud: points)")                          \
+  F(u16, height, 1, "px", 0, 65535, "image height (point cloud: 1)")                             \
+  F(u16, data_len, 1, "bytes", 0, PETRA_PRODUCT_DATA_BYTES, "bytes of data used in this chunk")  \
+  F(u8, data, PETRA_PRODUCT_DATA_BYTES, "", 0, 255, "product bytes [chunk*1024, +data_len)")
+
+#define PETRA_TELEMETRY(X)                                                                       \
+  X(Housekeeping, HK, 0x010, "housekeeping: mode, counters, memory, loop and pipeline timing",   \
+    PETRA_HK_FIELDS)                                                                             \
+  X(Event, EVENT, 0x011, "an event: id, severity, four arguments (text in docs/icd.md)",         \
+    PETRA_EVENT_FIELDS)                                                                          \
+  X(Ack, ACK, 0x012, "command acknowledgement: accepted, rejected, completed or failed",         \
+    PETRA_ACK_FIELDS)                                                                            \
+  X(ParamValue, PARAM_VALUE, 0x013, "one parameter's value (GET_PARAM, DUMP_PARAMS, SET_PARAM)", \
+    PETRA_PARAM_VALUE_FIELDS)                                                                    \
+  X(EvalResult, EVAL_RESULT, 0x020, "summary of one evaluation; its planes follow",              \
+    PETRA_EVAL_RESULT_FIELDS)                                                                    \
+  X(GrindPlane, GRIND_PLANE, 0x021, "one ranked grind plane", PETRA_GRIND_PLANE_FIELDS)          \
+  X(GroundPlane, GROUND_PLANE, 0x022, "the ground plane of one evaluation",                      \
+    PETRA_GROUND_PLANE_FIELDS)                                                                   \
+  X(Product, PRODUCT, 0x030,                                                                     \
+    "one chunk of a product (image or point cloud); sequence flags mark first/last chunk",       \
+    PETRA_PRODUCT_FIELDS)
