@@ -94,10 +94,11 @@ Status GraphCutMatcher::init(Arena& arena, const GraphCutBudget& budget) {
   return ok_status();
 }
 
-Status GraphCutMatcher::validate(ConstGray8View left, ConstGray8View right, Rect roi,
-                                 const GraphCutParams& params, const DisparityMap* out,
-                                 ConstGray8View left_shadow, ConstGray8View right_shadow) const {
+Status GraphCutMatcher::validate(const StereoInput& in, Rect roi, const GraphCutParams& params,
+                                 const DisparityMap* out) const {
   if (label_.empty()) return Error::make(Errc::not_ready, "graphcut: match() before init()");
+  const ConstGray8View& left = in.left;
+  const ConstGray8View& right = in.right;
   if (left.empty() || right.empty()) {
     return Error::make(Errc::invalid_argument, "graphcut: empty %s image",
                        left.empty() ? "left" : "right");
@@ -106,13 +107,16 @@ Status GraphCutMatcher::validate(ConstGray8View left, ConstGray8View right, Rect
     return Error::make(Errc::invalid_argument, "graphcut: right image %dx%d differs from left %dx%d",
                        right.width(), right.height(), left.width(), left.height());
   }
-  const ConstGray8View* masks[2] = {&left_shadow, &right_shadow};
+  const ShadowMask* masks[2] = {in.left_shadow, in.right_shadow};
   for (int k = 0; k < 2; ++k) {
-    const ConstGray8View& m = *masks[k];
-    if (!m.empty() && (m.width() != left.width() || m.height() != left.height())) {
-      return Error::make(Errc::invalid_argument, "graphcut: %s shadow mask %dx%d, image %dx%d",
-                         k == 0 ? "left" : "right", m.width(), m.height(), left.width(),
-                         left.height());
+    const ShadowMask* m = masks[k];
+    if (m == nullptr) continue;
+    if (!m->area.inside(left.width(), left.height()) || m->mask.width() != m->area.w ||
+        m->mask.height() != m->area.h) {
+      return Error::make(Errc::invalid_argument,
+                         "graphcut: %s shadow mask %dx%d for area %d,%d,%d,%d of a %dx%d image",
+                         k == 0 ? "left" : "right", m->mask.width(), m->mask.height(), m->area.x,
+                         m->area.y, m->area.w, m->area.h, left.width(), left.height());
     }
   }
   if (!roi.inside(left.width(), left.height())) {
@@ -165,9 +169,9 @@ Status GraphCutMatcher::validate(ConstGray8View left, ConstGray8View right, Rect
   return ok_status();
 }
 
-void GraphCutMatcher::prepare(ConstGray8View left, ConstGray8View right, Rect roi,
-                              const GraphCutParams& params, ConstGray8View left_shadow,
-                              ConstGray8View right_shadow) {
+void GraphCutMatcher::prepare(const StereoInput& in, Rect roi, const GraphCutParams& params) {
+  const ConstGray8View& left = in.left;
+  const ConstGray8View& right = in.right;
   w_ = roi.w;
   h_ = roi.h;
   roi_x_ = roi.x;
@@ -186,14 +190,18 @@ void GraphCutMatcher::prepare(ConstGray8View left, ConstGray8View right, Rect ro
       const int p = y * w_ + x;
       left_[p] = gc::half_pixel_sample(left, roi.x + x, gy);
       left_flags_[p] = gc::edge_flags(left, roi.x + x, gy, x + 1 < w_, y + 1 < h_, threshold);
-      if (!left_shadow.empty() && left_shadow(roi.x + x, gy) != 0) left_flags_[p] |= kUnusable;
+      if (in.left_shadow != nullptr && in.left_shadow->is_shadow(roi.x + x, gy)) {
+        left_flags_[p] |= kUnusable;
+      }
     }
     for (int xs = 0; xs < strip_w_; ++xs) {
       const int q = y * strip_w_ + xs;
       const int gx = strip_x0_ + xs;
       right_[q] = gc::half_pixel_sample(right, gx, gy);
       right_flags_[q] = gc::edge_flags(right, gx, gy, xs + 1 < strip_w_, y + 1 < h_, threshold);
-      if (!right_shadow.empty() && right_shadow(gx, gy) != 0) right_flags_[q] |= kUnusable;
+      if (in.right_shadow != nullptr && in.right_shadow->is_shadow(gx, gy)) {
+        right_flags_[q] |= kUnusable;
+      }
     }
   }
 }
@@ -384,13 +392,10 @@ std::int64_t GraphCutMatcher::energy() const {
   return e;
 }
 
-Result<std::int32_t> GraphCutMatcher::automatic_occlusion_k(ConstGray8View left,
-                                                           ConstGray8View right, Rect roi,
-                                                           const GraphCutParams& params,
-                                                           ConstGray8View left_shadow,
-                                                           ConstGray8View right_shadow) {
-  PETRA_TRY(validate(left, right, roi, params, nullptr, left_shadow, right_shadow));
-  prepare(left, right, roi, params, left_shadow, right_shadow);
+Result<std::int32_t> GraphCutMatcher::automatic_occlusion_k(const StereoInput& in, Rect roi,
+                                                           const GraphCutParams& params) {
+  PETRA_TRY(validate(in, roi, params, nullptr));
+  prepare(in, roi, params);
   const std::int32_t k = automatic_k();
   if (k <= 0) {
     return Error::make(Errc::degenerate,
@@ -400,12 +405,10 @@ Result<std::int32_t> GraphCutMatcher::automatic_occlusion_k(ConstGray8View left,
   return std::min(k, kMaxWeight);
 }
 
-Result<GraphCutReport> GraphCutMatcher::match(ConstGray8View left, ConstGray8View right,
-                                              Rect roi, const GraphCutParams& params,
-                                              DisparityMap& out, ConstGray8View left_shadow,
-                                              ConstGray8View right_shadow) {
-  PETRA_TRY(validate(left, right, roi, params, &out, left_shadow, right_shadow));
-  prepare(left, right, roi, params, left_shadow, right_shadow);
+Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
+                                              const GraphCutParams& params, DisparityMap& out) {
+  PETRA_TRY(validate(in, roi, params, &out));
+  prepare(in, roi, params);
 
   GraphCutReport report;
   k_ = params.occlusion_k != kGraphCutAuto ? params.occlusion_k : automatic_k();

@@ -28,10 +28,11 @@
 // pixels get no disparity (as SEED.md asks) and their neighbours are neither
 // pulled towards nor pushed away from them by the smoothness term.
 //
-// Inputs:  rectified left/right gray images of equal size (full images: the
-//          right search strip and the half-pixel samples may lie outside the
-//          ROI), optional shadow masks of the same size, the ROI in the left
-//          image, disparity range [disp_min, disp_max] (d = x_left - x_right).
+// Inputs:  StereoInput (algo/match_dp.hpp): rectified left/right gray images
+//          of equal size (whole images: the right search strip and the
+//          half-pixel samples may lie outside the ROI) and optional shadow
+//          masks (algo/shadow.hpp); the ROI in the left image; the disparity
+//          range [disp_min, disp_max] (d = x_left - x_right).
 // Output:  DisparityMap over the ROI: Q4 disparities, kInvalidDisparity where
 //          occluded or shadowed.
 // Memory:  all from the Arena at init, for a budget (max ROI width, height,
@@ -52,6 +53,7 @@
 #include "algo/core/image_view.hpp"
 #include "algo/core/result.hpp"
 #include "algo/disparity.hpp"
+#include "algo/match_dp.hpp"
 #include "algo/match_graphcut_terms.hpp"
 #include "algo/maxflow.hpp"
 
@@ -133,18 +135,13 @@ class GraphCutMatcher {
   Status init(Arena& arena, const GraphCutBudget& budget);
 
   // Matches the ROI; `out.q4` must be roi.w x roi.h and `out.roi` is set to roi.
-  // Masks: empty views for none, else the images' size, nonzero = shadow.
-  Result<GraphCutReport> match(ConstGray8View left, ConstGray8View right, Rect roi,
-                               const GraphCutParams& params, DisparityMap& out,
-                               ConstGray8View left_shadow = {},
-                               ConstGray8View right_shadow = {});
+  Result<GraphCutReport> match(const StereoInput& in, Rect roi, const GraphCutParams& params,
+                               DisparityMap& out);
 
   // The automatic K of these images and parameters (what match() would use
   // with occlusion_k left at kGraphCutAuto), for tools that report or scale it.
-  Result<std::int32_t> automatic_occlusion_k(ConstGray8View left, ConstGray8View right, Rect roi,
-                                             const GraphCutParams& params,
-                                             ConstGray8View left_shadow = {},
-                                             ConstGray8View right_shadow = {});
+  Result<std::int32_t> automatic_occlusion_k(const StereoInput& in, Rect roi,
+                                             const GraphCutParams& params);
 
   const GraphCutBudget& budget() const { return budget_; }
 
@@ -156,11 +153,9 @@ class GraphCutMatcher {
   static constexpr std::uint8_t kUnusable = 4;
   static constexpr std::int16_t kOccluded = -1;
 
-  Status validate(ConstGray8View left, ConstGray8View right, Rect roi,
-                  const GraphCutParams& params, const DisparityMap* out,
-                  ConstGray8View left_shadow, ConstGray8View right_shadow) const;
-  void prepare(ConstGray8View left, ConstGray8View right, Rect roi, const GraphCutParams& params,
-               ConstGray8View left_shadow, ConstGray8View right_shadow);
+  Status validate(const StereoInput& in, Rect roi, const GraphCutParams& params,
+                  const DisparityMap* out) const;
+  void prepare(const StereoInput& in, Rect roi, const GraphCutParams& params);
   std::int32_t automatic_k() const;
   void block_matching_labels();
   // Cached terms of the active assignment of pixel p (see keep_).

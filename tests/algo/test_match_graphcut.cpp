@@ -201,13 +201,17 @@ class Matcher {
     Run r;
     r.q4.assign(pr.roi.w * pr.roi.h, 0);
     DisparityMap out{ImageView<std::int16_t>(r.q4.data(), pr.roi.w, pr.roi.h), {}};
-    ConstGray8View l(pr.left.data(), pr.width, pr.height), rt(pr.right.data(), pr.width, pr.height);
-    ConstGray8View ls, rs;
-    if (!pr.left_shadow.empty()) ls = ConstGray8View(pr.left_shadow.data(), pr.width, pr.height);
-    if (!pr.right_shadow.empty()) rs = ConstGray8View(pr.right_shadow.data(), pr.width, pr.height);
+    StereoInput in;
+    in.left = ConstGray8View(pr.left.data(), pr.width, pr.height);
+    in.right = ConstGray8View(pr.right.data(), pr.width, pr.height);
+    const Rect whole{0, 0, pr.width, pr.height};
+    ShadowMask ls{ConstGray8View(pr.left_shadow.data(), pr.width, pr.height), whole};
+    ShadowMask rs{ConstGray8View(pr.right_shadow.data(), pr.width, pr.height), whole};
+    if (!pr.left_shadow.empty()) in.left_shadow = &ls;
+    if (!pr.right_shadow.empty()) in.right_shadow = &rs;
     params.disp_min = pr.disp_min;
     params.disp_max = pr.disp_max;
-    auto rep = m_.match(l, rt, pr.roi, params, out, ls, rs);
+    auto rep = m_.match(in, pr.roi, params, out);
     if (!rep) return rep.error();
     r.report = *rep;
     return r;
@@ -436,13 +440,13 @@ TEST(MatchGraphCut, RepeatedCallsAllocateNothing) {
   Matcher m({40, 24, 9});
   std::vector<std::int16_t> q4(40 * 24);
   DisparityMap out{ImageView<std::int16_t>(q4.data(), 40, 24), {}};
-  ConstGray8View l(s.pr.left.data(), 40, 24), r(s.pr.right.data(), 40, 24);
+  StereoInput in{ConstGray8View(s.pr.left.data(), 40, 24), ConstGray8View(s.pr.right.data(), 40, 24)};
   GraphCutParams params;
   params.disp_max = 8;
   test::HeapScope scope;
   for (int k = 0; k < 3; ++k) {
     params.seed = static_cast<std::uint32_t>(k + 1);
-    auto rep = m.matcher().match(l, r, {0, 0, 40, 24}, params, out);
+    auto rep = m.matcher().match(in, {0, 0, 40, 24}, params, out);
     EXPECT_TRUE(rep.ok());
   }
   EXPECT_EQ(scope.allocations(), 0u);
@@ -453,8 +457,10 @@ TEST(MatchGraphCut, BadInputIsRefusedWithTheFieldNamed) {
   Matcher m({40, 24, 9});
   std::vector<std::int16_t> q4(40 * 24);
   DisparityMap out{ImageView<std::int16_t>(q4.data(), 40, 24), {}};
-  ConstGray8View l(s.pr.left.data(), 40, 24), r(s.pr.right.data(), 40, 24);
-  ConstGray8View small(s.pr.right.data(), 30, 24);
+  const StereoInput in{ConstGray8View(s.pr.left.data(), 40, 24),
+                       ConstGray8View(s.pr.right.data(), 40, 24)};
+  StereoInput small = in;
+  small.right = ConstGray8View(s.pr.right.data(), 30, 24);
   GraphCutParams p;
   p.disp_max = 8;
   auto expect_error = [&](Result<GraphCutReport> res, Errc code, const char* word) {
@@ -463,36 +469,43 @@ TEST(MatchGraphCut, BadInputIsRefusedWithTheFieldNamed) {
     EXPECT_NE(std::string(res.error().message).find(word), std::string::npos)
         << res.error().message;
   };
-  expect_error(m.matcher().match(l, small, {0, 0, 40, 24}, p, out), Errc::invalid_argument, "right image");
-  expect_error(m.matcher().match(l, r, {10, 0, 40, 24}, p, out), Errc::out_of_range, "roi");
+  GraphCutMatcher& gc = m.matcher();
+  expect_error(gc.match(small, {0, 0, 40, 24}, p, out), Errc::invalid_argument, "right image");
+  expect_error(gc.match(in, {10, 0, 40, 24}, p, out), Errc::out_of_range, "roi");
   GraphCutParams q = p;
   q.disp_min = 5;
   q.disp_max = 2;
-  expect_error(m.matcher().match(l, r, {0, 0, 40, 24}, q, out), Errc::invalid_argument, "disparity range");
+  expect_error(gc.match(in, {0, 0, 40, 24}, q, out), Errc::invalid_argument, "disparity range");
   q = p;
   q.disp_max = 20;
-  expect_error(m.matcher().match(l, r, {0, 0, 40, 24}, q, out), Errc::capacity_exceeded, "budget");
+  expect_error(gc.match(in, {0, 0, 40, 24}, q, out), Errc::capacity_exceeded, "budget");
   q = p;
   q.max_cycles = 0;
-  expect_error(m.matcher().match(l, r, {0, 0, 40, 24}, q, out), Errc::out_of_range, "max_cycles");
+  expect_error(gc.match(in, {0, 0, 40, 24}, q, out), Errc::out_of_range, "max_cycles");
   q = p;
   q.occlusion_k = -5;
-  expect_error(m.matcher().match(l, r, {0, 0, 40, 24}, q, out), Errc::out_of_range, "occlusion_k");
+  expect_error(gc.match(in, {0, 0, 40, 24}, q, out), Errc::out_of_range, "occlusion_k");
   q = p;
   q.lambda1 = -3;
-  expect_error(m.matcher().match(l, r, {0, 0, 40, 24}, q, out), Errc::out_of_range, "lambda1");
+  expect_error(gc.match(in, {0, 0, 40, 24}, q, out), Errc::out_of_range, "lambda1");
   q = p;
   q.data_clip = 200;
-  expect_error(m.matcher().match(l, r, {0, 0, 40, 24}, q, out), Errc::out_of_range, "data_clip");
+  expect_error(gc.match(in, {0, 0, 40, 24}, q, out), Errc::out_of_range, "data_clip");
   std::vector<std::int16_t> small_out(10);
   DisparityMap bad{ImageView<std::int16_t>(small_out.data(), 5, 2), {}};
-  expect_error(m.matcher().match(l, r, {0, 0, 40, 24}, p, bad), Errc::invalid_argument, "output");
-  expect_error(m.matcher().match(l, r, {0, 0, 40, 24}, p, out, small), Errc::invalid_argument, "shadow");
+  expect_error(gc.match(in, {0, 0, 40, 24}, p, bad), Errc::invalid_argument, "output");
+  std::vector<std::uint8_t> mask(10 * 10, 0);
+  const ShadowMask outside{ConstGray8View(mask.data(), 10, 10), {35, 0, 10, 10}};
+  StereoInput masked = in;
+  masked.left_shadow = &outside;
+  expect_error(gc.match(masked, {0, 0, 40, 24}, p, out), Errc::invalid_argument, "shadow mask");
   // Nothing to match: the disparities all point outside the image.
   q = p;
   q.disp_min = 45;
   q.disp_max = 50;
-  expect_error(m.matcher().match(l, r, {0, 0, 40, 24}, q, out), Errc::degenerate, "valid disparities");
+  expect_error(gc.match(in, {0, 0, 40, 24}, q, out), Errc::degenerate, "valid disparities");
+  GraphCutMatcher uninitialised;
+  expect_error(uninitialised.match(in, {0, 0, 40, 24}, p, out), Errc::not_ready, "init");
 }
 
 TEST(MatchGraphCut, FlightBudgetFitsItsStatedMemory) {
