@@ -14,11 +14,22 @@ namespace {
 int run(const stereo::StereoToolOptions& o) {
   auto r = stereo::run_stereo_tool(o);
   if (!r) return fail("stereo", r.error().message);
-  const MatchDpStats& s = r->stats;
+  const long roi_pixels = static_cast<long>(r->roi.w) * r->roi.h;
   std::printf(
       "stereo: ROI %d,%d %dx%d, disparities %d..%d: %ld of %ld px matched (%.1f%%) in %.1f ms\n",
-      r->roi.x, r->roi.y, r->roi.w, r->roi.h, o.disp_min, o.disp_max, s.matched, s.roi_pixels,
-      100.0 * static_cast<double>(s.matched) / static_cast<double>(s.roi_pixels), r->match_ms);
+      r->roi.x, r->roi.y, r->roi.w, r->roi.h, o.disp_min, o.disp_max, r->matched, roi_pixels,
+      100.0 * static_cast<double>(r->matched) / static_cast<double>(roi_pixels), r->match_ms);
+  if (o.method == "gc") {
+    const GraphCutReport& g = r->graph;
+    std::printf(
+        "stereo: graph cut K %d, lambda1 %d, lambda2 %d; %d cycles (%s), %d expansions; energy "
+        "%lld -> %lld; occluded %ld, shadow %ld\n",
+        g.occlusion_k, g.lambda1, g.lambda2, g.cycles, g.converged ? "converged" : "cycle limit",
+        g.expansions, static_cast<long long>(g.energy_start), static_cast<long long>(g.energy),
+        g.occluded_pixels, g.shadow_pixels);
+    return 0;
+  }
+  const MatchDpStats& s = r->stats;
   std::printf(
       "stereo: edges %ld left / %ld right, %ld edge pairs, %ld anchors; rejected: left-right %ld, "
       "uniqueness %ld, cost %ld, range %ld, shadow %ld + %ld\n",

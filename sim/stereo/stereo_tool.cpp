@@ -31,11 +31,7 @@ Status make_mask(ConstGray8View img, Rect histogram_roi, Rect area, double p,
 }  // namespace
 
 Result<StereoToolReport> run_stereo_tool(const StereoToolOptions& o) {
-  if (o.method == "gc")
-    return Error::make(
-        Errc::not_ready,
-        "--method gc: the graph-cut matcher is not available in this build (use dp)");
-  if (o.method != "dp")
+  if (o.method != "dp" && o.method != "gc")
     return Error::make(Errc::invalid_argument, "--method %s: expected dp or gc", o.method.c_str());
   if (o.out.empty()) return Error::make(Errc::missing_field, "--out: no output file given");
   auto left = io::read_gray_image(o.left);
@@ -99,22 +95,46 @@ Result<StereoToolReport> run_stereo_tool(const StereoToolOptions& o) {
     }
   }
 
-  MatchDpParams params;
-  params.disp_min = o.disp_min;
-  params.disp_max = o.disp_max;
-  params.edge_constraint = o.edge_constraint;
   // A ground tool sizes its budget for the problem it is given.
-  const MatchBudget budget{roi.w, roi.h, std::max(o.disp_max - o.disp_min + 1, 1)};
-  std::vector<std::byte> scratch(match_dp_scratch_bytes(budget));
-  Arena arena(scratch);
+  const int count = std::max(o.disp_max - o.disp_min + 1, 1);
   std::vector<std::int16_t> q4(static_cast<std::size_t>(roi.w) * roi.h);
   std::vector<std::uint8_t> conf(q4.size());
   DisparityMap map{ImageView<std::int16_t>(q4.data(), roi.w, roi.h), roi};
+  StereoToolReport report;
   const auto t0 = std::chrono::steady_clock::now();
-  auto stats = match_dp(in, roi, params, budget, arena, map,
-                        ImageView<std::uint8_t>(conf.data(), roi.w, roi.h));
+  if (o.method == "dp") {
+    MatchDpParams params;
+    params.disp_min = o.disp_min;
+    params.disp_max = o.disp_max;
+    params.edge_constraint = o.edge_constraint;
+    const MatchBudget budget{roi.w, roi.h, count};
+    std::vector<std::byte> scratch(match_dp_scratch_bytes(budget));
+    Arena arena(scratch);
+    auto stats = match_dp(in, roi, params, budget, arena, map,
+                          ImageView<std::uint8_t>(conf.data(), roi.w, roi.h));
+    if (!stats) return stats.error();
+    report.stats = *stats;
+    report.matched = stats->matched;
+  } else {
+    if (o.disp_min > o.disp_max)
+      return Error::make(Errc::invalid_argument, "--disp-min %d > --disp-max %d: empty range",
+                         o.disp_min, o.disp_max);
+    GraphCutParams params;
+    params.disp_min = o.disp_min;
+    params.disp_max = o.disp_max;
+    const GraphCutBudget budget{roi.w, roi.h, count};
+    std::vector<std::byte> block(GraphCutMatcher::bytes_needed(budget));
+    Arena arena(block);
+    GraphCutMatcher matcher;
+    PETRA_TRY(matcher.init(arena, budget));
+    auto graph = matcher.match(in, roi, params, map);
+    if (!graph) return graph.error();
+    report.graph = *graph;
+    report.matched = graph->matched_pixels;
+    // The graph cut has no confidence measure: matched pixels are 255.
+    for (std::size_t i = 0; i < q4.size(); ++i) conf[i] = is_valid_disparity(q4[i]) ? 255 : 0;
+  }
   const auto t1 = std::chrono::steady_clock::now();
-  if (!stats) return stats.error();
 
   io::FloatImage disp = eval::to_float_image(map, W, H);
   if (o.fill) eval::fill_invalid_background(disp.view(), roi);
@@ -124,9 +144,7 @@ Result<StereoToolReport> run_stereo_tool(const StereoToolOptions& o) {
     copy_pixels(ImageView<const std::uint8_t>(conf.data(), roi.w, roi.h), c.view().sub(roi));
     PETRA_TRY(io::write_png(o.confidence, c.view()));
   }
-  StereoToolReport report;
   report.roi = roi;
-  report.stats = *stats;
   report.match_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   return report;
 }

@@ -1,7 +1,7 @@
 // The work behind `petra stereo` (docs/icd.md), as a library function so
 // tests can drive it: read the pair, rectify with calib.json if given, shadow
-// masks for a prior fraction p, run the DP matcher with a budget sized for
-// the problem, optionally fill, write the PFM. Every failure is an Error
+// masks for a prior fraction p, run the DP or graph-cut matcher with a budget
+// sized for the problem, optionally fill, write the PFM. Every failure is an Error
 // naming the input at fault; nothing is written then.
 #pragma once
 
@@ -10,6 +10,7 @@
 #include "algo/core/image_view.hpp"
 #include "algo/core/result.hpp"
 #include "algo/match_dp.hpp"
+#include "algo/match_graphcut.hpp"
 
 namespace petra::stereo {
 
@@ -29,7 +30,9 @@ struct StereoToolOptions {
 
 struct StereoToolReport {
   Rect roi;  // in the matched (rectified) frame
-  MatchDpStats stats;
+  MatchDpStats stats;    // --method dp
+  GraphCutReport graph;  // --method gc
+  long matched = 0;      // pixels of the ROI with a disparity
   double match_ms = 0;
 };
 

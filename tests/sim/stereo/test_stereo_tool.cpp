@@ -150,8 +150,8 @@ TEST(StereoTool, EveryBadInputIsRejectedWithItsName) {
   e.left = kTmp + "petra_missing.png";
   expect(e, "petra_missing.png");
   StereoToolOptions f = o;
-  f.method = "gc";
-  expect(f, "not available");
+  f.method = "sgm";
+  expect(f, "expected dp or gc");
   StereoToolOptions g = o;
   g.shadow_fraction = 1.5;
   expect(g, "fraction");

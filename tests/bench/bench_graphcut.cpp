@@ -1,0 +1,198 @@
+// Graph-cut matcher benchmarks (docs/performance.md, "Graph-cut stereo"):
+//  - every Middlebury pair of ../shared/data, whole image, bad-1 nonocc / all,
+//    strict and filled as counters (sim/eval/middlebury.hpp), and OpenCV
+//    SGBM on the same pair in the same run as the peer (blockSize 5, P1 200,
+//    P2 800, uniqueness 10, speckle filter, one thread);
+//  - the flight case, a 160x160 ROI with 42 disparities, and time against ROI
+//    area and disparity count.
+// Times: CPU time of the process (the machine is shared; wall time is not ours).
+// Run (one core):  taskset -c 1 build/release/tests/bench/bench_graphcut
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "algo/match_graphcut.hpp"
+#include "sim/eval/disparity_image.hpp"
+#include "sim/eval/middlebury.hpp"
+
+#ifdef PETRA_HAVE_OPENCV
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/core/utility.hpp>
+#endif
+
+namespace {
+
+using petra::eval::MiddleburyData;
+
+const MiddleburyData& scene(const std::string& name) {
+  static std::vector<MiddleburyData> cache;
+  for (const auto& d : cache)
+    if (name == d.scene->name) return d;
+  auto d = petra::eval::load_middlebury(*petra::eval::find_middlebury_scene(name),
+                                        petra::eval::default_data_root(PETRA_SOURCE_DIR));
+  if (!d) {
+    std::fprintf(stderr, "bench_graphcut: %s\n", d.error().message);
+    std::exit(1);
+  }
+  cache.reserve(16);
+  cache.push_back(std::move(*d));
+  return cache.back();
+}
+
+void report(benchmark::State& state, const petra::io::FloatImage& disp, const MiddleburyData& d) {
+  auto s = petra::eval::score_middlebury(disp.view(), d);
+  if (!s) {
+    state.SkipWithError(s.error().message);
+    return;
+  }
+  state.counters["strict_nonocc"] = s->strict.nonocc;
+  state.counters["strict_all"] = s->strict.all;
+  state.counters["filled_nonocc"] = s->filled.nonocc;
+  state.counters["filled_all"] = s->filled.all;
+}
+
+// One matcher with its arena, sized at "init" for a budget.
+struct Matcher {
+  std::vector<std::byte> block;
+  petra::Arena arena;
+  petra::GraphCutMatcher m;
+  explicit Matcher(const petra::GraphCutBudget& b)
+      : block(petra::GraphCutMatcher::bytes_needed(b)), arena(block) {
+    if (!m.init(arena, b).ok()) {
+      std::fprintf(stderr, "bench_graphcut: init failed\n");
+      std::exit(1);
+    }
+  }
+};
+
+void BM_GraphCut(benchmark::State& state, const char* name) {
+  const MiddleburyData& d = scene(name);
+  const int w = d.left.width, h = d.left.height;
+  Matcher mt({w, h, d.scene->disp_max + 1});
+  std::vector<std::int16_t> q4(static_cast<std::size_t>(w) * h);
+  petra::DisparityMap out{petra::ImageView<std::int16_t>(q4.data(), w, h), {}};
+  petra::GraphCutParams p;
+  p.disp_max = d.scene->disp_max;
+  if (const char* c = std::getenv("PETRA_GC_CYCLES")) p.max_cycles = std::atoi(c);
+  const petra::StereoInput in{d.left.view(), d.right.view()};
+  petra::GraphCutReport r;
+  for (auto _ : state) {
+    auto rep = mt.m.match(in, {0, 0, w, h}, p, out);
+    if (!rep) {
+      state.SkipWithError(rep.error().message);
+      return;
+    }
+    r = *rep;
+  }
+  report(state, petra::eval::to_float_image(out, w, h), d);
+  state.counters["cycles"] = r.cycles;
+  state.counters["expansions"] = r.expansions;
+  state.counters["K"] = r.occlusion_k;
+  state.counters["MB"] = static_cast<double>(mt.block.size()) / 1e6;
+}
+
+#ifdef PETRA_HAVE_OPENCV
+petra::io::FloatImage from_cv(const cv::Mat& d16, int dmin) {
+  petra::io::FloatImage out(d16.cols, d16.rows);
+  for (int y = 0; y < d16.rows; ++y)
+    for (int x = 0; x < d16.cols; ++x) {
+      const short v = d16.at<short>(y, x);
+      out.data[static_cast<std::size_t>(y) * d16.cols + x] =
+          v < dmin * 16 ? std::numeric_limits<float>::infinity() : static_cast<float>(v) / 16.0f;
+    }
+  return out;
+}
+
+// The peer's settings of shared/data/README.md (speckle window 100 px, range
+// 2 px: these reproduce its tsukuba and venus figures).
+void BM_Sgbm(benchmark::State& state, const char* name) {
+  cv::setNumThreads(1);
+  const MiddleburyData& d = scene(name);
+  const int w = d.left.width, h = d.left.height;
+  cv::Mat l(h, w, CV_8U, const_cast<std::uint8_t*>(d.left.pixels.data()));
+  cv::Mat r(h, w, CV_8U, const_cast<std::uint8_t*>(d.right.pixels.data()));
+  const int ndisp = (d.scene->disp_max + 1 + 15) / 16 * 16;
+  auto sgbm = cv::StereoSGBM::create(0, ndisp, 5, 200, 800, 0, 0, 10, 100, 2);
+  cv::Mat out;
+  for (auto _ : state) {
+    sgbm->compute(l, r, out);
+    benchmark::DoNotOptimize(out.data);
+  }
+  report(state, from_cv(out, 0), d);
+}
+#endif
+
+// The flight case and the scaling table: square ROIs centred on cones
+// (textured, slanted surfaces), n disparities centred on the ROI's true
+// disparities, as an operator sets the range from the scene.
+void BM_GraphCutRoi(benchmark::State& state) {
+  const MiddleburyData& d = scene("cones");
+  const int side = static_cast<int>(state.range(0));
+  const int count = static_cast<int>(state.range(1));
+  const int w = d.left.width, h = d.left.height;
+  const petra::Rect roi{(w - side) / 2, (h - side) / 2, side, side};
+  double lo = 1e9, hi = -1e9;
+  for (int y = roi.y; y < roi.y + roi.h; ++y)
+    for (int x = roi.x; x < roi.x + roi.w; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * w + x;
+      if (d.known[i] == 0) continue;
+      lo = std::min(lo, static_cast<double>(d.gt.data[i]));
+      hi = std::max(hi, static_cast<double>(d.gt.data[i]));
+    }
+  Matcher mt({side, side, count});
+  std::vector<std::int16_t> q4(static_cast<std::size_t>(side) * side);
+  petra::DisparityMap out{petra::ImageView<std::int16_t>(q4.data(), side, side), {}};
+  petra::GraphCutParams p;
+  p.disp_min = std::max(0, static_cast<int>((lo + hi) / 2) - count / 2);
+  p.disp_max = p.disp_min + count - 1;
+  const petra::StereoInput in{d.left.view(), d.right.view()};
+  petra::GraphCutReport r;
+  for (auto _ : state) {
+    auto rep = mt.m.match(in, roi, p, out);
+    if (!rep) {
+      state.SkipWithError(rep.error().message);
+      return;
+    }
+    r = *rep;
+  }
+  state.counters["cycles"] = r.cycles;
+  state.counters["expansions"] = r.expansions;
+  state.counters["disp_min"] = p.disp_min;
+  state.counters["MB"] = static_cast<double>(mt.block.size()) / 1e6;
+}
+
+const bool registered = [] {
+  for (const auto& s : petra::eval::middlebury_scenes()) {
+    benchmark::RegisterBenchmark((std::string("GraphCut/") + s.name).c_str(), BM_GraphCut, s.name)
+        ->Unit(benchmark::kMillisecond)
+        ->MeasureProcessCPUTime()
+        ->Iterations(1);
+#ifdef PETRA_HAVE_OPENCV
+    benchmark::RegisterBenchmark((std::string("Sgbm/") + s.name).c_str(), BM_Sgbm, s.name)
+        ->Unit(benchmark::kMillisecond)
+        ->MeasureProcessCPUTime();
+#endif
+  }
+  benchmark::RegisterBenchmark("GraphCutRoi", BM_GraphCutRoi)
+      ->Args({160, 42})
+      ->Args({80, 42})
+      ->Args({120, 42})
+      ->Args({240, 42})
+      ->Args({320, 42})
+      ->Args({160, 21})
+      ->Args({160, 84})
+      ->Unit(benchmark::kMillisecond)
+      ->MeasureProcessCPUTime();
+  return true;
+}();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,123 @@
+// Graph-cut matcher on the Middlebury pairs, scored bad-1 on the project's
+// convention (sim/eval/middlebury.hpp, ../shared/data/README.md).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <string>
+#include <vector>
+
+#include "algo/match_graphcut.hpp"
+#include "sim/eval/disparity_image.hpp"
+#include "sim/eval/middlebury.hpp"
+
+namespace petra {
+namespace {
+
+double thread_cpu_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+struct Outcome {
+  eval::MiddleburyScore score;
+  GraphCutReport report;
+  double cpu_s = 0;
+};
+
+// Whole image, budget sized for it (as `petra stereo --method gc` does).
+Outcome run_scene(const eval::MiddleburyScene& s, const GraphCutParams& base) {
+  Outcome o;
+  auto data = eval::load_middlebury(s, eval::default_data_root(PETRA_SOURCE_DIR));
+  EXPECT_TRUE(data.ok()) << (data ? "" : data.error().message);
+  if (!data) return o;
+  const int w = data->left.width, h = data->left.height;
+  const GraphCutBudget budget{w, h, s.disp_max + 1};
+  std::vector<std::byte> block(GraphCutMatcher::bytes_needed(budget));
+  Arena arena(block);
+  GraphCutMatcher m;
+  EXPECT_TRUE(m.init(arena, budget).ok());
+  std::vector<std::int16_t> q4(static_cast<std::size_t>(w) * h);
+  DisparityMap out{ImageView<std::int16_t>(q4.data(), w, h), {}};
+  GraphCutParams p = base;
+  p.disp_min = 0;
+  p.disp_max = s.disp_max;
+  const StereoInput in{data->left.view(), data->right.view()};
+  const double t0 = thread_cpu_s();
+  auto rep = m.match(in, {0, 0, w, h}, p, out);
+  o.cpu_s = thread_cpu_s() - t0;
+  EXPECT_TRUE(rep.ok()) << (rep ? "" : rep.error().message);
+  if (!rep) return o;
+  o.report = *rep;
+  auto score = eval::score_middlebury(eval::to_float_image(out, w, h).view(), *data);
+  EXPECT_TRUE(score.ok());
+  if (score) o.score = *score;
+  std::printf("%-8s strict %5.2f / %5.2f  filled %5.2f / %5.2f (nonocc / all)  K %d l1 %d l2 %d  "
+              "cycles %d expansions %d  E %lld  %.2f s cpu\n",
+              s.name, o.score.strict.nonocc, o.score.strict.all, o.score.filled.nonocc,
+              o.score.filled.all, o.report.occlusion_k, o.report.lambda1, o.report.lambda2,
+              o.report.cycles, o.report.expansions, static_cast<long long>(o.report.energy),
+              o.cpu_s);
+  return o;
+}
+
+// Accuracy with the default parameters (seed 1). Where the matcher meets a
+// target of the issue the bound is that target; where it does not, the bound
+// is a regression guard just above the measured figure and the comment says
+// so (docs/graphcut.md). The whole-image runs take a few seconds each: the
+// matcher is compiled with -O2 even in Debug (algo/CMakeLists.txt); Aloe and
+// Baby1 run in the benchmark (tests/bench/bench_graphcut.cpp).
+struct Bound {
+  const char* scene;
+  double strict_nonocc, filled_nonocc, filled_all;
+};
+constexpr Bound kBounds[] = {
+    // strict: reference 4.26 not met (4.28): guard; filled all: published 2.01.
+    {"tsukuba", 4.40, 6.15, 2.01},
+    // strict: reference 1.73; filled nonocc: OpenCV SGBM 1.22 (stricter than published 1.64).
+    {"venus", 1.73, 1.22, 100},
+    // strict: reference 13.06 not met (13.32): guard; filled nonocc: SGBM
+    // 13.13 (published 11.2 not met: 12.70).
+    {"teddy", 13.50, 13.13, 100},
+    // strict: reference 7.57; filled nonocc: published 5.36 and SGBM 6.20 not
+    // met (6.28): guard.
+    {"cones", 7.57, 6.45, 100},
+    // No published or reference figures: SGBM of the same benchmark run.
+    {"sawtooth", 6.41, 1.22, 100},
+    {"map", 11.88, 1.01, 100},
+};
+
+TEST(GraphCutMiddlebury, Bad1WithinTargetsOrGuards) {
+  for (const Bound& b : kBounds) {
+    const eval::MiddleburyScene* s = eval::find_middlebury_scene(b.scene);
+    ASSERT_NE(s, nullptr) << b.scene;
+    const Outcome o = run_scene(*s, GraphCutParams{});
+    EXPECT_LE(o.score.strict.nonocc, b.strict_nonocc) << b.scene;
+    EXPECT_LE(o.score.filled.nonocc, b.filled_nonocc) << b.scene;
+    EXPECT_LE(o.score.filled.all, b.filled_all) << b.scene;
+    EXPECT_EQ(o.report.cycles, 2) << b.scene;
+  }
+}
+
+// Exploration for tuning and the documentation, skipped unless asked:
+//   PETRA_GC_SCENES=tsukuba,cones [PETRA_GC_CYCLES=n PETRA_GC_SEED=s
+//   PETRA_GC_RANDOM=0|1 PETRA_GC_BM=0|1 PETRA_GC_PRUNE=0|1] <this test>
+TEST(GraphCutMiddlebury, Explore) {
+  const char* only = std::getenv("PETRA_GC_SCENES");
+  if (only == nullptr) GTEST_SKIP();
+  GraphCutParams p;
+  if (const char* c = std::getenv("PETRA_GC_CYCLES")) p.max_cycles = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_PRUNE")) p.prune = std::atoi(c) != 0;
+  if (const char* c = std::getenv("PETRA_GC_BM")) p.block_matching_start = std::atoi(c) != 0;
+  if (const char* c = std::getenv("PETRA_GC_RANDOM")) p.random_order = std::atoi(c) != 0;
+  if (const char* c = std::getenv("PETRA_GC_SEED")) p.seed = static_cast<std::uint32_t>(std::atoi(c));
+  for (const eval::MiddleburyScene& s : eval::middlebury_scenes()) {
+    if (std::string(only).find(s.name) == std::string::npos) continue;
+    run_scene(s, p);
+  }
+}
+
+}  // namespace
+}  // namespace petra
