@@ -21,7 +21,7 @@ struct Scratch {
   std::span<Eigen::Vector3d> normal, centroid, sample;
   std::span<std::uint8_t> sample_cls;
   std::span<double> area;
-  std::span<std::uint8_t> cls, support;
+  std::span<std::uint8_t> cls, support, depth;
   std::span<std::int32_t> queue;
 };
 
@@ -37,6 +37,9 @@ Result<Scratch> allocate(Arena& arena, std::size_t n) {
   if (!cls) return cls.error();
   auto support = arena.allocate<std::uint8_t>(n, "grind planes support");
   if (!support) return support.error();
+  auto depth = arena.allocate<std::uint8_t>(n, "grind planes border depth");
+  if (!depth) return depth.error();
+  s.depth = *depth;
   auto queue = arena.allocate<std::int32_t>(n, "grind planes queue");
   if (!queue) return queue.error();
   auto sample = arena.allocate<Eigen::Vector3d>(kCMeansSamples, "c-means samples");
@@ -107,6 +110,41 @@ void largest_patch(std::span<const MeshTriangle> tris, const Scratch& s, std::ui
   }
 }
 
+// Marks depth[i] = 1..rings for the patch triangles (support == 1) within
+// `rings` edge steps of the patch border, 0 for the core beyond; returns the
+// core's triangle count. Breadth-first from the border, explicit queue.
+std::size_t erode(std::span<const MeshTriangle> tris, const Scratch& s, int rings) {
+  const std::size_t n = tris.size();
+  std::size_t head = 0, tail = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    s.depth[i] = 0;
+    if (s.support[i] != 1) continue;
+    for (int e = 0; e < 3; ++e) {
+      const std::int32_t nb = tris[i].n[e];
+      if (nb < 0 || s.support[static_cast<std::size_t>(nb)] != 1) {
+        s.depth[i] = 1;
+        s.queue[tail++] = static_cast<std::int32_t>(i);
+        break;
+      }
+    }
+  }
+  while (head < tail) {
+    const std::size_t t = static_cast<std::size_t>(s.queue[head++]);
+    if (s.depth[t] >= rings) continue;
+    for (int e = 0; e < 3; ++e) {
+      const std::int32_t nb = tris[t].n[e];
+      if (nb < 0) continue;
+      const std::size_t u = static_cast<std::size_t>(nb);
+      if (s.support[u] != 1 || s.depth[u] != 0) continue;
+      s.depth[u] = static_cast<std::uint8_t>(s.depth[t] + 1);
+      s.queue[tail++] = nb;
+    }
+  }
+  std::size_t core = 0;
+  for (std::size_t i = 0; i < n; ++i) core += s.support[i] == 1 && s.depth[i] == 0;
+  return core;
+}
+
 }  // namespace
 
 int cluster_count(int c) {
@@ -149,13 +187,16 @@ Status validate(const GrindParams& p) {
     return Error::make(Errc::invalid_argument,
                        "grind planes: merge_angle_deg %.3g or merge_distance_mm %.3g invalid",
                        p.merge_angle_deg, p.merge_distance_mm);
+  if (p.edge_rings < 0 || p.edge_rings > 50)
+    return Error::make(Errc::invalid_argument, "grind planes: edge_rings %d not in 0..50",
+                       p.edge_rings);
   if (!(p.min_trim_band_mm > 0.0))
     return Error::make(Errc::invalid_argument, "grind planes: min_trim_band_mm must be > 0");
   return validate(p.cmeans);
 }
 
 std::size_t grind_planes_scratch_bytes(std::size_t n) {
-  return 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<double>(n) + 2 * bytes_for<std::uint8_t>(n) +
+  return 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<double>(n) + 3 * bytes_for<std::uint8_t>(n) +
          bytes_for<std::int32_t>(n) + bytes_for<Eigen::Vector3d>(kCMeansSamples) +
          bytes_for<std::uint8_t>(kCMeansSamples);
 }
@@ -274,38 +315,60 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
       if (!f) break;
       fit = *f;
       have = true;
-      if (fit.plane.normal.dot(camera - fit.centroid) < 0) {
-        fit.plane.normal = -fit.plane.normal;
-        fit.plane.d = -fit.plane.d;
-      }
-      if (round == 2) break;
       // Trim the patch to the triangles that agree with the plane.
       const double band = std::max(3.0 * fit.rms, params.min_trim_band_mm);
+      Eigen::Vector3d up = fit.plane.normal;
+      if (up.dot(camera - fit.centroid) < 0) up = -up;
       for (std::size_t i = 0; i < n; ++i) {
         if (s.support[i] != 1) continue;
-        const bool agrees = s.normal[i].dot(fit.plane.normal) >= cos_inlier &&
+        const bool agrees = s.normal[i].dot(up) >= cos_inlier &&
                             std::abs(fit.plane.distance(s.centroid[i])) <= band;
         if (!agrees) s.support[i] = 3;  // dropped
       }
     }
-    double area = 0;
+    // The final plane from the patch's core: the matcher's window rounds
+    // depth over a few pixels at every crease, so the rings of triangles
+    // along the patch's border bend towards the neighbouring faces.
+    std::size_t patch = 0, core = erode(tris, s, params.edge_rings);
+    for (std::size_t i = 0; i < n; ++i) patch += s.support[i] == 1;
+    const bool use_core = core >= 20 && 4 * core >= patch;
+    auto in_fit = [&](std::size_t i) {
+      return s.support[i] == 1 && (!use_core || s.depth[i] == 0);
+    };
+    if (have) {
+      auto f = fit_plane_tls_by<double>(
+          3 * n,
+          [&](std::size_t j) -> const Eigen::Vector3d& {
+            return xyz[static_cast<std::size_t>(tris[j / 3].v[j % 3])];
+          },
+          [&](std::size_t j) { return in_fit(j / 3); });
+      if (f) fit = *f;
+      if (fit.plane.normal.dot(camera - fit.centroid) < 0) {
+        fit.plane.normal = -fit.plane.normal;
+        fit.plane.d = -fit.plane.d;
+      }
+    }
+    double area = 0, core_area = 0;
     Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
     std::size_t count = 0;
     for (std::size_t i = 0; i < n; ++i) {
       if (s.support[i] != 1) continue;
       area += s.area[i];
-      weighted += s.area[i] * s.centroid[i];
       ++count;
       triangle_plane[i] = static_cast<std::uint8_t>(k);
+      if (in_fit(i)) {
+        weighted += s.area[i] * s.centroid[i];
+        core_area += s.area[i];
+      }
     }
     plane.triangles = count;
     plane.area_mm2 = area;
-    if (!have || count == 0 || !(area > 0)) {
+    if (!have || count == 0 || !(area > 0) || !(core_area > 0)) {
       plane.verdict = PlaneVerdict::no_support;
       return;
     }
     plane.normal = fit.plane.normal;
-    const Eigen::Vector3d centre = weighted / area;
+    const Eigen::Vector3d centre = weighted / core_area;
     plane.centroid_mm = centre - fit.plane.distance(centre) * fit.plane.normal;  // onto the plane
     plane.rms_mm = fit.rms;
     plane.view_angle_deg = angle_deg(plane.normal, camera - plane.centroid_mm);

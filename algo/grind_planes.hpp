@@ -19,8 +19,10 @@
 //   4. per class (Petra adds): its largest edge-connected patch, a trimmed
 //      total-least-squares plane through that patch's vertices (triangles more
 //      than inlier_angle_deg off the plane normal or farther than 3 RMS are
-//      dropped, twice), normal out of the rock, centroid (area-weighted mean of
-//      the supporting triangles' centroids, on the plane), supporting area,
+//      dropped, twice), then refitted on the patch's core (edge_rings rings of
+//      triangles along its border left out: the matcher rounds every crease);
+//      normal out of the rock, centroid (area-weighted mean of the core
+//      triangles' centroids, on the plane), supporting area (whole patch),
 //      RMS flatness and triangle count;
 //      Classes whose planes agree within merge_angle_deg and whose centroids
 //      lie within merge_distance_mm of each other's plane are merged (one face
@@ -59,6 +61,7 @@ struct GrindParams {
   double max_rms_mm = 1.5;            // flatness limit
   double inlier_angle_deg = 12.0;     // a triangle supports a plane within this angle
   double min_trim_band_mm = 0.3;      // floor of the 3-RMS distance band
+  int edge_rings = 4;                 // border rings left out of the final fit
   double merge_angle_deg = 8.0;       // two classes' planes this close in direction ...
   double merge_distance_mm = 3.0;     // ... and each centroid this near the other plane: merged
   CMeansParams cmeans;

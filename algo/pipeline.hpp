@@ -37,7 +37,10 @@ struct PipelineBudget {
 Status validate(const PipelineBudget& b);
 
 struct PipelineParams {
-  double shadow_fraction = 0.08;  // expected shadow share of the ROI (SEED.md 1), [0, 1)
+  // Expected shadow share of the ROI (SEED.md 1), [0, 1). Only the darkest
+  // 1 %: self-shadowed rock faces are grind candidates and still match
+  // (docs/reconstruction.md has the scene-set figures for 0..8 %).
+  double shadow_fraction = 0.01;
   RangeSearchParams range;
   MatchDpParams match;  // disp_min/max are set per run by the range search
   ReconstructionParams reconstruction;

@@ -30,9 +30,12 @@
 namespace petra {
 
 // A Tsai camera's parameters in scalar type S (eq. 4-7 use nothing else).
+// The pixel pitch is held as pixels per mm (sx/dx, 1/dy): Xd = (u - cx) dx/sx
+// becomes a division by a number near 200, which a Q format holds to 1e-7,
+// where dx = 0.00465 mm itself would lose 1e-3 in Q47.16.
 template <class S>
 struct Eq8Camera {
-  S f_mm{}, kappa1{}, sx{}, cx_px{}, cy_px{}, dx_mm{}, dy_mm{};
+  S f_mm{}, kappa1{}, cx_px{}, cy_px{}, px_per_mm_x{}, px_per_mm_y{};
   Mat3T<S> R = Mat3T<S>::Identity();
   Vec3T<S> T_mm = Vec3T<S>::Zero();
 };
@@ -42,11 +45,10 @@ Eq8Camera<S> eq8_camera(const TsaiCamera& c) {
   Eq8Camera<S> e;
   e.f_mm = S(c.f_mm);
   e.kappa1 = S(c.kappa1);
-  e.sx = S(c.sx);
   e.cx_px = S(c.cx_px);
   e.cy_px = S(c.cy_px);
-  e.dx_mm = S(c.dx_mm);
-  e.dy_mm = S(c.dy_mm);
+  e.px_per_mm_x = S(c.sx / c.dx_mm);
+  e.px_per_mm_y = S(1.0 / c.dy_mm);
   for (int i = 0; i < 3; ++i) {
     e.T_mm(i) = S(c.T_mm(i));
     for (int j = 0; j < 3; ++j) e.R(i, j) = S(c.R(i, j));
@@ -57,8 +59,8 @@ Eq8Camera<S> eq8_camera(const TsaiCamera& c) {
 // Adds one camera's two rows of eq. 8 to the normal equations M x = b.
 template <class S>
 void add_eq8_rows(const Eq8Camera<S>& c, const Vec2T<S>& uv, Mat3T<S>& m, Vec3T<S>& b) {
-  const S xd = (uv(0) - c.cx_px) * c.dx_mm / c.sx;
-  const S yd = (uv(1) - c.cy_px) * c.dy_mm;
+  const S xd = (uv(0) - c.cx_px) / c.px_per_mm_x;
+  const S yd = (uv(1) - c.cy_px) / c.px_per_mm_y;
   const S radial = S(1) + c.kappa1 * (xd * xd + yd * yd);
   const S xu = radial * xd;  // A (left) or C (right)
   const S yu = radial * yd;  // B (left) or D (right)

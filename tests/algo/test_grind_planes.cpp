@@ -120,14 +120,18 @@ TEST(GrindPlanes, ThreeVisibleFacesOfARidgeRock) {
   EXPECT_EQ(seen[0], 1);  // roof +x
   EXPECT_EQ(seen[1], 1);  // roof -x
   EXPECT_EQ(seen[5], 1);  // front wall (-y)
-  // Labels name the ranked plane of each supporting triangle.
-  std::size_t labelled[3] = {};
+  // Labels name the ranked candidate each supporting triangle belongs to.
+  std::size_t labelled[kMaxClasses] = {};
   for (auto l : labels)
     if (l != 0xFF) {
-      ASSERT_LT(l, 3);
+      ASSERT_LT(l, r->count);
       ++labelled[l];
     }
-  for (int k = 0; k < 3; ++k) EXPECT_EQ(labelled[k], r->planes[k].triangles);
+  for (int k = 0; k < r->count; ++k) EXPECT_EQ(labelled[k], r->planes[k].triangles);
+  // The extra classes (cluster_count(3) = 6) were merged into faces or left
+  // as small rejected candidates.
+  EXPECT_EQ(cluster_count(3), 6);
+  for (int k = 3; k < r->count; ++k) EXPECT_NE(r->planes[k].verdict, PlaneVerdict::accepted);
 }
 
 TEST(GrindPlanes, NoisyMeshStillMeetsTheAccuracyTargets) {
@@ -153,10 +157,14 @@ TEST(GrindPlanes, RejectionsCarryTheirReason) {
   auto r = run(m, 3, p, labels);
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r->accepted, 1);
-  EXPECT_EQ(r->count, 3);
   EXPECT_LT(r->planes[0].view_angle_deg, 45);
-  EXPECT_EQ(r->planes[1].verdict, PlaneVerdict::faces_away);
-  EXPECT_EQ(r->planes[2].verdict, PlaneVerdict::faces_away);
+  int roof = 0;  // the two large roof facets (small leftovers may face away too)
+  for (int k = 1; k < r->count; ++k)
+    if (r->planes[k].area_mm2 > 1000) {
+      EXPECT_EQ(r->planes[k].verdict, PlaneVerdict::faces_away);
+      ++roof;
+    }
+  EXPECT_EQ(roof, 2);
   p = {};
   p.grinder_diameter_mm = 200;  // bigger than the rock
   r = run(m, 3, p, labels);
@@ -164,6 +172,26 @@ TEST(GrindPlanes, RejectionsCarryTheirReason) {
   EXPECT_EQ(r->accepted, 0);
   for (int k = 0; k < r->count; ++k) EXPECT_EQ(r->planes[k].verdict, PlaneVerdict::too_small);
   EXPECT_STREQ(verdict_name(PlaneVerdict::too_small), "smaller than the grinder footprint");
+}
+
+TEST(GrindPlanes, FewerWantedThanQualifyKeepsTheLargest) {
+  const RockMesh& m = rock_mesh(0.0);
+  std::vector<std::uint8_t> labels;
+  auto three = run(m, 3, GrindParams{}, labels);
+  ASSERT_TRUE(three.ok());
+  auto two = run(m, 2, GrindParams{}, labels);
+  ASSERT_TRUE(two.ok());
+  ASSERT_EQ(two->accepted, 2);
+  // The same two largest faces, and the third reported as surplus.
+  for (int k = 0; k < 2; ++k)
+    EXPECT_LT(angle_deg(two->planes[k].normal, three->planes[k].normal), 0.05);
+  bool surplus = false;
+  for (int k = 2; k < two->count; ++k) surplus |= two->planes[k].verdict == PlaneVerdict::surplus;
+  EXPECT_TRUE(surplus);
+  auto one = run(m, 1, GrindParams{}, labels);
+  ASSERT_TRUE(one.ok());
+  EXPECT_EQ(one->accepted, 1);
+  EXPECT_LT(angle_deg(one->planes[0].normal, three->planes[0].normal), 0.05);
 }
 
 TEST(GrindPlanes, BadInputIsNamed) {

@@ -53,9 +53,10 @@ TEST(Reconstruction, DisparityToRankedPlanesOnARidgeRock) {
   EXPECT_EQ(scope.allocations(), 0u);
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_LE(arena.high_water(), reconstruction_arena_bytes(budget));
-  EXPECT_EQ(timings.count, 6u);
+  EXPECT_EQ(timings.count, 7u);
   EXPECT_STREQ(timings.steps[0].name, "mean filter");
-  EXPECT_STREQ(timings.steps[5].name, "grind planes");
+  EXPECT_STREQ(timings.steps[5].name, "normals");
+  EXPECT_STREQ(timings.steps[6].name, "grind planes");
   EXPECT_EQ(timings.steps[2].ns, 1000u);
   const auto& st = r->stats;
   EXPECT_EQ(st.dense_points, static_cast<long>(s.disp.q4.size()));  // every pixel hits
