@@ -75,7 +75,9 @@ Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
   products_.init(product_mem);
   std::byte* arena = take(arena_bytes);
   PETRA_ASSERT(at <= total);
-  return runner_.init(deps_.job, {arena, arena_bytes}, b.worker_stack_bytes, &health_, deps_.clock);
+  const PipelineBudget pb{b.image_width, b.image_height, b.cloud_points};
+  return runner_.init(deps_.job, {arena, arena_bytes}, pb, has_rig_ ? &rig_ : nullptr,
+                      b.worker_stack_bytes, &health_, deps_.clock);
 }
 
 void Executive::store_counter() {
