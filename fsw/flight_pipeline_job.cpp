@@ -10,9 +10,10 @@ namespace petra::fsw {
 
 namespace {
 
-// Largest ROI the flight job takes (rectified px): the paper's 640 x 480 window.
+// Largest ROI the flight job takes (rectified px): the paper's 640 x 480
+// window; the smallest it shrinks to for a small arena.
 constexpr int kMaxRoiWidth = 640;
-constexpr int kMaxRoiHeight = 480;
+constexpr int kMinRoiWidth = 64;
 constexpr std::size_t kSlack = 4 * 64;
 
 std::uint64_t monotonic_ns(void*) {
@@ -29,11 +30,11 @@ Step slot_of(const char* name) {
     Step step;
   };
   static constexpr Map kMap[] = {
-      {"rectify", Step::RECTIFY},          {"disparity range", Step::MATCH},
-      {"shadow", Step::SHADOW},            {"match", Step::MATCH},
-      {"mean filter", Step::RECONSTRUCT},  {"triangulate", Step::RECONSTRUCT},
-      {"delaunay", Step::RECONSTRUCT},     {"mesh filter", Step::RECONSTRUCT},
-      {"segmentation", Step::SEGMENT},     {"normals", Step::PLANES},
+      {"rectify", Step::RECTIFY},         {"disparity range", Step::MATCH},
+      {"shadow", Step::SHADOW},           {"match", Step::MATCH},
+      {"mean filter", Step::RECONSTRUCT}, {"triangulate", Step::RECONSTRUCT},
+      {"delaunay", Step::RECONSTRUCT},    {"mesh filter", Step::RECONSTRUCT},
+      {"segmentation", Step::SEGMENT},    {"normals", Step::PLANES},
       {"grind planes", Step::PLANES},
   };
   for (const Map& m : kMap)
@@ -59,9 +60,9 @@ std::size_t product_bytes(int roi_w, int roi_h, std::size_t cloud_points) {
 }
 
 // Class colours of the overlay (tint over the rectified left image).
-constexpr std::uint8_t kPlaneRgb[8][3] = {{230, 40, 40},  {40, 200, 40},  {40, 90, 240},
-                                          {240, 200, 0},  {200, 0, 200},  {0, 200, 200},
-                                          {255, 128, 0},  {128, 64, 255}};
+constexpr std::uint8_t kPlaneRgb[8][3] = {{230, 40, 40}, {40, 200, 40}, {40, 90, 240},
+                                          {240, 200, 0}, {200, 0, 200}, {0, 200, 200},
+                                          {255, 128, 0}, {128, 64, 255}};
 
 void tint(std::uint8_t* px, std::uint8_t gray, const std::uint8_t rgb[3]) {
   for (int c = 0; c < 3; ++c) px[c] = static_cast<std::uint8_t>((gray + 2 * rgb[c]) / 3);
@@ -132,8 +133,10 @@ Status make_products(const PipelineOutput& p, const RectifiedPair& pair, std::si
     const int cy = static_cast<int>(std::lround(c->uv_left.y())) - roi.y;
     for (int d = -6; d <= 6; ++d)
       for (int t = -1; t <= 1; ++t) {
-        if (cx + d >= 0 && cx + d < w && cy + t >= 0 && cy + t < h) std::memset(at(cx + d, cy + t), 255, 3);
-        if (cx + t >= 0 && cx + t < w && cy + d >= 0 && cy + d < h) std::memset(at(cx + t, cy + d), 255, 3);
+        if (cx + d >= 0 && cx + d < w && cy + t >= 0 && cy + t < h)
+          std::memset(at(cx + d, cy + t), 255, 3);
+        if (cx + t >= 0 && cx + t < w && cy + d >= 0 && cy + d < h)
+          std::memset(at(cx + t, cy + d), 255, 3);
       }
   }
   out.overlay_rgb = ImageView<const std::uint8_t>(rgb->data(), 3 * w, h);
@@ -146,7 +149,8 @@ Status make_products(const PipelineOutput& p, const RectifiedPair& pair, std::si
     if (!xyz) return xyz.error();
     for (std::size_t i = 0; i < keep; ++i) {
       const Eigen::Vector3d& q = r.xyz_mm[i * points / keep];
-      for (int c = 0; c < 3; ++c) (*xyz)[3 * i + static_cast<std::size_t>(c)] = static_cast<float>(q[c]);
+      for (int c = 0; c < 3; ++c)
+        (*xyz)[3 * i + static_cast<std::size_t>(c)] = static_cast<float>(q[c]);
     }
     out.cloud_xyz_mm = std::span<const float>(xyz->data(), 3 * keep);
   }
@@ -155,15 +159,32 @@ Status make_products(const PipelineOutput& p, const RectifiedPair& pair, std::si
 
 }  // namespace
 
-petra::PipelineBudget FlightPipelineJob::pipeline_budget(int image_width, int image_height) {
+namespace {
+
+petra::PipelineBudget roi_budget(int image_width, int image_height, int roi_width) {
   petra::PipelineBudget b;
   b.image_width = image_width;
   b.image_height = image_height;
-  b.max_roi_width = std::min(kMaxRoiWidth, image_width);
-  b.max_roi_height = std::min(kMaxRoiHeight, image_height);
+  b.max_roi_width = std::min(roi_width, image_width);
+  b.max_roi_height = std::min(roi_width * 3 / 4, image_height);
   const RangeSearchParams range;
   b.max_disparities = range.search_max_px - range.search_min_px + 1;
   return b;
+}
+
+std::size_t need(const petra::PipelineBudget& b, std::size_t cloud_points) {
+  return Pipeline::arena_bytes(b, petra::PipelineParams{}) +
+         product_bytes(b.max_roi_width, b.max_roi_height, cloud_points);
+}
+
+}  // namespace
+
+petra::PipelineBudget FlightPipelineJob::pipeline_budget(const PipelineBudget& budget) {
+  for (int w = kMaxRoiWidth; w > kMinRoiWidth; w -= 16) {
+    const petra::PipelineBudget b = roi_budget(budget.max_width, budget.max_height, w);
+    if (budget.arena_limit == 0 || need(b, budget.max_cloud_points) <= budget.arena_limit) return b;
+  }
+  return roi_budget(budget.max_width, budget.max_height, kMinRoiWidth);
 }
 
 petra::PipelineParams FlightPipelineJob::pipeline_params(double shadow_fraction) {
@@ -173,9 +194,7 @@ petra::PipelineParams FlightPipelineJob::pipeline_params(double shadow_fraction)
 }
 
 std::size_t FlightPipelineJob::arena_bytes(const PipelineBudget& budget) const {
-  const petra::PipelineBudget b = pipeline_budget(budget.max_width, budget.max_height);
-  return Pipeline::arena_bytes(b, pipeline_params(petra::PipelineParams{}.shadow_fraction)) +
-         product_bytes(b.max_roi_width, b.max_roi_height, budget.max_cloud_points);
+  return need(pipeline_budget(budget), budget.max_cloud_points);
 }
 
 Status FlightPipelineJob::init(const PipelineBudget& budget, const StereoRig* rig, Arena& arena) {
@@ -189,7 +208,12 @@ Status FlightPipelineJob::init(const PipelineBudget& budget, const StereoRig* ri
     return Error::make(Errc::capacity_exceeded,
                        "calib.json is for %dx%d images, budget.image_width/height is %dx%d",
                        rig->left.width, rig->left.height, budget.max_width, budget.max_height);
-  budget_ = pipeline_budget(rig->left.width, rig->left.height);
+  // The ROI sized for the budget, the image for the rig (smaller or equal: less memory).
+  budget_ = pipeline_budget(budget);
+  budget_.image_width = rig->left.width;
+  budget_.image_height = rig->left.height;
+  budget_.max_roi_width = std::min(budget_.max_roi_width, rig->left.width);
+  budget_.max_roi_height = std::min(budget_.max_roi_height, rig->left.height);
   return create(petra::PipelineParams{}.shadow_fraction);
 }
 

@@ -9,6 +9,9 @@
 //     ground plane, point counts, disparity range, step times in the fsw
 //     slots, and products built in the arena (disparity as 8-bit gray of the
 //     rectified ROI, an RGB overlay of the classes, the cloud in mm).
+// ROI size: the largest 4:3 rectified ROI (640 x 480 down to 64 x 48) whose
+// run fits the configured arena; larger ROIs are refused capacity_exceeded
+// naming both sizes (so a small budget.arena_mb still boots).
 // Parameters fixed at create (shadow fraction) come from the request: when
 // it differs from the one in force the tables are rebuilt in the same place
 // (same bytes), so a parameter change costs one rebuild, never memory.
@@ -31,8 +34,9 @@ class FlightPipelineJob final : public PipelineJob {
   Status run(const EvalRequest& request, Arena& arena, const std::atomic<bool>& cancel,
              EvalOutput& out) override;
 
-  // The pipeline's sizes for an executive budget (image size = the rig's).
-  static petra::PipelineBudget pipeline_budget(int image_width, int image_height);
+  // The pipeline's sizes for an executive budget: the largest rectified ROI
+  // (4:3, at most 640 x 480, at least 64 x 48) whose run fits arena_limit.
+  static petra::PipelineBudget pipeline_budget(const PipelineBudget& budget);
   static petra::PipelineParams pipeline_params(double shadow_fraction);
 
  private:

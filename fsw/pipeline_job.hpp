@@ -39,6 +39,7 @@ struct PipelineBudget {
   int max_width = 0;
   int max_height = 0;
   std::size_t max_cloud_points = 0;
+  std::size_t arena_limit = 0;  // bytes the arena will have (budget.arena_mb); 0: no limit
 };
 
 // One evaluation request: the pair, the operator's selection and the

@@ -19,8 +19,8 @@
 #include "cmd/command_packet.hpp"
 #include "cmd/param_defs.hpp"
 #include "hal/udp_link.hpp"
-#include "sim/ground/product_assembler.hpp"
 #include "sim/demo/demo_report.hpp"
+#include "sim/ground/product_assembler.hpp"
 #include "sim/ground/tlm_format.hpp"
 #include "sim/io/image_io.hpp"
 #include "tlm/event_defs.hpp"
@@ -152,30 +152,35 @@ double flight_shadow_fraction() {
   return 0;
 }
 
-std::string quote(const std::string& s) { return "'" + s + "'"; }
+std::string quote(const std::string& s) {
+  return "'" + s + "'";
+}
 
 // `petra eval` on the same pair, when this build has it: its planes.json and
 // pictures in dir/eval. Returns its planes.json text, or "" (with a line why).
 std::string run_petra_eval(const Options& o, const Scene& scene, const fs::path& dir,
                            double shadow_fraction, std::FILE* out) {
   if (std::system((quote(o.self_binary) + " eval --help >/dev/null 2>&1").c_str()) != 0) {
-    std::fprintf(out, "   (`petra eval` is not in this build: no ground-side run to compare with)\n");
+    std::fprintf(out,
+                 "   (`petra eval` is not in this build: no ground-side run to compare with)\n");
     return "";
   }
   const fs::path eval_dir = dir / "eval";
   char roi[80], click[40] = "";
   std::snprintf(roi, sizeof roi, "%d,%d,%d,%d", scene.roi.x, scene.roi.y, scene.roi.w, scene.roi.h);
-  if (scene.has_click) std::snprintf(click, sizeof click, " --click %d,%d", scene.click_u, scene.click_v);
+  if (scene.has_click)
+    std::snprintf(click, sizeof click, " --click %d,%d", scene.click_u, scene.click_v);
   char sf[32];
   std::snprintf(sf, sizeof sf, "%.17g", shadow_fraction);
   const std::string cmd = quote(o.self_binary) + " eval --calib " + quote(scene.calib.string()) +
                           " --left " + quote((dir / "pairs/left.pgm").string()) + " --right " +
-                          quote((dir / "pairs/right.pgm").string()) + " --roi " + roi + " --planes " +
-                          std::to_string(scene.planes) + click + " --shadow-fraction " + sf +
-                          " --out " + quote(eval_dir.string()) + " > " +
-                          quote((dir / "eval.txt").string()) + " 2>&1";
+                          quote((dir / "pairs/right.pgm").string()) + " --roi " + roi +
+                          " --planes " + std::to_string(scene.planes) + click +
+                          " --shadow-fraction " + sf + " --out " + quote(eval_dir.string()) +
+                          " > " + quote((dir / "eval.txt").string()) + " 2>&1";
   if (std::system(cmd.c_str()) != 0) {
-    std::fprintf(out, "   `petra eval` on the same pair failed: %s\n", read_all(dir / "eval.txt").c_str());
+    std::fprintf(out, "   `petra eval` on the same pair failed: %s\n",
+                 read_all(dir / "eval.txt").c_str());
     return "";
   }
   return read_all(eval_dir / "planes.json");
@@ -208,7 +213,8 @@ int run(const Options& o, std::FILE* out) {
   auto scene = load_scene(scene_dir);
   if (!scene) return fail(scene.error().message);
   if (scene->calib.empty())
-    std::fprintf(out, "   (no calib.json in the scene: petra-fsw will have no rig to reconstruct with)\n");
+    std::fprintf(
+        out, "   (no calib.json in the scene: petra-fsw will have no rig to reconstruct with)\n");
   auto left = io::read_gray_image(scene->left.string());
   auto right = io::read_gray_image(scene->right.string());
   if (!left) return fail(left.error().message);
@@ -353,9 +359,9 @@ int run(const Options& o, std::FILE* out) {
     const Reason why = static_cast<Reason>(ack.reason);
     return fail(std::string("EVALUATE ") + ack_stage_name(static_cast<AckStage>(ack.stage)) + ": " +
                 reason_name(why) +
-                (why == Reason::NO_PIPELINE       ? " (this build has no evaluation pipeline)"
+                (why == Reason::NO_PIPELINE      ? " (this build has no evaluation pipeline)"
                  : why == Reason::PIPELINE_ERROR ? " (the EVAL_FAILED event above says why)"
-                                                  : ""));
+                                                 : ""));
   }
   // The products follow the planes: wait for the disparity and the overlay.
   auto have = [&](std::uint8_t kind) {
@@ -394,10 +400,13 @@ int run(const Options& o, std::FILE* out) {
   std::fprintf(out, "8. look at these in %s:\n", dir.c_str());
   std::fprintf(out, "   roi.png            the operator's ROI on the left image\n");
   for (const auto& p : pictures)
-    if (p.ends_with(".png")) std::fprintf(out, "   %-18s received as telemetry\n", fs::path(p).filename().c_str());
+    if (p.ends_with(".png"))
+      std::fprintf(out, "   %-18s received as telemetry\n", fs::path(p).filename().c_str());
   std::fprintf(out, "   planes.json        the grind planes received (contract format)\n");
   if (!eval_json.empty())
-    std::fprintf(out, "   eval/              petra eval's planes.json, overlay.png, disparity.png, cloud.ply\n");
+    std::fprintf(
+        out,
+        "   eval/              petra eval's planes.json, overlay.png, disparity.png, cloud.ply\n");
   (void)pass;
   fsw.stop();
   return planes.empty() ? 1 : 0;

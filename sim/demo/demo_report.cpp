@@ -11,7 +11,7 @@ namespace petra::demo {
 
 namespace {
 
-constexpr const char* kStepNames[] = {"acquire", "rectify",   "shadow",  "match",
+constexpr const char* kStepNames[] = {"acquire",     "rectify", "shadow", "match",
                                       "reconstruct", "segment", "planes", "products"};
 
 std::vector<tlm::GrindPlane> ranked(const Received& r) {
@@ -33,14 +33,16 @@ void print_received(const Received& r, std::FILE* out) {
   std::fprintf(out, "   %-4s  %-27s  %-26s  %9s  %13s  %9s\n", "rank", "normal (out of the rock)",
                "centroid mm", "area mm2", "flatness mm", "triangles");
   for (const auto& p : planes)
-    std::fprintf(out, "   %-4u  %-27s  %-26s  %9.0f  %13.2f  %9u\n", p.rank + 1u,
-                 fmt("(%.3f, %.3f, %.3f)", p.normal[0], p.normal[1], p.normal[2]).c_str(),
-                 fmt("(%.1f, %.1f, %.1f)", p.centroid_mm[0], p.centroid_mm[1], p.centroid_mm[2]).c_str(),
-                 p.area_mm2, p.flatness_rms_mm, p.triangles);
+    std::fprintf(
+        out, "   %-4u  %-27s  %-26s  %9.0f  %13.2f  %9u\n", p.rank + 1u,
+        fmt("(%.3f, %.3f, %.3f)", p.normal[0], p.normal[1], p.normal[2]).c_str(),
+        fmt("(%.1f, %.1f, %.1f)", p.centroid_mm[0], p.centroid_mm[1], p.centroid_mm[2]).c_str(),
+        p.area_mm2, p.flatness_rms_mm, p.triangles);
   if (planes.empty()) std::fprintf(out, "   (no plane qualified)\n");
   if (r.ground)
-    std::fprintf(out, "   ground: normal (%.4f, %.4f, %.4f), d %.1f mm, %u points\n", r.ground->normal[0],
-                 r.ground->normal[1], r.ground->normal[2], r.ground->d_mm, r.ground->points);
+    std::fprintf(out, "   ground: normal (%.4f, %.4f, %.4f), d %.1f mm, %u points\n",
+                 r.ground->normal[0], r.ground->normal[1], r.ground->normal[2], r.ground->d_mm,
+                 r.ground->points);
   if (!r.result) return;
   const tlm::EvalResult& e = *r.result;
   std::fprintf(out, "   dense points %u, after the mean filter %u, disparity %.1f .. %.1f px\n",
@@ -95,7 +97,8 @@ bool same_planes(const std::string& a, const std::string& b) {
       return false;
   }
   if (pa->ground.has_value() != pb->ground.has_value()) return false;
-  return !pa->ground || (pa->ground->normal == pb->ground->normal && pa->ground->d_mm == pb->ground->d_mm);
+  return !pa->ground ||
+         (pa->ground->normal == pb->ground->normal && pa->ground->d_mm == pb->ground->d_mm);
 }
 
 bool score_and_print(const std::string& truth_json, const std::string& planes_json_text,
@@ -125,9 +128,11 @@ bool score_and_print(const std::string& truth_json, const std::string& planes_js
     std::fprintf(out, "   %s\n", text.substr(at, end - at).c_str());
     at = end + 1;
   }
-  std::fprintf(out, "   verdict: %s (each truth face matched, normal within %.0f deg, centroid within %.0f mm "
-               "of the face's plane and on it)\n",
-               failures.empty() ? "PASS" : "FAIL", limits.max_normal_deg, limits.max_centroid_mm);
+  std::fprintf(
+      out,
+      "   verdict: %s (each truth face matched, normal within %.0f deg, centroid within %.0f mm "
+      "of the face's plane and on it)\n",
+      failures.empty() ? "PASS" : "FAIL", limits.max_normal_deg, limits.max_centroid_mm);
   return failures.empty();
 }
 

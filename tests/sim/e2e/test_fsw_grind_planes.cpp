@@ -17,8 +17,8 @@
 #include "algo/pipeline.hpp"
 #include "cmd/param_defs.hpp"
 #include "sim/io/image_io.hpp"
-#include "sim/score/planes_file.hpp"
 #include "sim/score/plane_score.hpp"
+#include "sim/score/planes_file.hpp"
 #include "sim/score/truth_file.hpp"
 
 namespace petra {
