@@ -25,6 +25,7 @@ void add_demo(CLI::App& app, Outcome& outcome);
 void add_calib(CLI::App& app, Outcome& outcome);
 void add_click(CLI::App& app, Outcome& outcome);
 void add_gnd(CLI::App& app, Outcome& outcome);
+void add_eval(CLI::App& app, Outcome& outcome);
 
 // Prints "petra <cmd>: <message>" on stderr and returns the exit code 1.
 int fail(const char* cmd, const char* message);

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   petra::cli::add_calib(app, outcome);
   petra::cli::add_click(app, outcome);
   petra::cli::add_gnd(app, outcome);
+  petra::cli::add_eval(app, outcome);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
