@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
+
+#include "cmd/param_defs.hpp"
 
 namespace petra::fsw {
 
@@ -15,6 +18,14 @@ namespace {
 constexpr int kMaxRoiWidth = 640;
 constexpr int kMinRoiWidth = 64;
 constexpr std::size_t kSlack = 4 * 64;
+
+// SHADOW_FRACTION's default: the tables are built for it at init, so the
+// first EVALUATE with default parameters rebuilds nothing.
+double flight_shadow_fraction() {
+  for (const ParamDesc& d : param_table())
+    if (d.id == static_cast<std::uint16_t>(ParamId::SHADOW_FRACTION)) return d.default_value;
+  return petra::PipelineParams{}.shadow_fraction;
+}
 
 std::uint64_t monotonic_ns(void*) {
   timespec t{};
@@ -77,8 +88,8 @@ Status make_products(const PipelineOutput& p, const RectifiedPair& pair, std::si
   // Disparity: 1..255 from the smallest to the largest match, 0 where none.
   auto gray = arena.allocate<std::uint8_t>(px, "disparity product");
   if (!gray) return gray.error();
-  std::int16_t lo = std::numeric_limits<std::int16_t>::max(), hi = lo;
-  hi = std::numeric_limits<std::int16_t>::min();
+  std::int16_t lo = std::numeric_limits<std::int16_t>::max();
+  std::int16_t hi = std::numeric_limits<std::int16_t>::min();
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const std::int16_t q = p.disparity.q4(x, y);
@@ -214,7 +225,7 @@ Status FlightPipelineJob::init(const PipelineBudget& budget, const StereoRig* ri
   budget_.image_height = rig->left.height;
   budget_.max_roi_width = std::min(budget_.max_roi_width, rig->left.width);
   budget_.max_roi_height = std::min(budget_.max_roi_height, rig->left.height);
-  return create(petra::PipelineParams{}.shadow_fraction);
+  return create(flight_shadow_fraction());
 }
 
 Status FlightPipelineJob::create(double shadow_fraction) {

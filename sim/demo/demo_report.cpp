@@ -1,6 +1,7 @@
 #include "sim/demo/demo_report.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "sim/score/planes_file.hpp"
@@ -20,9 +21,10 @@ std::vector<tlm::GrindPlane> ranked(const Received& r) {
   return p;
 }
 
-std::string fmt(const char* f, double a, double b, double c) {
+// "(x, y, z)" with `decimals` digits after the point.
+std::string vec3(const std::array<double, 3>& v, int decimals) {
   char s[96];
-  std::snprintf(s, sizeof s, f, a, b, c);
+  std::snprintf(s, sizeof s, "(%.*f, %.*f, %.*f)", decimals, v[0], decimals, v[1], decimals, v[2]);
   return s;
 }
 
@@ -33,11 +35,9 @@ void print_received(const Received& r, std::FILE* out) {
   std::fprintf(out, "   %-4s  %-27s  %-26s  %9s  %13s  %9s\n", "rank", "normal (out of the rock)",
                "centroid mm", "area mm2", "flatness mm", "triangles");
   for (const auto& p : planes)
-    std::fprintf(
-        out, "   %-4u  %-27s  %-26s  %9.0f  %13.2f  %9u\n", p.rank + 1u,
-        fmt("(%.3f, %.3f, %.3f)", p.normal[0], p.normal[1], p.normal[2]).c_str(),
-        fmt("(%.1f, %.1f, %.1f)", p.centroid_mm[0], p.centroid_mm[1], p.centroid_mm[2]).c_str(),
-        p.area_mm2, p.flatness_rms_mm, p.triangles);
+    std::fprintf(out, "   %-4u  %-27s  %-26s  %9.0f  %13.2f  %9u\n", p.rank + 1u,
+                 vec3(p.normal, 3).c_str(), vec3(p.centroid_mm, 1).c_str(), p.area_mm2,
+                 p.flatness_rms_mm, p.triangles);
   if (planes.empty()) std::fprintf(out, "   (no plane qualified)\n");
   if (r.ground)
     std::fprintf(out, "   ground: normal (%.4f, %.4f, %.4f), d %.1f mm, %u points\n",
