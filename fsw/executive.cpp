@@ -75,7 +75,9 @@ Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
   products_.init(product_mem);
   std::byte* arena = take(arena_bytes);
   PETRA_ASSERT(at <= total);
-  return runner_.init(deps_.job, {arena, arena_bytes}, b.worker_stack_bytes, &health_, deps_.clock);
+  const PipelineBudget pb{b.image_width, b.image_height, b.cloud_points, b.arena_bytes};
+  return runner_.init(deps_.job, {arena, arena_bytes}, pb, has_rig_ ? &rig_ : nullptr,
+                      b.worker_stack_bytes, &health_, deps_.clock);
 }
 
 void Executive::store_counter() {
@@ -130,7 +132,7 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
     has_rig_ = true;
   }
 
-  const PipelineBudget pb{b.image_width, b.image_height, b.cloud_points};
+  const PipelineBudget pb{b.image_width, b.image_height, b.cloud_points, b.arena_bytes};
   const std::size_t arena_bytes = deps.job != nullptr ? deps.job->arena_bytes(pb) : 0;
   if (arena_bytes > b.arena_bytes)
     return Error::make(Errc::capacity_exceeded,
