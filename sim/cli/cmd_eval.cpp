@@ -76,8 +76,10 @@ class Progress {
       if (current_ == nullptr) continue;
       const double s =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-      if (static_cast<int>(s) > reported_s_) {
-        reported_s_ = static_cast<int>(s);
+      // At 1 s, then every 5 s.
+      const int whole = static_cast<int>(s);
+      if (whole >= 1 && (reported_s_ == 0 || whole >= reported_s_ + 5)) {
+        reported_s_ = whole;
         std::fprintf(stderr, "petra eval: %s ... %d s\n", current_, reported_s_);
       }
     }
