@@ -24,8 +24,8 @@ class EstopMonitor {
   // One poll: drains pending edges, reads the level. The error, if any, is
   // kept in `last_error()` and reported as line_fault + asserted.
   EstopState poll();
-  // The operator acknowledged a stop that is no longer pressed.
-  void clear_latch() { state_.latched = state_.asserted; }
+  // The stop was acknowledged; the next poll latches again if it is still pressed.
+  void clear_latch() { state_.latched = false; }
   const Error& last_error() const { return error_; }
 
  private:
