@@ -51,7 +51,7 @@ void plane_basis(const Eigen::Vector3d& n, Eigen::Vector3d& a, Eigen::Vector3d& 
   b = n.cross(a).normalized();
 }
 
-std::array<Eigen::Vector3d, 4> patch(const GrindPlane& p) {
+std::array<Eigen::Vector3d, 4> patch(const OutputPlane& p) {
   const double half = 0.5 * std::clamp(p.area_mm2 > 0 ? std::sqrt(p.area_mm2) : 50.0, 25.0, 120.0);
   Eigen::Vector3d a, b;
   plane_basis(p.normal, a, b);
@@ -73,7 +73,7 @@ struct Scene3d {
 
 Scene3d build_scene(const ArmViewInput& in, const ArmView& view) {
   Scene3d s;
-  const GrindPlane& p = in.planes[in.chosen];
+  const OutputPlane& p = in.planes[in.chosen];
   for (std::size_t i = 0; i < in.planes.size(); ++i) {
     if (i != in.chosen) s.other_planes.push_back(patch(in.planes[i]));
   }
@@ -89,8 +89,8 @@ Scene3d build_scene(const ArmViewInput& in, const ArmView& view) {
   s.base = in.geometry.world_from_base.translation();
   s.up = in.geometry.world_from_base.linear().col(2);
   if (in.ground) {
-    const Eigen::Vector3d n = in.ground->head<3>();
-    const double d = (*in.ground)[3];
+    const Eigen::Vector3d n = in.ground->normal;
+    const double d = in.ground->d_mm;
     Eigen::Vector3d a, b;
     plane_basis(n, a, b);
     // A 100 mm grid under the base and the target.
@@ -203,7 +203,7 @@ Result<ArmView> plan_arm_view(const ArmViewInput& in) {
   }
   PETRA_TRY(arm::validate_geometry(in.geometry));
   PETRA_TRY(arm::validate_limits(in.limits));
-  const GrindPlane& p = in.planes[in.chosen];
+  const OutputPlane& p = in.planes[in.chosen];
   ArmView v;
   arm::ApproachRequest req;
   req.centroid_mm = p.centroid_mm;

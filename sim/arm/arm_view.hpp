@@ -14,16 +14,16 @@
 
 #include "algo/arm_trajectory.hpp"
 #include "sim/arm/canvas.hpp"
-#include "sim/arm/planes_file.hpp"
+#include "sim/score/planes_file.hpp"
 
 namespace petra::sim {
 
 struct ArmViewInput {
   arm::ArmGeometry geometry = arm::rover_arm_geometry();
   arm::JointLimits limits = arm::default_joint_limits();
-  std::vector<GrindPlane> planes;
+  std::vector<OutputPlane> planes;
   std::size_t chosen = 0;
-  std::optional<Eigen::Vector4d> ground;  // (normal, d_mm)
+  std::optional<GroundPlane> ground;
   double standoff_mm = 50.0;
   arm::JointVector start = arm::stow_pose();
 };

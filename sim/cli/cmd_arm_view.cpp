@@ -74,8 +74,8 @@ void add_arm_view(CLI::App& app, Outcome& outcome) {
     if (!planes_path.empty()) {
       auto text = io::read_text_file(planes_path);
       if (!text) return bad(text.error().message);
-      auto file = sim::parse_planes_json(*text);
-      if (!file) return bad(planes_path + ": " + file.error().message);
+      auto file = sim::parse_planes_json(*text, planes_path.c_str());
+      if (!file) return bad(file.error().message);
       if (plane_number < 1 || plane_number > static_cast<int>(file->planes.size())) {
         return bad("--plane " + std::to_string(plane_number) + ": the file has " +
                    std::to_string(file->planes.size()) + " planes");
@@ -86,7 +86,7 @@ void add_arm_view(CLI::App& app, Outcome& outcome) {
     } else {
       if (centroid_text.empty() || normal_text.empty())
         return bad("give --planes, or --centroid and --normal");
-      sim::GrindPlane p;
+      sim::OutputPlane p;
       if (!parse_numbers(centroid_text, 3, 3, v)) return bad("--centroid: expected x,y,z in mm");
       p.centroid_mm = Eigen::Vector3d(v[0], v[1], v[2]);
       if (!parse_numbers(normal_text, 3, 3, v)) return bad("--normal: expected nx,ny,nz");
@@ -99,8 +99,7 @@ void add_arm_view(CLI::App& app, Outcome& outcome) {
       if (!parse_numbers(ground_text, 4, 4, v)) return bad("--ground: expected nx,ny,nz,d_mm");
       const Eigen::Vector3d n(v[0], v[1], v[2]);
       if (n.norm() < 1e-9) return bad("--ground: zero normal");
-      in.ground =
-          Eigen::Vector4d(n.x() / n.norm(), n.y() / n.norm(), n.z() / n.norm(), v[3] / n.norm());
+      in.ground = sim::GroundPlane{n / n.norm(), v[3] / n.norm()};
     }
     if (!mount_text.empty()) {
       if (!parse_numbers(mount_text, 4, 4, v)) return bad("--mount: expected x,y,z,yaw_deg");

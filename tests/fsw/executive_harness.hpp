@@ -61,8 +61,12 @@ class ExecutiveHarness {
         R"({"uplink":{"host":"127.0.0.1","port":0,"key_file":"key.hex","counter_file":"counter.txt"},
       "downlink":{"host":"127.0.0.1","port":)" +
         std::to_string(ground_.local_port()) + R"(},"loop":)" + loop + R"(,
-      "budget":{"image_width":320,"image_height":240,"arena_mb":1,"tlm_queue_packets":)" +
-        std::to_string(queue_packets) + R"(,"worker_stack_kb":256,"cloud_points":100},
+      "budget":)" +
+        (budget.empty()
+             ? R"({"image_width":320,"image_height":240,"arena_mb":1,"tlm_queue_packets":)" +
+                   std::to_string(queue_packets) + R"(,"worker_stack_kb":256,"cloud_points":100})"
+             : budget) +
+        R"(,
       "camera":{"kind":"file","dir":"camera"})" +
         extra_ + "}";
     std::ofstream(dir_ / "fsw.json") << cfg;
@@ -72,7 +76,7 @@ class ExecutiveHarness {
     fsw::Dependencies deps;
     deps.camera = &camera_;
     deps.clock = &clock_;
-    deps.job = with_job_ ? &job : nullptr;
+    deps.job = pipeline != nullptr ? pipeline : with_job_ ? &job : nullptr;
     deps.arm = arm;
     deps.estop = estop;
     PETRA_TRY(exec_.init(*config, deps));
@@ -151,7 +155,9 @@ class ExecutiveHarness {
   void keep_dir() { keep_dir_ = true; }
 
   ScriptedPipelineJob job;
-  fsw::ArmPort* arm = nullptr;         // optional, set before boot()
+  fsw::PipelineJob* pipeline = nullptr;  // optional: replaces the scripted job (set before boot())
+  std::string budget;           // optional: the config's budget object instead of the small one
+  fsw::ArmPort* arm = nullptr;  // optional, set before boot()
   hal::DigitalInput* estop = nullptr;  // optional, set before boot()
   std::uint32_t counter = 0;
   std::size_t queue_packets = 256;
