@@ -19,10 +19,11 @@ std::size_t bytes_for(std::size_t n) {
 
 struct Scratch {
   std::span<Eigen::Vector3d> normal, centroid, sample;
+  std::span<double> sample_area;
   std::span<std::uint8_t> sample_cls;
   std::span<double> area;
   std::span<std::uint8_t> cls, support, depth;
-  std::span<std::int32_t> queue;
+  std::span<std::int32_t> queue, patch;
 };
 
 Result<Scratch> allocate(Arena& arena, std::size_t n) {
@@ -37,6 +38,9 @@ Result<Scratch> allocate(Arena& arena, std::size_t n) {
   if (!cls) return cls.error();
   auto support = arena.allocate<std::uint8_t>(n, "grind planes support");
   if (!support) return support.error();
+  auto patch = arena.allocate<std::int32_t>(n, "grind planes patch");
+  if (!patch) return patch.error();
+  s.patch = *patch;
   auto depth = arena.allocate<std::uint8_t>(n, "grind planes border depth");
   if (!depth) return depth.error();
   s.depth = *depth;
@@ -47,6 +51,9 @@ Result<Scratch> allocate(Arena& arena, std::size_t n) {
   auto sample_cls = arena.allocate<std::uint8_t>(kCMeansSamples, "c-means sample classes");
   if (!sample_cls) return sample_cls.error();
   s.sample = *sample;
+  auto sample_area = arena.allocate<double>(kCMeansSamples, "c-means sample areas");
+  if (!sample_area) return sample_area.error();
+  s.sample_area = *sample_area;
   s.sample_cls = *sample_cls;
   s.normal = *normal;
   s.centroid = *centroid;
@@ -61,10 +68,11 @@ double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI;
 }
 
-// Marks (support[i] = 1) the largest edge-connected patch of class k, by area.
+// Marks (support[i] = 1) the largest edge-connected patch of class k, by
+// area, lists its triangles in s.patch and returns their count.
 // Breadth-first with an explicit queue; `support` doubles as the visited mark
 // (2 = visited, not chosen).
-void largest_patch(std::span<const MeshTriangle> tris, const Scratch& s, std::uint8_t k) {
+std::size_t largest_patch(std::span<const MeshTriangle> tris, const Scratch& s, std::uint8_t k) {
   const std::size_t n = tris.size();
   std::size_t best_start = n;
   double best_area = -1;
@@ -93,31 +101,32 @@ void largest_patch(std::span<const MeshTriangle> tris, const Scratch& s, std::ui
     }
   }
   for (std::size_t i = 0; i < n; ++i) s.support[i] = 0;
-  if (best_start == n) return;
+  if (best_start == n) return 0;
   std::size_t head = 0, tail = 0;
-  s.queue[tail++] = static_cast<std::int32_t>(best_start);
+  s.patch[tail++] = static_cast<std::int32_t>(best_start);
   s.support[best_start] = 1;
   while (head < tail) {
-    const std::size_t t = static_cast<std::size_t>(s.queue[head++]);
+    const std::size_t t = static_cast<std::size_t>(s.patch[head++]);
     for (int e = 0; e < 3; ++e) {
       const std::int32_t nb = tris[t].n[e];
       if (nb < 0) continue;
       const std::size_t u = static_cast<std::size_t>(nb);
       if (s.cls[u] != k || s.support[u] != 0) continue;
       s.support[u] = 1;
-      s.queue[tail++] = nb;
+      s.patch[tail++] = nb;
     }
   }
+  return tail;
 }
 
-// Marks depth[i] = 1..rings for the patch triangles (support == 1) within
-// `rings` edge steps of the patch border, 0 for the core beyond; returns the
-// core's triangle count. Breadth-first from the border, explicit queue.
-std::size_t erode(std::span<const MeshTriangle> tris, const Scratch& s, int rings) {
-  const std::size_t n = tris.size();
+// Marks depth[i] = 1..rings for the patch triangles (s.patch[0..m) with
+// support == 1) within `rings` edge steps of the patch border, 0 for the core
+// beyond; returns the core's triangle count. Breadth-first, explicit queue.
+std::size_t erode(std::span<const MeshTriangle> tris, const Scratch& s, std::size_t m, int rings) {
   std::size_t head = 0, tail = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    s.depth[i] = 0;
+  for (std::size_t j = 0; j < m; ++j) s.depth[static_cast<std::size_t>(s.patch[j])] = 0;
+  for (std::size_t j = 0; j < m; ++j) {
+    const std::size_t i = static_cast<std::size_t>(s.patch[j]);
     if (s.support[i] != 1) continue;
     for (int e = 0; e < 3; ++e) {
       const std::int32_t nb = tris[i].n[e];
@@ -141,7 +150,10 @@ std::size_t erode(std::span<const MeshTriangle> tris, const Scratch& s, int ring
     }
   }
   std::size_t core = 0;
-  for (std::size_t i = 0; i < n; ++i) core += s.support[i] == 1 && s.depth[i] == 0;
+  for (std::size_t j = 0; j < m; ++j) {
+    const std::size_t i = static_cast<std::size_t>(s.patch[j]);
+    core += s.support[i] == 1 && s.depth[i] == 0;
+  }
   return core;
 }
 
@@ -197,8 +209,8 @@ Status validate(const GrindParams& p) {
 
 std::size_t grind_planes_scratch_bytes(std::size_t n) {
   return 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<double>(n) + 3 * bytes_for<std::uint8_t>(n) +
-         bytes_for<std::int32_t>(n) + bytes_for<Eigen::Vector3d>(kCMeansSamples) +
-         bytes_for<std::uint8_t>(kCMeansSamples);
+         2 * bytes_for<std::int32_t>(n) + bytes_for<Eigen::Vector3d>(kCMeansSamples) +
+         bytes_for<std::uint8_t>(kCMeansSamples) + bytes_for<double>(kCMeansSamples);
 }
 
 Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
@@ -263,12 +275,17 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
   const int k_classes = cluster_count(c);
   Eigen::Vector3d centres[kMaxClasses];
   int k_eff = k_classes;
+  // C-means and the angle pass iterate on a regular sample of the triangles
+  // (their cost is per sample and per iteration); then every triangle joins
+  // the nearest final centre.
+  const std::size_t stride = (n + kCMeansSamples - 1) / kCMeansSamples;
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < n; i += stride) {
+    s.sample[m] = s.normal[i];
+    s.sample_area[m] = s.area[i];
+    ++m;
+  }
   {
-    // C-means on a regular sample of the triangles (its cost is per sample
-    // and per iteration; the angle pass below sees every triangle).
-    const std::size_t stride = (n + kCMeansSamples - 1) / kCMeansSamples;
-    std::size_t m = 0;
-    for (std::size_t i = 0; i < n; i += stride) s.sample[m++] = s.normal[i];
     auto cm = cmeans<double>(std::span<const Eigen::Vector3d>(s.sample.data(), m), k_classes,
                              params.cmeans, s.sample_cls.first(m));
     if (!cm) {
@@ -282,15 +299,30 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
       out.converged = cm->converged;
     }
   }
-  // 3. Angle clustering refinement (centres more than 5 deg apart).
+  // 3. Angle clustering refinement (4b; centres more than 5 deg apart),
+  // area-weighted.
   auto ac = angle_cluster<double>(
-      std::span<const Eigen::Vector3d>(s.normal.data(), n),
-      std::span<const double>(s.area.data(), n),
+      std::span<const Eigen::Vector3d>(s.sample.data(), m),
+      std::span<const double>(s.sample_area.data(), m),
       std::span<const Eigen::Vector3d>(centres, static_cast<std::size_t>(k_eff)), params.angle,
-      s.cls);
+      s.sample_cls.first(m));
   if (!ac) return ac.error();
   out.angle_iterations = ac->iterations;
   out.converged = (k_eff == 1 || out.converged) && ac->converged;
+  std::size_t members[kMaxClasses] = {};
+  for (std::size_t i = 0; i < n; ++i) {
+    int best = 0;
+    double best_cos = s.normal[i].dot(ac->centres[0]);
+    for (int k = 1; k < ac->c; ++k) {
+      const double d = s.normal[i].dot(ac->centres[k]);
+      if (d > best_cos) {
+        best_cos = d;
+        best = k;
+      }
+    }
+    s.cls[i] = static_cast<std::uint8_t>(best);
+    ++members[best];
+  }
 
   // 4. One candidate plane per class; coplanar neighbours merged.
   GrindPlane candidates[kMaxClasses];
@@ -302,16 +334,16 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     plane = GrindPlane{};
     for (std::size_t i = 0; i < n; ++i)
       if (triangle_plane[i] == k) triangle_plane[i] = kNone;
-    largest_patch(tris, s, static_cast<std::uint8_t>(k));
+    const std::size_t pm = largest_patch(tris, s, static_cast<std::uint8_t>(k));
+    auto vertex = [&](std::size_t j) -> const Eigen::Vector3d& {
+      return xyz[static_cast<std::size_t>(tris[static_cast<std::size_t>(s.patch[j / 3])].v[j % 3])];
+    };
+    auto tri_of = [&](std::size_t j) { return static_cast<std::size_t>(s.patch[j]); };
     PlaneFitT<double> fit;
     bool have = false;
     for (int round = 0; round < 3; ++round) {
       auto f = fit_plane_tls_by<double>(
-          3 * n,
-          [&](std::size_t j) -> const Eigen::Vector3d& {
-            return xyz[static_cast<std::size_t>(tris[j / 3].v[j % 3])];
-          },
-          [&](std::size_t j) { return s.support[j / 3] == 1; });
+          3 * pm, vertex, [&](std::size_t j) { return s.support[tri_of(j / 3)] == 1; });
       if (!f) break;
       fit = *f;
       have = true;
@@ -319,7 +351,8 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
       const double band = std::max(3.0 * fit.rms, params.min_trim_band_mm);
       Eigen::Vector3d up = fit.plane.normal;
       if (up.dot(camera - fit.centroid) < 0) up = -up;
-      for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < pm; ++j) {
+        const std::size_t i = tri_of(j);
         if (s.support[i] != 1) continue;
         const bool agrees = s.normal[i].dot(up) >= cos_inlier &&
                             std::abs(fit.plane.distance(s.centroid[i])) <= band;
@@ -329,19 +362,16 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     // The final plane from the patch's core: the matcher's window rounds
     // depth over a few pixels at every crease, so the rings of triangles
     // along the patch's border bend towards the neighbouring faces.
-    std::size_t patch = 0, core = erode(tris, s, params.edge_rings);
-    for (std::size_t i = 0; i < n; ++i) patch += s.support[i] == 1;
+    std::size_t patch = 0;
+    const std::size_t core = erode(tris, s, pm, params.edge_rings);
+    for (std::size_t j = 0; j < pm; ++j) patch += s.support[tri_of(j)] == 1;
     const bool use_core = core >= 20 && 4 * core >= patch;
     auto in_fit = [&](std::size_t i) {
       return s.support[i] == 1 && (!use_core || s.depth[i] == 0);
     };
     if (have) {
-      auto f = fit_plane_tls_by<double>(
-          3 * n,
-          [&](std::size_t j) -> const Eigen::Vector3d& {
-            return xyz[static_cast<std::size_t>(tris[j / 3].v[j % 3])];
-          },
-          [&](std::size_t j) { return in_fit(j / 3); });
+      auto f = fit_plane_tls_by<double>(3 * pm, vertex,
+                                        [&](std::size_t j) { return in_fit(tri_of(j / 3)); });
       if (f) fit = *f;
       if (fit.plane.normal.dot(camera - fit.centroid) < 0) {
         fit.plane.normal = -fit.plane.normal;
@@ -351,7 +381,8 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     double area = 0, core_area = 0;
     Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
     std::size_t count = 0;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < pm; ++j) {
+      const std::size_t i = tri_of(j);
       if (s.support[i] != 1) continue;
       area += s.area[i];
       ++count;
@@ -384,7 +415,7 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     }
   };
   for (int k = 0; k < ac->c; ++k) {
-    alive[k] = ac->count[k] > 0;
+    alive[k] = members[k] > 0;
     if (alive[k]) fit_class(k);
   }
   // Two classes on one face (its normals spread over both): merge when their
@@ -421,14 +452,14 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
   // 5. Rank: accepted by area (largest first; beyond c they are surplus),
   // then the rejected ones.
   int order[kMaxClasses];
-  int m = 0;
+  int ranked = 0;
   for (int pass = 0; pass < 2; ++pass) {
-    const int pass_start = m;
+    const int pass_start = ranked;
     for (int k = 0; k < ac->c; ++k) {
       if (!alive[k]) continue;
       const bool acc = candidates[k].verdict == PlaneVerdict::accepted;
       if ((pass == 0) != acc) continue;
-      int pos = m++;
+      int pos = ranked++;
       order[pos] = k;
       while (pos > pass_start && candidates[order[pos - 1]].area_mm2 < candidates[k].area_mm2) {
         order[pos] = order[pos - 1];
@@ -436,14 +467,15 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
       }
     }
     if (pass == 0) {
-      out.accepted = std::min(m, c);
-      for (int r = out.accepted; r < m; ++r) candidates[order[r]].verdict = PlaneVerdict::surplus;
+      out.accepted = std::min(ranked, c);
+      for (int r = out.accepted; r < ranked; ++r)
+        candidates[order[r]].verdict = PlaneVerdict::surplus;
     }
   }
-  out.count = m;
+  out.count = ranked;
   int rank_of[kMaxClasses];
   for (int k = 0; k < kMaxClasses; ++k) rank_of[k] = -1;
-  for (int r = 0; r < m; ++r) {
+  for (int r = 0; r < ranked; ++r) {
     out.planes[r] = candidates[order[r]];
     rank_of[order[r]] = r;
   }

@@ -10,12 +10,13 @@
 //      classes would merge two faces into a plane of neither); it sees at most
 //      kCMeansSamples triangles, a regular stride through the mesh (its cost
 //      grows with samples x iterations; its output only seeds step 3);
-//   3. refinement by angle clustering (algo/angle_cluster): the C-means class
-//      means are the initial centres (kept only if more than 5 degrees apart,
-//      as the paper asks), then nearest-angle assignment and area-weighted
-//      mean normals until no triangle changes class. C-means sees the shape of
-//      each class but can split one face along its noise; the angle pass
-//      gives every triangle to the direction it is closest to;
+//   3. refinement by angle clustering (algo/angle_cluster) on the same
+//      sample: the C-means class means are the initial centres (kept only if
+//      more than 5 degrees apart, as the paper asks), then nearest-angle
+//      assignment and area-weighted mean normals until no triangle changes
+//      class; then every triangle of the mesh joins its nearest final centre.
+//      C-means sees the shape of each class but can split one face along its
+//      noise; the angle pass gives every triangle to the closest direction;
 //   4. per class (Petra adds): its largest edge-connected patch, a trimmed
 //      total-least-squares plane through that patch's vertices (triangles more
 //      than inlier_angle_deg off the plane normal or farther than 3 RMS are
@@ -53,7 +54,7 @@
 
 namespace petra {
 
-inline constexpr std::size_t kCMeansSamples = 2048;
+inline constexpr std::size_t kCMeansSamples = 1024;
 
 struct GrindParams {
   double grinder_diameter_mm = 20.0;  // footprint: planes with less area are too small
