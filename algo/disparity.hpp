@@ -30,11 +30,16 @@ struct ConstDisparityMap {
   ConstDisparityMap(const DisparityMap& m) : q4(m.q4), roi(m.roi) {}  // NOLINT(implicit)
 };
 
-constexpr bool is_valid_disparity(std::int16_t q) { return q != kInvalidDisparity; }
-constexpr double disparity_px(std::int16_t q) { return static_cast<double>(q) / kDisparityScale; }
+constexpr bool is_valid_disparity(std::int16_t q) {
+  return q != kInvalidDisparity;
+}
+constexpr double disparity_px(std::int16_t q) {
+  return static_cast<double>(q) / kDisparityScale;
+}
 // Nearest Q4 value of a disparity in pixels (callers keep |d| < 2047).
 constexpr std::int16_t disparity_q4(double d_px) {
-  return static_cast<std::int16_t>(d_px >= 0 ? d_px * kDisparityScale + 0.5 : d_px * kDisparityScale - 0.5);
+  return static_cast<std::int16_t>(d_px >= 0 ? d_px * kDisparityScale + 0.5
+                                             : d_px * kDisparityScale - 0.5);
 }
 
 }  // namespace petra

@@ -28,7 +28,8 @@ Result<RectifiedPair> rectify_geometry(const StereoRig& rig, int width, int heig
   const Eigen::Vector3d mean_axis =
       (rig.left.R.row(2).transpose() + rig.right.R.row(2).transpose()).normalized();
   Eigen::Vector3d z = mean_axis - mean_axis.dot(x) * x;
-  if (z.norm() < 1e-6) return Error::make(Errc::degenerate, "rectify: baseline along the optical axis");
+  if (z.norm() < 1e-6)
+    return Error::make(Errc::degenerate, "rectify: baseline along the optical axis");
   z.normalize();
   const Eigen::Vector3d y = z.cross(x);
   Eigen::Matrix3d R;
@@ -61,11 +62,14 @@ Result<RectifiedPair> rectify_geometry(const StereoRig& rig, int width, int heig
 Result<Eigen::Vector2d> rectified_to_original(const TsaiCamera& cam, const RectifiedCamera& rect,
                                               const Eigen::Vector2d& uv) {
   // Ray in the rectified frame, rotated into the original camera frame.
-  const Eigen::Vector3d dir_rect((uv.x() - rect.cx_px) / rect.f_px, (uv.y() - rect.cy_px) / rect.f_px, 1.0);
+  const Eigen::Vector3d dir_rect((uv.x() - rect.cx_px) / rect.f_px,
+                                 (uv.y() - rect.cy_px) / rect.f_px, 1.0);
   const Eigen::Vector3d dir_cam = cam.R * (rect.R.transpose() * dir_rect);
   if (!(dir_cam.z() > 0))
-    return Error::make(Errc::out_of_range, "rectify: pixel (%.1f, %.1f) looks behind the camera", uv.x(), uv.y());
-  const Eigen::Vector2d pu(cam.f_mm * dir_cam.x() / dir_cam.z(), cam.f_mm * dir_cam.y() / dir_cam.z());
+    return Error::make(Errc::out_of_range, "rectify: pixel (%.1f, %.1f) looks behind the camera",
+                       uv.x(), uv.y());
+  const Eigen::Vector2d pu(cam.f_mm * dir_cam.x() / dir_cam.z(),
+                           cam.f_mm * dir_cam.y() / dir_cam.z());
   auto pd = distort_sensor(cam.kappa1, pu);
   if (!pd) return pd.error();
   return sensor_to_pixel(cam, *pd);
@@ -76,12 +80,15 @@ Result<Eigen::Vector2d> original_to_rectified(const TsaiCamera& cam, const Recti
   const Eigen::Vector2d n = pixel_to_normalised(cam, uv);
   const Eigen::Vector3d dir = rect.R * (cam.R.transpose() * Eigen::Vector3d(n.x(), n.y(), 1.0));
   if (!(dir.z() > 0))
-    return Error::make(Errc::out_of_range, "rectify: pixel (%.1f, %.1f) maps behind the rectified camera",
-                       uv.x(), uv.y());
-  return Eigen::Vector2d(rect.f_px * dir.x() / dir.z() + rect.cx_px, rect.f_px * dir.y() / dir.z() + rect.cy_px);
+    return Error::make(Errc::out_of_range,
+                       "rectify: pixel (%.1f, %.1f) maps behind the rectified camera", uv.x(),
+                       uv.y());
+  return Eigen::Vector2d(rect.f_px * dir.x() / dir.z() + rect.cx_px,
+                         rect.f_px * dir.y() / dir.z() + rect.cy_px);
 }
 
-Result<Eigen::Vector3d> rectified_point(const RectifiedPair& pair, double u_left, double v, double d) {
+Result<Eigen::Vector3d> rectified_point(const RectifiedPair& pair, double u_left, double v,
+                                        double d) {
   if (!(d > 0)) return Error::make(Errc::out_of_range, "rectify: disparity %.3f <= 0", d);
   const RectifiedCamera& l = pair.left;
   const double z = l.f_px * pair.baseline_mm / d;
@@ -89,7 +96,8 @@ Result<Eigen::Vector3d> rectified_point(const RectifiedPair& pair, double u_left
   return Eigen::Vector3d(l.R.transpose() * (pc - l.T_mm));
 }
 
-Result<RectifiedProjection> rectified_project(const RectifiedPair& pair, const Eigen::Vector3d& pw) {
+Result<RectifiedProjection> rectified_project(const RectifiedPair& pair,
+                                              const Eigen::Vector3d& pw) {
   const RectifiedCamera& l = pair.left;
   const Eigen::Vector3d pc = l.R * pw + l.T_mm;
   if (!(pc.z() > 0)) return Error::make(Errc::out_of_range, "rectify: point behind the rig");

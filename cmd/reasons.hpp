@@ -36,7 +36,10 @@
   X(PIPELINE_ERROR, 36, "the pipeline returned an error (see the EVAL_FAILED event)")     \
   X(ABORTED, 37, "stopped by ABORT or by entering SAFE")                                  \
   X(ARM_UNAVAILABLE, 38, "no arm is configured in this build")                            \
-  X(NO_SUCH_PLANE, 39, "the plane id is not in the last evaluation's result")
+  X(NO_SUCH_PLANE, 39, "the plane id is not in the last evaluation's result")             \
+  X(ARM_REFUSED, 40, "the arm cannot reach the plane (see the ARM_REFUSED event)")        \
+  X(ARM_NOT_READY, 41, "the arm's drives are booting, at fault or stopped by a fault")    \
+  X(ARM_FAILED, 42, "the motion ended in a drive fault or off its goal (ARM_ events)")
 
 namespace petra {
 

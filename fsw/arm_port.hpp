@@ -1,5 +1,7 @@
-// ArmPort: what the executive needs from the arm (kinematics, CANopen drives:
-// a later component). Motions are started by a command and polled each cycle.
+// ArmPort: what the executive needs from the arm (implemented by fsw/arm/
+// FlightArm: kinematics, planning and the CANopen drives, docs/arm.md).
+// Motions are started by a command; poll() runs every cycle, moving or not
+// (it keeps the drives' bus alive: heartbeats, SYNC, feedback).
 // With no ArmPort configured, ARM_GOTO and ARM_STOW fail with ARM_UNAVAILABLE.
 #pragma once
 
@@ -7,6 +9,8 @@
 #include <cstdint>
 
 #include "algo/core/result.hpp"
+#include "tlm/event_defs.hpp"
+#include "tlm/telemetry.hpp"
 
 namespace petra::fsw {
 
@@ -18,13 +22,34 @@ struct ArmTarget {
   double standoff_mm = 0;               // approach waypoint distance along the normal
 };
 
+// An event for the executive's log; `safe` asks for SAFE (drive fault, lost heartbeat).
+struct ArmEventOut {
+  EventId id = EventId::ARM_READY;
+  std::array<std::int32_t, 4> args{};
+  bool safe = false;
+};
+
 class ArmPort {
  public:
   virtual ~ArmPort() = default;
-  virtual Status start_goto(const ArmTarget& target) = 0;  // refuses unreachable poses
+  // Refusals: Errc::not_ready when the drives cannot move now (ARM_NOT_READY),
+  // any other code when the target is out of reach or limits (ARM_REFUSED).
+  virtual Status start_goto(const ArmTarget& target) = 0;
   virtual Status start_stow() = 0;
-  virtual ArmProgress poll() = 0;  // called every cycle while moving
-  virtual void quick_stop() = 0;   // ABORT, SAFE
+  virtual ArmProgress poll() = 0;  // every cycle
+  virtual void quick_stop() = 0;   // ABORT, e-stop, SAFE
+  // Leaving SAFE: recover from a drive fault (reboot the drives); nothing otherwise.
+  virtual Status reset() { return {}; }
+  // Drained every cycle after poll().
+  virtual bool pop_event(ArmEventOut& out) {
+    (void)out;
+    return false;
+  }
+  // ARM_STATUS telemetry (sent with housekeeping); false: nothing to report.
+  virtual bool status(tlm::ArmStatus& out) const {
+    (void)out;
+    return false;
+  }
 };
 
 }  // namespace petra::fsw

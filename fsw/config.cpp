@@ -152,6 +152,26 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
     return Error::make(Errc::invalid_argument, "config: camera.kind '%s': this build has 'file'",
                        kind);
   PETRA_TRY(r.text(camera, "camera", "dir", c.camera_dir, true, true));
+  const std::uint32_t arm = doc->find(0, "arm");
+  PETRA_TRY(object_or_absent(*doc, arm, "arm"));
+  if (arm != 0) {
+    c.arm.enabled = true;
+    PETRA_TRY(r.text(arm, "arm", "can_interface", c.arm.can_interface, true, false));
+    const std::uint32_t mount = doc->find(arm, "mount");
+    if (mount != 0) {
+      if (doc->token(mount).type != Type::array || doc->token(mount).count != 4)
+        return Error::make(Errc::wrong_type,
+                           "config: arm.mount: expected [x_mm, y_mm, z_mm, yaw_deg]");
+      for (std::uint32_t k = 0; k < 4; ++k) {
+        const json::Token& t = doc->token(doc->element(mount, k));
+        if (t.type != Type::number || !(t.number >= -1e5 && t.number <= 1e5))
+          return Error::make(Errc::out_of_range,
+                             "config: arm.mount[%u]: expected a number within 1e5", k);
+        c.arm.mount[k] = t.number;
+      }
+      c.arm.has_mount = true;
+    }
+  }
   PETRA_TRY(r.text(0, "", "calib", c.calib_file, false, true));
   PETRA_TRY(r.text(0, "", "params", c.param_file, false, true));
   return c;

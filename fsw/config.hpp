@@ -24,6 +24,15 @@ struct Budget {
   std::size_t cloud_points = 8192;  // point cloud product capacity
 };
 
+// The arm (optional section "arm"): its drives' CAN interface and where it
+// sits in the world (docs/arm.md). Absent: no arm, arm commands fail.
+struct ArmConfig {
+  bool enabled = false;
+  std::array<char, 16> can_interface{};  // SocketCAN interface, e.g. "can0", "vcan0"
+  bool has_mount = false;
+  std::array<double, 4> mount{};  // base x, y, z (mm, world) and yaw (deg about world z)
+};
+
 struct FswConfig {
   Host cmd_host{};  // command port: bind address and port
   std::uint16_t cmd_port = 47100;
@@ -40,6 +49,7 @@ struct FswConfig {
   std::uint32_t health_period_ms = 500;
   bool lock_memory = false;  // mlockall after init (needs CAP_IPC_LOCK)
   Budget budget;
+  ArmConfig arm;
 };
 
 // Parses the JSON text; `base_dir` resolves relative paths. Errors name the field.

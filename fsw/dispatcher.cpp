@@ -327,6 +327,7 @@ void Executive::publish_evaluation() {
 
 void Executive::on_arm(const cmd::Command& c) {
   if (deps_.arm == nullptr) return fail(fc_of(c), c.counter, Reason::ARM_UNAVAILABLE);
+  if (estop_latched_) return fail(fc_of(c), c.counter, Reason::ARM_NOT_READY);  // e-stop held
   Status s;
   if (c.code == cmd::FunctionCode::ARM_GOTO) {
     const auto& a = std::get<cmd::ArmGotoArgs>(c.args);
@@ -337,7 +338,10 @@ void Executive::on_arm(const cmd::Command& c) {
   } else {
     s = deps_.arm->start_stow();
   }
-  if (!s) return fail(fc_of(c), c.counter, Reason::ARM_UNAVAILABLE);
+  if (!s) {
+    return fail(fc_of(c), c.counter,
+                s.code() == Errc::not_ready ? Reason::ARM_NOT_READY : Reason::ARM_REFUSED);
+  }
   if (modes_.mode() == Mode::IDLE) modes_.request(Mode::ARM_MOVING, fc_of(c));
   pending_arm_ = {true, fc_of(c), c.counter};
 }
@@ -376,6 +380,9 @@ void Executive::on_set_mode(const cmd::Command& c) {
     stop_activity(Reason::ABORTED);
     products_.cancel_all();
   }
+  // Leaving SAFE: an arm stopped by a drive fault reboots its drives (ARM_READY follows).
+  if (to == Mode::IDLE && modes_.mode() == Mode::SAFE && deps_.arm != nullptr)
+    (void)deps_.arm->reset();
   modes_.request(to, fc_of(c));
   complete(fc_of(c), c.counter);
 }

@@ -75,7 +75,9 @@ Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
   products_.init(product_mem);
   std::byte* arena = take(arena_bytes);
   PETRA_ASSERT(at <= total);
-  return runner_.init(deps_.job, {arena, arena_bytes}, b.worker_stack_bytes, &health_, deps_.clock);
+  const PipelineBudget pb{b.image_width, b.image_height, b.cloud_points, b.arena_bytes};
+  return runner_.init(deps_.job, {arena, arena_bytes}, pb, has_rig_ ? &rig_ : nullptr,
+                      b.worker_stack_bytes, &health_, deps_.clock);
 }
 
 void Executive::store_counter() {
@@ -130,7 +132,7 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
     has_rig_ = true;
   }
 
-  const PipelineBudget pb{b.image_width, b.image_height, b.cloud_points};
+  const PipelineBudget pb{b.image_width, b.image_height, b.cloud_points, b.arena_bytes};
   const std::size_t arena_bytes = deps.job != nullptr ? deps.job->arena_bytes(pb) : 0;
   if (arena_bytes > b.arena_bytes)
     return Error::make(Errc::capacity_exceeded,
@@ -231,13 +233,37 @@ void Executive::service_uplink() {
 }
 
 void Executive::poll_arm() {
-  if (!pending_arm_.active || deps_.arm == nullptr) return;
+  // E-stop: the rising edge stops the arm and enters SAFE; an unreadable line counts as asserted.
+  if (deps_.estop != nullptr) {
+    auto line = deps_.estop->read();
+    const bool asserted = !line.ok() || *line;
+    if (asserted && !estop_latched_) {
+      if (deps_.arm != nullptr) deps_.arm->quick_stop();
+      events_.raise(EventId::ESTOP_ASSERTED);
+      ++loop_.faults;
+      enter_safe();
+    }
+    estop_latched_ = asserted;
+  }
+  if (deps_.arm == nullptr) return;
+  // Every cycle, moving or not: the arm's drives need their bus serviced.
   const ArmProgress p = deps_.arm->poll();
-  if (p == ArmProgress::MOVING) return;
+  ArmEventOut e;
+  bool safe = false;
+  while (deps_.arm->pop_event(e)) {  // bounded by the arm's event queue
+    events_.raise(e.id, e.args[0], e.args[1], e.args[2], e.args[3]);
+    safe = safe || e.safe;
+  }
+  if (safe && modes_.mode() != Mode::SAFE) {
+    ++loop_.faults;
+    enter_safe();  // fails a running arm command (ABORTED) and stops the drives
+    return;
+  }
+  if (!pending_arm_.active || p == ArmProgress::MOVING) return;
   if (p == ArmProgress::REACHED)
     complete(pending_arm_.function_code, pending_arm_.counter);
   else
-    fail(pending_arm_.function_code, pending_arm_.counter, Reason::ABORTED);
+    fail(pending_arm_.function_code, pending_arm_.counter, Reason::ARM_FAILED);
   pending_arm_.active = false;
   if (modes_.mode() == Mode::ARM_MOVING) modes_.request(Mode::IDLE, 0);
 }
@@ -281,6 +307,8 @@ void Executive::send_housekeeping() {
           : eval_elapsed_ms_;
   hk.step_us = step_us_;
   queue_.push(hk, now_tm());
+  tlm::ArmStatus arm;
+  if (deps_.arm != nullptr && deps_.arm->status(arm)) queue_.push(arm, now_tm());
 }
 
 void Executive::check_health() {

@@ -29,6 +29,7 @@
 #include "fsw/pipeline_runner.hpp"
 #include "fsw/product_streamer.hpp"
 #include "hal/clock.hpp"
+#include "hal/digital_input.hpp"
 #include "hal/stereo_camera.hpp"
 #include "hal/udp_link.hpp"
 #include "hal/watchdog.hpp"
@@ -41,6 +42,7 @@ struct Dependencies {
   const hal::Clock* clock = nullptr;    // required
   PipelineJob* job = nullptr;           // optional: without it EVALUATE fails NO_PIPELINE
   ArmPort* arm = nullptr;               // optional: without it arm commands fail ARM_UNAVAILABLE
+  hal::DigitalInput* estop = nullptr;   // optional: asserted = arm quick stop and SAFE
 };
 
 struct CommandCounters {
@@ -185,6 +187,7 @@ class Executive {
   std::int64_t boot_ns_ = 0;
   std::int64_t last_overrun_event_ns_ = 0;
   bool counter_store_failed_ = false;
+  bool estop_latched_ = false;
   std::uint32_t reported_drops_ = 0;
   bool initialised_ = false;
 };

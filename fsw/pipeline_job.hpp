@@ -2,7 +2,9 @@
 // PipelineRunner owns the memory and the worker thread; a PipelineJob is the
 // computation: it states its memory need once at init, then runs one
 // evaluation at a time on the worker thread, taking every byte from the arena
-// it is given (reset before each run) and polling `cancel` between steps.
+// it is given and polling `cancel` between steps. Memory that lives for the
+// whole mission (tables built once) is taken in init(); each run gets the
+// arena released back to where init() left it.
 #pragma once
 
 #include <array>
@@ -37,6 +39,7 @@ struct PipelineBudget {
   int max_width = 0;
   int max_height = 0;
   std::size_t max_cloud_points = 0;
+  std::size_t arena_limit = 0;  // bytes the arena will have (budget.arena_mb); 0: no limit
 };
 
 // One evaluation request: the pair, the operator's selection and the
@@ -88,8 +91,17 @@ class PipelineJob {
  public:
   virtual ~PipelineJob() = default;
   virtual const char* name() const = 0;
-  // Largest arena one run needs for this budget (asked once, at init).
+  // Arena for init() plus the largest run, for this budget (asked once, at init).
   virtual std::size_t arena_bytes(const PipelineBudget& budget) const = 0;
+  // Called once on the worker's arena before any run: what it takes stays
+  // allocated for every run. `rig` is nullptr when no calib file is configured.
+  // An error stops the executive's init (a configuration the job cannot serve).
+  virtual Status init(const PipelineBudget& budget, const StereoRig* rig, Arena& arena) {
+    (void)budget;
+    (void)rig;
+    (void)arena;
+    return {};
+  }
   // Runs one evaluation on the worker thread. `out` starts cleared.
   virtual Status run(const EvalRequest& request, Arena& arena, const std::atomic<bool>& cancel,
                      EvalOutput& out) = 0;

@@ -9,11 +9,18 @@ PipelineRunner::~PipelineRunner() {
 }
 
 Status PipelineRunner::init(PipelineJob* job, std::span<std::byte> arena_memory,
+                            const PipelineBudget& budget, const StereoRig* rig,
                             std::size_t stack_bytes, Health* health, const hal::Clock* clock) {
   job_ = job;
   health_ = health;
   clock_ = clock;
   arena_ = Arena(arena_memory);
+  if (job_ != nullptr) {
+    const Status s = job_->init(budget, rig, arena_);
+    if (!s) return Error::make(s.code(), "pipeline '%s' init: %s", job_->name(), s.error().message);
+  }
+  run_mark_ = arena_.mark();
+  high_water_.store(arena_.high_water());
   pthread_attr_t attr;
   pthread_attr_init(&attr);
   const int rs = pthread_attr_setstacksize(&attr, stack_bytes);
@@ -82,7 +89,7 @@ void PipelineRunner::worker_loop() {
     pthread_mutex_unlock(&mutex_);
     health_->set_exempt(Component::WORKER, true, clock_->monotonic_ns());
 
-    arena_.reset();
+    arena_.release_to(run_mark_);  // keeps what job->init() took
     const Status s = job_->run(request_, arena_, cancel_, output_);
     if (arena_.high_water() > high_water_.load()) high_water_.store(arena_.high_water());
 

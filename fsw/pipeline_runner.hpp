@@ -24,8 +24,11 @@ class PipelineRunner {
   PipelineRunner& operator=(const PipelineRunner&) = delete;
 
   // job may be nullptr (no pipeline in this build: start() then refuses).
-  Status init(PipelineJob* job, std::span<std::byte> arena_memory, std::size_t stack_bytes,
-              Health* health, const hal::Clock* clock);
+  // Calls job->init(budget, rig, arena) once; every run then starts from the
+  // arena as init left it.
+  Status init(PipelineJob* job, std::span<std::byte> arena_memory, const PipelineBudget& budget,
+              const StereoRig* rig, std::size_t stack_bytes, Health* health,
+              const hal::Clock* clock);
   void shutdown();
 
   bool has_job() const { return job_ != nullptr; }
@@ -51,6 +54,7 @@ class PipelineRunner {
   Health* health_ = nullptr;
   const hal::Clock* clock_ = nullptr;
   Arena arena_;
+  std::size_t run_mark_ = 0;  // arena position after job->init()
   EvalRequest request_;
   EvalOutput output_;
   Status status_;

@@ -29,7 +29,24 @@
   X(CMD_FAILED, 16, WARNING, "command {0:fc} (counter {1}) failed: {2:reason}")               \
   X(COUNTER_STORE_FAILED, 17, WARNING, "could not store the command counter ({0:errc})")      \
   X(FEWER_PLANES, 18, INFO, "evaluation {0}: only {1} planes qualified of the {2} asked")     \
-  X(PRODUCT_SENT, 19, INFO, "product {0} of id {1} queued: {2} chunks, {3} bytes")
+  X(PRODUCT_SENT, 19, INFO, "product {0} of id {1} queued: {2} chunks, {3} bytes")            \
+  X(ARM_READY, 20, INFO, "arm: {0} drives booted and enabled")                                \
+  X(ARM_REFUSED, 21, WARNING,                                                                 \
+    "arm target refused: reason {0} (1 bad target, 2 beyond reach, 3 inside reach, 4 joint "  \
+    "limit, 5 path blocked, 6 bad request), joint {1}, while planning the {2} (0 goto, "      \
+    "1 retreat)")                                                                             \
+  X(ARM_MOTION_STARTED, 22, INFO, "arm motion started: {0} (0 goto, 1 stow)")                 \
+  X(ARM_REACHED, 23, INFO, "arm reached its goal ({0}: 0 goto, 1 stow), tip {1} um off")      \
+  X(ARM_VERIFY_FAILED, 24, ERROR,                                                             \
+    "arm ended {1} um (tip) off its goal ({0}: 0 goto, 1 stow): pose not verified")           \
+  X(ARM_SETTLE_TIMEOUT, 25, ERROR, "arm drives not at target {0} ms after the last one")      \
+  X(ARM_DRIVE_FAULT, 26, ERROR,                                                               \
+    "arm drive {0} fault {1} (docs/arm.md), detail {2}: drives quick-stopped, SAFE")          \
+  X(ARM_EMERGENCY, 27, WARNING, "arm drive {0} emergency, error code {1}")                    \
+  X(ARM_CAN_BUS, 28, WARNING, "arm CAN bus {0}: 0 active, 1 warning, 2 passive, 3 off")       \
+  X(ARM_BAD_FRAME, 29, WARNING, "arm drive {0}: malformed CAN frame, COB-ID {1}, ignored")    \
+  X(ARM_STOPPED, 30, INFO, "arm quick stop: drives ramped down, holding")                     \
+  X(ESTOP_ASSERTED, 31, ERROR, "e-stop input asserted: arm quick stop, SAFE")
 
 // Each rejection reason has its own event, id 0x100 + reason code:
 // "command {0:fc} rejected: <reason> (detail {1}, counter {2})", severity WARNING.

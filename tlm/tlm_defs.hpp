@@ -54,6 +54,34 @@
     "time per pipeline step of the last evaluation (ACQUIRE, RECTIFY, SHADOW, MATCH, "           \
     "RECONSTRUCT, SEGMENT, PLANES, PRODUCTS)")
 
+#define PETRA_ARM_STATUS_FIELDS(F)                                                                 \
+  F(u8, state, 1, "enum", 0, 9,                                                                    \
+    "0 off, 1 booting, 2 enabling, 3 holding, 4 moving, 5 approaching, 6 retreating, 7 settling, " \
+    "8 stopped, 9 fault (docs/arm.md)")                                                            \
+  F(u8, progress, 1, "enum", 0, 3, "0 idle, 1 moving, 2 reached, 3 failed")                        \
+  F(f32, joint_deg, 5, "deg", -360, 360, "measured joint angles th1..th5 (drive feedback)")        \
+  F(f32, target_deg, 5, "deg", -360, 360, "last set-point of each joint")                          \
+  F(f64, tip_mm, 3, "mm", -1e7, 1e7, "grinder tip from the measured joints, world frame")          \
+  F(f64, axis, 3, "1", -1, 1, "tool axis (unit, into the work), world frame")                      \
+  F(u8, refusal, 1, "enum", 0, 6,                                                                  \
+    "last refusal: 0 none, 1 bad target, 2 beyond reach, 3 inside reach, 4 joint limit, "          \
+    "5 path blocked, 6 bad request")                                                               \
+  F(u8, refusal_joint, 1, "", 0, 5, "joint of a joint-limit refusal, 1..5 (0: none)")              \
+  F(f32, tip_error_mm, 1, "mm", 0, 1e7, "last verification: tip to the plane centroid")            \
+  F(f32, axis_error_deg, 1, "deg", 0, 180, "last verification: tool axis to -normal")              \
+  F(u8, fault_node, 1, "", 0, 127, "drive (CANopen node) at fault, 0 none")                        \
+  F(u8, fault, 1, "enum", 0, 12, "its fault (docs/arm.md fault table)")                            \
+  F(u32, fault_detail, 1, "", 0, PETRA_U32_MAX, "EMCY code, SDO abort code or statusword")         \
+  F(u8, drive_state, 5, "enum", 0, 8,                                                              \
+    "per drive: 0 idle, 1 resetting, 2 configuring, 3 starting, 4 operational, 5 enabling, "       \
+    "6 ready, 7 quick stopped, 8 fault")                                                           \
+  F(u8, bus_state, 1, "enum", 0, 3, "CAN controller: 0 error active, 1 warning, 2 passive, 3 off") \
+  F(u32, moves_completed, 1, "", 0, PETRA_U32_MAX, "motions reached and verified since boot")      \
+  F(u32, can_sent, 1, "", 0, PETRA_U32_MAX, "CAN frames sent by the master")                       \
+  F(u32, can_received, 1, "", 0, PETRA_U32_MAX, "CAN frames received by the master")               \
+  F(u32, can_bad_frames, 1, "", 0, PETRA_U32_MAX, "frames from the drives that failed validation") \
+  F(u32, can_send_errors, 1, "", 0, PETRA_U32_MAX, "frames the CAN port refused")
+
 #define PETRA_EVENT_FIELDS(F)                                                      \
   F(u16, event_id, 1, "enum", 0, 65535, "event id (docs/icd.md: events)")          \
   F(u8, severity, 1, "enum", 0, 4, "0 DEBUG, 1 INFO, 2 WARNING, 3 ERROR, 4 FATAL") \
@@ -124,6 +152,9 @@
     PETRA_ACK_FIELDS)                                                                            \
   X(ParamValue, PARAM_VALUE, 0x013, "one parameter's value (GET_PARAM, DUMP_PARAMS, SET_PARAM)", \
     PETRA_PARAM_VALUE_FIELDS)                                                                    \
+  X(ArmStatus, ARM_STATUS, 0x014,                                                                \
+    "arm: state, joints, tool pose, last refusal and verification, drive faults, CAN counters",  \
+    PETRA_ARM_STATUS_FIELDS)                                                                     \
   X(EvalResult, EVAL_RESULT, 0x020, "summary of one evaluation; its planes follow",              \
     PETRA_EVAL_RESULT_FIELDS)                                                                    \
   X(GrindPlane, GRIND_PLANE, 0x021, "one ranked grind plane", PETRA_GRIND_PLANE_FIELDS)          \

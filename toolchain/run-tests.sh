@@ -11,7 +11,10 @@ jobs=$(nproc)
 echo "== host build (dev) =="
 cmake --preset dev >/dev/null
 cmake --build build/dev -j "$jobs"
-ctest --preset dev -j "$jobs"
+# The HIL bench (label "hil", sim/hil/run.sh, docs/hil.md) is not part of this
+# command yet: its whole-system checks are unfinished (issue 10). Run it with
+#   ctest --test-dir build/dev -L hil    or    bash sim/hil/run.sh --build build/dev
+ctest --preset dev -j "$jobs" -LE hil
 
 echo "== aarch64 cross build, unit tests under qemu-aarch64-static =="
 cmake --preset aarch64 >/dev/null

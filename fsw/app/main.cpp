@@ -6,10 +6,12 @@
 #include <cstdio>
 #include <cstring>
 
+#include "fsw/arm/flight_arm.hpp"
 #include "fsw/executive.hpp"
 #include "fsw/pipeline_factory.hpp"
 #include "hal/clock.hpp"
 #include "hal/file_stereo_camera.hpp"
+#include "hal/socketcan.hpp"
 
 namespace {
 
@@ -54,6 +56,27 @@ int main(int argc, char** argv) {
   deps.camera = &camera;
   deps.clock = &clock;
   deps.job = petra::fsw::flight_pipeline();
+  static petra::hal::SocketCanPort can;
+  static petra::fsw::arm::FlightArm arm;
+  if (config->arm.enabled) {
+    // The arm's drives (docs/arm.md): boot starts here, ARM_READY follows.
+    if (auto s = can.open(config->arm.can_interface.data()); !s) {
+      std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
+      return 1;
+    }
+    petra::fsw::arm::ArmServiceConfig arm_config;
+    if (config->arm.has_mount) {
+      const auto& m = config->arm.mount;
+      arm_config.geometry.world_from_base =
+          Eigen::Translation3d(m[0], m[1], m[2]) *
+          Eigen::AngleAxisd(m[3] * 3.14159265358979323846 / 180.0, Eigen::Vector3d::UnitZ());
+    }
+    if (auto s = arm.init(arm_config, can, clock); !s) {
+      std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
+      return 1;
+    }
+    deps.arm = &arm;
+  }
   static petra::fsw::Executive exec;
   if (auto s = exec.init(*config, deps); !s) {
     std::fprintf(stderr, "petra-fsw: %s\n", s.error().message);

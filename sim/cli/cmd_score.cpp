@@ -30,7 +30,8 @@ Result<Rect> parse_rect(const std::string& text, const char* option) {
   int consumed = 0;
   if (std::sscanf(text.c_str(), "%d,%d,%d,%d%n", &v[0], &v[1], &v[2], &v[3], &consumed) != 4 ||
       static_cast<std::size_t>(consumed) != text.size())
-    return Error::make(Errc::parse_error, "%s: expected x,y,w,h, got '%.40s'", option, text.c_str());
+    return Error::make(Errc::parse_error, "%s: expected x,y,w,h, got '%.40s'", option,
+                       text.c_str());
   if (v[0] < 0 || v[1] < 0 || v[2] <= 0 || v[3] <= 0)
     return Error::make(Errc::out_of_range, "%s: x, y must be >= 0 and w, h > 0", option);
   return Rect{v[0], v[1], v[2], v[3]};
@@ -68,7 +69,8 @@ const char* inconsistency(const ScoreArgs& a) {
   if (a.planes.empty() &&
       (l.max_normal_deg || l.max_centroid_mm || l.require_on_facet || l.require_count))
     return "plane limits need --planes";
-  if (a.disparity.empty() && (l.max_bad1_pct || l.max_bad2_pct)) return "--max-bad1/2 need --disparity";
+  if (a.disparity.empty() && (l.max_bad1_pct || l.max_bad2_pct))
+    return "--max-bad1/2 need --disparity";
   if (a.shadow.empty() && (l.min_shadow_precision || l.min_shadow_recall))
     return "--min-shadow-* need --shadow";
   return nullptr;
@@ -106,9 +108,9 @@ Status run(const ScoreArgs& a, int& exit_code) {
     if (!out) return out.error();
     auto tr = io::read_gray_image(a.shadow_truth);
     if (!tr) return tr.error();
-    auto region = region_for(a.shadow_roi, "--shadow-roi",
-                             truth ? std::optional<Rect>(truth->roi) : std::nullopt, tr->width,
-                             tr->height);
+    auto region =
+        region_for(a.shadow_roi, "--shadow-roi",
+                   truth ? std::optional<Rect>(truth->roi) : std::nullopt, tr->width, tr->height);
     if (!region) return region.error();
     auto m = sim::score_mask(*out, *tr, *region);
     if (!m) return m.error();
@@ -130,13 +132,15 @@ Status run(const ScoreArgs& a, int& exit_code) {
 
 void add_score(CLI::App& app, Outcome& outcome) {
   static ScoreArgs a;
-  auto* cmd = app.add_subcommand("score", "Score planes, disparity or shadow masks against simulator truth");
+  auto* cmd = app.add_subcommand("score",
+                                 "Score planes, disparity or shadow masks against simulator truth");
   cmd->add_option("--truth", a.truth, "truth.json from petra sim scene");
   cmd->add_option("--planes", a.planes, "planes.json to score (needs --truth)");
   cmd->add_option("--disparity", a.disparity, "disparity map (PFM, rectified left view)");
   cmd->add_option("--disparity-truth", a.disparity_truth, "disparity_truth.pfm");
-  cmd->add_option("--disparity-roi", a.disparity_roi,
-                  "x,y,w,h region scored (default: roi_rectified of --truth, else the whole image)");
+  cmd->add_option(
+      "--disparity-roi", a.disparity_roi,
+      "x,y,w,h region scored (default: roi_rectified of --truth, else the whole image)");
   cmd->add_option("--shadow", a.shadow, "shadow mask (PGM/PNG, 255 = shadow)");
   cmd->add_option("--shadow-truth", a.shadow_truth, "shadow_truth.pgm (or _right, _rectified)");
   cmd->add_option("--shadow-roi", a.shadow_roi,

@@ -31,14 +31,19 @@ struct SceneArgs {
 void add_scene_options(CLI::App* cmd, SceneArgs& a) {
   cmd->add_option("--boundary", a.boundary, "clear | weak (default: drawn from the seed)");
   cmd->add_option("--shape", a.shape, "blocky | rounded | slab (default: drawn)");
-  cmd->add_option("--flat-faces", a.flat_faces, "number of large flat faces, 2 or 3 (default: drawn)");
-  cmd->add_option("--sun-elevation", a.sun_elevation, "sun elevation, deg, 10..80 (default: drawn)");
+  cmd->add_option("--flat-faces", a.flat_faces,
+                  "number of large flat faces, 2 or 3 (default: drawn)");
+  cmd->add_option("--sun-elevation", a.sun_elevation,
+                  "sun elevation, deg, 10..80 (default: drawn)");
   cmd->add_option("--sun-azimuth", a.sun_azimuth,
                   "sun azimuth from the rig-to-rock heading, counter-clockwise from above, deg; "
                   "180 = behind the cameras (default: drawn, 100..145 either side)");
-  cmd->add_option("--rock-size", a.rock_size, "largest rock dimension, mm, 80..250 (default: drawn)");
-  cmd->add_option("--rock-distance", a.rock_distance, "rig to rock centre, mm, 500..900 (default: drawn)");
-  cmd->add_option("--camera-height", a.camera_height, "rig above the ground, mm, 400..700 (default: drawn)");
+  cmd->add_option("--rock-size", a.rock_size,
+                  "largest rock dimension, mm, 80..250 (default: drawn)");
+  cmd->add_option("--rock-distance", a.rock_distance,
+                  "rig to rock centre, mm, 500..900 (default: drawn)");
+  cmd->add_option("--camera-height", a.camera_height,
+                  "rig above the ground, mm, 400..700 (default: drawn)");
   cmd->add_option("--noise", a.noise, "sensor noise at 128 DN, DN, 0..20 (default 1.5)");
   cmd->add_flag("--no-texture", a.no_texture, "uniform albedo (for geometry checks)");
   cmd->add_option("--edge-supersampling", a.edge_supersampling,
@@ -77,8 +82,7 @@ Status render_and_write(const sim::SceneOptions& o, const std::string& dir) {
   auto p = sim::render_scene(o);
   if (!p) return p.error();
   PETRA_TRY(sim::write_scene(*p, dir));
-  const double secs =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const sim::Scene& s = p->scene;
   const Rect& r = p->truth.roi;
   std::printf(
@@ -121,8 +125,8 @@ void add_sim(CLI::App& app, Outcome& outcome) {
       } else if (scene_args.seed) {
         const long long seed = *scene_args.seed;
         if (seed < 0 || static_cast<unsigned long long>(seed) > sim::kMaxSeed) {
-          const std::string msg = "--seed " + std::to_string(seed) + " outside 0.." +
-                                  std::to_string(sim::kMaxSeed);
+          const std::string msg =
+              "--seed " + std::to_string(seed) + " outside 0.." + std::to_string(sim::kMaxSeed);
           outcome.exit_code = fail("sim scene", msg.c_str());
           return;
         }

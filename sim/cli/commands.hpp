@@ -24,6 +24,11 @@ void add_icd(CLI::App& app, Outcome& outcome);
 void add_demo(CLI::App& app, Outcome& outcome);
 void add_calib(CLI::App& app, Outcome& outcome);
 void add_click(CLI::App& app, Outcome& outcome);
+void add_gnd(CLI::App& app, Outcome& outcome);
+void add_eval(CLI::App& app, Outcome& outcome);
+// Registers `name` on `app`; `petra sim arm` = add_arm_sim(sim_subcommand, outcome, "arm").
+void add_arm_sim(CLI::App& app, Outcome& outcome, const char* name = "sim-arm");
+void add_arm_view(CLI::App& app, Outcome& outcome);
 
 // Prints "petra <cmd>: <message>" on stderr and returns the exit code 1.
 int fail(const char* cmd, const char* message);

@@ -30,6 +30,10 @@ int main(int argc, char** argv) {
   petra::cli::add_demo(app, outcome);
   petra::cli::add_calib(app, outcome);
   petra::cli::add_click(app, outcome);
+  petra::cli::add_gnd(app, outcome);
+  petra::cli::add_eval(app, outcome);
+  petra::cli::add_arm_sim(app, outcome);
+  petra::cli::add_arm_view(app, outcome);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -17,7 +18,9 @@
 
 #include "algo/core/json_reader.hpp"
 #include "cmd/command_packet.hpp"
+#include "cmd/param_defs.hpp"
 #include "hal/udp_link.hpp"
+#include "sim/demo/demo_report.hpp"
 #include "sim/ground/product_assembler.hpp"
 #include "sim/ground/tlm_format.hpp"
 #include "sim/io/image_io.hpp"
@@ -31,7 +34,7 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 struct Scene {
-  fs::path left, right, calib;
+  fs::path left, right, calib, truth;
   Rect roi;
   int planes = 2;
   bool has_click = false;
@@ -61,7 +64,8 @@ Result<Scene> load_scene(const fs::path& dir) {
   s.left = *l;
   s.right = *r;
   if (fs::exists(dir / "calib.json")) s.calib = dir / "calib.json";
-  const std::string truth = read_all(dir / "truth.json");
+  s.truth = dir / "truth.json";
+  const std::string truth = read_all(s.truth);
   if (truth.empty())
     return Error::make(Errc::missing_field, "scene %s: truth.json with roi and planes needed",
                        dir.c_str());
@@ -126,6 +130,63 @@ class Session {
   pid_t pid_ = -1;
 };
 
+// A received image product as PNG (what an operator opens); "" for clouds.
+std::string write_png_of(const ground::Product& p, const fs::path& dir) {
+  if (p.format != 1 && p.format != 2) return "";
+  const std::string path =
+      (dir / (std::string(ground::product_name(p.kind)) + "_" + std::to_string(p.id) + ".png"))
+          .string();
+  if (p.format == 1) {
+    if (!io::write_png(path, ConstGray8View(p.bytes.data(), p.width, p.height))) return "";
+  } else {
+    io::RgbImage img(p.width, p.height);
+    std::copy(p.bytes.begin(), p.bytes.end(), img.rgb.begin());
+    if (!io::write_png(path, img)) return "";
+  }
+  return path;
+}
+
+// The flight default of SHADOW_FRACTION (the demo leaves it as it is).
+double flight_shadow_fraction() {
+  for (const ParamDesc& d : param_table())
+    if (d.id == static_cast<std::uint16_t>(ParamId::SHADOW_FRACTION)) return d.default_value;
+  return 0;
+}
+
+std::string quote(const std::string& s) {
+  return "'" + s + "'";
+}
+
+// `petra eval` on the same pair, when this build has it: its planes.json and
+// pictures in dir/eval. Returns its planes.json text, or "" (with a line why).
+std::string run_petra_eval(const Options& o, const Scene& scene, const fs::path& dir,
+                           double shadow_fraction, std::FILE* out) {
+  if (std::system((quote(o.self_binary) + " eval --help >/dev/null 2>&1").c_str()) != 0) {
+    std::fprintf(out,
+                 "   (`petra eval` is not in this build: no ground-side run to compare with)\n");
+    return "";
+  }
+  const fs::path eval_dir = dir / "eval";
+  char roi[80], click[40] = "";
+  std::snprintf(roi, sizeof roi, "%d,%d,%d,%d", scene.roi.x, scene.roi.y, scene.roi.w, scene.roi.h);
+  if (scene.has_click)
+    std::snprintf(click, sizeof click, " --click %d,%d", scene.click_u, scene.click_v);
+  char sf[32];
+  std::snprintf(sf, sizeof sf, "%.17g", shadow_fraction);
+  const std::string cmd = quote(o.self_binary) + " eval --calib " + quote(scene.calib.string()) +
+                          " --left " + quote((dir / "pairs/left.pgm").string()) + " --right " +
+                          quote((dir / "pairs/right.pgm").string()) + " --roi " + roi +
+                          " --planes " + std::to_string(scene.planes) + click +
+                          " --shadow-fraction " + sf + " --out " + quote(eval_dir.string()) +
+                          " > " + quote((dir / "eval.txt").string()) + " 2>&1";
+  if (std::system(cmd.c_str()) != 0) {
+    std::fprintf(out, "   `petra eval` on the same pair failed: %s\n",
+                 read_all(dir / "eval.txt").c_str());
+    return "";
+  }
+  return read_all(eval_dir / "planes.json");
+}
+
 }  // namespace
 
 int run(const Options& o, std::FILE* out) {
@@ -152,6 +213,9 @@ int run(const Options& o, std::FILE* out) {
   }
   auto scene = load_scene(scene_dir);
   if (!scene) return fail(scene.error().message);
+  if (scene->calib.empty())
+    std::fprintf(
+        out, "   (no calib.json in the scene: petra-fsw will have no rig to reconstruct with)\n");
   auto left = io::read_gray_image(scene->left.string());
   auto right = io::read_gray_image(scene->right.string());
   if (!left) return fail(left.error().message);
@@ -224,6 +288,7 @@ int run(const Options& o, std::FILE* out) {
   std::optional<tlm::GroundPlane> ground;
   std::map<std::uint32_t, tlm::Ack> final_ack;
   std::vector<std::string> pictures;
+  std::vector<ground::Product> products;
   bool booted = false;
   std::vector<std::uint8_t> buf(4096);
   auto pump = [&](int ms) {
@@ -246,8 +311,12 @@ int run(const Options& o, std::FILE* out) {
       } else if (const auto* gp = std::get_if<tlm::GroundPlane>(&p->body)) {
         ground = *gp;
       } else if (const auto* c = std::get_if<tlm::Product>(&p->body)) {
-        if (auto done = assembler.add(*c))
+        if (auto done = assembler.add(*c)) {
           pictures.push_back(ground::write_product(*done, dir.string()));
+          const std::string png = write_png_of(*done, dir);
+          if (!png.empty()) pictures.push_back(png);
+          products.push_back(std::move(*done));
+        }
       }
     }
   };
@@ -256,7 +325,11 @@ int run(const Options& o, std::FILE* out) {
     return fail("petra-fsw did not boot; see " + (dir / "fsw.log").string() + ": " +
                 read_all(dir / "fsw.log"));
 
-  // 3. The operator's commands.
+  // 3. The operator's commands. Full-resolution pictures first (the flight
+  // default sends thumbnails).
+  const std::uint32_t thumb_counter =
+      send({cmd::FunctionCode::SET_PARAM, 0,
+            cmd::SetParamArgs{static_cast<std::uint16_t>(ParamId::THUMB_DECIMATION), 1.0}});
   cmd::SelectRoiArgs sel;
   sel.x_px = static_cast<std::uint16_t>(scene->roi.x);
   sel.y_px = static_cast<std::uint16_t>(scene->roi.y);
@@ -273,6 +346,9 @@ int run(const Options& o, std::FILE* out) {
   std::fprintf(out, "4. sent EVALUATE (take a new pair first); waiting for the grind planes...\n");
   const auto deadline = Clock::now() + std::chrono::seconds(o.timeout_s);
   while (!final_ack.count(eval_counter) && Clock::now() < deadline && fsw.alive()) pump(200);
+  if (final_ack.count(thumb_counter) &&
+      final_ack[thumb_counter].stage != static_cast<std::uint8_t>(AckStage::COMPLETED))
+    std::fprintf(out, "   (SET_PARAM THUMB_DECIMATION 1 refused: the pictures are thumbnails)\n");
   if (final_ack.count(sel_counter) &&
       final_ack[sel_counter].stage != static_cast<std::uint8_t>(AckStage::COMPLETED))
     return fail(std::string("SELECT_ROI refused: ") +
@@ -284,28 +360,55 @@ int run(const Options& o, std::FILE* out) {
     const Reason why = static_cast<Reason>(ack.reason);
     return fail(std::string("EVALUATE ") + ack_stage_name(static_cast<AckStage>(ack.stage)) + ": " +
                 reason_name(why) +
-                (why == Reason::NO_PIPELINE ? " (this build has no evaluation pipeline yet)" : ""));
+                (why == Reason::NO_PIPELINE      ? " (this build has no evaluation pipeline)"
+                 : why == Reason::PIPELINE_ERROR ? " (the EVAL_FAILED event above says why)"
+                                                 : ""));
   }
-  pump(3000);  // the products follow the planes
+  // The products follow the planes: wait for the disparity and the overlay.
+  auto have = [&](std::uint8_t kind) {
+    return std::any_of(products.begin(), products.end(),
+                       [&](const ground::Product& p) { return p.kind == kind; });
+  };
+  const bool expect_pictures = result && result->dense_points > 0;
+  for (int i = 0; i < 150 && expect_pictures && !(have(2) && have(3)); ++i) pump(200);
+  pump(300);
 
-  // 5. What came back.
-  std::fprintf(
-      out,
-      "5. evaluation %u: %u of %u grind planes in %u ms (%u dense points, %u after filtering)\n",
-      result ? result->eval_id : 0, result ? result->planes_found : 0,
-      result ? result->planes_requested : 0, result ? result->total_ms : 0,
-      result ? result->dense_points : 0, result ? result->filtered_points : 0);
-  for (const auto& p : planes)
-    std::fprintf(out,
-                 "   plane %u: normal (%.3f, %.3f, %.3f), centroid (%.1f, %.1f, %.1f) mm, area "
-                 "%.0f mm2, flatness %.2f mm\n",
-                 p.rank, p.normal[0], p.normal[1], p.normal[2], p.centroid_mm[0], p.centroid_mm[1],
-                 p.centroid_mm[2], p.area_mm2, p.flatness_rms_mm);
-  if (ground)
-    std::fprintf(out, "   ground: normal (%.3f, %.3f, %.3f), d %.1f mm\n", ground->normal[0],
-                 ground->normal[1], ground->normal[2], ground->d_mm);
-  std::fprintf(out, "6. pictures and products in %s:\n", dir.c_str());
-  for (const auto& p : pictures) std::fprintf(out, "   %s\n", p.c_str());
+  // 5. What came back, as telemetry.
+  Received got{result, ground, planes};
+  std::fprintf(out, "5. evaluation %u: %u of %u grind planes received as telemetry in %u ms\n",
+               result ? result->eval_id : 0, result ? result->planes_found : 0,
+               result ? result->planes_requested : 0, result ? result->total_ms : 0);
+  print_received(got, out);
+  const std::string tlm_json = planes_json(got);
+  std::ofstream(dir / "planes.json") << tlm_json;
+
+  // 6. The same pair on the ground, with the same parameters.
+  std::fprintf(out, "6. the same pair through `petra eval` on the ground:\n");
+  const std::string eval_json = scene->calib.empty()
+                                    ? std::string()
+                                    : run_petra_eval(o, *scene, dir, flight_shadow_fraction(), out);
+  if (!eval_json.empty())
+    std::fprintf(out, "   %s\n",
+                 same_planes(eval_json, tlm_json)
+                     ? "identical grind planes (eval/planes.json equals planes.json from telemetry)"
+                     : "DIFFERENT grind planes: compare eval/planes.json with planes.json");
+
+  // 7. Against the scene's truth.
+  bool pass = false;
+  std::fprintf(out, "7. score against %s (petra score):\n", scene->truth.c_str());
+  pass = score_and_print(read_all(scene->truth), tlm_json, DemoLimits{}, out);
+
+  std::fprintf(out, "8. look at these in %s:\n", dir.c_str());
+  std::fprintf(out, "   roi.png            the operator's ROI on the left image\n");
+  for (const auto& p : pictures)
+    if (p.ends_with(".png"))
+      std::fprintf(out, "   %-18s received as telemetry\n", fs::path(p).filename().c_str());
+  std::fprintf(out, "   planes.json        the grind planes received (contract format)\n");
+  if (!eval_json.empty())
+    std::fprintf(
+        out,
+        "   eval/              petra eval's planes.json, overlay.png, disparity.png, cloud.ply\n");
+  (void)pass;
   fsw.stop();
   return planes.empty() ? 1 : 0;
 }

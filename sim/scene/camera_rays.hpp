@@ -19,7 +19,8 @@ class CameraRays {
 
   // Unit direction, in the world frame, of the ray through pixel (u, v).
   Eigen::Vector3d direction(double u, double v) const {
-    const Eigen::Vector2d pd((u - cam_.cx_px) * cam_.dx_mm / cam_.sx, (v - cam_.cy_px) * cam_.dy_mm);
+    const Eigen::Vector2d pd((u - cam_.cx_px) * cam_.dx_mm / cam_.sx,
+                             (v - cam_.cy_px) * cam_.dy_mm);
     const Eigen::Vector2d n = undistort(pd) / cam_.f_mm;
     const Eigen::Vector3d dir_cam(n.x(), n.y(), 1.0);
     return (cam_.R.transpose() * dir_cam).normalized();

@@ -55,7 +55,8 @@ Result<ConvexRock> make_convex_rock(const std::vector<HalfSpace>& planes,
     return Error::make(Errc::degenerate, "rock: not bounded within %.0f mm", extent_mm);
   rock.centre = 0.5 * (lo + hi);
   for (const auto& f : rock.faces)
-    for (const auto& p : f.polygon) rock.radius_mm = std::max(rock.radius_mm, (p - rock.centre).norm());
+    for (const auto& p : f.polygon)
+      rock.radius_mm = std::max(rock.radius_mm, (p - rock.centre).norm());
   rock.radius_mm += 1e-6;
   return rock;
 }

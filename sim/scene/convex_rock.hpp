@@ -12,9 +12,9 @@
 namespace petra::sim {
 
 struct HalfSpace {
-  Eigen::Vector3d normal;  // unit, pointing out of the rock
-  double offset_mm = 0;    // inside: normal.x <= offset
-  bool grind_face = false; // one of the designed large flat faces
+  Eigen::Vector3d normal;   // unit, pointing out of the rock
+  double offset_mm = 0;     // inside: normal.x <= offset
+  bool grind_face = false;  // one of the designed large flat faces
 };
 
 struct RockFace {

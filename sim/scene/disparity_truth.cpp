@@ -10,7 +10,8 @@ namespace petra::sim {
 namespace {
 
 bool inside_original(const TsaiCamera& cam, const Eigen::Vector2d& uv) {
-  return uv.x() >= -0.5 && uv.x() <= cam.width - 0.5 && uv.y() >= -0.5 && uv.y() <= cam.height - 0.5;
+  return uv.x() >= -0.5 && uv.x() <= cam.width - 0.5 && uv.y() >= -0.5 &&
+         uv.y() <= cam.height - 0.5;
 }
 
 }  // namespace

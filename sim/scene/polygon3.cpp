@@ -30,7 +30,9 @@ Eigen::Vector3d polygon_vector_area(const Polygon3& poly) {
   return 0.5 * s;
 }
 
-double polygon_area(const Polygon3& poly) { return polygon_vector_area(poly).norm(); }
+double polygon_area(const Polygon3& poly) {
+  return polygon_vector_area(poly).norm();
+}
 
 Eigen::Vector3d polygon_centroid(const Polygon3& poly) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();

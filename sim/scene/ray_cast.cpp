@@ -46,7 +46,8 @@ double radiance(const Scene& scene, const SceneHit& hit, bool shadowed, double p
   const double cos_view = std::max(std::abs(n.dot(dir)), 0.2);
   const double footprint = hit.t * pixel_angle / cos_view;
   const TextureRecipe& recipe = hit.surface == kGround ? scene.ground : scene.rock_surface;
-  const double a = scene.options.texture ? albedo(recipe, hit.point, footprint) : recipe.mean_albedo;
+  const double a =
+      scene.options.texture ? albedo(recipe, hit.point, footprint) : recipe.mean_albedo;
   // Sky light falls off on faces turned toward the ground.
   const double sky = scene.ambient * (0.7 + 0.3 * n.z());
   const double sun = shadowed ? 0.0 : std::max(0.0, n.dot(scene.sun_dir));

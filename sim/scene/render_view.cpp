@@ -86,7 +86,7 @@ RenderedView render_view(const Scene& scene, Eye eye, const Rect& window) {
   // covers the window and one pixel around it.
   const int gx0 = std::max(x0 - 1, 0), gy0 = std::max(y0 - 1, 0);
   const int gx1 = std::min(x1 + 1, w), gy1 = std::min(y1 + 1, h);  // pixels [g0, g1)
-  const int gw = gx1 - gx0 + 1;                                     // corners per row
+  const int gw = gx1 - gx0 + 1;                                    // corners per row
   std::vector<int> corner(static_cast<std::size_t>(gw) * (gy1 - gy0 + 1));
   for (int j = gy0; j <= gy1; ++j)
     for (int i = gx0; i <= gx1; ++i)

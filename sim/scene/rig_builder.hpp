@@ -12,9 +12,9 @@ namespace petra::sim {
 
 struct RigPose {
   Eigen::Vector3d midpoint_mm;  // world position of the midpoint between the cameras
-  double heading_rad = 0;       // yaw: 0 looks along +y, positive turns toward -x (counter-clockwise)
-  double tilt_rad = 0.6;        // optical axes below the horizon
-  double roll_rad = 0;          // about the optical axis
+  double heading_rad = 0;  // yaw: 0 looks along +y, positive turns toward -x (counter-clockwise)
+  double tilt_rad = 0.6;   // optical axes below the horizon
+  double roll_rad = 0;     // about the optical axis
 };
 
 // Draws the intrinsics and per-camera misalignments from `rng`.

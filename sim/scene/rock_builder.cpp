@@ -50,10 +50,11 @@ Result<BuiltRock> build_rock(Rng& rng, const RockSpec& spec) {
   const double b = a * rng.uniform(sp.b_ratio_lo, sp.b_ratio_hi);
   const double c = a * rng.uniform(sp.c_ratio_lo, sp.c_ratio_hi);
   // Ellipsoid orientation: any yaw, a little tilt.
-  const Eigen::Matrix3d q = Eigen::Matrix3d(
-      Eigen::AngleAxisd(rng.uniform(0, 2 * M_PI), Eigen::Vector3d::UnitZ()) *
-      Eigen::AngleAxisd(rng.uniform(-10, 10) * kDeg, Eigen::Vector3d::UnitX()));
-  const Eigen::Matrix3d shape_m = q * Eigen::Vector3d(a * a, b * b, c * c).asDiagonal() * q.transpose();
+  const Eigen::Matrix3d q =
+      Eigen::Matrix3d(Eigen::AngleAxisd(rng.uniform(0, 2 * M_PI), Eigen::Vector3d::UnitZ()) *
+                      Eigen::AngleAxisd(rng.uniform(-10, 10) * kDeg, Eigen::Vector3d::UnitX()));
+  const Eigen::Matrix3d shape_m =
+      q * Eigen::Vector3d(a * a, b * b, c * c).asDiagonal() * q.transpose();
   // Support function of the ellipsoid: the plane with normal n touching it.
   auto support = [&](const Eigen::Vector3d& n) { return std::sqrt(n.dot(shape_m * n)); };
 
@@ -80,18 +81,24 @@ Result<BuiltRock> build_rock(Rng& rng, const RockSpec& spec) {
   std::vector<Eigen::Vector3d> flat;
   if (spec.flat_faces == 2) {
     const double el_lo = slab ? 35 : 22, el_hi = slab ? 60 : 50;
-    flat.push_back(direction(view_az + side * rng.uniform(18, 40) * kDeg, rng.uniform(el_lo, el_hi) * kDeg));
-    flat.push_back(direction(view_az - side * rng.uniform(18, 40) * kDeg, rng.uniform(el_lo, el_hi) * kDeg));
+    flat.push_back(
+        direction(view_az + side * rng.uniform(18, 40) * kDeg, rng.uniform(el_lo, el_hi) * kDeg));
+    flat.push_back(
+        direction(view_az - side * rng.uniform(18, 40) * kDeg, rng.uniform(el_lo, el_hi) * kDeg));
   } else {
     const double top_lo = slab ? 68 : 55, top_hi = slab ? 82 : 72;
     const double side_lo = slab ? 22 : 8, side_hi = slab ? 40 : 30;
-    flat.push_back(direction(view_az + rng.uniform(-20, 20) * kDeg, rng.uniform(top_lo, top_hi) * kDeg));
-    flat.push_back(direction(view_az + side * rng.uniform(38, 58) * kDeg, rng.uniform(side_lo, side_hi) * kDeg));
-    flat.push_back(direction(view_az - side * rng.uniform(38, 58) * kDeg, rng.uniform(side_lo, side_hi) * kDeg));
+    flat.push_back(
+        direction(view_az + rng.uniform(-20, 20) * kDeg, rng.uniform(top_lo, top_hi) * kDeg));
+    flat.push_back(direction(view_az + side * rng.uniform(38, 58) * kDeg,
+                             rng.uniform(side_lo, side_hi) * kDeg));
+    flat.push_back(direction(view_az - side * rng.uniform(38, 58) * kDeg,
+                             rng.uniform(side_lo, side_hi) * kDeg));
   }
   const double cut_lo = spec.flat_faces == 2 ? 0.22 : 0.18;
   const double cut_hi = spec.flat_faces == 2 ? 0.36 : 0.30;
-  for (const auto& n : flat) planes.push_back({n, support(n) * (1.0 - rng.uniform(cut_lo, cut_hi)), true});
+  for (const auto& n : flat)
+    planes.push_back({n, support(n) * (1.0 - rng.uniform(cut_lo, cut_hi)), true});
 
   auto rock = make_convex_rock(planes, Eigen::Vector3d::Zero(), 2.0 * a);
   if (!rock) return rock.error();

@@ -20,7 +20,7 @@ struct RockSpec {
 };
 
 struct BuiltRock {
-  ConvexRock rock;     // ellipsoid centre at (0, 0, centre_height_mm), ground at z = 0
+  ConvexRock rock;  // ellipsoid centre at (0, 0, centre_height_mm), ground at z = 0
   double centre_height_mm = 0;
 };
 

@@ -22,10 +22,10 @@ constexpr std::uint64_t kStreamChoices = 1;
 constexpr std::uint64_t kStreamGeometry = 2;
 constexpr std::uint64_t kStreamMaterials = 3;
 constexpr int kMaxAttempts = 300;
-constexpr double kMarginPx = 40;        // rock and shadow this far inside both images
+constexpr double kMarginPx = 40;         // rock and shadow this far inside both images
 constexpr double kMaxViewAngleDeg = 70;  // flat faces seen at most this obliquely
 constexpr double kMinFlatSeparationDeg = 25;
-constexpr double kFlatOverRoughArea = 1.5;  // a flat face is this much larger than any other
+constexpr double kFlatOverRoughArea = 1.5;     // a flat face is this much larger than any other
 constexpr double kMinFlatAreaFraction = 0.05;  // of size^2
 
 // Choices drawn once per seed, each replaced by its option when given.
@@ -102,7 +102,8 @@ void set_tone_and_exposure(Scene& s) {
   const double ground_shade = std::sin(s.sun_elevation_deg * kDeg) + s.ambient;
   const double rock_shade = weight > 0 ? shade / weight : ground_shade;
   TextureRecipe& r = s.rock_surface;
-  r.mean_albedo = std::clamp(s.ground.mean_albedo * s.tone_ratio * ground_shade / rock_shade, 0.05, 0.9);
+  r.mean_albedo =
+      std::clamp(s.ground.mean_albedo * s.tone_ratio * ground_shade / rock_shade, 0.05, 0.9);
   // Sunlit ground near 130 DN unless that would saturate a rock face facing the sun.
   const double lit_ground = s.ground.mean_albedo * ground_shade;
   const double brightest = r.mean_albedo * 1.3 * (1.0 + s.ambient);
@@ -160,8 +161,7 @@ const char* refusal(const Scene& s) {
   for (int i = 0; i < s.flat_faces; ++i) {
     const VisibleFacet& f = facets[static_cast<std::size_t>(i)];
     if (f.area_mm2 < kFlatOverRoughArea * largest_rough) return kRefusals[4];
-    if (f.area_mm2 < kMinFlatAreaFraction * s.rock_size_mm * s.rock_size_mm)
-      return kRefusals[4];
+    if (f.area_mm2 < kMinFlatAreaFraction * s.rock_size_mm * s.rock_size_mm) return kRefusals[4];
     if (angle_deg(f.normal, cl - f.centroid) > kMaxViewAngleDeg ||
         angle_deg(f.normal, cr - f.centroid) > kMaxViewAngleDeg)
       return kRefusals[5];
@@ -184,8 +184,7 @@ const char* refusal(const Scene& s) {
     return true;
   };
   if (!in_views(rock_outline_points(s.rock, 8))) return kRefusals[8];
-  if (!in_views(polygon_edge_points(shadow_region(s.rock, s.sun_dir), 8)))
-    return kRefusals[9];
+  if (!in_views(polygon_edge_points(shadow_region(s.rock, s.sun_dir), 8))) return kRefusals[9];
   return nullptr;
 }
 
@@ -221,7 +220,8 @@ Result<Scene> make_scene(const SceneOptions& o) {
     spec.shape = s.shape;
     spec.size_mm = s.rock_size_mm;
     spec.flat_faces = s.flat_faces;
-    spec.toward_cameras = Eigen::Vector3d(std::sin(phi) * horiz0, -std::cos(phi) * horiz0, h - zc0).normalized();
+    spec.toward_cameras =
+        Eigen::Vector3d(std::sin(phi) * horiz0, -std::cos(phi) * horiz0, h - zc0).normalized();
     auto built = build_rock(geo, spec);
     const double heading_jitter = geo.uniform(-7, 7) * kDeg;
     const double tilt_jitter = geo.uniform(-6, 6) * kDeg;

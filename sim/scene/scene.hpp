@@ -36,7 +36,7 @@ struct Scene {
   Eigen::Vector3d sun_dir = Eigen::Vector3d::UnitZ();        // unit, from the scene toward the sun
   double ambient = 0.3;       // sky irradiance relative to the sun's at normal incidence
   double sky_radiance = 1.0;  // what a ray that misses the ground sees
-  double tone_ratio = 1.0;  // rock's mean brightness / the ground's, as the left camera sees them
+  double tone_ratio = 1.0;    // rock's mean brightness / the ground's, as the left camera sees them
   TextureRecipe ground;
   TextureRecipe rock_surface;
   double gain_dn = 200;  // DN per unit radiance (exposure)
@@ -50,6 +50,8 @@ struct Scene {
 Result<Scene> make_scene(const SceneOptions& options);
 
 // Camera's ray angle per pixel (mm on a surface 1 mm away, at normal incidence).
-inline double pixel_angle(const TsaiCamera& cam) { return cam.dy_mm / cam.f_mm; }
+inline double pixel_angle(const TsaiCamera& cam) {
+  return cam.dy_mm / cam.f_mm;
+}
 
 }  // namespace petra::sim

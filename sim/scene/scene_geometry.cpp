@@ -37,7 +37,8 @@ std::vector<Eigen::Vector3d> polygon_edge_points(const Polygon3& poly, int per_e
   for (std::size_t i = 0; i < poly.size(); ++i) {
     const Eigen::Vector3d& a = poly[i];
     const Eigen::Vector3d& b = poly[(i + 1) % poly.size()];
-    for (int k = 0; k < per_edge; ++k) pts.push_back(a + (b - a) * (static_cast<double>(k) / per_edge));
+    for (int k = 0; k < per_edge; ++k)
+      pts.push_back(a + (b - a) * (static_cast<double>(k) / per_edge));
   }
   return pts;
 }

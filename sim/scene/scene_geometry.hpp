@@ -13,9 +13,9 @@ namespace petra::sim {
 
 // A rock facet seen by both cameras: its part above the ground.
 struct VisibleFacet {
-  int face = 0;         // index into rock.faces
+  int face = 0;  // index into rock.faces
   Eigen::Vector3d normal;
-  Polygon3 polygon;     // exposed polygon, counter-clockwise seen from outside
+  Polygon3 polygon;  // exposed polygon, counter-clockwise seen from outside
   Eigen::Vector3d centroid;
   double area_mm2 = 0;
   bool grind_face = false;

@@ -4,7 +4,9 @@
 
 namespace petra::sim {
 
-const char* boundary_name(Boundary b) { return b == Boundary::clear ? "clear" : "weak"; }
+const char* boundary_name(Boundary b) {
+  return b == Boundary::clear ? "clear" : "weak";
+}
 
 const char* shape_name(RockShape s) {
   switch (s) {
@@ -51,15 +53,16 @@ Status validate(const SceneOptions& o) {
                        static_cast<unsigned long long>(kMaxSeed));
   if (o.flat_faces && (*o.flat_faces < 2 || *o.flat_faces > 3))
     return Error::make(Errc::out_of_range, "flat-faces = %d: must be 2 or 3", *o.flat_faces);
-  PETRA_TRY(in_range(o.sun_elevation_deg, kMinSunElevationDeg, kMaxSunElevationDeg,
-                     "sun-elevation", "deg"));
+  PETRA_TRY(in_range(o.sun_elevation_deg, kMinSunElevationDeg, kMaxSunElevationDeg, "sun-elevation",
+                     "deg"));
   PETRA_TRY(in_range(o.sun_azimuth_deg, -360, 360, "sun-azimuth", "deg"));
   PETRA_TRY(in_range(o.rock_size_mm, kMinRockSizeMm, kMaxRockSizeMm, "rock-size", "mm"));
-  PETRA_TRY(in_range(o.rock_distance_mm, kMinRockDistanceMm, kMaxRockDistanceMm, "rock-distance",
-                     "mm"));
-  PETRA_TRY(in_range(o.camera_height_mm, kMinCameraHeightMm, kMaxCameraHeightMm, "camera-height",
-                     "mm"));
-  if (!(std::isfinite(o.noise_sigma_dn) && o.noise_sigma_dn >= 0 && o.noise_sigma_dn <= kMaxNoiseDn))
+  PETRA_TRY(
+      in_range(o.rock_distance_mm, kMinRockDistanceMm, kMaxRockDistanceMm, "rock-distance", "mm"));
+  PETRA_TRY(
+      in_range(o.camera_height_mm, kMinCameraHeightMm, kMaxCameraHeightMm, "camera-height", "mm"));
+  if (!(std::isfinite(o.noise_sigma_dn) && o.noise_sigma_dn >= 0 &&
+        o.noise_sigma_dn <= kMaxNoiseDn))
     return Error::make(Errc::out_of_range, "noise = %g outside 0..%g DN", o.noise_sigma_dn,
                        kMaxNoiseDn);
   if (o.edge_supersampling < 2 || o.edge_supersampling > 16)
@@ -67,11 +70,11 @@ Status validate(const SceneOptions& o) {
                        o.edge_supersampling);
   // The rock must lie ahead of the rig, not below it: its centre sits at most
   // ~150 mm above the ground, so the distance must clearly exceed the height.
-  if (o.rock_distance_mm && o.camera_height_mm &&
-      *o.camera_height_mm > 0.85 * *o.rock_distance_mm)
-    return Error::make(Errc::invalid_argument,
-                       "camera-height %g mm too large for rock-distance %g mm (max 0.85 x distance)",
-                       *o.camera_height_mm, *o.rock_distance_mm);
+  if (o.rock_distance_mm && o.camera_height_mm && *o.camera_height_mm > 0.85 * *o.rock_distance_mm)
+    return Error::make(
+        Errc::invalid_argument,
+        "camera-height %g mm too large for rock-distance %g mm (max 0.85 x distance)",
+        *o.camera_height_mm, *o.rock_distance_mm);
   return {};
 }
 

@@ -35,13 +35,13 @@ struct SceneOptions {
   std::uint64_t seed = 1;
   std::optional<Boundary> boundary;
   std::optional<RockShape> shape;
-  std::optional<int> flat_faces;             // grind-plane candidates, 2 or 3
-  std::optional<double> sun_elevation_deg;   // above the horizon
-  std::optional<double> sun_azimuth_deg;     // from the cameras' heading, counter-clockwise
-                                             // seen from above; 180 = behind the cameras
-  std::optional<double> rock_size_mm;        // largest dimension of the rock
-  std::optional<double> rock_distance_mm;    // rig midpoint to rock centre
-  std::optional<double> camera_height_mm;    // rig midpoint above the ground
+  std::optional<int> flat_faces;            // grind-plane candidates, 2 or 3
+  std::optional<double> sun_elevation_deg;  // above the horizon
+  std::optional<double> sun_azimuth_deg;    // from the cameras' heading, counter-clockwise
+                                            // seen from above; 180 = behind the cameras
+  std::optional<double> rock_size_mm;       // largest dimension of the rock
+  std::optional<double> rock_distance_mm;   // rig midpoint to rock centre
+  std::optional<double> camera_height_mm;   // rig midpoint above the ground
   double noise_sigma_dn = 1.5;  // sensor noise at mid-grey (128 DN), grows with the signal
   bool texture = true;          // false: uniform albedo (geometry tests only)
   int edge_supersampling = 8;   // samples per axis in pixels crossed by an edge

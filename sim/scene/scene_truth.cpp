@@ -126,7 +126,11 @@ Result<std::string> format_truth_json(const Scene& s, const SceneTruth& t) {
   w.raw("\n");
   w.key("roi_rectified");
   rect(w, t.roi_rectified);
-  w.key("disparity_range").begin_array().number(t.disparity_min).number(t.disparity_max).end_array();
+  w.key("disparity_range")
+      .begin_array()
+      .number(t.disparity_min)
+      .number(t.disparity_max)
+      .end_array();
   w.raw("\n");
   w.key("scene").begin_object();
   w.key("boundary").string(boundary_name(s.boundary));

@@ -11,18 +11,21 @@ namespace {
 
 // Perlin's 12 edge-midpoint gradients, padded to 16 so a 4-bit index picks
 // one without a modulo (a table, not a switch: the index is random).
-constexpr double kGrad[16][3] = {{1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0},
-                                 {1, 0, 1}, {-1, 0, 1}, {1, 0, -1}, {-1, 0, -1},
-                                 {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1},
-                                 {1, 1, 0}, {-1, 1, 0}, {0, -1, 1}, {0, -1, -1}};
+constexpr double kGrad[16][3] = {
+    {1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1}, {-1, 0, 1}, {1, 0, -1}, {-1, 0, -1},
+    {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1}, {1, 1, 0}, {-1, 1, 0}, {0, -1, 1}, {0, -1, -1}};
 
 inline double grad(unsigned h, double x, double y, double z) {
   const double* g = kGrad[h & 15];
   return g[0] * x + g[1] * y + g[2] * z;
 }
 
-double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
-double lerp(double a, double b, double t) { return a + t * (b - a); }
+double fade(double t) {
+  return t * t * t * (t * (t * 6 - 15) + 10);
+}
+double lerp(double a, double b, double t) {
+  return a + t * (b - a);
+}
 
 double smoothstep(double e0, double e1, double x) {
   const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
@@ -87,7 +90,8 @@ double albedo(const TextureRecipe& r, const Eigen::Vector3d& p, double footprint
     const double w = detail_weight(lambda, footprint_mm);
     // Each octave is rotated and shifted so its lattice does not line up with the others.
     shift += 37.17;
-    if (w > 0) sum += w * amp * gradient_noise(q / lambda + Eigen::Vector3d::Constant(shift), r.perm);
+    if (w > 0)
+      sum += w * amp * gradient_noise(q / lambda + Eigen::Vector3d::Constant(shift), r.perm);
     q = twist(q);
   }
   double a = 1.0 + r.fractal_contrast * sum / (0.22 * std::sqrt(norm));
@@ -95,7 +99,8 @@ double albedo(const TextureRecipe& r, const Eigen::Vector3d& p, double footprint
     // Pebbles: dark where one noise field is high, light where it is low.
     const double wd = detail_weight(r.spot_scale_mm, footprint_mm);
     if (wd > 0) {
-      const double n = gradient_noise(p / r.spot_scale_mm + Eigen::Vector3d(11.3, 7.9, 3.1), r.perm);
+      const double n =
+          gradient_noise(p / r.spot_scale_mm + Eigen::Vector3d(11.3, 7.9, 3.1), r.perm);
       a *= 1.0 - wd * r.spot_contrast * smoothstep(0.26, 0.40, n);
       a *= 1.0 + wd * r.spot_contrast * smoothstep(0.30, 0.44, -n);
     }
@@ -103,7 +108,9 @@ double albedo(const TextureRecipe& r, const Eigen::Vector3d& p, double footprint
   if (r.vein_scale_mm > 0) {
     const double wv = detail_weight(0.1 * r.vein_scale_mm, footprint_mm);
     if (wv > 0) {
-      const double ridge = 1.0 - std::abs(gradient_noise(p / r.vein_scale_mm + Eigen::Vector3d(171.1, 143.7, 119.3), r.perm));
+      const double ridge =
+          1.0 - std::abs(gradient_noise(p / r.vein_scale_mm + Eigen::Vector3d(171.1, 143.7, 119.3),
+                                        r.perm));
       a *= 1.0 + wv * r.vein_contrast * smoothstep(0.92, 0.97, ridge);
     }
   }

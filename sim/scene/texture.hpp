@@ -28,7 +28,7 @@ struct TextureRecipe {
   double persistence = 0.7;       // amplitude ratio between successive octaves
   double spot_scale_mm = 7;       // pebble-like dark and light spots (0: none)
   double spot_contrast = 0.3;
-  double vein_scale_mm = 0;       // light veins (0: none)
+  double vein_scale_mm = 0;  // light veins (0: none)
   double vein_contrast = 0.25;
   Permutation perm{};  // from make_permutation(seed)
 };

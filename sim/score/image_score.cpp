@@ -17,7 +17,9 @@ Status check_frame(int w, int h, int tw, int th, const Rect& region, const char*
   return {};
 }
 
-double pct(long a, long b) { return b > 0 ? 100.0 * static_cast<double>(a) / static_cast<double>(b) : 0.0; }
+double pct(long a, long b) {
+  return b > 0 ? 100.0 * static_cast<double>(a) / static_cast<double>(b) : 0.0;
+}
 
 double ratio(long a, long b) {
   return b > 0 ? static_cast<double>(a) / static_cast<double>(b)

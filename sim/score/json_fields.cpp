@@ -36,7 +36,8 @@ Error JsonFile::error(const std::string& path, const char* what) const {
 Result<std::uint32_t> JsonFile::member(std::uint32_t obj, std::string_view key,
                                        const std::string& path) const {
   const std::uint32_t i = doc_.find(obj, key);
-  if (i == 0) return Error::make(Errc::missing_field, "%s: %s: missing", name_.c_str(), path.c_str());
+  if (i == 0)
+    return Error::make(Errc::missing_field, "%s: %s: missing", name_.c_str(), path.c_str());
   return i;
 }
 
@@ -79,7 +80,8 @@ Result<Eigen::Vector3d> JsonFile::vec3(std::uint32_t i, const std::string& path)
   Eigen::Vector3d v;
   std::uint32_t e = i + 1;
   for (int k = 0; k < 3; ++k) {
-    if (doc_.token(e).type != json::Type::number) return error(path, "expected an array of 3 numbers");
+    if (doc_.token(e).type != json::Type::number)
+      return error(path, "expected an array of 3 numbers");
     v[k] = doc_.token(e).number;
     e = doc_.token(e).next;
   }

@@ -28,7 +28,8 @@ class JsonFile {
   const std::string& name() const { return name_; }
 
   // Members of object `obj`: required ones fail when absent.
-  Result<std::uint32_t> member(std::uint32_t obj, std::string_view key, const std::string& path) const;
+  Result<std::uint32_t> member(std::uint32_t obj, std::string_view key,
+                               const std::string& path) const;
   std::uint32_t optional_member(std::uint32_t obj, std::string_view key) const;
 
   Result<std::uint32_t> object(std::uint32_t i, const std::string& path) const;

@@ -83,8 +83,8 @@ PlaneScore score_planes(const TruthFile& truth, const PlanesFile& out) {
                                         std::vector<double>(static_cast<std::size_t>(np)));
   for (int i = 0; i < nf; ++i)
     for (int j = 0; j < np; ++j)
-      cost[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] =
-          match_cost(truth.facets[static_cast<std::size_t>(i)], out.planes[static_cast<std::size_t>(j)]);
+      cost[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = match_cost(
+          truth.facets[static_cast<std::size_t>(i)], out.planes[static_cast<std::size_t>(j)]);
   const std::vector<int> plane_of = assign(cost, nf, np);
   std::vector<bool> used(static_cast<std::size_t>(np), false);
   for (int i = 0; i < nf; ++i) {

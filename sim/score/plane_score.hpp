@@ -18,12 +18,12 @@ namespace petra::sim {
 inline constexpr double kMatchMmPerDeg = 1.0;
 
 struct FacetScore {
-  int facet = 0;    // index into truth facets
-  int plane = -1;   // matched output plane, -1 when none is left
-  double normal_error_deg = 0;        // angle between the unit normals (180 = flipped)
+  int facet = 0;                          // index into truth facets
+  int plane = -1;                         // matched output plane, -1 when none is left
+  double normal_error_deg = 0;            // angle between the unit normals (180 = flipped)
   double centroid_plane_distance_mm = 0;  // |n . (centroid - facet point)|
-  double centroid_outside_mm = 0;     // in-plane distance from the facet polygon (0 = on it)
-  bool centroid_on_facet = false;     // centroid's projection lies on the facet polygon
+  double centroid_outside_mm = 0;         // in-plane distance from the facet polygon (0 = on it)
+  bool centroid_on_facet = false;         // centroid's projection lies on the facet polygon
 };
 
 struct GroundScore {

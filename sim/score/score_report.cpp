@@ -62,7 +62,8 @@ std::vector<std::string> limit_failures(const ScoreReport& r, const ScoreLimits&
       }
       if (l.require_on_facet && !f.centroid_on_facet) {
         line.clear();
-        append(line, "facet %d: centroid %.2f mm outside the facet", f.facet, f.centroid_outside_mm);
+        append(line, "facet %d: centroid %.2f mm outside the facet", f.facet,
+               f.centroid_outside_mm);
         out.push_back(line);
       }
     }
@@ -135,10 +136,12 @@ std::string format_score_text(const ScoreReport& r, const std::vector<std::strin
   }
   if (r.shadow) {
     const MaskScore& m = *r.shadow;
-    append(s, "shadow (region %d,%d,%d,%d): precision %s, recall %s, IoU %s (TP %ld, FP %ld, FN %ld)\n",
-           m.region.x, m.region.y, m.region.w, m.region.h, fraction(m.precision).c_str(),
-           fraction(m.recall).c_str(), fraction(m.iou).c_str(), m.true_positive, m.false_positive,
-           m.false_negative);
+    append(
+        s,
+        "shadow (region %d,%d,%d,%d): precision %s, recall %s, IoU %s (TP %ld, FP %ld, FN %ld)\n",
+        m.region.x, m.region.y, m.region.w, m.region.h, fraction(m.precision).c_str(),
+        fraction(m.recall).c_str(), fraction(m.iou).c_str(), m.true_positive, m.false_positive,
+        m.false_negative);
   }
   if (failures.empty()) {
     s += "limits: all met\n";

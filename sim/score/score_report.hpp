@@ -19,10 +19,11 @@ struct ScoreReport {
 };
 
 struct ScoreLimits {
-  std::optional<double> max_normal_deg;   // every scored facet matched, normal error <= this
-  std::optional<double> max_centroid_mm;  // every scored facet matched, centroid-plane distance <= this
-  bool require_on_facet = false;          // every matched centroid lies on its facet
-  bool require_count = false;             // as many planes as the truth
+  std::optional<double> max_normal_deg;  // every scored facet matched, normal error <= this
+  std::optional<double>
+      max_centroid_mm;            // every scored facet matched, centroid-plane distance <= this
+  bool require_on_facet = false;  // every matched centroid lies on its facet
+  bool require_count = false;     // as many planes as the truth
   std::optional<double> max_bad1_pct;
   std::optional<double> max_bad2_pct;
   std::optional<double> min_shadow_precision;  // 0..1

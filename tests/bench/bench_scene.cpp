@@ -9,7 +9,9 @@ namespace {
 
 using namespace petra::sim;
 
-SceneOptions entry(std::int64_t k) { return standard_scene_set()[static_cast<std::size_t>(k)]; }
+SceneOptions entry(std::int64_t k) {
+  return standard_scene_set()[static_cast<std::size_t>(k)];
+}
 
 void BM_MakeScene(benchmark::State& state) {
   const SceneOptions o = entry(state.range(0));

@@ -73,6 +73,8 @@ class ExecutiveHarness {
     deps.camera = &camera_;
     deps.clock = &clock_;
     deps.job = with_job_ ? &job : nullptr;
+    deps.arm = arm;
+    deps.estop = estop;
     PETRA_TRY(exec_.init(*config, deps));
     PETRA_TRY(sender_.open("127.0.0.1", 0));
     return sender_.set_peer("127.0.0.1", exec_.command_port());
@@ -149,6 +151,8 @@ class ExecutiveHarness {
   void keep_dir() { keep_dir_ = true; }
 
   ScriptedPipelineJob job;
+  fsw::ArmPort* arm = nullptr;         // optional, set before boot()
+  hal::DigitalInput* estop = nullptr;  // optional, set before boot()
   std::uint32_t counter = 0;
   std::size_t queue_packets = 256;
   std::string loop = R"({"cycle_ms":10})";

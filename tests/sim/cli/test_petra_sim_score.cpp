@@ -2,6 +2,7 @@
 // exit status 0 / 1 (bad input, one line on stderr) / 2 (a limit exceeded).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -16,9 +17,14 @@ namespace {
 namespace fs = std::filesystem;
 
 // The petra executable built beside this test (build/<preset>/sim/petra).
-fs::path petra() { return fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "sim" / "petra"; }
+fs::path petra() {
+  return fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "sim" / "petra";
+}
 
-fs::path tmp(const std::string& name) { return fs::temp_directory_path() / ("petra_cli_" + name); }
+// Per process: ctest runs the tests of this file in parallel processes.
+fs::path tmp(const std::string& name) {
+  return fs::temp_directory_path() / ("petra_cli_" + std::to_string(getpid()) + "_" + name);
+}
 
 std::string slurp(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
@@ -32,7 +38,8 @@ struct CliResult {
 
 CliResult run(const std::string& args) {
   const fs::path out = tmp("stdout"), err = tmp("stderr");
-  const std::string cmd = petra().string() + " " + args + " >" + out.string() + " 2>" + err.string();
+  const std::string cmd =
+      petra().string() + " " + args + " >" + out.string() + " 2>" + err.string();
   const int raw = std::system(cmd.c_str());
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
 }
@@ -43,7 +50,8 @@ class PetraCli : public ::testing::Test {
     ASSERT_TRUE(fs::exists(petra())) << petra() << " not built";
     scene_ = tmp("scene");
     fs::remove_all(scene_);
-    const CliResult r = run("sim scene --seed 7 --out " + scene_.string());
+    // Plain surfaces render quicker; these tests are about files and exit codes.
+    const CliResult r = run("sim scene --seed 7 --no-texture --out " + scene_.string());
     ASSERT_EQ(r.status, 0) << r.err;
   }
   static fs::path scene_;
@@ -51,8 +59,8 @@ class PetraCli : public ::testing::Test {
 fs::path PetraCli::scene_;
 
 TEST_F(PetraCli, SceneWritesEveryFile) {
-  for (const char* f : {"left.pgm", "right.pgm", "left.png", "right.png", "calib.json", "truth.json",
-                        "disparity_truth.pfm", "shadow_truth.pgm"})
+  for (const char* f : {"left.pgm", "right.pgm", "left.png", "right.png", "calib.json",
+                        "truth.json", "disparity_truth.pfm", "shadow_truth.pgm"})
     EXPECT_TRUE(fs::exists(scene_ / f)) << f;
   const CliResult r = run("info --calib " + (scene_ / "calib.json").string());
   EXPECT_EQ(r.status, 0) << r.err;
@@ -92,9 +100,10 @@ TEST_F(PetraCli, ScoreExitStatusFollowsTheLimits) {
       const auto& f = truth->facets[static_cast<std::size_t>(i)];
       const double k = flip && i == 0 ? -1 : 1;
       char buf[256];
-      std::snprintf(buf, sizeof buf, "%s{\"normal\":[%.17g,%.17g,%.17g],\"centroid_mm\":[%.17g,%.17g,%.17g]}",
-                    i ? "," : "", k * f.normal.x(), k * f.normal.y(), k * f.normal.z(), f.centroid_mm.x(),
-                    f.centroid_mm.y(), f.centroid_mm.z());
+      std::snprintf(buf, sizeof buf,
+                    "%s{\"normal\":[%.17g,%.17g,%.17g],\"centroid_mm\":[%.17g,%.17g,%.17g]}",
+                    i ? "," : "", k * f.normal.x(), k * f.normal.y(), k * f.normal.z(),
+                    f.centroid_mm.x(), f.centroid_mm.y(), f.centroid_mm.z());
       s += buf;
     }
     return s + "]}";
@@ -103,7 +112,8 @@ TEST_F(PetraCli, ScoreExitStatusFollowsTheLimits) {
   std::ofstream(good) << planes(false);
   std::ofstream(bad) << planes(true);
   std::ofstream(broken) << "{\"planes\":[{\"normal\":[0,0,1]}]}";
-  const std::string limits = " --max-normal-deg 2 --max-centroid-mm 1 --require-on-facet --require-count";
+  const std::string limits =
+      " --max-normal-deg 2 --max-centroid-mm 1 --require-on-facet --require-count";
   CliResult r = run("score --truth " + truth_path + " --planes " + good.string() + limits);
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("count agrees"), std::string::npos) << r.out;
@@ -133,16 +143,18 @@ TEST_F(PetraCli, ScoresDisparityAndShadowMaps) {
   const std::string d = (scene_ / "disparity_truth.pfm").string();
   const std::string s = (scene_ / "shadow_truth.pgm").string();
   const std::string t = (scene_ / "truth.json").string();
-  CliResult r = run("score --truth " + t + " --disparity " + d + " --disparity-truth " + d + " --shadow " + s +
-              " --shadow-truth " + s + " --max-bad1 0 --min-shadow-recall 1");
+  CliResult r =
+      run("score --truth " + t + " --disparity " + d + " --disparity-truth " + d + " --shadow " +
+          s + " --shadow-truth " + s + " --max-bad1 0 --min-shadow-recall 1");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("bad-1 0.00 %"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("recall 1.000"), std::string::npos) << r.out;
   // The right camera's mask scored against the left truth fails a recall limit.
-  r = run("score --shadow " + (scene_ / "shadow_truth_right.pgm").string() + " --shadow-truth " + s +
-          " --shadow-roi 0,0,1024,768 --min-shadow-recall 0.99");
+  r = run("score --shadow " + (scene_ / "shadow_truth_right.pgm").string() + " --shadow-truth " +
+          s + " --shadow-roi 0,0,1024,768 --min-shadow-recall 0.99");
   EXPECT_EQ(r.status, 2) << r.out << r.err;
-  r = run("score --disparity " + d + " --disparity-truth " + d + " --disparity-roi 1000,700,100,100");
+  r = run("score --disparity " + d + " --disparity-truth " + d +
+          " --disparity-roi 1000,700,100,100");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("region"), std::string::npos) << r.err;
   r = run("score --disparity " + d + " --disparity-truth " + s);

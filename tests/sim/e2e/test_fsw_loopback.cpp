@@ -161,9 +161,10 @@ TEST(FswLoopback, PetraCmdAndPetraTlmTalkToTheFlightProcess) {
       contains_line(lines, {"\"packet\":\"EVENT\"", "ROI x 40, y 30, 200 x 150 px selected"}));
   EXPECT_TRUE(
       contains_line(lines, {"\"packet\":\"PARAM_VALUE\"", "\"param_id\":8,", "\"value\":4"}));
-  // The flight binary has no image pipeline yet: EVALUATE fails, saying so.
+  // No calib.json configured: EVALUATE fails PIPELINE_ERROR and the event names why.
   EXPECT_TRUE(contains_line(
-      lines, {"\"packet\":\"ACK\"", "\"function_code\":18,", "\"stage\":4", "\"reason\":32"}));
+      lines, {"\"packet\":\"ACK\"", "\"function_code\":18,", "\"stage\":4", "\"reason\":36"}));
+  EXPECT_TRUE(contains_line(lines, {"\"packet\":\"EVENT\"", "failed: not_ready in step RECTIFY"}));
   // The forged NOOP: rejected for its MAC, with the reason's own event.
   EXPECT_TRUE(contains_line(lines, {"\"packet\":\"ACK\"", "\"stage\":2", "\"reason\":6"}));
   EXPECT_TRUE(contains_line(lines, {"\"packet\":\"EVENT\"", "HMAC-SHA256 does not verify"}));

@@ -42,12 +42,14 @@ class IndependentCaster {
     }
     centre_ = {sum[0] / n, sum[1] / n, sum[2] / n};
     for (const auto& t : tris_)
-      for (const V& p : {t.a, t.b, t.c}) radius_ = std::max(radius_, std::sqrt(dot(sub(p, centre_), sub(p, centre_))));
+      for (const V& p : {t.a, t.b, t.c})
+        radius_ = std::max(radius_, std::sqrt(dot(sub(p, centre_), sub(p, centre_))));
     radius_ += 1e-3;
   }
 
   // First hit of o + t d (t > t_min) among the rock's above-ground surface and the ground.
-  Hit first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_min = 0.0) const {
+  Hit first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
+                double t_min = 0.0) const {
     const V o = v3(origin), d = v3(dir);
     Hit h;
     if (near_rock(o, d)) {
@@ -75,7 +77,8 @@ class IndependentCaster {
   // Shadow by a ray toward the sun (ground) or the face's orientation (rock).
   bool shadowed(const Hit& h) const {
     if (h.rock)
-      return scene_.rock.faces[static_cast<std::size_t>(h.face)].plane.normal.dot(scene_.sun_dir) <= 0;
+      return scene_.rock.faces[static_cast<std::size_t>(h.face)].plane.normal.dot(scene_.sun_dir) <=
+             0;
     if (!h.ground) return false;
     const V o = v3(h.point), d = v3(scene_.sun_dir);
     if (!near_rock(o, d)) return false;

@@ -6,7 +6,9 @@ namespace petra::sim {
 namespace {
 
 // A 10 x 20 rectangle in the plane z = 5, counter-clockwise seen from +z.
-Polygon3 rect() { return {{0, 0, 5}, {10, 0, 5}, {10, 20, 5}, {0, 20, 5}}; }
+Polygon3 rect() {
+  return {{0, 0, 5}, {10, 0, 5}, {10, 20, 5}, {0, 20, 5}};
+}
 
 TEST(Polygon3, AreaCentroidAndOrientation) {
   EXPECT_DOUBLE_EQ(polygon_area(rect()), 200.0);
@@ -26,9 +28,9 @@ TEST(Polygon3, ClipKeepsTheInsideOfTheHalfSpace) {
 
 TEST(Polygon3, DistancesToAPolygon) {
   const Eigen::Vector3d n(0, 0, 1);
-  EXPECT_DOUBLE_EQ(in_plane_distance_to_polygon(rect(), n, {5, 5, 9}), 0.0);   // above, inside
-  EXPECT_DOUBLE_EQ(in_plane_distance_to_polygon(rect(), n, {13, 5, 5}), 3.0);  // beside an edge
-  EXPECT_DOUBLE_EQ(in_plane_distance_to_polygon(rect(), n, {13, 24, 5}), 5.0); // off a corner
+  EXPECT_DOUBLE_EQ(in_plane_distance_to_polygon(rect(), n, {5, 5, 9}), 0.0);    // above, inside
+  EXPECT_DOUBLE_EQ(in_plane_distance_to_polygon(rect(), n, {13, 5, 5}), 3.0);   // beside an edge
+  EXPECT_DOUBLE_EQ(in_plane_distance_to_polygon(rect(), n, {13, 24, 5}), 5.0);  // off a corner
   EXPECT_DOUBLE_EQ(distance_to_polygon(rect(), n, {5, 5, 9}), 4.0);
   EXPECT_DOUBLE_EQ(distance_to_polygon(rect(), n, {13, 24, 17}), 13.0);
   // Orientation of the polygon does not matter.

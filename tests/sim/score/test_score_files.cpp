@@ -16,7 +16,8 @@ const char* kTruth = R"({"roi":[10,20,300,200],"planes":1,
            {"normal":[1,0,0],"centroid_mm":[2,1,2.5],"polygon_mm":[[2,0,0],[2,2,0],[2,2,5]],"visible_area_mm2":5}],
  "ground":{"normal":[0,0,1],"d_mm":0},"sun_dir":[0,0.6,0.8],"seed":17,"roi_rectified":[12,18,290,210]})";
 
-const char* kPlanes = R"({"planes":[{"normal":[0,0,1],"centroid_mm":[1,1,5],"area_mm2":3.5,"rms_mm":0.2,"triangles":12}],
+const char* kPlanes =
+    R"({"planes":[{"normal":[0,0,1],"centroid_mm":[1,1,5],"area_mm2":3.5,"rms_mm":0.2,"triangles":12}],
  "ground":{"normal":[0,0,1],"d_mm":-0.5},
  "stats":{"dense_points":100,"filtered_points":90,"disparity_min":120,"disparity_max":180}})";
 
@@ -59,15 +60,17 @@ TEST(ScoreFiles, ReadsThePlanesContract) {
 TEST(ScoreFiles, MalformedTruthNamesTheProblem) {
   const std::string t = kTruth;
   const std::pair<std::string, std::string> cases[] = {
-      {"{\"roi\":", "truth.json: json"},                                // not JSON
-      {replace(t, "\"planes\":1", "\"planes\":3"), "planes = 3"},        // more than the facets
+      {"{\"roi\":", "truth.json: json"},                           // not JSON
+      {replace(t, "\"planes\":1", "\"planes\":3"), "planes = 3"},  // more than the facets
       {replace(t, "\"planes\":1", "\"planes\":0"), "planes = 0"},
       {replace(t, "\"roi\":[10,20,300,200]", "\"roi\":[10,20,300]"), "roi"},
       {replace(t, "\"roi\":[10,20,300,200]", "\"roi\":[10,20,0,200]"), "roi"},
-      {replace(t, "\"normal\":[0,0,1],\"centroid_mm\":[1,1,5]", "\"normal\":[0,0,2],\"centroid_mm\":[1,1,5]"),
+      {replace(t, "\"normal\":[0,0,1],\"centroid_mm\":[1,1,5]",
+               "\"normal\":[0,0,2],\"centroid_mm\":[1,1,5]"),
        "facets[0].normal: length 2"},
       {replace(t, "[[2,0,0],[2,2,0],[2,2,5]]", "[[2,0,0],[2,2,0]]"), "facets[1].polygon_mm"},
-      {replace(t, "\"visible_area_mm2\":5", "\"visible_area_mm2\":\"5\""), "facets[1].visible_area_mm2"},
+      {replace(t, "\"visible_area_mm2\":5", "\"visible_area_mm2\":\"5\""),
+       "facets[1].visible_area_mm2"},
       {replace(t, "\"seed\":17,", ""), "seed: missing"},
       {replace(t, "\"sun_dir\":[0,0.6,0.8]", "\"sun_dir\":[0,0.6]"), "sun_dir"},
       {replace(t, "\"d_mm\":0", "\"d_mm\":null"), "ground.d_mm"},

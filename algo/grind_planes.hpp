@@ -1,0 +1,117 @@
+// Grind planes (SEED.md 4b) from the rock's mesh:
+//   1. centroid, area and unit normal (AB x AC, turned towards the left
+//      camera: a visible face's outward normal) of every rock triangle; for
+//      the clustering, the mean of its vertices' smoothed normals when given
+//      (at pixel spacing, AB x AC alone scatters by tens of degrees);
+//   2. surface classification by C-means (eq. 9-12, algo/cmeans) of the
+//      normals: the paper's 4a clustering of 3-component samples, applied to
+//      the normals as its 4b step asks, into cluster_count(c) > c classes
+//      (Petra: a rock shows more faces than the c the operator wants, and c
+//      classes would merge two faces into a plane of neither); it sees at most
+//      kCMeansSamples triangles, a regular stride through the mesh (its cost
+//      grows with samples x iterations; its output only seeds step 3);
+//   3. refinement by angle clustering (algo/angle_cluster): the C-means class
+//      means are the initial centres (kept only if more than 5 degrees apart,
+//      as the paper asks), then nearest-angle assignment and area-weighted
+//      mean normals until no triangle changes class. C-means sees the shape of
+//      each class but can split one face along its noise; the angle pass
+//      gives every triangle to the direction it is closest to;
+//   4. per class (Petra adds): its largest edge-connected patch, a trimmed
+//      total-least-squares plane through that patch's vertices (triangles more
+//      than inlier_angle_deg off the plane normal or farther than 3 RMS are
+//      dropped, twice), then refitted on the patch's core (edge_rings rings of
+//      triangles along its border left out: the matcher rounds every crease);
+//      normal out of the rock, centroid (area-weighted mean of the core
+//      triangles' centroids, on the plane), supporting area (whole patch),
+//      RMS flatness and triangle count;
+//      Classes whose planes agree within merge_angle_deg and whose centroids
+//      lie within merge_distance_mm of each other's plane are merged (one face
+//      split by the extra classes);
+//   5. verdicts: a plane whose normal is more than max_view_angle_deg from the
+//      direction to the camera faces away; one with less area than the
+//      grinder's footprint (pi d^2 / 4) is too small; one rougher than
+//      max_rms_mm is not flat. Accepted planes are ranked by area, largest
+//      first, at most c of them (the rest are surplus); rejected ones follow
+//      with their reason.
+// Inputs: positions (world, mm), the rock triangles (neighbour links within
+// this set, as keep_triangles leaves them), the left camera centre, c.
+// Output: the result value; a plane index per triangle (0..count-1 in rank
+// order, 0xFF for none) into a caller span. Scratch:
+// grind_planes_scratch_bytes(triangles) from the arena, released on return.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "algo/angle_cluster.hpp"
+#include "algo/cmeans.hpp"
+#include "algo/core/arena.hpp"
+#include "algo/core/result.hpp"
+#include "algo/delaunay.hpp"
+
+namespace petra {
+
+inline constexpr std::size_t kCMeansSamples = 2048;
+
+struct GrindParams {
+  double grinder_diameter_mm = 20.0;  // footprint: planes with less area are too small
+  double max_view_angle_deg = 75.0;   // plane normal vs direction to the camera
+  double max_rms_mm = 1.5;            // flatness limit
+  double inlier_angle_deg = 12.0;     // a triangle supports a plane within this angle
+  double min_trim_band_mm = 0.3;      // floor of the 3-RMS distance band
+  int edge_rings = 4;                 // border rings left out of the final fit
+  double merge_angle_deg = 8.0;       // two classes' planes this close in direction ...
+  double merge_distance_mm = 3.0;     // ... and each centroid this near the other plane: merged
+  CMeansParams cmeans;
+  AngleClusterParams angle;
+};
+
+enum class PlaneVerdict : std::uint8_t {
+  accepted,
+  faces_away,
+  too_small,
+  not_flat,
+  no_support,
+  surplus  // qualified, but c larger ones did too
+};
+const char* verdict_name(PlaneVerdict v);
+
+struct GrindPlane {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit, out of the rock
+  Eigen::Vector3d centroid_mm = Eigen::Vector3d::Zero();
+  double area_mm2 = 0;
+  double rms_mm = 0;
+  std::size_t triangles = 0;
+  double view_angle_deg = 0;  // normal vs the direction to the camera
+  PlaneVerdict verdict = PlaneVerdict::no_support;
+};
+
+struct GrindResult {
+  GrindPlane planes[kMaxClasses];  // accepted (ranked by area) then rejected
+  int count = 0;                   // planes listed
+  int accepted = 0;                // the first `accepted` of them
+  int classes = 0;                 // distinct faces left after merging
+  int merges = 0;                  // classes merged as coplanar
+  int cmeans_iterations = 0;
+  int angle_iterations = 0;
+  bool converged = false;  // both clusterings stopped because nothing moved
+};
+
+Status validate(const GrindParams& p);
+// Classes clustered for c planes: min(8, max(c + 3, 2c)).
+int cluster_count(int c);
+std::size_t grind_planes_scratch_bytes(std::size_t triangles);
+
+// point_normals: optional smoothed normals per point (algo/surface_normals);
+// a triangle whose three vertices have one clusters by their mean, any
+// other by its own AB x AC normal. Empty: AB x AC everywhere (the paper).
+Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz_mm,
+                                      std::span<const MeshTriangle> rock_triangles,
+                                      const Eigen::Vector3d& camera_centre_mm, int c,
+                                      const GrindParams& params, Arena& scratch,
+                                      std::span<std::uint8_t> triangle_plane,
+                                      std::span<const Eigen::Vector3d> point_normals = {});
+
+}  // namespace petra

@@ -1,0 +1,106 @@
+// The whole onboard chain, from a stereo pair and an operator's request to
+// ranked grind planes (SEED.md 0-4), as one object the executive (fsw) and
+// the ground tool (`petra eval`) both drive:
+//   rectify (ROI and search area) -> disparity range (coarse match)
+//   -> shadow masks -> match (dp) -> reconstruct (mean filter, triangulate,
+//   Delaunay, mesh filter, segmentation, grind planes; algo/reconstruction).
+// Memory: one caller arena. create() takes the remap tables from it (init);
+// every run() releases the arena back to that point and takes what the run
+// needs; outputs are views into the arena, valid until the next run().
+// Pipeline::arena_bytes(budget, params) is the exact bound to allocate at init.
+// Time: per-step timings through the caller's clock (algo makes no OS calls).
+#pragma once
+
+#include <cstddef>
+
+#include "algo/camera_model.hpp"
+#include "algo/core/arena.hpp"
+#include "algo/core/result.hpp"
+#include "algo/disparity_range.hpp"
+#include "algo/match_dp.hpp"
+#include "algo/reconstruction.hpp"
+#include "algo/rectify.hpp"
+#include "algo/shadow.hpp"
+#include "algo/step_clock.hpp"
+
+namespace petra {
+
+// Sizes fixed at init; inputs beyond them are refused with a named error.
+struct PipelineBudget {
+  int image_width = 1024;  // px, must equal calib.json's
+  int image_height = 768;
+  int max_roi_width = 640;  // px, ROI in the rectified left image
+  int max_roi_height = 480;
+  int max_disparities = 160;   // fine matcher: disp_max - disp_min + 1
+  std::size_t max_points = 0;  // 3-D points; 0 = one per ROI pixel
+};
+Status validate(const PipelineBudget& b);
+
+struct PipelineParams {
+  // Expected shadow share of the ROI (SEED.md 1), [0, 1). Only the darkest
+  // 1 %: self-shadowed rock faces are grind candidates and still match
+  // (docs/reconstruction.md has the scene-set figures for 0..8 %).
+  double shadow_fraction = 0.01;
+  RangeSearchParams range;
+  MatchDpParams match;  // disp_min/max are set per run by the range search
+  ReconstructionParams reconstruction;
+};
+Status validate(const PipelineParams& p);
+
+enum class MatchMethod : std::uint8_t { dp, graph_cut };
+
+// What the operator sends (original left image pixels).
+struct PipelineRequest {
+  Rect roi;
+  bool has_click = false;
+  int click_u = 0;
+  int click_v = 0;
+  int planes = 2;  // c
+  MatchMethod method = MatchMethod::dp;
+};
+
+struct PipelineOutput {
+  ReconstructionOutput result;  // planes, ground, cloud, mesh, stats
+  Rect roi_rectified;
+  ClickPx click_rectified;
+  ConstGray8View left_rectified;  // full size; valid inside roi_rectified
+  ShadowMask left_shadow;         // over roi_rectified
+  ShadowThreshold shadow_left, shadow_right;
+  DisparityRange range;
+  ConstDisparityMap disparity;  // matcher output before the mean filter
+  MatchDpStats match;
+  StepTimings timings;
+};
+
+class Pipeline {
+ public:
+  Pipeline() = default;
+
+  static std::size_t init_bytes(const PipelineBudget& budget);
+  static std::size_t run_bytes(const PipelineBudget& budget, const PipelineParams& params);
+  static std::size_t arena_bytes(const PipelineBudget& budget, const PipelineParams& params) {
+    return init_bytes(budget) + run_bytes(budget, params);
+  }
+
+  // Validates everything and builds the remap tables in `arena`, which must
+  // outlive the Pipeline and hold arena_bytes(budget, params).
+  static Result<Pipeline> create(const StereoRig& rig, const PipelineBudget& budget,
+                                 const PipelineParams& params, Arena& arena);
+
+  Result<PipelineOutput> run(ConstGray8View left, ConstGray8View right,
+                             const PipelineRequest& request, const StepClock& clock);
+
+  const Rectifier& rectifier() const { return rectifier_; }
+  const PipelineBudget& budget() const { return budget_; }
+  const PipelineParams& params() const { return params_; }
+
+ private:
+  Arena* arena_ = nullptr;
+  std::size_t run_mark_ = 0;
+  Rectifier rectifier_;
+  PipelineBudget budget_;
+  PipelineParams params_;
+  std::size_t max_points_ = 0;
+};
+
+}  // namespace petra

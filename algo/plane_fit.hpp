@@ -1,0 +1,111 @@
+// Total-least-squares plane fit over a scalar type S (double or Fixed<F>):
+// the plane A X + B Y + C Z + D = 0 with |(A, B, C)| = 1 minimising the sum
+// of squared orthogonal distances (SEED.md 2a eq. 1, normalised form).
+// Centroid and bounding box first, then the covariance of the centred points
+// divided by a scale (half the largest extent), so sums stay O(count)
+// whatever the units: that keeps a Q format from overflowing and costs
+// double nothing.
+// Inputs: points (mm) and a selector `use(i) -> bool`; no heap, two passes.
+#pragma once
+
+#include <cstddef>
+#include <span>
+
+#include "algo/core/result.hpp"
+#include "algo/linalg3.hpp"
+
+namespace petra {
+
+// n . x + d = 0, |n| = 1; distances are n . x + d (signed, mm).
+template <class S>
+struct PlaneT {
+  Vec3T<S> normal = Vec3T<S>::UnitZ();
+  S d{};
+  S distance(const Vec3T<S>& p) const { return normal.dot(p) + d; }
+};
+
+template <class S>
+struct PlaneFitT {
+  PlaneT<S> plane;
+  Vec3T<S> centroid = Vec3T<S>::Zero();
+  S rms{};                 // RMS orthogonal distance of the used points, mm
+  S middle_eigen_ratio{};  // lambda_mid / lambda_max: ~0 when the points are collinear
+  std::size_t count = 0;
+};
+
+// Minimum ratio lambda_mid / lambda_max below which the points are taken as
+// collinear (their plane is undefined).
+inline constexpr double kCollinearEigenRatio = 1e-6;
+
+// Points given by an accessor: point(k) for k < count, used when use(k).
+template <class S, class Get, class Use>
+Result<PlaneFitT<S>> fit_plane_tls_by(std::size_t count_all, Get&& point, Use&& use) {
+  using std::abs;
+  using std::sqrt;
+  PlaneFitT<S> fit;
+  Vec3T<S> sum = Vec3T<S>::Zero();
+  Vec3T<S> lo = Vec3T<S>::Zero(), hi = Vec3T<S>::Zero();
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < count_all; ++i)
+    if (use(i)) {
+      const Vec3T<S>& p = point(i);
+      if (n == 0) lo = hi = p;
+      for (int k = 0; k < 3; ++k) {
+        lo(k) = p(k) < lo(k) ? p(k) : lo(k);
+        hi(k) = p(k) > hi(k) ? p(k) : hi(k);
+      }
+      sum += p;
+      ++n;
+    }
+  if (n < 3) return Error::make(Errc::degenerate, "plane fit: %zu points, need at least 3", n);
+  const S count = from_count<S>(n);
+  const Vec3T<S> c = sum / count;
+  // Scale: half the largest extent, so every |q| <= 2 (centroid inside the box).
+  const Vec3T<S> extent = hi - lo;
+  S scale = extent(0) > extent(1) ? extent(0) : extent(1);
+  scale = (extent(2) > scale ? extent(2) : scale) / S(2);
+  if (!(scale > S(0)))
+    return Error::make(Errc::degenerate, "plane fit: all %zu points coincide", n);
+  const S inv_scale = S(1) / scale;
+  Mat3T<S> cov = Mat3T<S>::Zero();
+  for (std::size_t i = 0; i < count_all; ++i)
+    if (use(i)) {
+      const Vec3T<S> q = (point(i) - c) * inv_scale;
+      cov(0, 0) += q(0) * q(0);
+      cov(1, 0) += q(1) * q(0);
+      cov(2, 0) += q(2) * q(0);
+      cov(1, 1) += q(1) * q(1);
+      cov(2, 1) += q(2) * q(1);
+      cov(2, 2) += q(2) * q(2);
+    }
+  cov(0, 1) = cov(1, 0);
+  cov(0, 2) = cov(2, 0);
+  cov(1, 2) = cov(2, 1);
+  const SymEigen3<S> eig = sym_eigen3<S>(cov);
+  const S lmax = eig.values(2);
+  fit.middle_eigen_ratio = lmax > S(0) ? eig.values(1) / lmax : S(0);
+  if (!(fit.middle_eigen_ratio > S(kCollinearEigenRatio)))
+    return Error::make(Errc::degenerate, "plane fit: %zu points are collinear", n);
+  Vec3T<S> normal = eig.vectors.col(0);
+  normal /= sqrt(normal.squaredNorm());
+  fit.plane.normal = normal;
+  fit.plane.d = -normal.dot(c);
+  fit.centroid = c;
+  const S lmin = eig.values(0) > S(0) ? eig.values(0) : S(0);
+  fit.rms = scale * sqrt(lmin / count);
+  fit.count = n;
+  return fit;
+}
+
+template <class S, class Use>
+Result<PlaneFitT<S>> fit_plane_tls(std::span<const Vec3T<S>> points, Use&& use) {
+  return fit_plane_tls_by<S>(
+      points.size(), [&](std::size_t i) -> const Vec3T<S>& { return points[i]; }, use);
+}
+
+template <class S>
+Result<PlaneFitT<S>> fit_plane_tls(std::span<const Vec3T<S>> points) {
+  return fit_plane_tls<S>(points, [](std::size_t) { return true; });
+}
+
+}  // namespace petra

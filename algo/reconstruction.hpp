@@ -1,0 +1,93 @@
+// From a rectified disparity map to ranked grind planes, the back half of
+// the onboard chain (SEED.md 3c, 3d, 2a, 4):
+//   mean filter -> triangulate (eq. 8) -> Delaunay (rectified left pixels)
+//   -> lift and drop discontinuities -> rock/ground segmentation
+//   -> surface normals (local disparity planes) -> rock triangles
+//   -> C-means + angle clustering -> ranked grind planes.
+// Every buffer comes from the caller's arena: outputs (cloud, mesh, labels,
+// filtered map) stay allocated for the caller to read or downlink until it
+// resets the arena; scratch of each step is released after it.
+// reconstruction_arena_bytes(budget) is the whole need for a budget: an
+// arena that size never runs out for inputs within the budget.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "algo/camera_model.hpp"
+#include "algo/cloud.hpp"
+#include "algo/core/arena.hpp"
+#include "algo/core/result.hpp"
+#include "algo/delaunay.hpp"
+#include "algo/disparity.hpp"
+#include "algo/disparity_filter.hpp"
+#include "algo/grind_planes.hpp"
+#include "algo/ground_segment.hpp"
+#include "algo/mesh_lift.hpp"
+#include "algo/rectify_geometry.hpp"
+#include "algo/step_clock.hpp"
+#include "algo/surface_normals.hpp"
+
+namespace petra {
+
+struct ReconstructionBudget {
+  int max_roi_width = 512;         // px, of the disparity map
+  int max_roi_height = 512;        // px
+  std::size_t max_points = 65536;  // valid disparities after the mean filter
+};
+Status validate(const ReconstructionBudget& b);
+std::size_t reconstruction_arena_bytes(const ReconstructionBudget& b);
+
+struct ReconstructionParams {
+  MeanFilterParams filter;
+  NormalParams normals;
+  MeshFilterParams mesh;
+  GroundParams ground;
+  GrindParams grind;
+};
+
+struct ReconstructionRequest {
+  int planes = 2;  // c, from the operator
+  ClickPx click;   // rectified left pixel, optional
+};
+
+// Per-vertex class for products (cloud/mesh colouring).
+inline constexpr std::uint8_t kVertexGround = 0;
+inline constexpr std::uint8_t kVertexRock = 1;
+inline constexpr std::uint8_t kVertexPlane0 = 2;  // + rank of the grind plane
+
+struct ReconstructionStats {
+  double disparity_min_px = 0, disparity_max_px = 0;  // of the input map
+  long dense_points = 0;                              // valid disparities in (paper: 23465)
+  long filtered_points = 0;                           // after the mean filter (paper: 21382)
+  std::size_t triangulated = 0, triangulation_rejected = 0;
+  std::size_t delaunay_triangles = 0, duplicates = 0;
+  MeshFilterStats mesh;
+  std::size_t rock_triangles = 0;
+};
+
+struct ReconstructionOutput {
+  // Cloud (structure of arrays, `points` long).
+  std::span<Eigen::Vector3d> xyz_mm;
+  std::span<PixelPos> pixels;
+  std::span<PointClass> point_class;
+  std::span<Eigen::Vector3d> normals;    // smoothed surface normal per point (zero: none)
+  std::span<std::uint8_t> vertex_class;  // kVertexGround / kVertexRock / kVertexPlane0 + k
+  // Mesh after discontinuity removal (all of it, rock and ground).
+  std::span<MeshTriangle> mesh;
+  std::span<std::uint8_t> mesh_class;  // as vertex_class, per triangle
+  DisparityMap filtered;
+  GroundResultT<double> ground;
+  GrindResult planes;
+  ReconstructionStats stats;
+};
+
+Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPair& rect,
+                                         ConstDisparityMap disparity,
+                                         const ReconstructionRequest& request,
+                                         const ReconstructionParams& params,
+                                         const ReconstructionBudget& budget, Arena& arena,
+                                         const StepClock& clock, StepTimings& timings);
+
+}  // namespace petra

@@ -1,0 +1,69 @@
+// Per-step timing without OS calls: the caller (fsw executive, ground CLI,
+// benchmark) supplies a monotonic clock as a plain function pointer; algo/
+// only subtracts readings. A null clock records zeros.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace petra {
+
+struct StepClock {
+  std::uint64_t (*now_ns)(void* context) = nullptr;
+  void* context = nullptr;
+  // Optional: told when a step starts (its name) and ends (nullptr), so a
+  // caller can report progress of long steps from its own thread.
+  void (*on_step)(void* context, const char* name) = nullptr;
+  std::uint64_t read() const { return now_ns ? now_ns(context) : 0; }
+  void step(const char* name) const {
+    if (on_step) on_step(context, name);
+  }
+};
+
+struct StepTiming {
+  const char* name = "";
+  std::uint64_t ns = 0;
+};
+
+// A fixed table of step timings, filled in the order the steps run.
+struct StepTimings {
+  static constexpr std::size_t kCapacity = 16;
+  StepTiming steps[kCapacity];
+  std::size_t count = 0;
+
+  void add(const char* name, std::uint64_t ns) {
+    if (count < kCapacity) steps[count++] = {name, ns};
+  }
+  std::uint64_t total_ns() const {
+    std::uint64_t t = 0;
+    for (std::size_t i = 0; i < count; ++i) t += steps[i].ns;
+    return t;
+  }
+};
+
+// Times the region between construction and stop() (or destruction).
+class StepTimer {
+ public:
+  StepTimer(const StepClock& clock, StepTimings& timings, const char* name)
+      : clock_(clock), timings_(timings), name_(name), start_(clock.read()) {
+    clock_.step(name_);
+  }
+  ~StepTimer() { stop(); }
+  StepTimer(const StepTimer&) = delete;
+  StepTimer& operator=(const StepTimer&) = delete;
+  void stop() {
+    if (stopped_) return;
+    stopped_ = true;
+    timings_.add(name_, clock_.read() - start_);
+    clock_.step(nullptr);
+  }
+
+ private:
+  const StepClock& clock_;
+  StepTimings& timings_;
+  const char* name_;
+  std::uint64_t start_;
+  bool stopped_ = false;
+};
+
+}  // namespace petra

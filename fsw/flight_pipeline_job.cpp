@@ -1,0 +1,308 @@
+#include "fsw/flight_pipeline_job.hpp"
+
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "cmd/param_defs.hpp"
+
+namespace petra::fsw {
+
+namespace {
+
+// Largest ROI the flight job takes (rectified px): the paper's 640 x 480
+// window; the smallest it shrinks to for a small arena.
+constexpr int kMaxRoiWidth = 640;
+constexpr int kMinRoiWidth = 64;
+constexpr std::size_t kSlack = 4 * 64;
+
+// SHADOW_FRACTION's default: the tables are built for it at init, so the
+// first EVALUATE with default parameters rebuilds nothing.
+double flight_shadow_fraction() {
+  for (const ParamDesc& d : param_table())
+    if (d.id == static_cast<std::uint16_t>(ParamId::SHADOW_FRACTION)) return d.default_value;
+  return petra::PipelineParams{}.shadow_fraction;
+}
+
+std::uint64_t monotonic_ns(void*) {
+  timespec t{};
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return static_cast<std::uint64_t>(t.tv_sec) * 1000000000ull +
+         static_cast<std::uint64_t>(t.tv_nsec);
+}
+
+// The pipeline's step names, in the executive's step slots.
+Step slot_of(const char* name) {
+  struct Map {
+    const char* name;
+    Step step;
+  };
+  static constexpr Map kMap[] = {
+      {"rectify", Step::RECTIFY},         {"disparity range", Step::MATCH},
+      {"shadow", Step::SHADOW},           {"match", Step::MATCH},
+      {"mean filter", Step::RECONSTRUCT}, {"triangulate", Step::RECONSTRUCT},
+      {"delaunay", Step::RECONSTRUCT},    {"mesh filter", Step::RECONSTRUCT},
+      {"segmentation", Step::SEGMENT},    {"normals", Step::PLANES},
+      {"grind planes", Step::PLANES},
+  };
+  for (const Map& m : kMap)
+    if (std::strcmp(m.name, name) == 0) return m.step;
+  return Step::PLANES;
+}
+
+// Remembers the step in progress, so a failure names where it happened.
+struct StepTracker {
+  Step current = Step::RECTIFY;
+  static void on_step(void* self, const char* name) {
+    if (name != nullptr) static_cast<StepTracker*>(self)->current = slot_of(name);
+  }
+};
+
+std::uint32_t to_us(std::uint64_t ns) {
+  return static_cast<std::uint32_t>(std::min<std::uint64_t>(ns / 1000, 0xFFFFFFFFull));
+}
+
+std::size_t product_bytes(int roi_w, int roi_h, std::size_t cloud_points) {
+  const auto px = static_cast<std::size_t>(roi_w) * static_cast<std::size_t>(roi_h);
+  return px + 3 * px + 3 * sizeof(float) * cloud_points + kSlack;
+}
+
+// Class colours of the overlay (tint over the rectified left image).
+constexpr std::uint8_t kPlaneRgb[8][3] = {{230, 40, 40}, {40, 200, 40}, {40, 90, 240},
+                                          {240, 200, 0}, {200, 0, 200}, {0, 200, 200},
+                                          {255, 128, 0}, {128, 64, 255}};
+
+void tint(std::uint8_t* px, std::uint8_t gray, const std::uint8_t rgb[3]) {
+  for (int c = 0; c < 3; ++c) px[c] = static_cast<std::uint8_t>((gray + 2 * rgb[c]) / 3);
+}
+
+Status make_products(const PipelineOutput& p, const RectifiedPair& pair, std::size_t max_cloud,
+                     Arena& arena, EvalOutput& out) {
+  const Rect roi = p.disparity.roi;
+  const int w = roi.w, h = roi.h;
+  const auto px = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+
+  // Disparity: 1..255 from the smallest to the largest match, 0 where none.
+  auto gray = arena.allocate<std::uint8_t>(px, "disparity product");
+  if (!gray) return gray.error();
+  std::int16_t lo = std::numeric_limits<std::int16_t>::max();
+  std::int16_t hi = std::numeric_limits<std::int16_t>::min();
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::int16_t q = p.disparity.q4(x, y);
+      if (!is_valid_disparity(q)) continue;
+      lo = std::min(lo, q);
+      hi = std::max(hi, q);
+    }
+  const int span = hi > lo ? hi - lo : 1;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::int16_t q = p.disparity.q4(x, y);
+      (*gray)[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+              static_cast<std::size_t>(x)] =
+          is_valid_disparity(q) ? static_cast<std::uint8_t>(1 + (q - lo) * 254 / span) : 0;
+    }
+  out.disparity_gray = ConstGray8View(gray->data(), w, h);
+
+  // Overlay: the rectified ROI, shadow darkened blue, ground green-grey, rock
+  // as seen, each accepted plane in its colour, its centroid as a white cross.
+  auto rgb = arena.allocate<std::uint8_t>(3 * px, "overlay product");
+  if (!rgb) return rgb.error();
+  auto at = [&](int x, int y) {
+    return rgb->data() + 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+                              static_cast<std::size_t>(x));
+  };
+  static constexpr std::uint8_t kShadow[3] = {20, 20, 120};
+  static constexpr std::uint8_t kGround[3] = {90, 140, 90};
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::uint8_t g = p.left_rectified(roi.x + x, roi.y + y);
+      std::uint8_t* o = at(x, y);
+      o[0] = o[1] = o[2] = g;
+      if (p.left_shadow.is_shadow(roi.x + x, roi.y + y)) tint(o, g, kShadow);
+    }
+  const ReconstructionOutput& r = p.result;
+  const int accepted = r.planes.accepted;
+  for (std::size_t i = 0; i < r.pixels.size() && i < r.vertex_class.size(); ++i) {
+    const int x = r.pixels[i].u - roi.x, y = r.pixels[i].v - roi.y;
+    if (x < 0 || y < 0 || x >= w || y >= h) continue;
+    const std::uint8_t k = r.vertex_class[i];
+    std::uint8_t* o = at(x, y);
+    const std::uint8_t g = p.left_rectified(roi.x + x, roi.y + y);
+    if (k == kVertexGround)
+      tint(o, g, kGround);
+    else if (k >= kVertexPlane0 && k - kVertexPlane0 < accepted)
+      tint(o, g, kPlaneRgb[(k - kVertexPlane0) % 8]);
+  }
+  for (int k = 0; k < accepted; ++k) {
+    auto c = rectified_project(pair, r.planes.planes[k].centroid_mm);
+    if (!c) continue;
+    const int cx = static_cast<int>(std::lround(c->uv_left.x())) - roi.x;
+    const int cy = static_cast<int>(std::lround(c->uv_left.y())) - roi.y;
+    for (int d = -6; d <= 6; ++d)
+      for (int t = -1; t <= 1; ++t) {
+        if (cx + d >= 0 && cx + d < w && cy + t >= 0 && cy + t < h)
+          std::memset(at(cx + d, cy + t), 255, 3);
+        if (cx + t >= 0 && cx + t < w && cy + d >= 0 && cy + d < h)
+          std::memset(at(cx + t, cy + d), 255, 3);
+      }
+  }
+  out.overlay_rgb = ImageView<const std::uint8_t>(rgb->data(), 3 * w, h);
+
+  // Cloud: at most the product's capacity, a regular stride through the points.
+  const std::size_t points = r.xyz_mm.size();
+  const std::size_t keep = std::min(points, max_cloud);
+  if (keep > 0) {
+    auto xyz = arena.allocate<float>(3 * keep, "cloud product");
+    if (!xyz) return xyz.error();
+    for (std::size_t i = 0; i < keep; ++i) {
+      const Eigen::Vector3d& q = r.xyz_mm[i * points / keep];
+      for (int c = 0; c < 3; ++c)
+        (*xyz)[3 * i + static_cast<std::size_t>(c)] = static_cast<float>(q[c]);
+    }
+    out.cloud_xyz_mm = std::span<const float>(xyz->data(), 3 * keep);
+  }
+  return {};
+}
+
+}  // namespace
+
+namespace {
+
+petra::PipelineBudget roi_budget(int image_width, int image_height, int roi_width) {
+  petra::PipelineBudget b;
+  b.image_width = image_width;
+  b.image_height = image_height;
+  b.max_roi_width = std::min(roi_width, image_width);
+  b.max_roi_height = std::min(roi_width * 3 / 4, image_height);
+  const RangeSearchParams range;
+  b.max_disparities = range.search_max_px - range.search_min_px + 1;
+  return b;
+}
+
+std::size_t need(const petra::PipelineBudget& b, std::size_t cloud_points) {
+  return Pipeline::arena_bytes(b, petra::PipelineParams{}) +
+         product_bytes(b.max_roi_width, b.max_roi_height, cloud_points);
+}
+
+}  // namespace
+
+petra::PipelineBudget FlightPipelineJob::pipeline_budget(const PipelineBudget& budget) {
+  for (int w = kMaxRoiWidth; w > kMinRoiWidth; w -= 16) {
+    const petra::PipelineBudget b = roi_budget(budget.max_width, budget.max_height, w);
+    if (budget.arena_limit == 0 || need(b, budget.max_cloud_points) <= budget.arena_limit) return b;
+  }
+  return roi_budget(budget.max_width, budget.max_height, kMinRoiWidth);
+}
+
+petra::PipelineParams FlightPipelineJob::pipeline_params(double shadow_fraction) {
+  petra::PipelineParams p;
+  p.shadow_fraction = shadow_fraction;
+  return p;
+}
+
+std::size_t FlightPipelineJob::arena_bytes(const PipelineBudget& budget) const {
+  return need(pipeline_budget(budget), budget.max_cloud_points);
+}
+
+Status FlightPipelineJob::init(const PipelineBudget& budget, const StereoRig* rig, Arena& arena) {
+  rig_ = rig;
+  arena_ = &arena;
+  base_mark_ = arena.mark();
+  max_cloud_points_ = budget.max_cloud_points;
+  ready_ = false;
+  if (rig == nullptr) return {};  // runs fail not_ready: no calib.json configured
+  if (rig->left.width > budget.max_width || rig->left.height > budget.max_height)
+    return Error::make(Errc::capacity_exceeded,
+                       "calib.json is for %dx%d images, budget.image_width/height is %dx%d",
+                       rig->left.width, rig->left.height, budget.max_width, budget.max_height);
+  // The ROI sized for the budget, the image for the rig (smaller or equal: less memory).
+  budget_ = pipeline_budget(budget);
+  budget_.image_width = rig->left.width;
+  budget_.image_height = rig->left.height;
+  budget_.max_roi_width = std::min(budget_.max_roi_width, rig->left.width);
+  budget_.max_roi_height = std::min(budget_.max_roi_height, rig->left.height);
+  return create(flight_shadow_fraction());
+}
+
+Status FlightPipelineJob::create(double shadow_fraction) {
+  ready_ = false;
+  arena_->release_to(base_mark_);
+  auto p = Pipeline::create(*rig_, budget_, pipeline_params(shadow_fraction), *arena_);
+  if (!p) return p.error();
+  pipeline_ = *p;
+  ready_ = true;
+  return {};
+}
+
+Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
+                              const std::atomic<bool>& cancel, EvalOutput& out) {
+  out.failed_step = Step::RECTIFY;
+  if (rig_ == nullptr)
+    return Error::make(Errc::not_ready, "no calib.json configured: the pipeline needs the rig");
+  if (&arena != arena_)
+    return Error::make(Errc::invalid_argument, "run: not the arena given to init");
+  if (request.match_method != 0)
+    return Error::make(Errc::invalid_argument,
+                       "MATCH_METHOD %d: the graph-cut matcher is not in this build (set 0, dp)",
+                       request.match_method);
+  if (request.left.empty() || request.right.empty())
+    return Error::make(Errc::invalid_argument, "run: no stereo pair");
+  if (!ready_ || request.shadow_fraction != pipeline_.params().shadow_fraction)
+    PETRA_TRY(create(request.shadow_fraction));
+  if (cancel.load(std::memory_order_relaxed))
+    return Error::make(Errc::timeout, "evaluation cancelled");
+
+  PipelineRequest pr;
+  pr.roi = request.roi;
+  pr.planes = request.planes;
+  pr.has_click = request.has_click;
+  pr.click_u = request.click_u_px;
+  pr.click_v = request.click_v_px;
+  pr.method = MatchMethod::dp;
+  StepTracker tracker;
+  const StepClock clock{monotonic_ns, &tracker, &StepTracker::on_step};
+  auto result = pipeline_.run(request.left, request.right, pr, clock);
+  if (!result) {
+    out.failed_step = tracker.current;
+    return result.error();
+  }
+  if (cancel.load(std::memory_order_relaxed))
+    return Error::make(Errc::timeout, "evaluation cancelled");
+  const PipelineOutput& p = *result;
+  for (std::size_t i = 0; i < p.timings.count; ++i)
+    out.step_us[static_cast<std::size_t>(slot_of(p.timings.steps[i].name))] +=
+        to_us(p.timings.steps[i].ns);
+
+  const ReconstructionOutput& r = p.result;
+  for (int k = 0; k < r.planes.accepted; ++k) {
+    const GrindPlane& g = r.planes.planes[k];
+    if (g.area_mm2 < request.min_plane_area_mm2) continue;  // ranked by area: the rest are smaller
+    PlaneOut po;
+    po.normal = {g.normal.x(), g.normal.y(), g.normal.z()};
+    po.centroid_mm = {g.centroid_mm.x(), g.centroid_mm.y(), g.centroid_mm.z()};
+    po.area_mm2 = g.area_mm2;
+    po.flatness_rms_mm = g.rms_mm;
+    po.triangles = static_cast<std::uint32_t>(g.triangles);
+    if (!out.planes.push_back(po)) break;
+  }
+  const Eigen::Vector3d& gn = r.ground.plane.normal;
+  out.ground_normal = {gn.x(), gn.y(), gn.z()};
+  out.ground_d_mm = r.ground.plane.d;
+  out.ground_points = static_cast<std::uint32_t>(r.ground.ground_points);
+  out.dense_points = static_cast<std::uint32_t>(r.stats.dense_points);
+  out.filtered_points = static_cast<std::uint32_t>(r.stats.filtered_points);
+  out.disparity_min = static_cast<float>(r.stats.disparity_min_px);
+  out.disparity_max = static_cast<float>(r.stats.disparity_max_px);
+
+  out.failed_step = Step::PRODUCTS;
+  const std::uint64_t t0 = monotonic_ns(nullptr);
+  PETRA_TRY(make_products(p, pipeline_.rectifier().geometry(), max_cloud_points_, arena, out));
+  out.step_us[static_cast<std::size_t>(Step::PRODUCTS)] = to_us(monotonic_ns(nullptr) - t0);
+  return {};
+}
+
+}  // namespace petra::fsw

@@ -1,0 +1,54 @@
+// The flight PipelineJob: the onboard chain (algo/pipeline) behind the
+// executive's interface (fsw/pipeline_job.hpp).
+//   init: builds the rectification tables once in the worker's arena
+//     (they stay for every run); with no calib.json it stays unready and
+//     every run fails not_ready naming the missing file;
+//   run: EvalRequest -> PipelineRequest (ROI, c, click; graph cut refused
+//     with a named error), the pipeline, then EvalOutput: accepted planes
+//     (ranked, normals out of the rock) not smaller than MIN_PLANE_AREA_MM2,
+//     ground plane, point counts, disparity range, step times in the fsw
+//     slots, and products built in the arena (disparity as 8-bit gray of the
+//     rectified ROI, an RGB overlay of the classes, the cloud in mm).
+// ROI size: the largest 4:3 rectified ROI (640 x 480 down to 64 x 48) whose
+// run fits the configured arena; larger ROIs are refused capacity_exceeded
+// naming both sizes (so a small budget.arena_mb still boots).
+// Parameters fixed at create (shadow fraction) come from the request: when
+// it differs from the one in force the tables are rebuilt in the same place
+// (same bytes), so a parameter change costs one rebuild, never memory.
+// Memory: arena_bytes(budget) = tables + the pipeline's largest run + the
+// products; nothing else, no heap.
+#pragma once
+
+#include <cstddef>
+
+#include "algo/pipeline.hpp"
+#include "fsw/pipeline_job.hpp"
+
+namespace petra::fsw {
+
+class FlightPipelineJob final : public PipelineJob {
+ public:
+  const char* name() const override { return "onboard chain (algo/pipeline, dp matcher)"; }
+  std::size_t arena_bytes(const PipelineBudget& budget) const override;
+  Status init(const PipelineBudget& budget, const StereoRig* rig, Arena& arena) override;
+  Status run(const EvalRequest& request, Arena& arena, const std::atomic<bool>& cancel,
+             EvalOutput& out) override;
+
+  // The pipeline's sizes for an executive budget: the largest rectified ROI
+  // (4:3, at most 640 x 480, at least 64 x 48) whose run fits arena_limit.
+  static petra::PipelineBudget pipeline_budget(const PipelineBudget& budget);
+  static petra::PipelineParams pipeline_params(double shadow_fraction);
+
+ private:
+  Status create(double shadow_fraction);
+
+  const StereoRig* rig_ = nullptr;
+  Arena* arena_ = nullptr;
+  std::size_t base_mark_ = 0;  // where the tables start
+  std::size_t max_cloud_points_ = 0;
+  petra::PipelineBudget budget_;
+  Pipeline pipeline_;
+  bool ready_ = false;
+};
+
+}  // namespace petra::fsw

@@ -1,0 +1,79 @@
+#include "sim/eval/planes_json.hpp"
+
+#include <vector>
+
+#include "algo/core/json_writer.hpp"
+
+namespace petra::eval {
+
+namespace {
+
+void vec3(json::Writer& w, const Eigen::Vector3d& v) {
+  w.begin_array().number(v.x()).number(v.y()).number(v.z()).end_array();
+}
+
+}  // namespace
+
+std::string format_planes_json(const ReconstructionOutput& r) {
+  std::vector<char> buf(4096 + 512 * static_cast<std::size_t>(r.planes.count));
+  json::Writer w(buf);
+  w.begin_object();
+  w.key("planes").begin_array();
+  for (int k = 0; k < r.planes.accepted; ++k) {
+    const GrindPlane& p = r.planes.planes[k];
+    w.raw("\n ");
+    w.begin_object();
+    w.key("normal");
+    vec3(w, p.normal);
+    w.key("centroid_mm");
+    vec3(w, p.centroid_mm);
+    w.key("area_mm2").number(p.area_mm2);
+    w.key("rms_mm").number(p.rms_mm);
+    w.key("triangles").integer(static_cast<long long>(p.triangles));
+    w.key("view_angle_deg").number(p.view_angle_deg);
+    w.end_object();
+  }
+  w.end_array();
+  w.raw("\n");
+  w.key("ground").begin_object();
+  w.key("normal");
+  vec3(w, r.ground.plane.normal);
+  w.key("d_mm").number(r.ground.plane.d);
+  w.key("rms_mm").number(r.ground.rms_mm);
+  w.end_object();
+  w.raw("\n");
+  const ReconstructionStats& s = r.stats;
+  w.key("stats").begin_object();
+  w.key("dense_points").integer(s.dense_points);
+  w.key("filtered_points").integer(s.filtered_points);
+  w.key("disparity_min").number(s.disparity_min_px);
+  w.key("disparity_max").number(s.disparity_max_px);
+  w.key("points_3d").integer(static_cast<long long>(s.triangulated));
+  w.key("triangles").integer(static_cast<long long>(s.mesh.kept));
+  w.key("rock_triangles").integer(static_cast<long long>(s.rock_triangles));
+  w.key("ground_points").integer(static_cast<long long>(r.ground.ground_points));
+  w.key("rock_points").integer(static_cast<long long>(r.ground.rock_points));
+  w.end_object();
+  w.raw("\n");
+  // Candidates that were not accepted, with the reason (optional field).
+  w.key("rejected").begin_array();
+  for (int k = r.planes.accepted; k < r.planes.count; ++k) {
+    const GrindPlane& p = r.planes.planes[k];
+    w.begin_object();
+    w.key("reason").string(verdict_name(p.verdict));
+    w.key("normal");
+    vec3(w, p.normal);
+    w.key("centroid_mm");
+    vec3(w, p.centroid_mm);
+    w.key("area_mm2").number(p.area_mm2);
+    w.key("rms_mm").number(p.rms_mm);
+    w.end_object();
+  }
+  w.end_array();
+  w.end_object();
+  w.raw("\n");
+  auto n = w.finish();
+  return n ? std::string(w.view()) : std::string();
+}
+
+}  // namespace petra::eval

@@ -1,0 +1,80 @@
+// The ground station's link side: signs and sends telecommands on the uplink
+// (key file + counter file, as `petra cmd`), receives and decodes the
+// downlink on a thread, reassembles products and publishes every decoded
+// packet to the pages through the EventHub:
+//   event "tlm":     {"tlm": <petra tlm --json object>, "line": "<text>", "names": {...}}
+//   event "sent":    {"command": "SELECT_ROI", "counter": 7, "code": 16}
+//   event "product": {"kind": "disparity", "id": 3, "width": .., "height": .., "format": ..}
+// PRODUCT chunks themselves are not forwarded (a product is thousands).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "algo/core/result.hpp"
+#include "cmd/auth.hpp"
+#include "cmd/commands.hpp"
+#include "hal/udp_link.hpp"
+#include "sim/gnd/event_hub.hpp"
+#include "sim/ground/product_assembler.hpp"
+
+namespace petra::gnd {
+
+struct StationOptions {
+  std::string fsw_host = "127.0.0.1";  // petra-fsw command address
+  int cmd_port = 47100;
+  std::string tlm_host = "127.0.0.1";  // where telemetry arrives (local address)
+  int tlm_port = 47101;
+  std::string key_path = "petra.key";
+  std::string counter_path;  // empty: KEY.counter (shared with `petra cmd`)
+  std::string left_image;    // optional: shown until a LEFT_IMAGE product arrives
+};
+
+class GroundStation {
+ public:
+  GroundStation() = default;
+  ~GroundStation() { stop(); }
+  GroundStation(const GroundStation&) = delete;
+  GroundStation& operator=(const GroundStation&) = delete;
+
+  // Loads the key (and the optional image), opens both links, starts the
+  // telemetry thread.
+  Status start(const StationOptions& options);
+  void stop();
+
+  // Signs `c` with the next counter and sends it; returns the counter.
+  Result<std::uint32_t> send(cmd::Command c);
+
+  // Latest complete product of a kind (1 LEFT_IMAGE .. 4 POINT_CLOUD).
+  std::optional<ground::Product> product(std::uint8_t kind) const;
+
+  EventHub& hub() { return hub_; }
+  std::uint64_t packets() const { return packets_.load(); }
+  std::uint64_t bad_packets() const { return bad_packets_.load(); }
+
+ private:
+  void receive_loop();
+  void publish_packet(const tlm::TmPacket& p);
+  void keep_product(ground::Product p);
+
+  StationOptions options_;
+  cmd::AuthKey key_{};
+  hal::UdpLink uplink_;
+  hal::UdpLink downlink_;
+  std::mutex send_mutex_;
+  EventHub hub_;
+  ground::ProductAssembler assembler_;
+  mutable std::mutex products_mutex_;
+  std::map<std::uint8_t, ground::Product> products_;
+  std::thread thread_;
+  std::atomic<bool> running_{false};
+  std::atomic<std::uint64_t> packets_{0};
+  std::atomic<std::uint64_t> bad_packets_{0};
+};
+
+}  // namespace petra::gnd

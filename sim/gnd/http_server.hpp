@@ -1,0 +1,48 @@
+// The HTTP side of the ground station (cpp-httplib): serves the page and
+// bridges it to the GroundStation.
+//   GET  /                      static page (web dir); /vendor/ npm-built assets
+//   GET  /api/info              command definitions (names, fields, ranges, units)
+//   GET  /api/events            server-sent events (see ground_station.hpp)
+//   POST /api/command           {"command": NAME, "args": {...}} -> {"counter": n}
+//                               or HTTP 400 {"error": "<field>: <problem>"}
+//   GET  /api/product/<kind>    latest left_image | disparity | overlay | point_cloud,
+//                               raw bytes; X-Petra-Width/Height/Format/Id headers
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "algo/core/result.hpp"
+#include "sim/gnd/ground_station.hpp"
+
+namespace petra::gnd {
+
+struct ServerOptions {
+  std::string bind = "127.0.0.1";
+  int port = 8080;  // 0: pick a free port
+  std::string web_dir;
+  std::string vendor_dir;  // may be missing: the page then runs without its 3D view
+};
+
+class HttpServer {
+ public:
+  explicit HttpServer(GroundStation& station);
+  ~HttpServer();
+  HttpServer(const HttpServer&) = delete;
+  HttpServer& operator=(const HttpServer&) = delete;
+
+  // Binds; returns the port actually bound.
+  Result<int> bind(const ServerOptions& options);
+  // Serves until stop() (from another thread or a signal watcher).
+  void run();
+  void stop();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The body of GET /api/info.
+std::string info_json();
+
+}  // namespace petra::gnd

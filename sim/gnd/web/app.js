@@ -1,0 +1,288 @@
+// The ground station page: telemetry in (server-sent events), commands out
+// (POST /api/command), products fetched as they complete. window.petra
+// exposes the decoded state for inspection (and for the end-to-end test).
+import { RoiCanvas } from './roi_canvas.js';
+import { fetchProduct, toImageData, drawImageProduct, toPoints } from './products.js';
+
+const $ = (id) => document.getElementById(id);
+const fmt = (x, d = 1) => Number(x).toFixed(d);
+const vec = (a, d) => `(${a.map((x) => fmt(x, d)).join(', ')})`;
+const COLOURS = ['#e6194b', '#3cb44b', '#4363d8', '#f58231', '#911eb4', '#42d4f4', '#f032e6', '#bfef45'];
+
+const state = {
+  commands: new Map(),  // counter -> {command, args, stage, reason, detail}
+  evalResult: null, planes: [], ground: null, picked: null,
+  hk: null, lastPacketMs: 0, view3d: 'loading', events: [], products: {}, arm: 'not requested',
+};
+window.petra = state;
+
+let view3d = null;
+let view3dError = null;
+async function get3d() {
+  if (view3d || view3dError) return view3d;
+  try {
+    const { View3D } = await import('./view3d.js');
+    view3d = new View3D($('view3d'));
+    view3d.setLabel('no point cloud yet');
+    $('view3d-status').remove();
+    state.view3d = 'ready';
+  } catch (e) {
+    view3dError = String(e.message || e);
+    state.view3d = view3dError;
+    $('view3d-status').textContent = `3D view unavailable: ${view3dError} (install the page assets: sim/gnd/install-web.sh)`;
+  }
+  return view3d;
+}
+
+const roi = new RoiCanvas($('left'), () => {
+  const r = roi.roi;
+  state.roi = r;
+  state.click = roi.click;
+  $('roi-text').textContent = r ? `x ${r.x}, y ${r.y}, ${r.w} × ${r.h} px` : 'none';
+  $('click-text').textContent = roi.click ? `(${roi.click.u}, ${roi.click.v})` : 'none';
+  $('send-eval').disabled = !r;
+});
+
+// ---- commands -------------------------------------------------------------
+async function send(command, args = {}) {
+  $('request-error').textContent = '';
+  const r = await fetch('/api/command', { method: 'POST', headers: { 'Content-Type': 'application/json' },
+                                          body: JSON.stringify({ command, args }) });
+  const body = await r.json().catch(() => ({ error: `HTTP ${r.status}` }));
+  if (!r.ok) {
+    $('request-error').textContent = `${command} not sent: ${body.error}`;
+    return null;
+  }
+  noteCommand(body.counter, { command, args });
+  return body.counter;
+}
+
+function noteCommand(counter, fields) {
+  const row = state.commands.get(counter) || { counter, command: '?', args: {}, stage: 'SENT', reason: '', detail: 0 };
+  Object.assign(row, fields);
+  state.commands.set(counter, row);
+  renderCommands();
+  return row;
+}
+
+// EVALUATE goes up only once SELECT_ROI completed, so a refused ROI never
+// evaluates a stale selection.
+let pendingEvaluate = null;
+$('send-eval').addEventListener('click', async () => {
+  const r = roi.roi;
+  if (!r) return;
+  const args = { x_px: r.x, y_px: r.y, w_px: r.w, h_px: r.h, planes: Number($('planes').value) };
+  if (roi.click) Object.assign(args, { has_click: 1, click_u_px: roi.click.u, click_v_px: roi.click.v });
+  const counter = await send('SELECT_ROI', args);
+  if (counter === null) return;
+  pendingEvaluate = { after: counter, acquire: $('acquire').checked ? 1 : 0 };
+  continueEvaluate(state.commands.get(counter));  // its ack may have come before the reply
+});
+
+function continueEvaluate(row) {
+  if (!pendingEvaluate || row.counter !== pendingEvaluate.after || row.stage === 'SENT' || row.stage === 'ACCEPTED') return;
+  const acquire = pendingEvaluate.acquire;
+  pendingEvaluate = null;
+  if (row.stage === 'COMPLETED') send('EVALUATE', { acquire });
+  else $('request-error').textContent = `EVALUATE not sent: SELECT_ROI ${row.stage} ${row.reason}`;
+}
+$('send-acquire').addEventListener('click', () => send('ACQUIRE'));
+$('send-abort').addEventListener('click', () => send('ABORT'));
+$('send-stow').addEventListener('click', () => send('ARM_STOW'));
+$('clear-click').addEventListener('click', () => roi.clearClick());
+$('send-goto').addEventListener('click', () => {
+  if (state.picked === null) return;
+  send('ARM_GOTO', { plane_rank: state.picked, standoff_mm: Number($('standoff').value) });
+  state.arm = 'requested';
+  renderArm();
+});
+$('standoff').addEventListener('input', () => pick(state.picked));
+
+// ---- telemetry --------------------------------------------------------------
+const events = new EventSource('/api/events');
+events.addEventListener('sent', (e) => {
+  const m = JSON.parse(e.data);
+  const row = state.commands.get(m.counter);
+  noteCommand(m.counter, { command: m.command, args: m.args || (row ? row.args : {}) });
+});
+events.addEventListener('product', (e) => onProduct(JSON.parse(e.data)));
+events.addEventListener('tlm', (e) => onTlm(JSON.parse(e.data)));
+events.addEventListener('bad_packet', (e) => addEvent('ERROR', `bad packet: ${JSON.parse(e.data).error}`));
+events.onerror = () => { $('link').textContent = 'ground server: disconnected'; $('link').className = 'badge bad'; };
+
+function onTlm(m) {
+  state.lastPacketMs = Date.now();
+  const f = m.tlm.fields;
+  switch (m.tlm.packet) {
+    case 'HK': state.hk = { ...f, names: m.names }; renderHk(); break;
+    case 'EVENT': addEvent(m.names.severity, `${m.names.event}: ${f.text}`); break;
+    case 'ACK': onAck(f, m.names); break;
+    case 'EVAL_RESULT':
+      state.evalResult = f;
+      state.planes = [];
+      state.picked = null;
+      renderPlanes();
+      break;
+    case 'GRIND_PLANE':
+      if (state.evalResult && f.eval_id !== state.evalResult.eval_id) break;
+      state.planes = state.planes.filter((p) => p.rank !== f.rank).concat([f]).sort((a, b) => a.rank - b.rank);
+      renderPlanes();
+      break;
+    case 'GROUND_PLANE': state.ground = f; break;
+    case 'PARAM_VALUE': addEvent('INFO', m.line); break;
+  }
+}
+
+function onAck(f, names) {
+  const row = noteCommand(f.counter, { command: names.command, stage: names.stage,
+                                       reason: f.reason ? names.reason : '', detail: f.detail });
+  continueEvaluate(row);
+  if (row.command === 'EVALUATE' && (names.stage === 'FAILED' || names.stage === 'REJECTED'))
+    $('planes-status').textContent = `EVALUATE ${names.stage}: ${names.reason} - no planes.`;
+  if (row.command === 'ARM_GOTO' && names.stage !== 'ACCEPTED') {
+    state.arm = names.stage === 'COMPLETED' ? 'reached' : `${names.stage} ${names.reason}`;
+    renderArm();
+  }
+}
+
+async function onProduct(info) {
+  const p = await fetchProduct(info.kind);
+  if (!p) return;
+  state.products[info.kind] = { id: p.id, width: p.width, height: p.height };
+  if (info.kind === 'left_image') {
+    const img = toImageData(p);
+    if (img) roi.setImage(img);
+    $('image-source').textContent = p.id ? `LEFT_IMAGE of frame ${p.id}, ${p.width} × ${p.height}` : `scene image, ${p.width} × ${p.height}`;
+  } else if (info.kind === 'disparity' || info.kind === 'overlay') {
+    if (drawImageProduct($(info.kind), p))
+      $(`${info.kind}-caption`).textContent = `${info.kind} of evaluation ${p.id}, ${p.width} × ${p.height}`;
+  } else if (info.kind === 'point_cloud') {
+    const xyz = toPoints(p);
+    const v = await get3d();
+    if (xyz && v) {
+      v.setGround(state.ground);
+      v.setCloud(xyz);
+      v.setPlanes(state.planes);
+      v.setLabel(`evaluation ${p.id}: ${xyz.length / 3} points`);
+    }
+  }
+}
+
+// ---- rendering --------------------------------------------------------------
+function addEvent(severity, text) {
+  const li = document.createElement('li');
+  li.className = severity;
+  li.textContent = `${new Date().toLocaleTimeString()} ${severity} ${text}`;
+  $('events').prepend(li);
+  while ($('events').children.length > 200) $('events').lastChild.remove();
+  state.events.push(text);
+}
+
+function renderCommands() {
+  const rows = [...state.commands.values()].sort((a, b) => b.counter - a.counter).slice(0, 40);
+  $('cmd-table').tBodies[0].replaceChildren(...rows.map((c) => {
+    const tr = document.createElement('tr');
+    tr.dataset.counter = c.counter;
+    tr.dataset.command = c.command;
+    tr.dataset.stage = c.stage;
+    const args = Object.entries(c.args || {}).map(([k, v]) => `${k}=${v}`).join(' ');
+    const status = c.reason ? `${c.stage}: ${c.reason}${c.detail ? ` (detail ${c.detail})` : ''}` : c.stage;
+    for (const [text, cls] of [[c.counter, ''], [c.command, ''], [args, ''], [status, c.stage]]) {
+      const td = document.createElement('td');
+      td.textContent = text;
+      if (cls) td.className = cls;
+      tr.append(td);
+    }
+    return tr;
+  }));
+}
+
+function renderHk() {
+  const h = state.hk;
+  $('mode').textContent = `mode ${h.names.mode}`;
+  $('mode').className = `badge ${h.names.mode === 'SAFE' ? 'bad' : 'good'}`;
+  $('hk-summary').textContent = `up ${h.uptime_s} s · commands ${h.cmd_accepted} accepted, ${h.cmd_rejected} rejected · tlm dropped ${h.tlm_dropped}`;
+  const rows = [
+    ['mode', h.names.mode], ['uptime', `${h.uptime_s} s`], ['cycles / overruns', `${h.cycles} / ${h.cycle_overruns}`],
+    ['longest cycle', `${h.max_cycle_us} µs`],
+    ['commands received / accepted / rejected', `${h.cmd_received} / ${h.cmd_accepted} / ${h.cmd_rejected}`],
+    ['commands completed / failed', `${h.cmd_completed} / ${h.cmd_failed}`],
+    ['last command, reason', `${h.names.last_command}, ${h.names.last_reason}`],
+    ['telemetry sent / dropped', `${h.tlm_sent} / ${h.tlm_dropped}`],
+    ['frames / evaluations', `${h.frames} / ${h.evaluations}`],
+    ['evaluation running, elapsed', `${h.eval_running ? 'yes' : 'no'}, ${h.eval_elapsed_ms} ms`],
+    ['arena high water', `${fmt(h.arena_high_water_bytes / 1048576)} of ${fmt(h.arena_bytes / 1048576)} MiB`],
+    ['faults', h.faults],
+  ];
+  $('hk').tBodies[0].replaceChildren(...rows.map(([k, v]) => {
+    const tr = document.createElement('tr');
+    tr.innerHTML = '<td></td><td></td>';
+    tr.cells[0].textContent = k;
+    tr.cells[1].textContent = v;
+    return tr;
+  }));
+}
+
+function renderPlanes() {
+  const r = state.evalResult;
+  if (r) {
+    $('eval-summary').textContent = `evaluation ${r.eval_id}: ${r.planes_found} of ${r.planes_requested} planes, ${r.total_ms} ms, ${r.filtered_points} points`;
+    $('planes-status').textContent = r.status === 0 ? `${r.planes_found} planes, best first. Click one to plan the arm.`
+      : r.status === 1 ? `Only ${r.planes_found} of ${r.planes_requested} planes qualified.`
+      : `Evaluation ${r.status === 3 ? 'aborted' : 'failed'} (reason ${r.reason}).`;
+  }
+  $('plane-table').tBodies[0].replaceChildren(...state.planes.map((p) => {
+    const tr = document.createElement('tr');
+    tr.dataset.rank = p.rank;
+    if (p.rank === state.picked) tr.className = 'picked';
+    const cells = [p.rank, vec(p.normal, 3), vec(p.centroid_mm, 1), fmt(p.area_mm2, 0), fmt(p.flatness_rms_mm, 2), p.triangles];
+    cells.forEach((text, i) => {
+      const td = document.createElement('td');
+      if (i === 0) {
+        const s = document.createElement('span');
+        s.className = 'swatch';
+        s.style.background = COLOURS[p.rank % 8];
+        td.append(s);
+      }
+      td.append(String(text));
+      tr.append(td);
+    });
+    tr.addEventListener('click', () => pick(p.rank));
+    return tr;
+  }));
+  if (view3d) view3d.setPlanes(state.planes);
+  $('send-goto').disabled = state.picked === null;
+}
+
+async function pick(rank) {
+  if (rank === null) return;
+  state.picked = rank;
+  state.arm = 'planned';
+  renderPlanes();
+  const v = await get3d();
+  if (v) v.showPose(state.planes.find((p) => p.rank === rank), Number($('standoff').value));
+  renderArm();
+}
+
+function renderArm() {
+  const p = state.planes.find((q) => q.rank === state.picked);
+  const where = p ? `plane ${p.rank}: grinder face on ${vec(p.centroid_mm, 1)} mm, axis along ${vec(p.normal, 3)}` : '';
+  const text = {
+    'not requested': 'Arm: pick a plane to see the planned pose.',
+    planned: `Planned ${where}; approach ${$('standoff').value} mm out. Arm model not available in this build: the grinder pose is shown.`,
+    requested: `ARM_GOTO sent for ${where}; waiting for the acknowledgement.`,
+    reached: `Arm reached ${where}.`,
+  }[state.arm] || `ARM_GOTO ${state.arm}: arm not available - it has not moved.`;
+  $('arm-status').textContent = text;
+  $('arm-status').className = state.arm.startsWith('FAILED') || state.arm.startsWith('REJECTED') ? 'error' : 'hint';
+}
+
+get3d();  // three.js from /vendor and WebGL: ready before the first cloud
+
+setInterval(() => {
+  const age = (Date.now() - state.lastPacketMs) / 1000;
+  if (events.readyState !== EventSource.OPEN) return;
+  const live = state.lastPacketMs && age < 5;
+  $('link').textContent = live ? `telemetry: live` : state.lastPacketMs ? `telemetry: silent ${fmt(age, 0)} s` : 'telemetry: waiting';
+  $('link').className = `badge ${live ? 'good' : 'bad'}`;
+}, 500);

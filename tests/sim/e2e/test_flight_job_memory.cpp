@@ -1,0 +1,153 @@
+// The flight pipeline job (fsw/flight_pipeline_job) on a simulated scene, in
+// process: init once, then repeated evaluations allocate nothing, give the
+// same planes every time, stay inside the arena they asked for, and refuse
+// what this build cannot do by name.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "algo/calib_json.hpp"
+#include "cmd/param_defs.hpp"
+#include "fsw/flight_pipeline_job.hpp"
+#include "sim/io/image_io.hpp"
+#include "sim/score/truth_file.hpp"
+#include "tests/support/heap_counter.hpp"
+
+namespace petra {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_all(const fs::path& p) {
+  std::stringstream s;
+  s << std::ifstream(p).rdbuf();
+  return s.str();
+}
+
+double param_default(ParamId id) {
+  for (const ParamDesc& d : param_table())
+    if (d.id == static_cast<std::uint16_t>(id)) return d.default_value;
+  return -1;
+}
+
+class FlightJob : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() / ("petra_flight_job_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    const std::string cmd = std::string(PETRA_CLI_BIN) + " sim scene --seed 3 --out " +
+                            dir_.string() + " >/dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+
+  void SetUp() override {
+    auto rig = parse_calib_json(read_all(dir_ / "calib.json"));
+    ASSERT_TRUE(rig.ok());
+    rig_ = *rig;
+    auto truth = sim::parse_truth_json(read_all(dir_ / "truth.json"));
+    ASSERT_TRUE(truth.ok());
+    auto left = io::read_gray_image((dir_ / "left.png").string());
+    auto right = io::read_gray_image((dir_ / "right.png").string());
+    ASSERT_TRUE(left.ok() && right.ok());
+    left_ = std::move(*left);
+    right_ = std::move(*right);
+    budget_ = {left_.width, left_.height, 8192};
+    request_.left = left_.view();
+    request_.right = right_.view();
+    request_.rig = &rig_;
+    request_.roi = truth->roi;
+    request_.planes = truth->planes;
+    request_.shadow_fraction = param_default(ParamId::SHADOW_FRACTION);
+    request_.min_plane_area_mm2 = param_default(ParamId::MIN_PLANE_AREA_MM2);
+    block_.resize(job_.arena_bytes(budget_));
+    arena_ = Arena(block_);
+  }
+
+  static fs::path dir_;
+  StereoRig rig_;
+  io::GrayImage left_, right_;
+  fsw::PipelineBudget budget_;
+  fsw::EvalRequest request_;
+  fsw::FlightPipelineJob job_;
+  std::vector<std::byte> block_;
+  Arena arena_;
+  std::atomic<bool> cancel_{false};
+};
+
+fs::path FlightJob::dir_;
+
+TEST_F(FlightJob, RepeatedEvaluationsAllocateNothingAndAgree) {
+  ASSERT_TRUE(job_.init(budget_, &rig_, arena_).ok());
+  const std::size_t after_init = arena_.mark();
+  EXPECT_GT(after_init, 0u);  // the tables live from init on
+  fsw::EvalOutput first;
+  ASSERT_TRUE(job_.run(request_, arena_, cancel_, first).ok());
+  ASSERT_FALSE(first.planes.empty());
+  EXPECT_FALSE(first.disparity_gray.empty());
+  EXPECT_FALSE(first.overlay_rgb.empty());
+  EXPECT_FALSE(first.cloud_xyz_mm.empty());
+  EXPECT_LE(first.cloud_xyz_mm.size(), 3 * budget_.max_cloud_points);
+  EXPECT_GT(first.step_us[static_cast<std::size_t>(fsw::Step::MATCH)], 0u);
+  for (const fsw::PlaneOut& p : first.planes) {
+    const double n = std::sqrt(p.normal[0] * p.normal[0] + p.normal[1] * p.normal[1] +
+                               p.normal[2] * p.normal[2]);
+    EXPECT_NEAR(n, 1.0, 1e-9);
+    EXPECT_GT(p.area_mm2, request_.min_plane_area_mm2);
+  }
+
+  petra::test::HeapScope scope;
+  for (int i = 0; i < 3; ++i) {
+    arena_.release_to(after_init);  // what the runner does before each run
+    fsw::EvalOutput again;
+    ASSERT_TRUE(job_.run(request_, arena_, cancel_, again).ok());
+    ASSERT_EQ(again.planes.size(), first.planes.size());
+    for (std::size_t k = 0; k < first.planes.size(); ++k) {
+      EXPECT_EQ(again.planes[k].normal, first.planes[k].normal);
+      EXPECT_EQ(again.planes[k].centroid_mm, first.planes[k].centroid_mm);
+    }
+  }
+  EXPECT_EQ(scope.allocations(), 0u);
+  EXPECT_LE(arena_.high_water(), arena_.capacity());
+}
+
+TEST_F(FlightJob, RefusesWhatThisBuildCannotDoByName) {
+  ASSERT_TRUE(job_.init(budget_, &rig_, arena_).ok());
+  fsw::EvalOutput out;
+  request_.match_method = 1;
+  const Status gc = job_.run(request_, arena_, cancel_, out);
+  ASSERT_FALSE(gc.ok());
+  EXPECT_EQ(gc.code(), Errc::invalid_argument);
+  EXPECT_NE(std::strstr(gc.error().message, "graph-cut"), nullptr) << gc.error().message;
+
+  request_.match_method = 0;
+  request_.roi = Rect{left_.width - 10, 0, 50, 50};  // leaves the image
+  const Status roi = job_.run(request_, arena_, cancel_, out);
+  ASSERT_FALSE(roi.ok());
+  EXPECT_EQ(roi.code(), Errc::out_of_range);
+}
+
+TEST_F(FlightJob, WithoutCalibrationItBootsAndSaysWhyItCannotRun) {
+  ASSERT_TRUE(job_.init(budget_, nullptr, arena_).ok());
+  fsw::EvalOutput out;
+  const Status s = job_.run(request_, arena_, cancel_, out);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.code(), Errc::not_ready);
+  EXPECT_NE(std::strstr(s.error().message, "calib.json"), nullptr);
+}
+
+TEST_F(FlightJob, RefusesACalibrationLargerThanTheBudget) {
+  const fsw::PipelineBudget small{left_.width / 2, left_.height / 2, 8192};
+  const Status s = job_.init(small, &rig_, arena_);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.code(), Errc::capacity_exceeded);
+}
+
+}  // namespace
+}  // namespace petra
