@@ -62,11 +62,11 @@ Status GraphCutMatcher::init(Arena& arena, const GraphCutBudget& budget) {
     return Error::make(Errc::out_of_range, "graphcut budget: ROI of %zu pixels above %d", s.roi,
                        (1 << 26) - 1);
   }
-#define PETRA_GC_TAKE(member, type, count, what)                 \
-  do {                                                           \
+#define PETRA_GC_TAKE(member, type, count, what)                  \
+  do {                                                            \
     auto taken = arena.allocate<type>((count), "graphcut " what); \
-    if (!taken) return taken.error();                            \
-    member = *taken;                                             \
+    if (!taken) return taken.error();                             \
+    member = *taken;                                              \
   } while (false)
   PETRA_GC_TAKE(left_, Sample, s.roi, "left samples");
   PETRA_GC_TAKE(right_, Sample, s.strip, "right samples");
@@ -104,8 +104,9 @@ Status GraphCutMatcher::validate(const StereoInput& in, Rect roi, const GraphCut
                        left.empty() ? "left" : "right");
   }
   if (right.width() != left.width() || right.height() != left.height()) {
-    return Error::make(Errc::invalid_argument, "graphcut: right image %dx%d differs from left %dx%d",
-                       right.width(), right.height(), left.width(), left.height());
+    return Error::make(Errc::invalid_argument,
+                       "graphcut: right image %dx%d differs from left %dx%d", right.width(),
+                       right.height(), left.width(), left.height());
   }
   const ShadowMask* masks[2] = {in.left_shadow, in.right_shadow};
   for (int k = 0; k < 2; ++k) {
@@ -124,8 +125,8 @@ Status GraphCutMatcher::validate(const StereoInput& in, Rect roi, const GraphCut
                        roi.x, roi.y, roi.w, roi.h, left.width(), left.height());
   }
   if (roi.w > budget_.max_width || roi.h > budget_.max_height) {
-    return Error::make(Errc::capacity_exceeded, "graphcut: roi %dx%d above the budget %dx%d",
-                       roi.w, roi.h, budget_.max_width, budget_.max_height);
+    return Error::make(Errc::capacity_exceeded, "graphcut: roi %dx%d above the budget %dx%d", roi.w,
+                       roi.h, budget_.max_width, budget_.max_height);
   }
   if (params.disp_min > params.disp_max || params.disp_min < -kMaxDisparityMagnitude ||
       params.disp_max > kMaxDisparityMagnitude) {
@@ -150,8 +151,8 @@ Status GraphCutMatcher::validate(const StereoInput& in, Rect roi, const GraphCut
   const char* names[3] = {"lambda", "lambda1", "lambda2"};
   for (int k = 0; k < 3; ++k) {
     if (weights[k] != kGraphCutAuto && (weights[k] < 0 || weights[k] > kMaxWeight)) {
-      return Error::make(Errc::out_of_range, "graphcut: %s %d outside 0..%d", names[k],
-                         weights[k], kMaxWeight);
+      return Error::make(Errc::out_of_range, "graphcut: %s %d outside 0..%d", names[k], weights[k],
+                         kMaxWeight);
     }
   }
   if (params.edge_threshold < 1 || params.edge_threshold > 255) {
@@ -163,8 +164,8 @@ Status GraphCutMatcher::validate(const StereoInput& in, Rect roi, const GraphCut
                        params.data_clip);
   }
   if (out != nullptr && (out->q4.width() != roi.w || out->q4.height() != roi.h)) {
-    return Error::make(Errc::invalid_argument, "graphcut: output %dx%d, roi %dx%d",
-                       out->q4.width(), out->q4.height(), roi.w, roi.h);
+    return Error::make(Errc::invalid_argument, "graphcut: output %dx%d, roi %dx%d", out->q4.width(),
+                       out->q4.height(), roi.w, roi.h);
   }
   return ok_status();
 }
@@ -233,7 +234,8 @@ std::int32_t GraphCutMatcher::automatic_k() const {
         ++count;
       }
     }
-    if (count > 0) return static_cast<std::int32_t>(std::max<std::int64_t>(1, (sum + count / 2) / count));
+    if (count > 0)
+      return static_cast<std::int32_t>(std::max<std::int64_t>(1, (sum + count / 2) / count));
   }
   return 0;
 }
@@ -333,7 +335,9 @@ void GraphCutMatcher::refresh_pixel(int p, int x, int y) {
   const std::uint8_t* rf = right_flags_.data();
   const int qx = roi_x_ + x - (disp_min_ + lab);
   const int q = y * strip_w_ + qx - strip_x0_;
-  auto weight = [&](int bits, std::uint8_t edge) { return (bits & edge) != 0 ? lambda2_ : lambda1_; };
+  auto weight = [&](int bits, std::uint8_t edge) {
+    return (bits & edge) != 0 ? lambda2_ : lambda1_;
+  };
   auto usable = [&](int pp, int qq) { return ((lf[pp] | rf[qq]) & kUnusable) == 0; };
   std::int32_t keep = cost_[p] - k_;
   if (x > 0 && label_[p - 1] != lab && qx > 0 && usable(p - 1, q - 1)) {
@@ -393,7 +397,7 @@ std::int64_t GraphCutMatcher::energy() const {
 }
 
 Result<std::int32_t> GraphCutMatcher::automatic_occlusion_k(const StereoInput& in, Rect roi,
-                                                           const GraphCutParams& params) {
+                                                            const GraphCutParams& params) {
   PETRA_TRY(validate(in, roi, params, nullptr));
   prepare(in, roi, params);
   const std::int32_t k = automatic_k();
@@ -418,7 +422,8 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
                        std::min(num_disp_, 3));
   }
   k_ = std::min(k_, kMaxWeight);
-  const std::int32_t lambda = params.lambda != kGraphCutAuto ? params.lambda : std::max(1, (k_ + 2) / 5);
+  const std::int32_t lambda =
+      params.lambda != kGraphCutAuto ? params.lambda : std::max(1, (k_ + 2) / 5);
   lambda1_ = params.lambda1 != kGraphCutAuto ? params.lambda1 : 3 * lambda;
   lambda2_ = params.lambda2 != kGraphCutAuto ? params.lambda2 : lambda;
   report.occlusion_k = k_;

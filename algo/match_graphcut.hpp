@@ -114,10 +114,10 @@ struct GraphCutReport {
   std::int32_t occlusion_k = 0;  // the parameters used (after automatic choice)
   std::int32_t lambda1 = 0;
   std::int32_t lambda2 = 0;
-  int cycles = 0;              // cycles run
-  int expansions = 0;          // min cuts solved
-  int expansions_skipped = 0;  // provably unchanged, not solved
-  bool converged = false;      // the last cycle brought no decrease
+  int cycles = 0;                 // cycles run
+  int expansions = 0;             // min cuts solved
+  int expansions_skipped = 0;     // provably unchanged, not solved
+  bool converged = false;         // the last cycle brought no decrease
   std::int64_t energy_start = 0;  // energy of the starting labelling (all occluded: 0)
   std::int64_t energy = 0;        // final energy
   FixedVector<std::int64_t, kGraphCutMaxCycles> cycle_energy;  // after each cycle
@@ -166,9 +166,9 @@ class GraphCutMatcher {
   std::int64_t expand(int alpha, std::int64_t& nodes_used);
 
   GraphCutBudget budget_{};
-  MaxFlow<6> maxflow_;  // 4 neighbours + 2 uniqueness links per node
-  std::span<Sample> left_;    // ROI pixels
-  std::span<Sample> right_;   // right strip pixels
+  MaxFlow<6> maxflow_;       // 4 neighbours + 2 uniqueness links per node
+  std::span<Sample> left_;   // ROI pixels
+  std::span<Sample> right_;  // right strip pixels
   std::span<std::uint8_t> left_flags_;
   std::span<std::uint8_t> right_flags_;
   std::span<std::int16_t> label_;       // per ROI pixel: kOccluded or d - disp_min
@@ -186,19 +186,19 @@ class GraphCutMatcher {
   // neighbours that do not share its disparity; old_edges_ = its edge bits.
   std::span<std::int32_t> keep_;
   std::span<std::uint8_t> old_edges_;
-  std::span<std::int32_t> right_best_;  // per strip pixel, for the starting labelling
-  std::span<std::int16_t> owner_;       // per strip pixel: ROI x of its match, or -1
-  std::span<std::int16_t> order_;       // disparity order of a cycle
+  std::span<std::int32_t> right_best_;   // per strip pixel, for the starting labelling
+  std::span<std::int16_t> owner_;        // per strip pixel: ROI x of its match, or -1
+  std::span<std::int16_t> order_;        // disparity order of a cycle
   std::span<std::int32_t> last_change_;  // change counter at each disparity's last expansion
 
   // The current problem.
-  int w_ = 0, h_ = 0;           // ROI size
-  int roi_x_ = 0;               // ROI x in the image
+  int w_ = 0, h_ = 0;  // ROI size
+  int roi_x_ = 0;      // ROI x in the image
   int image_w_ = 0;
   int strip_x0_ = 0, strip_w_ = 0;  // right strip: image columns [x0, x0 + w)
   int disp_min_ = 0, num_disp_ = 0;
   std::int32_t k_ = 0, lambda1_ = 0, lambda2_ = 0;
-  std::int32_t clip2_ = 0;      // clip in doubled gray levels
+  std::int32_t clip2_ = 0;  // clip in doubled gray levels
   bool prune_ = true;
 };
 

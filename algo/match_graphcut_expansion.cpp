@@ -47,7 +47,7 @@ std::int64_t GraphCutMatcher::expand(int alpha, std::int64_t& nodes_used) {
   const int h = h_;
   const int sw = strip_w_;
   const int d_alpha = disp_min_ + alpha;
-  const int shift = roi_x_ - d_alpha - strip_x0_;  // strip column of (x, alpha) is x + shift
+  const int shift = roi_x_ - d_alpha - strip_x0_;       // strip column of (x, alpha) is x + shift
   const int x_lo = std::clamp(d_alpha - roi_x_, 0, w);  // (x, alpha) lands in the image
   const int x_hi = std::clamp(image_w_ + d_alpha - roi_x_, x_lo, w);
   const std::int32_t k = k_;

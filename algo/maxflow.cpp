@@ -37,8 +37,8 @@ Status MaxFlow<D>::init(Arena& arena, std::int32_t max_nodes) {
 template <int D>
 Status MaxFlow<D>::reset(std::int32_t num_nodes) {
   if (num_nodes < 0 || num_nodes > max_nodes_) {
-    return Error::make(Errc::capacity_exceeded, "maxflow: %d nodes requested, budget %d",
-                       num_nodes, max_nodes_);
+    return Error::make(Errc::capacity_exceeded, "maxflow: %d nodes requested, budget %d", num_nodes,
+                       max_nodes_);
   }
   num_nodes_ = 0;
   active_head_ = active_count_ = 0;

@@ -58,7 +58,8 @@ class MaxFlow {
     r.node = Node{kFree, 0, 0, 0};
     // Unused slots point back to themselves with no capacity: loops scan
     // every slot, with no degree test in the hot paths.
-    for (int s = 0; s < kMaxDegree; ++s) r.arcs[s] = Arc{static_cast<std::uint32_t>(arc_id(i, s)), 0};
+    for (int s = 0; s < kMaxDegree; ++s)
+      r.arcs[s] = Arc{static_cast<std::uint32_t>(arc_id(i, s)), 0};
     degree_[i] = 0;
     return i;
   }
@@ -87,8 +88,8 @@ class MaxFlow {
   // nothing, when either node already has kMaxDegree slots in use.
   [[nodiscard]] bool add_edge(std::int32_t i, std::int32_t j, Capacity cap, Capacity rev_cap) {
     PETRA_ASSERT(static_cast<std::uint32_t>(i) < static_cast<std::uint32_t>(num_nodes_) &&
-                 static_cast<std::uint32_t>(j) < static_cast<std::uint32_t>(num_nodes_) &&
-                 i != j && (cap | rev_cap) >= 0);
+                 static_cast<std::uint32_t>(j) < static_cast<std::uint32_t>(num_nodes_) && i != j &&
+                 (cap | rev_cap) >= 0);
     const int si = degree_[i];
     const int sj = degree_[j];
     if (si >= kMaxDegree || sj >= kMaxDegree) return false;

@@ -29,7 +29,7 @@ struct StereoToolOptions {
 };
 
 struct StereoToolReport {
-  Rect roi;  // in the matched (rectified) frame
+  Rect roi;              // in the matched (rectified) frame
   MatchDpStats stats;    // --method dp
   GraphCutReport graph;  // --method gc
   long matched = 0;      // pixels of the ROI with a disparity

@@ -172,13 +172,15 @@ void check_step(void* context, const GraphCutStep& step) {
   if (step.energy_after > step.energy_before) t.failures.push_back("energy increased");
   if (step.energy_before != t.last_energy) t.failures.push_back("energy trace has a gap");
   if (t.brute_force && !step.skipped) {
-    const std::int64_t best = t.problem->best_expansion(t.previous, step.disparity - t.problem->disp_min);
+    const std::int64_t best =
+        t.problem->best_expansion(t.previous, step.disparity - t.problem->disp_min);
     std::int64_t e_before = 0;
     (void)t.problem->energy(t.previous, e_before);
     const std::int64_t expected = std::min(best, e_before);
     if (step.energy_after != expected) {
       t.failures.push_back("expansion on " + std::to_string(step.disparity) + " reached " +
-                           std::to_string(step.energy_after) + ", optimum " + std::to_string(expected));
+                           std::to_string(step.energy_after) + ", optimum " +
+                           std::to_string(expected));
     }
     ++t.checked;
   }
@@ -227,7 +229,8 @@ class Matcher {
 
 std::vector<int> labels_of(const Run& r, int disp_min) {
   std::vector<int> l;
-  for (std::int16_t q : r.q4) l.push_back(is_valid_disparity(q) ? q / kDisparityScale - disp_min : -1);
+  for (std::int16_t q : r.q4)
+    l.push_back(is_valid_disparity(q) ? q / kDisparityScale - disp_min : -1);
   return l;
 }
 
@@ -267,7 +270,8 @@ TEST(MatchGraphCut, EachExpansionIsOptimalAndTheResultIsALocalMinimum) {
     ASSERT_TRUE(pr.energy(final_labels, e));
     EXPECT_EQ(e, run->report.energy);
     for (int alpha = 0; alpha <= disp_max; ++alpha) {
-      EXPECT_GE(pr.best_expansion(final_labels, alpha), e) << "round " << round << " alpha " << alpha;
+      EXPECT_GE(pr.best_expansion(final_labels, alpha), e)
+          << "round " << round << " alpha " << alpha;
     }
     checked += trace.checked;
   }
@@ -307,7 +311,7 @@ Scene square_scene(int w, int h, int d_bg, int d_fg, Rect square, Rect roi, int 
   for (int y = roi.y; y < roi.y + roi.h; ++y)
     for (int x = roi.x; x < roi.x + roi.w; ++x) {
       int t = square.contains(x, y) ? d_fg : d_bg;
-      if (x - t < 0) t = -1;                                   // leaves the image
+      if (x - t < 0) t = -1;                                         // leaves the image
       if (t == d_bg && square.contains(x - d_bg + d_fg, y)) t = -1;  // hidden by the square
       s.truth.push_back(t);
     }
@@ -440,7 +444,8 @@ TEST(MatchGraphCut, RepeatedCallsAllocateNothing) {
   Matcher m({40, 24, 9});
   std::vector<std::int16_t> q4(40 * 24);
   DisparityMap out{ImageView<std::int16_t>(q4.data(), 40, 24), {}};
-  StereoInput in{ConstGray8View(s.pr.left.data(), 40, 24), ConstGray8View(s.pr.right.data(), 40, 24)};
+  StereoInput in{ConstGray8View(s.pr.left.data(), 40, 24),
+                 ConstGray8View(s.pr.right.data(), 40, 24)};
   GraphCutParams params;
   params.disp_max = 8;
   test::HeapScope scope;

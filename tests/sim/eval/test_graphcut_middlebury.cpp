@@ -54,12 +54,12 @@ Outcome run_scene(const eval::MiddleburyScene& s, const GraphCutParams& base) {
   auto score = eval::score_middlebury(eval::to_float_image(out, w, h).view(), *data);
   EXPECT_TRUE(score.ok());
   if (score) o.score = *score;
-  std::printf("%-8s strict %5.2f / %5.2f  filled %5.2f / %5.2f (nonocc / all)  K %d l1 %d l2 %d  "
-              "cycles %d expansions %d  E %lld  %.2f s cpu\n",
-              s.name, o.score.strict.nonocc, o.score.strict.all, o.score.filled.nonocc,
-              o.score.filled.all, o.report.occlusion_k, o.report.lambda1, o.report.lambda2,
-              o.report.cycles, o.report.expansions, static_cast<long long>(o.report.energy),
-              o.cpu_s);
+  std::printf(
+      "%-8s strict %5.2f / %5.2f  filled %5.2f / %5.2f (nonocc / all)  K %d l1 %d l2 %d  "
+      "cycles %d expansions %d  E %lld  %.2f s cpu\n",
+      s.name, o.score.strict.nonocc, o.score.strict.all, o.score.filled.nonocc, o.score.filled.all,
+      o.report.occlusion_k, o.report.lambda1, o.report.lambda2, o.report.cycles,
+      o.report.expansions, static_cast<long long>(o.report.energy), o.cpu_s);
   return o;
 }
 
@@ -112,7 +112,8 @@ TEST(GraphCutMiddlebury, Explore) {
   if (const char* c = std::getenv("PETRA_GC_PRUNE")) p.prune = std::atoi(c) != 0;
   if (const char* c = std::getenv("PETRA_GC_BM")) p.block_matching_start = std::atoi(c) != 0;
   if (const char* c = std::getenv("PETRA_GC_RANDOM")) p.random_order = std::atoi(c) != 0;
-  if (const char* c = std::getenv("PETRA_GC_SEED")) p.seed = static_cast<std::uint32_t>(std::atoi(c));
+  if (const char* c = std::getenv("PETRA_GC_SEED"))
+    p.seed = static_cast<std::uint32_t>(std::atoi(c));
   for (const eval::MiddleburyScene& s : eval::middlebury_scenes()) {
     if (std::string(only).find(s.name) == std::string::npos) continue;
     run_scene(s, p);

@@ -161,10 +161,11 @@ TEST(StereoToolGraphCut, SimulatedScenesAgreeWithTheRenderedTruth) {
     ASSERT_GT(valid, 10000) << "scene " << k;
     const double pct1 = 100.0 * static_cast<double>(bad1) / static_cast<double>(valid);
     const double pct2 = 100.0 * static_cast<double>(bad2) / static_cast<double>(valid);
-    std::printf("scene %d (seed %llu): ROI %dx%d, disparities %d..%d: bad-1 %.2f%%, bad-2 %.2f%% "
-                "of %ld px\n",
-                k, static_cast<unsigned long long>(set[k].seed), r->roi.w, r->roi.h, o.disp_min,
-                o.disp_max, pct1, pct2, valid);
+    std::printf(
+        "scene %d (seed %llu): ROI %dx%d, disparities %d..%d: bad-1 %.2f%%, bad-2 %.2f%% "
+        "of %ld px\n",
+        k, static_cast<unsigned long long>(set[k].seed), r->roi.w, r->roi.h, o.disp_min, o.disp_max,
+        pct1, pct2, valid);
     EXPECT_LT(pct1, 20.0) << "scene " << k;
     EXPECT_LT(pct2, 6.0) << "scene " << k;
   }
