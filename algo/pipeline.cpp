@@ -153,6 +153,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
   if (!rbuf) return rbuf.error();
   const Gray8View rl(lbuf->data(), W, H), rr(rbuf->data(), W, H);
   out.left_rectified = rl;
+  PETRA_TRY(checkpoint(clock, "rectify"));
   {
     StepTimer timer(clock, timings, "rectify");
     PETRA_TRY(rectifier_.rectify(StereoSide::left, left, rl, roi));
@@ -164,6 +165,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
   }
 
   // Disparity range for the fine matcher.
+  PETRA_TRY(checkpoint(clock, "disparity range"));
   {
     StepTimer timer(clock, timings, "disparity range");
     auto r = find_disparity_range(rl, rr, roi, params_.range, params_.match, arena);
@@ -188,6 +190,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
       "right shadow mask");
   if (!rmask) return rmask.error();
   ShadowMask right_shadow;
+  PETRA_TRY(checkpoint(clock, "shadow"));
   {
     StepTimer timer(clock, timings, "shadow");
     auto tl = shadow_threshold(rl, roi, params_.shadow_fraction);
@@ -219,6 +222,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
       static_cast<std::size_t>(roi.w) * static_cast<std::size_t>(roi.h), "disparity");
   if (!q4) return q4.error();
   DisparityMap disp{ImageView<std::int16_t>(q4->data(), roi.w, roi.h), roi};
+  PETRA_TRY(checkpoint(clock, "match"));
   {
     StepTimer timer(clock, timings, "match");
     StereoInput in;

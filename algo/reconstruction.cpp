@@ -98,6 +98,7 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
       static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "filtered disparity");
   if (!filtered) return filtered.error();
   out.filtered = {ImageView<std::int16_t>(filtered->data(), w, h), disparity.roi};
+  PETRA_TRY(checkpoint(clock, "mean filter"));
   {
     StepTimer timer(clock, timings, "mean filter");
     auto f = mean_filter_disparity(disparity, out.filtered, params.filter, arena);
@@ -113,6 +114,7 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   auto px = arena.allocate<PixelPos>(n_max, "cloud pixels");
   if (!px) return px.error();
   std::size_t n = 0;
+  PETRA_TRY(checkpoint(clock, "triangulate"));
   {
     StepTimer timer(clock, timings, "triangulate");
     auto t = triangulate_disparity(rig, rect, out.filtered, *xyz, *px);
@@ -130,6 +132,7 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   auto mesh = arena.allocate<MeshTriangle>(delaunay_max_triangles(n), "mesh");
   if (!mesh) return mesh.error();
   std::size_t nt = 0;
+  PETRA_TRY(checkpoint(clock, "delaunay"));
   {
     StepTimer timer(clock, timings, "delaunay");
     ArenaScope scope(arena);
@@ -142,6 +145,7 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
     st.delaunay_triangles = d->triangles;
     st.duplicates = d->duplicates;
   }
+  PETRA_TRY(checkpoint(clock, "mesh filter"));
   {
     StepTimer timer(clock, timings, "mesh filter");
     auto f = remove_discontinuities(out.xyz_mm, camera_centre_world(rig.left), params.mesh,
@@ -156,6 +160,7 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   auto pclass = arena.allocate<PointClass>(n, "point classes");
   if (!pclass) return pclass.error();
   out.point_class = *pclass;
+  PETRA_TRY(checkpoint(clock, "segmentation"));
   {
     StepTimer timer(clock, timings, "segmentation");
     auto g = segment_ground<double>(out.xyz_mm, out.pixels, disparity.roi, request.click,
@@ -168,6 +173,7 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   auto normals = arena.allocate<Eigen::Vector3d>(n, "point normals");
   if (!normals) return normals.error();
   out.normals = *normals;
+  PETRA_TRY(checkpoint(clock, "normals"));
   {
     StepTimer timer(clock, timings, "normals");
     ArenaScope scope(arena);
@@ -192,6 +198,7 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   out.mesh_class = *mclass;
   for (std::size_t i = 0; i < n; ++i)
     out.vertex_class[i] = out.point_class[i] == PointClass::rock ? kVertexRock : kVertexGround;
+  PETRA_TRY(checkpoint(clock, "grind planes"));
   {
     StepTimer timer(clock, timings, "grind planes");
     ArenaScope scope(arena);

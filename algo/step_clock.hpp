@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "algo/core/result.hpp"
+
 namespace petra {
 
 struct StepClock {
@@ -14,7 +16,11 @@ struct StepClock {
   // Optional: told when a step starts (its name) and ends (nullptr), so a
   // caller can report progress of long steps from its own thread.
   void (*on_step)(void* context, const char* name) = nullptr;
+  // Optional: asked between steps; true ends the run with Errc::cancelled, so
+  // an operator's ABORT stops a long evaluation at the next step boundary.
+  bool (*cancel_requested)(void* context) = nullptr;
   std::uint64_t read() const { return now_ns ? now_ns(context) : 0; }
+  bool cancelled() const { return cancel_requested != nullptr && cancel_requested(context); }
   void step(const char* name) const {
     if (on_step) on_step(context, name);
   }
@@ -40,6 +46,12 @@ struct StepTimings {
     return t;
   }
 };
+
+// Call before each step: an error once the caller asked to stop.
+inline Status checkpoint(const StepClock& clock, const char* next_step) {
+  if (clock.cancelled()) return Error::make(Errc::cancelled, "cancelled before %s", next_step);
+  return {};
+}
 
 // Times the region between construction and stop() (or destruction).
 class StepTimer {

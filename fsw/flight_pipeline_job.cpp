@@ -19,12 +19,10 @@ constexpr int kMaxRoiWidth = 640;
 constexpr int kMinRoiWidth = 64;
 constexpr std::size_t kSlack = 4 * 64;
 
-// SHADOW_FRACTION's default: the tables are built for it at init, so the
-// first EVALUATE with default parameters rebuilds nothing.
-double flight_shadow_fraction() {
+double param_default(ParamId id) {
   for (const ParamDesc& d : param_table())
-    if (d.id == static_cast<std::uint16_t>(ParamId::SHADOW_FRACTION)) return d.default_value;
-  return petra::PipelineParams{}.shadow_fraction;
+    if (d.id == static_cast<std::uint16_t>(id)) return d.default_value;
+  return 0;
 }
 
 std::uint64_t monotonic_ns(void*) {
@@ -53,11 +51,17 @@ Step slot_of(const char* name) {
   return Step::PLANES;
 }
 
-// Remembers the step in progress, so a failure names where it happened.
+// Remembers the step in progress, so a failure names where it happened, and
+// passes the executive's cancel flag to the pipeline's step boundaries.
 struct StepTracker {
   Step current = Step::RECTIFY;
+  const std::atomic<bool>* cancel = nullptr;
   static void on_step(void* self, const char* name) {
     if (name != nullptr) static_cast<StepTracker*>(self)->current = slot_of(name);
+  }
+  static bool cancel_requested(void* self) {
+    const auto* t = static_cast<StepTracker*>(self);
+    return t->cancel != nullptr && t->cancel->load(std::memory_order_relaxed);
   }
 };
 
@@ -178,13 +182,15 @@ petra::PipelineBudget roi_budget(int image_width, int image_height, int roi_widt
   b.image_height = image_height;
   b.max_roi_width = std::min(roi_width, image_width);
   b.max_roi_height = std::min(roi_width * 3 / 4, image_height);
-  const RangeSearchParams range;
-  b.max_disparities = range.search_max_px - range.search_min_px + 1;
+  const petra::PipelineParams p =
+      FlightPipelineJob::pipeline_params(FlightPipelineJob::default_settings());
+  b.max_disparities = p.range.search_max_px - p.range.search_min_px + 1;
   return b;
 }
 
 std::size_t need(const petra::PipelineBudget& b, std::size_t cloud_points) {
-  return Pipeline::arena_bytes(b, petra::PipelineParams{}) +
+  return Pipeline::arena_bytes(
+             b, FlightPipelineJob::pipeline_params(FlightPipelineJob::default_settings())) +
          product_bytes(b.max_roi_width, b.max_roi_height, cloud_points);
 }
 
@@ -198,9 +204,19 @@ petra::PipelineBudget FlightPipelineJob::pipeline_budget(const PipelineBudget& b
   return roi_budget(budget.max_width, budget.max_height, kMinRoiWidth);
 }
 
-petra::PipelineParams FlightPipelineJob::pipeline_params(double shadow_fraction) {
+// The parameter table's defaults: the pipeline is built for them at init, so
+// the first EVALUATE with default parameters rebuilds nothing.
+FlightPipelineJob::Settings FlightPipelineJob::default_settings() {
+  return {param_default(ParamId::SHADOW_FRACTION),
+          static_cast<int>(param_default(ParamId::DISP_MIN_PX)),
+          static_cast<int>(param_default(ParamId::DISP_MAX_PX))};
+}
+
+petra::PipelineParams FlightPipelineJob::pipeline_params(const Settings& settings) {
   petra::PipelineParams p;
-  p.shadow_fraction = shadow_fraction;
+  p.shadow_fraction = settings.shadow_fraction;
+  p.range.search_min_px = settings.disp_min_px;
+  p.range.search_max_px = settings.disp_max_px;
   return p;
 }
 
@@ -225,15 +241,23 @@ Status FlightPipelineJob::init(const PipelineBudget& budget, const StereoRig* ri
   budget_.image_height = rig->left.height;
   budget_.max_roi_width = std::min(budget_.max_roi_width, rig->left.width);
   budget_.max_roi_height = std::min(budget_.max_roi_height, rig->left.height);
-  return create(flight_shadow_fraction());
+  return create(default_settings());
 }
 
-Status FlightPipelineJob::create(double shadow_fraction) {
+Status FlightPipelineJob::create(const Settings& settings) {
+  if (settings.disp_min_px < 0 || settings.disp_min_px >= settings.disp_max_px)
+    return Error::make(Errc::invalid_argument, "DISP_MIN_PX %d .. DISP_MAX_PX %d: not an envelope",
+                       settings.disp_min_px, settings.disp_max_px);
+  if (settings.disp_max_px - settings.disp_min_px + 1 > budget_.max_disparities)
+    return Error::make(Errc::capacity_exceeded,
+                       "DISP_MIN_PX %d .. DISP_MAX_PX %d: wider than the budget's %d disparities",
+                       settings.disp_min_px, settings.disp_max_px, budget_.max_disparities);
   ready_ = false;
   arena_->release_to(base_mark_);
-  auto p = Pipeline::create(*rig_, budget_, pipeline_params(shadow_fraction), *arena_);
+  auto p = Pipeline::create(*rig_, budget_, pipeline_params(settings), *arena_);
   if (!p) return p.error();
   pipeline_ = *p;
+  settings_ = settings;
   ready_ = true;
   return {};
 }
@@ -251,10 +275,10 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
                        request.match_method);
   if (request.left.empty() || request.right.empty())
     return Error::make(Errc::invalid_argument, "run: no stereo pair");
-  if (!ready_ || request.shadow_fraction != pipeline_.params().shadow_fraction)
-    PETRA_TRY(create(request.shadow_fraction));
+  const Settings wanted{request.shadow_fraction, request.disp_min_px, request.disp_max_px};
+  if (!ready_ || !(wanted == settings_)) PETRA_TRY(create(wanted));
   if (cancel.load(std::memory_order_relaxed))
-    return Error::make(Errc::timeout, "evaluation cancelled");
+    return Error::make(Errc::cancelled, "evaluation cancelled");
 
   PipelineRequest pr;
   pr.roi = request.roi;
@@ -264,14 +288,16 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   pr.click_v = request.click_v_px;
   pr.method = MatchMethod::dp;
   StepTracker tracker;
-  const StepClock clock{monotonic_ns, &tracker, &StepTracker::on_step};
+  tracker.cancel = &cancel;
+  const StepClock clock{monotonic_ns, &tracker, &StepTracker::on_step,
+                        &StepTracker::cancel_requested};
   auto result = pipeline_.run(request.left, request.right, pr, clock);
   if (!result) {
     out.failed_step = tracker.current;
     return result.error();
   }
   if (cancel.load(std::memory_order_relaxed))
-    return Error::make(Errc::timeout, "evaluation cancelled");
+    return Error::make(Errc::cancelled, "evaluation cancelled");
   const PipelineOutput& p = *result;
   for (std::size_t i = 0; i < p.timings.count; ++i)
     out.step_us[static_cast<std::size_t>(slot_of(p.timings.steps[i].name))] +=

@@ -12,9 +12,12 @@
 // ROI size: the largest 4:3 rectified ROI (640 x 480 down to 64 x 48) whose
 // run fits the configured arena; larger ROIs are refused capacity_exceeded
 // naming both sizes (so a small budget.arena_mb still boots).
-// Parameters fixed at create (shadow fraction) come from the request: when
-// it differs from the one in force the tables are rebuilt in the same place
-// (same bytes), so a parameter change costs one rebuild, never memory.
+// Parameters fixed at create (shadow fraction; DISP_MIN_PX..DISP_MAX_PX, the
+// envelope the disparity-range search looks in) come from the request: when
+// they differ from those in force the pipeline is rebuilt in the same place
+// (same bytes), so a parameter change costs one rebuild, never memory. An
+// envelope that is empty or wider than the budget's disparity count (the
+// default envelope's) is refused naming both parameters.
 // Memory: arena_bytes(budget) = tables + the pipeline's largest run + the
 // products; nothing else, no heap.
 #pragma once
@@ -37,10 +40,18 @@ class FlightPipelineJob final : public PipelineJob {
   // The pipeline's sizes for an executive budget: the largest rectified ROI
   // (4:3, at most 640 x 480, at least 64 x 48) whose run fits arena_limit.
   static petra::PipelineBudget pipeline_budget(const PipelineBudget& budget);
-  static petra::PipelineParams pipeline_params(double shadow_fraction);
+  // What the pipeline is built for, from the parameter table's values.
+  struct Settings {
+    double shadow_fraction = 0;
+    int disp_min_px = 0;
+    int disp_max_px = 0;
+    bool operator==(const Settings&) const = default;
+  };
+  static Settings default_settings();  // the parameter table's defaults
+  static petra::PipelineParams pipeline_params(const Settings& settings);
 
  private:
-  Status create(double shadow_fraction);
+  Status create(const Settings& settings);
 
   const StereoRig* rig_ = nullptr;
   Arena* arena_ = nullptr;
@@ -48,6 +59,7 @@ class FlightPipelineJob final : public PipelineJob {
   std::size_t max_cloud_points_ = 0;
   petra::PipelineBudget budget_;
   Pipeline pipeline_;
+  Settings settings_;
   bool ready_ = false;
 };
 

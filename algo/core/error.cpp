@@ -34,6 +34,8 @@ const char* errc_name(Errc code) noexcept {
       return "not_ready";
     case Errc::timeout:
       return "timeout";
+    case Errc::cancelled:
+      return "cancelled";
   }
   return "unknown";
 }

@@ -22,6 +22,7 @@ enum class Errc : std::uint16_t {
   io_error,           // the OS refused (used by hal/ and tools, never algo/)
   not_ready,          // called in the wrong state
   timeout,            // a bounded wait ran out
+  cancelled,          // the caller asked a long computation to stop
 };
 
 const char* errc_name(Errc code) noexcept;

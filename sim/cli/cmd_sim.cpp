@@ -166,6 +166,8 @@ void add_sim(CLI::App& app, Outcome& outcome) {
       outcome.exit_code = fail("sim set", e.what());
     }
   });
+  // `petra sim arm`: the arm's simulated drives (`petra sim-arm` is the same command).
+  add_arm_sim(*sim_cmd, outcome, "arm");
 }
 
 }  // namespace petra::cli

@@ -320,10 +320,14 @@ int run(const Options& o, std::FILE* out) {
       }
     }
   };
-  for (int i = 0; i < 50 && !booted && fsw.alive(); ++i) pump(100);
+  // Boot builds the tables and touches the whole arena: seconds in a Debug
+  // build on a loaded machine. Wait while the process lives, within the limit.
+  const auto boot_deadline = Clock::now() + std::chrono::seconds(o.timeout_s);
+  while (!booted && fsw.alive() && Clock::now() < boot_deadline) pump(100);
   if (!booted)
-    return fail("petra-fsw did not boot; see " + (dir / "fsw.log").string() + ": " +
-                read_all(dir / "fsw.log"));
+    return fail(std::string("petra-fsw did not boot (") +
+                (fsw.alive() ? "no BOOT_COMPLETE within the time limit" : "it exited") + "); see " +
+                (dir / "fsw.log").string() + ": " + read_all(dir / "fsw.log"));
 
   // 3. The operator's commands. Full-resolution pictures first (the flight
   // default sends thumbnails).

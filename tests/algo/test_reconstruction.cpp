@@ -103,5 +103,46 @@ TEST(Reconstruction, BudgetAndRequestAreChecked) {
   EXPECT_EQ(r.code(), Errc::out_of_range);
 }
 
+// The caller's cancel flag, raised when a given step starts: the run ends at
+// the next step boundary with Errc::cancelled and runs nothing after it.
+struct CancelAt {
+  const char* step;
+  bool raised = false;
+  static void on_step(void* self, const char* name) {
+    auto* c = static_cast<CancelAt*>(self);
+    if (name != nullptr && std::string(name) == c->step) c->raised = true;
+  }
+  static bool requested(void* self) { return static_cast<CancelAt*>(self)->raised; }
+};
+
+TEST(Reconstruction, CancelStopsAtTheNextStepBoundary) {
+  const Scene s = make_setup(0.0);
+  ReconstructionBudget budget;
+  std::vector<std::byte> block(reconstruction_arena_bytes(budget));
+  Arena arena(block);
+  ReconstructionRequest req;
+  req.planes = 3;
+  CancelAt cancel{"triangulate"};
+  const StepClock clock{nullptr, &cancel, &CancelAt::on_step, &CancelAt::requested};
+  StepTimings timings;
+  auto r = reconstruct(s.rig, s.pair, s.disp.view(), req, ReconstructionParams{}, budget, arena,
+                       clock, timings);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.code(), Errc::cancelled);
+  EXPECT_STREQ(r.error().message, "cancelled before delaunay");
+  ASSERT_EQ(timings.count, 2u);  // mean filter and triangulate ran, nothing after
+  EXPECT_STREQ(timings.steps[1].name, "triangulate");
+
+  // Not raised: the same run completes.
+  CancelAt never{"no such step"};
+  const StepClock quiet{nullptr, &never, &CancelAt::on_step, &CancelAt::requested};
+  timings = {};
+  arena.reset();
+  r = reconstruct(s.rig, s.pair, s.disp.view(), req, ReconstructionParams{}, budget, arena, quiet,
+                  timings);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(timings.count, 7u);
+}
+
 }  // namespace
 }  // namespace petra

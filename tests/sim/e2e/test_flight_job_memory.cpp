@@ -66,6 +66,8 @@ class FlightJob : public ::testing::Test {
     request_.planes = truth->planes;
     request_.shadow_fraction = param_default(ParamId::SHADOW_FRACTION);
     request_.min_plane_area_mm2 = param_default(ParamId::MIN_PLANE_AREA_MM2);
+    request_.disp_min_px = static_cast<int>(param_default(ParamId::DISP_MIN_PX));
+    request_.disp_max_px = static_cast<int>(param_default(ParamId::DISP_MAX_PX));
     block_.resize(job_.arena_bytes(budget_));
     arena_ = Arena(block_);
   }
@@ -147,6 +149,64 @@ TEST_F(FlightJob, RefusesACalibrationLargerThanTheBudget) {
   const Status s = job_.init(small, &rig_, arena_);
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.code(), Errc::capacity_exceeded);
+}
+
+TEST_F(FlightJob, DisparityEnvelopeParametersBoundTheSearch) {
+  ASSERT_TRUE(job_.init(budget_, &rig_, arena_).ok());
+  const std::size_t after_init = arena_.mark();
+  fsw::EvalOutput wide;
+  ASSERT_TRUE(job_.run(request_, arena_, cancel_, wide).ok());
+  ASSERT_FALSE(wide.planes.empty());
+  // A narrower envelope that still holds the scene's disparities finds the same range.
+  fsw::EvalRequest narrow = request_;
+  narrow.disp_min_px = static_cast<int>(wide.disparity_min) - 20;
+  narrow.disp_max_px = static_cast<int>(wide.disparity_max) + 20;
+  arena_.release_to(after_init);
+  fsw::EvalOutput same;
+  ASSERT_TRUE(job_.run(narrow, arena_, cancel_, same).ok());
+  EXPECT_EQ(same.disparity_min, wide.disparity_min);
+  EXPECT_EQ(same.disparity_max, wide.disparity_max);
+  ASSERT_EQ(same.planes.size(), wide.planes.size());
+  // An envelope below the scene's disparities cannot find the rock where it is.
+  fsw::EvalRequest below = request_;
+  below.disp_min_px = 0;
+  below.disp_max_px = static_cast<int>(wide.disparity_min) / 2;
+  arena_.release_to(after_init);
+  fsw::EvalOutput off;
+  const Status s = job_.run(below, arena_, cancel_, off);
+  if (s.ok()) {
+    EXPECT_LE(off.disparity_max, static_cast<float>(below.disp_max_px + 8));
+  }
+  // Empty and over-budget envelopes are refused by name.
+  fsw::EvalRequest empty = request_;
+  empty.disp_min_px = 200;
+  empty.disp_max_px = 100;
+  arena_.release_to(after_init);
+  const Status e = job_.run(empty, arena_, cancel_, off);
+  EXPECT_EQ(e.code(), Errc::invalid_argument);
+  EXPECT_NE(std::strstr(e.error().message, "DISP_MIN_PX 200"), nullptr) << e.error().message;
+  fsw::EvalRequest huge = request_;
+  huge.disp_min_px = 0;
+  huge.disp_max_px = 1000;
+  arena_.release_to(after_init);
+  const Status h = job_.run(huge, arena_, cancel_, off);
+  EXPECT_EQ(h.code(), Errc::capacity_exceeded);
+  EXPECT_NE(std::strstr(h.error().message, "DISP_MAX_PX 1000"), nullptr) << h.error().message;
+  // And the defaults work again afterwards.
+  arena_.release_to(after_init);
+  fsw::EvalOutput back;
+  ASSERT_TRUE(job_.run(request_, arena_, cancel_, back).ok());
+  EXPECT_EQ(back.planes.size(), wide.planes.size());
+}
+
+TEST_F(FlightJob, ARaisedCancelFlagEndsTheRunAsCancelled) {
+  ASSERT_TRUE(job_.init(budget_, &rig_, arena_).ok());
+  cancel_.store(true);
+  fsw::EvalOutput out;
+  const Status s = job_.run(request_, arena_, cancel_, out);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.code(), Errc::cancelled);
+  EXPECT_TRUE(out.planes.empty());
 }
 
 }  // namespace
