@@ -34,13 +34,24 @@ export class View3D {
     this.resetControls();
     new ResizeObserver(() => this.resize()).observe(el);
     this.resize();
-    this.renderer.setAnimationLoop(() => { this.controls.update(); this.renderer.render(this.scene, this.camera); });
+  }
+
+  // Renders once on the next animation frame, only when something changed
+  // (a continuous loop keeps a CPU core busy where WebGL is software).
+  redraw() {
+    if (this.pending) return;
+    this.pending = requestAnimationFrame(() => {
+      this.pending = 0;
+      this.renderer.render(this.scene, this.camera);
+    });
   }
 
   resetControls() {
     if (this.controls) this.controls.dispose();
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.enableDamping = false;
+    this.controls.addEventListener('change', () => this.redraw());
+    this.redraw();
   }
 
   resize() {
@@ -49,6 +60,7 @@ export class View3D {
     this.renderer.setSize(w, h);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    this.redraw();
   }
 
   setLabel(text) { this.label.textContent = text; }
@@ -77,9 +89,11 @@ export class View3D {
     if (!this.points) return;
     const box = new THREE.Box3().setFromBufferAttribute(new THREE.BufferAttribute(this.points, 3));
     const rock = box.getCenter(new THREE.Vector3());
+    const rockSize = box.getSize(new THREE.Vector3()).length();
     if (this.armBase) box.expandByPoint(this.armBase);
-    const centre = box.getCenter(new THREE.Vector3()).lerp(rock, 0.35);
-    const size = box.getSize(new THREE.Vector3()).length();
+    // Mostly the rock, with the arm's reach towards it in view.
+    const centre = box.getCenter(new THREE.Vector3()).lerp(rock, 0.45);
+    const size = Math.max(box.getSize(new THREE.Vector3()).length() * 0.62, rockSize * 1.5);
     const up = new THREE.Vector3().fromArray(this.ground ? this.ground.normal : [0, 0, 1]).normalize();
     this.camera.up.copy(up);
     // Horizontal direction from the rock towards the rig (world origin) and the arm.
@@ -87,15 +101,31 @@ export class View3D {
     back.addScaledVector(up, -back.dot(up));
     if (back.lengthSq() < 1) back.set(0, -1, 0);
     back.normalize();
+    // From the side away from the arm, so that it does not hide the rock.
     const side = new THREE.Vector3().crossVectors(up, back).normalize();
-    this.camera.position.copy(centre).addScaledVector(back, size * 1.05)
-      .addScaledVector(side, -size * 0.45).addScaledVector(up, size * 0.6);
+    if (this.armBase && side.dot(this.armBase.clone().sub(rock)) > 0) side.negate();
+    this.camera.position.copy(centre).addScaledVector(back, size * 0.9)
+      .addScaledVector(side, size * 0.5).addScaledVector(up, size * 0.45);
     this.camera.near = size / 100;
     this.camera.far = size * 20;
     this.camera.updateProjectionMatrix();
     this.resetControls();
     this.controls.target.copy(centre);
     this.controls.update();
+    this.drawGrid(rock, up);
+  }
+
+  // A 100 mm grid on the ground plane (GROUND_PLANE, else world z = 0) for depth.
+  drawGrid(near, up) {
+    if (this.grid) this.scene.remove(this.grid);
+    this.grid = new THREE.GridHelper(1400, 14, 0x3a4450, 0x2a323b);
+    // GridHelper lies in its x-z plane: turn its y axis onto the ground normal.
+    this.grid.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), up);
+    const d = this.ground ? this.ground.d_mm : 0;
+    const onPlane = near.clone().addScaledVector(up, -(near.dot(up) + d));
+    this.grid.position.copy(onPlane);
+    this.scene.add(this.grid);
+    this.redraw();
   }
 
   // The arm from its skeleton (base, shoulder, elbow, wrist, hand end, tip;
@@ -142,6 +172,7 @@ export class View3D {
       line.computeLineDistances();
       group.add(line);
     }
+    this.redraw();
   }
 
   setPlanes(planes) {
@@ -151,11 +182,12 @@ export class View3D {
     for (const p of planes) {
       const radius = Math.sqrt(p.area_mm2 / Math.PI);
       const disc = new THREE.Mesh(new THREE.CircleGeometry(radius, 48),
-        new THREE.MeshBasicMaterial({ color: PLANE_COLOURS[p.rank % 8], transparent: true, opacity: 0.35, side: THREE.DoubleSide }));
+        new THREE.MeshBasicMaterial({ color: PLANE_COLOURS[p.rank % 8], transparent: true, opacity: 0.25, side: THREE.DoubleSide, depthWrite: false }));
       disc.position.fromArray(p.centroid_mm);
       disc.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), new THREE.Vector3().fromArray(p.normal).normalize());
       this.groups.planes.add(disc);
     }
+    this.redraw();
   }
 
   // Each point takes the colour of the plane it lies on (within the plane's
@@ -185,7 +217,8 @@ export class View3D {
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.BufferAttribute(this.points, 3));
     geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3));
-    this.groups.cloud.add(new THREE.Points(geometry, new THREE.PointsMaterial({ size: 2, vertexColors: true })));
+    this.groups.cloud.add(new THREE.Points(geometry, new THREE.PointsMaterial({ size: 4, vertexColors: true })));
+    this.redraw();
   }
 
   // The picked plane's target: its normal as an arrow from the centroid
@@ -196,5 +229,6 @@ export class View3D {
     const n = new THREE.Vector3().fromArray(plane.normal).normalize();
     const c = new THREE.Vector3().fromArray(plane.centroid_mm);
     this.groups.pose.add(new THREE.ArrowHelper(n, c, 90, PLANE_COLOURS[plane.rank % 8], 18, 10));
+    this.redraw();
   }
 }

@@ -23,6 +23,7 @@ const shots = path.join(buildDir, 'gnd', 'screenshots');
 fs.mkdirSync(shots, { recursive: true });
 const work = fs.mkdtempSync(path.join(os.tmpdir(), 'petra-gnd-e2e-'));
 const children = [];
+const telemetry = [];  // the server's event stream, as received
 const pageErrors = [];
 let context = null;
 const t0 = Date.now();
@@ -166,7 +167,6 @@ async function main() {
     gnd.on('exit', (code) => reject(new Error(`petra gnd serve exited ${code}: ${out}`)));
   });
   log(`petra gnd serve at ${url}`);
-  const telemetry = [];
   const follower = followEvents(`${url}api/events`, telemetry);
   const fsw = spawn(fswBin, ['--config', path.join(work, 'fsw.json')],
     { cwd: work, stdio: ['ignore', 'ignore', fs.openSync(path.join(work, 'fsw.log'), 'w')] });
@@ -370,6 +370,8 @@ try {
 } catch (e) {
   console.error(`FAILED: ${e.message}`);
   if (pageErrors.length) console.error(`page errors: ${pageErrors.join('; ')}`);
+  const events = telemetry.filter((m) => m.event === 'tlm' && m.data.tlm.packet === 'EVENT').map((m) => m.data.line);
+  if (events.length) console.error(`last events:\n  ${events.slice(-15).join('\n  ')}`);
   for (const [name, file] of [['petra-fsw', 'fsw.log'], ['petra sim-arm', 'sim-arm.log']]) {
     const f = path.join(work, file);
     if (fs.existsSync(f)) console.error(`${name} log:\n${fs.readFileSync(f, 'utf8').slice(-2000)}`);
