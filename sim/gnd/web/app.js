@@ -17,7 +17,7 @@ const state = {
 };
 window.petra = state;
 state.view3dStats = () => (view3d ? view3d.stats() : null);
-state.view3dFrame = () => view3d && view3d.frame();
+state.view3dFrame = (mode) => view3d && view3d.frame(mode);
 
 let view3d = null;
 let view3dError = null;
@@ -95,6 +95,8 @@ $('send-acquire').addEventListener('click', () => send('ACQUIRE'));
 $('send-abort').addEventListener('click', () => send('ABORT'));
 $('send-stow').addEventListener('click', () => send('ARM_STOW'));
 $('clear-click').addEventListener('click', () => roi.clearClick());
+$('view-arm').addEventListener('click', () => view3d && view3d.frame('arm'));
+$('view-rock').addEventListener('click', () => view3d && view3d.frame('rock'));
 $('send-goto').addEventListener('click', () => {
   if (state.picked === null) return;
   send('ARM_GOTO', { plane_rank: state.picked, standoff_mm: Number($('standoff').value) });
@@ -309,7 +311,7 @@ function renderArmTable() {
     ['tip (mm, world)', vec(a.tip_mm, 2)],
     ['tool axis', vec(a.axis, 3)],
     ['tip to picked centroid', p ? `${fmt(dist(a.tip_mm, p.centroid_mm), 3)} mm` : '-'],
-    ['last verification', `tip ${fmt(a.tip_error_mm, 3)} mm, axis ${fmt(a.axis_error_deg, 3)} deg`],
+    ['last verification', a.moves_completed ? `tip ${fmt(a.tip_error_mm, 3)} mm, axis ${fmt(a.axis_error_deg, 3)} deg` : 'none yet'],
     ['moves completed', a.moves_completed],
     ['CAN sent / received / bad', `${a.can_sent} / ${a.can_received} / ${a.can_bad_frames}`],
   ];

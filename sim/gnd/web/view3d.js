@@ -83,29 +83,31 @@ export class View3D {
     this.frame();
   }
 
-  // Look at the rock (and the arm, when known) from behind the rig and the
-  // arm's side, above it, "up" along the ground normal (world z otherwise).
-  frame() {
+  // Frame the rock and the arm (once its base is known), "up" along the
+  // ground normal (world z otherwise).
+  // mode 'arm': the rock and the whole arm; 'rock': a close-up of the rock.
+  frame(mode = this.mode || 'arm') {
+    this.mode = mode;
     if (!this.points) return;
     const box = new THREE.Box3().setFromBufferAttribute(new THREE.BufferAttribute(this.points, 3));
     const rock = box.getCenter(new THREE.Vector3());
     const rockSize = box.getSize(new THREE.Vector3()).length();
-    if (this.armBase) box.expandByPoint(this.armBase);
+    if (this.armBase && mode === 'arm') box.expandByPoint(this.armBase);
     // Mostly the rock, with the arm's reach towards it in view.
     const centre = box.getCenter(new THREE.Vector3()).lerp(rock, 0.45);
-    const size = Math.max(box.getSize(new THREE.Vector3()).length() * 0.62, rockSize * 1.5);
+    const size = mode === 'rock' ? rockSize * 0.9 : Math.max(box.getSize(new THREE.Vector3()).length(), rockSize * 2);
     const up = new THREE.Vector3().fromArray(this.ground ? this.ground.normal : [0, 0, 1]).normalize();
     this.camera.up.copy(up);
-    // Horizontal direction from the rock towards the rig (world origin) and the arm.
-    const back = (this.armBase ? this.armBase.clone().multiplyScalar(0.5) : new THREE.Vector3()).sub(rock);
+    // From the rig's side (towards the world origin), above, and from the
+    // side away from the arm: the rock in front, the whole arm beside it.
+    const back = rock.clone().negate();
     back.addScaledVector(up, -back.dot(up));
     if (back.lengthSq() < 1) back.set(0, -1, 0);
     back.normalize();
-    // From the side away from the arm, so that it does not hide the rock.
     const side = new THREE.Vector3().crossVectors(up, back).normalize();
     if (this.armBase && side.dot(this.armBase.clone().sub(rock)) > 0) side.negate();
-    this.camera.position.copy(centre).addScaledVector(back, size * 0.9)
-      .addScaledVector(side, size * 0.5).addScaledVector(up, size * 0.45);
+    this.camera.position.copy(centre).addScaledVector(back, size * 0.55)
+      .addScaledVector(side, size * 0.8).addScaledVector(up, size * 0.6);
     this.camera.near = size / 100;
     this.camera.far = size * 20;
     this.camera.updateProjectionMatrix();

@@ -294,7 +294,7 @@ async function main() {
   await page.mouse.up();
   const turned = (await page.evaluate(() => window.petra.view3dStats())).camera;
   check(dist3(turned, cloud.camera) > 10, `dragging turns the 3D view (camera moved ${dist3(turned, cloud.camera).toFixed(0)} mm)`);
-  await page.evaluate(() => window.petra.view3dFrame());  // back to the framed view for the pictures
+  await page.click('#view-arm');  // back to the framed view for the pictures
   await page.waitForTimeout(300);
   await page.locator('#products').screenshot({ path: path.join(shots, 'gnd_products.png') });
 
@@ -341,6 +341,10 @@ async function main() {
   await page.waitForTimeout(300);
   await page.locator('#products').screenshot({ path: path.join(shots, 'gnd_arm_3d.png') });
   await page.locator('#planes-panel').screenshot({ path: path.join(shots, 'gnd_arm.png') });
+  await page.click('#view-rock');
+  await page.waitForTimeout(300);
+  await page.locator('#view3d').screenshot({ path: path.join(shots, 'gnd_arm_rock.png') });
+  await page.click('#view-arm');
 
   // 11. A command petra-fsw rejects (IDLE cannot be re-entered from IDLE) and a
   // request the server refuses (out of range), both shown with their reason.
