@@ -160,7 +160,8 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
     PETRA_TRY(r.text(arm, "arm", "can_interface", c.arm.can_interface, true, false));
     if (hal::is_udp_can_spec(c.arm.can_interface.data())) {
       if (auto spec = hal::parse_udp_can_spec(c.arm.can_interface.data()); !spec)
-        return Error::make(Errc::invalid_argument, "config: arm.%s", spec.error().message);
+        return Error::make(Errc::invalid_argument, "config: arm.can_interface %s",
+                           spec.error().message);
     }
     const std::uint32_t mount = doc->find(arm, "mount");
     if (mount != 0) {

@@ -30,15 +30,13 @@ bool is_udp_can_spec(const char* interface) {
 
 Result<UdpCanSpec> parse_udp_can_spec(const char* interface) {
   if (!is_udp_can_spec(interface))
-    return Error::make(Errc::parse_error, "can interface '%s': not udp:LOCAL_PORT:PEER_PORT",
-                       interface);
+    return Error::make(Errc::parse_error, "'%s': not udp:LOCAL_PORT:PEER_PORT", interface);
   const char* p = interface + sizeof(kPrefix) - 1;
   UdpCanSpec spec;
   spec.local_port = parse_port(p, ':', &p);
   if (spec.local_port != 0) spec.peer_port = parse_port(p + 1, '\0', &p);
   if (spec.local_port == 0 || spec.peer_port == 0)
-    return Error::make(Errc::parse_error,
-                       "can interface '%s': expected udp:LOCAL_PORT:PEER_PORT, ports 1..65535",
+    return Error::make(Errc::parse_error, "'%s': expected udp:LOCAL_PORT:PEER_PORT, ports 1..65535",
                        interface);
   return spec;
 }

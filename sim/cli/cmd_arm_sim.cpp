@@ -225,7 +225,7 @@ int run_socketcan(const std::string& iface, const std::array<double, 5>& initial
   std::unique_ptr<hal::CanPort> port;
   if (hal::is_udp_can_spec(iface.c_str())) {
     auto spec = hal::parse_udp_can_spec(iface.c_str());
-    if (!spec) return fail("sim-arm", spec.error().message);
+    if (!spec) return fail("sim-arm", ("--can " + std::string(spec.error().message)).c_str());
     auto udp = std::make_unique<hal::UdpCanPort>();
     if (auto s = udp->open(*spec); !s) return fail("sim-arm", s.error().message);
     port = std::move(udp);
