@@ -28,7 +28,6 @@ async function get3d() {
     view3d = new View3D($('view3d'));
     view3d.setLabel('no point cloud yet');
     if (state.armTlm) view3d.setArm('arm', state.armTlm.skeleton);
-    else if (state.armGeometry) view3d.setArm('arm', state.armGeometry.stow);
     $('view3d-status').remove();
     state.view3d = 'ready';
   } catch (e) {
@@ -345,10 +344,9 @@ function renderArm() {
   if (!$('send-goto').disabled && state.arm === 'plan refused') $('send-goto').title = 'the server could not plan this plane; petra-fsw will refuse it too';
 }
 
-fetch('/api/arm').then((r) => r.json()).then((g) => {
-  state.armGeometry = g;
-  if (view3d && !state.armTlm) view3d.setArm('arm', g.stow);
-}).catch(() => {});
+// The arm is drawn only from its telemetry (no ARM_STATUS: no arm configured
+// or not booted); its geometry is kept for reference.
+fetch('/api/arm').then((r) => r.json()).then((g) => { state.armGeometry = g; }).catch(() => {});
 
 get3d();  // three.js from /vendor and WebGL: ready before the first cloud
 
