@@ -7,6 +7,7 @@
 
 #include "algo/core/json_reader.hpp"
 #include "hal/file_io.hpp"
+#include "hal/udp_can.hpp"
 
 namespace petra::fsw {
 
@@ -157,6 +158,11 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
   if (arm != 0) {
     c.arm.enabled = true;
     PETRA_TRY(r.text(arm, "arm", "can_interface", c.arm.can_interface, true, false));
+    if (hal::is_udp_can_spec(c.arm.can_interface.data())) {
+      if (auto spec = hal::parse_udp_can_spec(c.arm.can_interface.data()); !spec)
+        return Error::make(Errc::invalid_argument, "config: arm.can_interface %s",
+                           spec.error().message);
+    }
     const std::uint32_t mount = doc->find(arm, "mount");
     if (mount != 0) {
       if (doc->token(mount).type != Type::array || doc->token(mount).count != 4)

@@ -28,7 +28,9 @@ struct Budget {
 // sits in the world (docs/arm.md). Absent: no arm, arm commands fail.
 struct ArmConfig {
   bool enabled = false;
-  std::array<char, 16> can_interface{};  // SocketCAN interface, e.g. "can0", "vcan0"
+  // SocketCAN interface ("can0", "vcan0"), or "udp:LOCAL_PORT:PEER_PORT" for
+  // simulated drives in another process (hal/udp_can.hpp).
+  std::array<char, 16> can_interface{};
   bool has_mount = false;
   std::array<double, 4> mount{};  // base x, y, z (mm, world) and yaw (deg about world z)
 };

@@ -18,9 +18,14 @@ case "$kind" in
   *) echo "install-deps: unknown kind '$kind' (build|test|bench)" >&2; exit 2 ;;
 esac
 
+# Names that installed packages provide count as present (e.g. npm inside a
+# Node.js package that conflicts with Debian's npm): never replace them.
+provided=$(dpkg-query -W -f='${db:Status-Abbrev}|${Provides}\n' 2>/dev/null |
+  sed -n 's/^ii *|//p' | tr ',' '\n' | sed 's/([^)]*)//; s/ //g' | sort -u)
 missing=()
 for p in "${wanted[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+    grep -qxF "$p" <<<"$provided" || missing+=("$p")
 done
 if [ "${#missing[@]}" -eq 0 ]; then
   echo "install-deps: all ${#wanted[@]} packages present"

@@ -12,6 +12,7 @@
 #include "hal/clock.hpp"
 #include "hal/file_stereo_camera.hpp"
 #include "hal/socketcan.hpp"
+#include "hal/udp_can.hpp"
 
 namespace {
 
@@ -56,12 +57,25 @@ int main(int argc, char** argv) {
   deps.camera = &camera;
   deps.clock = &clock;
   deps.job = petra::fsw::flight_pipeline();
-  static petra::hal::SocketCanPort can;
+  static petra::hal::SocketCanPort socketcan;
+  static petra::hal::UdpCanPort udp_can;
   static petra::fsw::arm::FlightArm arm;
   if (config->arm.enabled) {
     // The arm's drives (docs/arm.md): boot starts here, ARM_READY follows.
-    if (auto s = can.open(config->arm.can_interface.data()); !s) {
-      std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
+    // "udp:L:P" reaches simulated drives in another process (`petra sim-arm
+    // --udp`) where the kernel has no CAN; any other name is SocketCAN.
+    const char* iface = config->arm.can_interface.data();
+    petra::hal::CanPort* can = &socketcan;
+    petra::Status opened;
+    if (petra::hal::is_udp_can_spec(iface)) {
+      auto spec = petra::hal::parse_udp_can_spec(iface);
+      opened = spec ? udp_can.open(*spec) : petra::Status(spec.error());
+      can = &udp_can;
+    } else {
+      opened = socketcan.open(iface);
+    }
+    if (!opened) {
+      std::fprintf(stderr, "petra-fsw: arm: %s\n", opened.error().message);
       return 1;
     }
     petra::fsw::arm::ArmServiceConfig arm_config;
@@ -71,7 +85,7 @@ int main(int argc, char** argv) {
           Eigen::Translation3d(m[0], m[1], m[2]) *
           Eigen::AngleAxisd(m[3] * 3.14159265358979323846 / 180.0, Eigen::Vector3d::UnitZ());
     }
-    if (auto s = arm.init(arm_config, can, clock); !s) {
+    if (auto s = arm.init(arm_config, *can, clock); !s) {
       std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
       return 1;
     }

@@ -1,7 +1,10 @@
 // `petra sim-arm`: the arm's five simulated CANopen drives.
 //   --can IFACE   the drives on a SocketCAN interface (vcan0 in the HIL bench),
 //                 in real time, for the flight master to talk to; runs until
-//                 --duration ends or Ctrl-C.
+//                 --duration ends or Ctrl-C. IFACE "udp:LOCAL:PEER": CAN over
+//                 UDP on 127.0.0.1 (hal/udp_can.hpp), for a petra-fsw
+//                 configured with arm.can_interface "udp:PEER:LOCAL" on a
+//                 host without AF_CAN.
 //   --loopback    drives and the flight CANopen master in one process on the
 //                 loopback bus, in simulated time: boot, enable, move to
 //                 --target, quick stop; prints the exchange; exit 1 on a fault.
@@ -23,6 +26,7 @@
 #include "hal/can_loopback.hpp"
 #include "hal/canopen/canopen_master.hpp"
 #include "hal/socketcan.hpp"
+#include "hal/udp_can.hpp"
 #include "sim/arm/sim_arm_bus.hpp"
 #include "sim/arm/sim_arm_setup.hpp"
 #include "sim/cli/commands.hpp"
@@ -218,10 +222,21 @@ int run_loopback(const std::array<double, 5>& initial, const std::array<double, 
 
 int run_socketcan(const std::string& iface, const std::array<double, 5>& initial, double duration_s,
                   std::vector<FaultPlan>& faults) {
-  if (!hal::socketcan_available())
-    return fail("sim-arm", "AF_CAN not available on this kernel (use --loopback)");
-  auto port = std::make_unique<hal::SocketCanPort>();
-  if (auto s = port->open(iface.c_str()); !s) return fail("sim-arm", s.error().message);
+  std::unique_ptr<hal::CanPort> port;
+  if (hal::is_udp_can_spec(iface.c_str())) {
+    auto spec = hal::parse_udp_can_spec(iface.c_str());
+    if (!spec) return fail("sim-arm", ("--can " + std::string(spec.error().message)).c_str());
+    auto udp = std::make_unique<hal::UdpCanPort>();
+    if (auto s = udp->open(*spec); !s) return fail("sim-arm", s.error().message);
+    port = std::move(udp);
+  } else {
+    if (!hal::socketcan_available())
+      return fail("sim-arm",
+                  "AF_CAN not available on this kernel (use --loopback or --can udp:L:P)");
+    auto can = std::make_unique<hal::SocketCanPort>();
+    if (auto s = can->open(iface.c_str()); !s) return fail("sim-arm", s.error().message);
+    port = std::move(can);
+  }
   const sim::ArmDriveConfigs configs = sim::default_arm_drive_configs();
   auto drives = std::make_unique<sim::SimArmBus>();
   if (auto s = drives->configure(sim::sim_params_at(configs, initial), *port); !s) {
@@ -274,8 +289,8 @@ void add_arm_sim(CLI::App& app, Outcome& outcome, const char* name) {
   static std::string target_text = "40,50,70,130,-20";
   static double duration_s = 0.0;
   static std::vector<std::string> fault_texts;
-  auto* can_opt =
-      cmd->add_option("--can", iface, "SocketCAN interface for the drives (e.g. vcan0)");
+  auto* can_opt = cmd->add_option(
+      "--can", iface, "SocketCAN interface for the drives (e.g. vcan0), or udp:LOCAL:PEER ports");
   cmd->add_flag("--loopback", loopback,
                 "drives and the flight master in one process, simulated time")
       ->excludes(can_opt);

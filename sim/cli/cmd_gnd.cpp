@@ -45,7 +45,17 @@ void add_gnd(CLI::App& app, Outcome& outcome) {
   sub->add_option("--tlm-port", link.tlm_port, "telemetry port")->capture_default_str();
   sub->add_option("--left-image", link.left_image,
                   "image shown until the first LEFT_IMAGE product (e.g. the scene's left.png)");
+  static std::string arm_mount = "300,100,100,90";
+  sub->add_option("--arm-mount", arm_mount,
+                  "arm base in the world, x_mm,y_mm,z_mm,yaw_deg (petra-fsw's arm.mount)")
+      ->capture_default_str();
   sub->callback([&outcome] {
+    auto geometry = gnd::parse_arm_mount(arm_mount);
+    if (!geometry) {
+      outcome.exit_code = fail("gnd serve", geometry.error().message);
+      return;
+    }
+    link.arm_geometry = *geometry;
     // SIGINT/SIGTERM are taken by a watcher thread that stops the server, so
     // the telemetry thread and the sockets close cleanly.
     sigset_t stop_signals;

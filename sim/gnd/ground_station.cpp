@@ -68,6 +68,8 @@ std::string args_json(const cmd::Command& c) {
 
 Status GroundStation::start(const StationOptions& options) {
   options_ = options;
+  PETRA_TRY(arm::validate_geometry(options.arm_geometry));
+  arm_model_ = ArmModel(options.arm_geometry);
   PETRA_TRY(cmd::auth_init());
   auto key = cmd::load_key_file(options.key_path.c_str());
   if (!key) return key.error();
@@ -132,6 +134,11 @@ std::optional<ground::Product> GroundStation::product(std::uint8_t kind) const {
   return it->second;
 }
 
+std::array<double, arm::kJointCount> GroundStation::arm_joints_deg() const {
+  std::lock_guard lock(arm_mutex_);
+  return arm_joints_deg_;
+}
+
 void GroundStation::keep_product(ground::Product p) {
   std::ostringstream o;
   o << "{\"kind\":" << json_string(ground::product_name(p.kind)) << ",\"id\":" << p.id
@@ -149,8 +156,19 @@ void GroundStation::publish_packet(const tlm::TmPacket& p) {
     if (auto done = assembler_.add(*chunk)) keep_product(std::move(*done));
     return;
   }
-  hub_.publish("tlm", "{\"tlm\":" + ground::format_json(p) + ",\"line\":" +
-                          json_string(ground::format_line(p)) + ",\"names\":" + names_of(p) + "}");
+  std::string extra;
+  if (const auto* a = std::get_if<tlm::ArmStatus>(&p.body)) {
+    std::array<double, arm::kJointCount> q{};
+    for (std::size_t k = 0; k < q.size(); ++k) q[k] = static_cast<double>(a->joint_deg[k]);
+    {
+      std::lock_guard lock(arm_mutex_);
+      arm_joints_deg_ = q;
+    }
+    extra = ",\"skeleton\":" + arm_model_.skeleton_json(q);
+  }
+  hub_.publish("tlm", "{\"tlm\":" + ground::format_json(p) +
+                          ",\"line\":" + json_string(ground::format_line(p)) +
+                          ",\"names\":" + names_of(p) + extra + "}");
 }
 
 void GroundStation::receive_loop() {

@@ -3,6 +3,8 @@
 // downlink on a thread, reassembles products and publishes every decoded
 // packet to the pages through the EventHub:
 //   event "tlm":     {"tlm": <petra tlm --json object>, "line": "<text>", "names": {...}}
+//                    ARM_STATUS also carries "skeleton": the arm drawn from its
+//                    measured joints (arm_model.hpp)
 //   event "sent":    {"command": "SELECT_ROI", "counter": 7, "code": 16}
 //   event "product": {"kind": "disparity", "id": 3, "width": .., "height": .., "format": ..}
 // PRODUCT chunks themselves are not forwarded (a product is thousands).
@@ -20,6 +22,7 @@
 #include "cmd/auth.hpp"
 #include "cmd/commands.hpp"
 #include "hal/udp_link.hpp"
+#include "sim/gnd/arm_model.hpp"
 #include "sim/gnd/event_hub.hpp"
 #include "sim/ground/product_assembler.hpp"
 
@@ -33,6 +36,7 @@ struct StationOptions {
   std::string key_path = "petra.key";
   std::string counter_path;  // empty: KEY.counter (shared with `petra cmd`)
   std::string left_image;    // optional: shown until a LEFT_IMAGE product arrives
+  arm::ArmGeometry arm_geometry = arm::rover_arm_geometry();  // as petra-fsw's arm.mount
 };
 
 class GroundStation {
@@ -54,6 +58,9 @@ class GroundStation {
   std::optional<ground::Product> product(std::uint8_t kind) const;
 
   EventHub& hub() { return hub_; }
+  const ArmModel& arm_model() const { return arm_model_; }
+  // Measured joints of the latest ARM_STATUS (the stowed pose before one).
+  std::array<double, arm::kJointCount> arm_joints_deg() const;
   std::uint64_t packets() const { return packets_.load(); }
   std::uint64_t bad_packets() const { return bad_packets_.load(); }
 
@@ -71,6 +78,9 @@ class GroundStation {
   ground::ProductAssembler assembler_;
   mutable std::mutex products_mutex_;
   std::map<std::uint8_t, ground::Product> products_;
+  ArmModel arm_model_;
+  mutable std::mutex arm_mutex_;
+  std::array<double, arm::kJointCount> arm_joints_deg_{0, 0, 145, 35, 0};
   std::thread thread_;
   std::atomic<bool> running_{false};
   std::atomic<std::uint64_t> packets_{0};

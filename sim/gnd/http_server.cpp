@@ -120,6 +120,16 @@ struct HttpServer::Impl {
           "application/json");
     });
 
+    server.Get("/api/arm", [this](const httplib::Request&, httplib::Response& res) {
+      res.set_content(station.arm_model().geometry_json(), "application/json");
+    });
+
+    server.Post("/api/arm/plan", [this](const httplib::Request& req, httplib::Response& res) {
+      auto plan = station.arm_model().plan_json(req.body, station.arm_joints_deg());
+      if (!plan) return answer_error(res, 400, plan.error().message);
+      res.set_content(*plan, "application/json");
+    });
+
     server.Get(R"(/api/product/([a-z_]+))", [this](const httplib::Request& req,
                                                    httplib::Response& res) {
       const std::uint8_t kind = product_kind(req.matches[1]);

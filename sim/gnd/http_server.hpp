@@ -5,6 +5,10 @@
 //   GET  /api/events            server-sent events (see ground_station.hpp)
 //   POST /api/command           {"command": NAME, "args": {...}} -> {"counter": n}
 //                               or HTTP 400 {"error": "<field>: <problem>"}
+//   GET  /api/arm               the arm's geometry, limits and stowed skeleton
+//   POST /api/arm/plan          {"centroid_mm":[..],"normal":[..],"standoff_mm":S}
+//                               -> the approach from the current joints, or the
+//                               refusal and its reason (arm_model.hpp)
 //   GET  /api/product/<kind>    latest left_image | disparity | overlay | point_cloud,
 //                               raw bytes; X-Petra-Width/Height/Format/Id headers
 #pragma once

@@ -39,6 +39,8 @@ TEST(Config, EveryErrorNamesTheField) {
       {R"({"uplink":{"key_file":"k"},"camera":{"kind":"v4l2","dir":"x"}})", "camera.kind"},
       {R"({"uplink":{"key_file":"k"}})", "camera"},
       {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},)", "json"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"arm":{"can_interface":"udp:1:0"}})",
+       "arm.can_interface 'udp:1:0'"},
   };
   for (const auto& c : cases) {
     auto r = parse(c.text);
@@ -46,6 +48,14 @@ TEST(Config, EveryErrorNamesTheField) {
     EXPECT_NE(std::string(r.error().message).find(c.names), std::string::npos)
         << r.error().message << " should name " << c.names;
   }
+}
+
+TEST(Config, ArmOnCanOverUdpKeepsTheSpec) {
+  auto c = parse(
+      R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"arm":{"can_interface":"udp:47200:47201","mount":[300,100,100,90]}})");
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_TRUE(c->arm.enabled);
+  EXPECT_STREQ(c->arm.can_interface.data(), "udp:47200:47201");
 }
 
 }  // namespace

@@ -13,8 +13,11 @@ const state = {
   commands: new Map(),  // counter -> {command, args, stage, reason, detail}
   evalResult: null, planes: [], ground: null, picked: null,
   hk: null, lastPacketMs: 0, view3d: 'loading', events: [], products: {}, arm: 'not requested',
+  armGeometry: null, armTlm: null, plan: null,
 };
 window.petra = state;
+state.view3dStats = () => (view3d ? view3d.stats() : null);
+state.view3dFrame = (mode) => view3d && view3d.frame(mode);
 
 let view3d = null;
 let view3dError = null;
@@ -24,6 +27,7 @@ async function get3d() {
     const { View3D } = await import('./view3d.js');
     view3d = new View3D($('view3d'));
     view3d.setLabel('no point cloud yet');
+    if (state.armTlm) view3d.setArm('arm', state.armTlm.skeleton);
     $('view3d-status').remove();
     state.view3d = 'ready';
   } catch (e) {
@@ -90,13 +94,16 @@ $('send-acquire').addEventListener('click', () => send('ACQUIRE'));
 $('send-abort').addEventListener('click', () => send('ABORT'));
 $('send-stow').addEventListener('click', () => send('ARM_STOW'));
 $('clear-click').addEventListener('click', () => roi.clearClick());
+$('view-arm').addEventListener('click', () => view3d && view3d.frame('arm'));
+$('view-rock').addEventListener('click', () => view3d && view3d.frame('rock'));
 $('send-goto').addEventListener('click', () => {
   if (state.picked === null) return;
   send('ARM_GOTO', { plane_rank: state.picked, standoff_mm: Number($('standoff').value) });
   state.arm = 'requested';
+  state.armGotoRank = state.picked;
   renderArm();
 });
-$('standoff').addEventListener('input', () => pick(state.picked));
+$('standoff').addEventListener('change', () => pick(state.picked));
 
 // ---- telemetry --------------------------------------------------------------
 const events = new EventSource('/api/events');
@@ -129,6 +136,7 @@ function onTlm(m) {
       renderPlanes();
       break;
     case 'GROUND_PLANE': state.ground = f; break;
+    case 'ARM_STATUS': onArmStatus(f, m.skeleton); break;
     case 'PARAM_VALUE': addEvent('INFO', m.line); break;
   }
 }
@@ -254,28 +262,91 @@ function renderPlanes() {
   $('send-goto').disabled = state.picked === null;
 }
 
+// Picking a plane asks the server to plan the approach as the arm service
+// will (same kinematics, from the measured joints): the ghost arm shows the
+// contact pose, the dot the standoff waypoint.
 async function pick(rank) {
   if (rank === null) return;
   state.picked = rank;
-  state.arm = 'planned';
+  state.arm = 'planning';
+  state.plan = null;
   renderPlanes();
+  renderArm();
+  const p = state.planes.find((q) => q.rank === rank);
+  const standoff = Number($('standoff').value);
+  const r = await fetch('/api/arm/plan', { method: 'POST', headers: { 'Content-Type': 'application/json' },
+    body: JSON.stringify({ centroid_mm: p.centroid_mm, normal: p.normal, standoff_mm: standoff }) });
+  const body = await r.json().catch(() => ({ error: `HTTP ${r.status}` }));
+  if (state.picked !== rank) return;  // picked another meanwhile
+  state.plan = r.ok ? { rank, standoff, ...body } : { rank, ok: false, stage: 'request', reason: body.error };
+  state.arm = state.plan.ok ? 'planned' : 'plan refused';
   const v = await get3d();
-  if (v) v.showPose(state.planes.find((p) => p.rank === rank), Number($('standoff').value));
+  if (v) {
+    v.showPose(p);
+    v.setArm('plan', state.plan.ok ? state.plan.contact.skeleton : null, { waypoint: state.plan.ok ? state.plan.standoff.tip_mm : null });
+  }
   renderArm();
 }
 
+const ARM_STATES = ['off', 'booting', 'enabling', 'holding', 'moving', 'approaching', 'retreating', 'settling', 'stopped', 'fault'];
+const ARM_PROGRESS = ['idle', 'moving', 'reached', 'failed'];
+const dist = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+
+function onArmStatus(f, skeleton) {
+  state.armTlm = { ...f, skeleton, state_name: ARM_STATES[f.state] || `state ${f.state}` };
+  if (view3d && skeleton) view3d.setArm('arm', skeleton);
+  renderArmTable();
+  if (state.arm === 'reached') renderArm();
+}
+
+function renderArmTable() {
+  const a = state.armTlm;
+  if (!a) return;
+  const p = state.planes.find((q) => q.rank === (state.arm === 'reached' ? state.armGotoRank : state.picked));
+  const rows = [
+    ['state', `${a.state_name}, ${ARM_PROGRESS[a.progress] || a.progress}`],
+    ['joints measured (deg)', vec(a.joint_deg, 2)],
+    ['joints target (deg)', vec(a.target_deg, 2)],
+    ['tip (mm, world)', vec(a.tip_mm, 2)],
+    ['tool axis', vec(a.axis, 3)],
+    ['tip to picked centroid', p ? `${fmt(dist(a.tip_mm, p.centroid_mm), 3)} mm` : '-'],
+    ['last verification', a.moves_completed ? `tip ${fmt(a.tip_error_mm, 3)} mm, axis ${fmt(a.axis_error_deg, 3)} deg` : 'none yet'],
+    ['moves completed', a.moves_completed],
+    ['CAN sent / received / bad', `${a.can_sent} / ${a.can_received} / ${a.can_bad_frames}`],
+  ];
+  if (a.fault_node) rows.push(['fault', `node ${a.fault_node}, fault ${a.fault}, detail ${a.fault_detail}`]);
+  $('arm-table').tBodies[0].replaceChildren(...rows.map(([k, v]) => {
+    const tr = document.createElement('tr');
+    tr.innerHTML = '<td></td><td></td>';
+    tr.cells[0].textContent = k;
+    tr.cells[1].textContent = v;
+    return tr;
+  }));
+}
+
 function renderArm() {
-  const p = state.planes.find((q) => q.rank === state.picked);
-  const where = p ? `plane ${p.rank}: grinder face on ${vec(p.centroid_mm, 1)} mm, axis along ${vec(p.normal, 3)}` : '';
+  const rank = state.arm === 'reached' ? state.armGotoRank : state.picked;
+  const p = state.planes.find((q) => q.rank === rank);
+  const where = p ? `plane ${p.rank}: grinder face on ${vec(p.centroid_mm, 1)} mm, axis along ${vec(p.normal.map((x) => -x), 3)}` : '';
+  const plan = state.plan;
+  const a = state.armTlm;
   const text = {
     'not requested': 'Arm: pick a plane to see the planned pose.',
-    planned: `Planned ${where}; approach ${$('standoff').value} mm out. Arm model not available in this build: the grinder pose is shown.`,
+    planning: `Planning ${where}...`,
+    planned: plan && plan.ok ? `Planned ${where}; joints ${vec(plan.contact.joint_deg, 1)} deg, approach ${plan.standoff.tip_mm ? fmt(dist(plan.standoff.tip_mm, plan.contact.tip_mm), 0) : '?'} mm along the normal.` : '',
+    'plan refused': plan ? `Plane ${rank} cannot be reached: ${plan.reason}` : '',
     requested: `ARM_GOTO sent for ${where}; waiting for the acknowledgement.`,
-    reached: `Arm reached ${where}.`,
-  }[state.arm] || `ARM_GOTO ${state.arm}: arm not available - it has not moved.`;
+    reached: `Arm reached ${where}${a && p ? `; tip ${fmt(dist(a.tip_mm, p.centroid_mm), 3)} mm from the centroid` : ''}.`,
+  }[state.arm] ?? `ARM_GOTO ${state.arm}: the arm did not reach the plane.`;
   $('arm-status').textContent = text;
-  $('arm-status').className = state.arm.startsWith('FAILED') || state.arm.startsWith('REJECTED') ? 'error' : 'hint';
+  $('arm-status').className = /^(FAILED|REJECTED|plan refused)/.test(state.arm) ? 'error' : 'hint';
+  renderArmTable();
+  if (!$('send-goto').disabled && state.arm === 'plan refused') $('send-goto').title = 'the server could not plan this plane; petra-fsw will refuse it too';
 }
+
+// The arm is drawn only from its telemetry (no ARM_STATUS: no arm configured
+// or not booted); its geometry is kept for reference.
+fetch('/api/arm').then((r) => r.json()).then((g) => { state.armGeometry = g; }).catch(() => {});
 
 get3d();  // three.js from /vendor and WebGL: ready before the first cloud
 
