@@ -161,7 +161,7 @@ TEST(Executive, CommandsAndHousekeepingKeepFlowingDuringALongEvaluation) {
   const auto abort = h.make(FunctionCode::ABORT);
   h.send(abort);
   ASSERT_TRUE(h.cycle_until([&] { return h.has_ack(abort.counter, AckStage::COMPLETED); }));
-  EXPECT_TRUE(h.has_ack(eval.counter, AckStage::FAILED));
+  ASSERT_TRUE(h.has_ack(eval.counter, AckStage::FAILED));  // before .back()
   EXPECT_EQ(h.acks_for(eval.counter).back().reason, static_cast<std::uint8_t>(Reason::ABORTED));
   EXPECT_EQ(h.exec().mode(), Mode::IDLE);
   ASSERT_TRUE(h.cycle_until([&] { return h.job.saw_cancel.load(); }));

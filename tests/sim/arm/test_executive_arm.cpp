@@ -307,11 +307,11 @@ TEST(ExecutiveArm, AbortQuickStopsTheDrives) {
   ArmRig rig;
   ASSERT_TRUE(rig.boot());
   cmd::Command go;
-  start_motion(rig, go);
+  ASSERT_NO_FATAL_FAILURE(start_motion(rig, go));
   const auto abort = rig.h.make(FunctionCode::ABORT);
   rig.h.send(abort);
   ASSERT_TRUE(rig.until([&] { return rig.h.has_ack(abort.counter, AckStage::COMPLETED); }, 50));
-  EXPECT_TRUE(rig.h.has_ack(go.counter, AckStage::FAILED));
+  ASSERT_TRUE(rig.h.has_ack(go.counter, AckStage::FAILED));  // before .back()
   EXPECT_EQ(rig.h.acks_for(go.counter).back().reason, static_cast<std::uint8_t>(Reason::ABORTED));
   EXPECT_EQ(rig.h.exec().mode(), Mode::IDLE);
   rig.until([&] { return false; }, 30);
@@ -324,7 +324,7 @@ TEST(ExecutiveArm, ALostDriveHeartbeatEndsInSafeWithAnEvent) {
   ArmRig rig;
   ASSERT_TRUE(rig.boot());
   cmd::Command go;
-  start_motion(rig, go);
+  ASSERT_NO_FATAL_FAILURE(start_motion(rig, go));
   rig.drives.drive(2).stop_heartbeat(true);
   ASSERT_TRUE(rig.until([&] { return rig.h.exec().mode() == Mode::SAFE; }, 100));
   EXPECT_TRUE(rig.event(EventId::ARM_DRIVE_FAULT));
@@ -368,7 +368,7 @@ TEST(ExecutiveArm, TheEStopEndsInAQuickStopAndSafe) {
   ArmRig rig;
   ASSERT_TRUE(rig.boot());
   cmd::Command go;
-  start_motion(rig, go);
+  ASSERT_NO_FATAL_FAILURE(start_motion(rig, go));
   rig.estop.set(true);
   ASSERT_TRUE(rig.until([&] { return rig.h.exec().mode() == Mode::SAFE; }, 5));
   EXPECT_TRUE(rig.event(EventId::ESTOP_ASSERTED));
