@@ -320,7 +320,8 @@ int run(const Options& o, std::FILE* out) {
       }
     }
   };
-  for (int i = 0; i < 50 && !booted && fsw.alive(); ++i) pump(100);
+  // Up to 30 s: init touches every page of the arena (slow under emulation, HIL bench).
+  for (int i = 0; i < 300 && !booted && fsw.alive(); ++i) pump(100);
   if (!booted)
     return fail("petra-fsw did not boot; see " + (dir / "fsw.log").string() + ": " +
                 read_all(dir / "fsw.log"));

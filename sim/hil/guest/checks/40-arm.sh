@@ -72,8 +72,10 @@ head -c 32 /dev/urandom | od -An -tx1 | tr -d ' \n' > $KEY
 echo >> $KEY
 
 # --- the arm, the e-stop and the CAN bus --------------------------------------------------
-# A simulated scene the pipeline evaluates (the demo's seed), the arm on vcan0.
-petra sim scene --seed 1 --out $A/scene > $A/sim.txt 2>&1
+# A simulated scene the pipeline evaluates (the demo's seed, rendered by pack.sh on the
+# host: the renderer takes minutes under emulation), the arm on vcan0.
+mkdir -p $A/scene
+cp /hil/scene/* $A/scene/ 2> /dev/null
 ROI=$(tr -d ' \n' < $A/scene/truth.json | sed -n 's/.*"roi":\[\([0-9]*\),\([0-9]*\),\([0-9]*\),\([0-9]*\)\].*/\1 \2 \3 \4/p')
 set -- $ROI
 ROI_ARGS="x_px=$1 y_px=$2 w_px=$3 h_px=$4 planes=3"
