@@ -56,7 +56,10 @@ echo "  gpio: $GPIO_CHIP ($GPIO_SIM)  uptime $(cut -d' ' -f1 /proc/uptime) s"
 export PETRA_CAN_IF=vcan0
 export LIBCAMERA_LOG_LEVELS='*:ERROR'  # its INFO/WARN lines would drown the test logs
 cd /tmp
+# hil.only=NN on the kernel command line (PETRA_HIL_APPEND) runs only checks/NN-*.sh.
+only=$(sed -n 's/.*hil\.only=\([^ ]*\).*/\1/p' /proc/cmdline)
 for c in /hil/checks/*.sh; do
+  case $(basename "$c") in ${only:-*}*) ;; *) continue ;; esac
   echo "=== $(basename "$c" .sh)  (uptime $(cut -d' ' -f1 /proc/uptime) s)"
   . "$c"
 done
