@@ -58,8 +58,8 @@ timeout "${PETRA_HIL_TIMEOUT:-600}" qemu-system-x86_64 -accel tcg,thread=multi -
 qemu_rc=${PIPESTATUS[0]}
 t_boot=$(elapsed "$t2")
 
-pass=$(grep -c '^HIL .* PASS' "$out/console.log")
-fail=$(grep -c '^HIL .* FAIL' "$out/console.log")
+pass=$(grep -c -E '^HIL [^ ]+ PASS( |$)' "$out/console.log")
+fail=$(grep -c -E '^HIL [^ ]+ FAIL( |$)' "$out/console.log")
 verdict=0
 if ! grep -q '^HIL done' "$out/console.log"; then
   echo "hil: the guest did not finish (qemu exit $qemu_rc; see $out/console.log)"
