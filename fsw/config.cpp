@@ -145,14 +145,29 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
     b.worker_stack_bytes = static_cast<std::size_t>(stack_kb) << 10;
     PETRA_TRY(get_int(r, budget, "budget", "cloud_points", 0, 1000000, b.cloud_points));
   }
-  char kind[16] = "file";
-  std::array<char, 16> kind_field{};
-  PETRA_TRY(r.text(camera, "camera", "kind", kind_field, false, false));
-  if (kind_field[0] != '\0') std::snprintf(kind, sizeof(kind), "%s", kind_field.data());
-  if (std::strcmp(kind, "file") != 0)
-    return Error::make(Errc::invalid_argument, "config: camera.kind '%s': this build has 'file'",
-                       kind);
-  PETRA_TRY(r.text(camera, "camera", "dir", c.camera_dir, true, true));
+  std::array<char, 16> kind{};
+  PETRA_TRY(r.text(camera, "camera", "kind", kind, false, false));
+  if (kind[0] == '\0' || std::strcmp(kind.data(), "file") == 0) {
+    c.camera_kind = CameraKind::file;
+    PETRA_TRY(r.text(camera, "camera", "dir", c.camera_dir, true, true));
+  } else if (std::strcmp(kind.data(), "v4l2") == 0) {
+    c.camera_kind = CameraKind::v4l2;
+    auto v4l2 = hal::parse_v4l2_camera(*doc, camera);
+    if (!v4l2) return Error::make(v4l2.code(), "config: %s", v4l2.error().message);
+    c.v4l2 = *v4l2;
+  } else {
+    return Error::make(Errc::invalid_argument, "config: camera.kind '%s': expected file or v4l2",
+                       kind.data());
+  }
+  const std::uint32_t gpio = doc->find(0, "gpio");
+  if (gpio != 0) {
+    auto lines = hal::parse_gpio(*doc, gpio);
+    if (!lines) return Error::make(lines.code(), "config: %s", lines.error().message);
+    c.gpio = *lines;
+  }
+  if (c.camera_kind == CameraKind::v4l2 && c.v4l2.triggered && !c.gpio.has_trigger)
+    return Error::make(Errc::missing_field,
+                       "config: camera.triggered needs gpio.trigger (the trigger line)");
   const std::uint32_t arm = doc->find(0, "arm");
   PETRA_TRY(object_or_absent(*doc, arm, "arm"));
   if (arm != 0) {

@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "algo/core/result.hpp"
+#include "hal/device_config.hpp"
 
 namespace petra::fsw {
 
@@ -35,16 +36,22 @@ struct ArmConfig {
   std::array<double, 4> mount{};  // base x, y, z (mm, world) and yaw (deg about world z)
 };
 
+// Where stereo pairs come from: a folder of PGM pairs or V4L2 cameras.
+enum class CameraKind : std::uint8_t { file, v4l2 };
+
 struct FswConfig {
   Host cmd_host{};  // command port: bind address and port
   std::uint16_t cmd_port = 47100;
   Host tlm_host{};  // telemetry destination
   std::uint16_t tlm_port = 47101;
-  Path key_file{};              // uplink HMAC key (64 hex digits); required
-  Path counter_file{};          // last accepted command counter, kept across reboots; optional
-  Path param_file{};            // parameter defaults; optional
-  Path calib_file{};            // calib.json for the pipeline; optional
-  Path camera_dir{};            // file camera folder; required
+  Path key_file{};      // uplink HMAC key (64 hex digits); required
+  Path counter_file{};  // last accepted command counter, kept across reboots; optional
+  Path param_file{};    // parameter defaults; optional
+  Path calib_file{};    // calib.json for the pipeline; optional
+  CameraKind camera_kind = CameraKind::file;
+  Path camera_dir{};            // kind "file": the folder of pairs
+  hal::V4l2CameraSection v4l2;  // kind "v4l2" (docs/hal.md "Device configuration")
+  hal::GpioSection gpio;        // section "gpio": e-stop, arm power, trigger; absent = none wired
   Path watchdog_device{};       // e.g. /dev/watchdog; optional (none on development hosts)
   std::uint32_t cycle_ms = 10;  // minor frame
   std::uint32_t commands_per_cycle = 8;  // uplink datagrams serviced per cycle at most

@@ -163,12 +163,17 @@ void Executive::on_set_param(const cmd::Command& c) {
 
 Status Executive::acquire_pair() {
   const std::int64_t start = deps_.clock->monotonic_ns();
+  // docs/hal.md "Faults": a broken frame, a timeout or no pair within the skew
+  // is retried; a lost device (io_error) is not: it would fail the same way.
   auto meta = deps_.camera->acquire(left_, right_);
-  if (!meta) {
-    has_frame_ = false;
+  for (int attempt = 1; !meta; ++attempt) {
     events_.raise(EventId::CAMERA_FAULT, static_cast<std::int32_t>(meta.code()),
                   static_cast<std::int32_t>(frame_seq_ + 1));
-    return meta.error();
+    if (meta.code() == Errc::io_error || attempt >= kCameraAttempts) {
+      has_frame_ = false;
+      return meta.error();
+    }
+    meta = deps_.camera->acquire(left_, right_);
   }
   acquire_us_ = static_cast<std::uint32_t>((deps_.clock->monotonic_ns() - start) / 1000);
   has_frame_ = true;

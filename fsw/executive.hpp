@@ -69,6 +69,9 @@ struct LoopCounters {
 
 class Executive {
  public:
+  // Acquisitions tried per pair before the command fails (docs/hal.md "Faults").
+  static constexpr int kCameraAttempts = 3;
+
   Executive() = default;
   ~Executive();
   Executive(const Executive&) = delete;

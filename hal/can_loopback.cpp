@@ -1,5 +1,7 @@
 #include "hal/can_loopback.hpp"
 
+#include "hal/socketcan.hpp"
+
 #include <chrono>
 
 namespace petra::hal {
@@ -76,10 +78,10 @@ void CanLoopbackBus::set_bus_off(Endpoint& endpoint, bool bus_off) {
   }
 }
 
-void CanLoopbackBus::inject_error_frame(Endpoint& endpoint, std::uint32_t error_class) {
+void CanLoopbackBus::inject_error_frame(Endpoint& endpoint, std::uint32_t error_class,
+                                        const std::array<std::uint8_t, 8>& data) {
   const std::lock_guard lock(mutex_);
-  ++endpoint.health_.error_frames;
-  endpoint.health_.last_error_class = error_class;
+  apply_error_frame(error_class, data, endpoint.health_);
 }
 
 std::uint32_t CanLoopbackBus::frames_carried() const {

@@ -50,9 +50,13 @@ class CanLoopbackBus {
   Result<Endpoint*> attach(std::span<const CanFilter> filters = {});
 
   // Fault injection (tests): bus-off refuses the endpoint's sends until cleared;
-  // an injected error frame is counted with its CAN_ERR_* class bits.
+  // an injected error frame (CAN_ERR_* class bits, the 8 data bytes of a
+  // SocketCAN error frame) is folded in as SocketCAN does: counted, and the
+  // controller state follows (CAN_ERR_CRTL warning/passive, CAN_ERR_BUSOFF,
+  // CAN_ERR_RESTARTED).
   void set_bus_off(Endpoint& endpoint, bool bus_off);
-  void inject_error_frame(Endpoint& endpoint, std::uint32_t error_class);
+  void inject_error_frame(Endpoint& endpoint, std::uint32_t error_class,
+                          const std::array<std::uint8_t, 8>& data = {});
 
   // Frames carried since construction (every send, whoever received it).
   std::uint32_t frames_carried() const;

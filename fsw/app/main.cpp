@@ -1,16 +1,16 @@
 // petra-fsw --config FILE: the onboard service. Loads the configuration,
-// opens the camera, allocates every buffer, then runs the executive's loop
-// until SIGINT or SIGTERM. Exit status 0 after a clean stop; 1 with a
-// one-line reason on stderr when initialisation fails.
+// opens the devices (camera, GPIO lines, the arm's CAN bus), allocates every
+// buffer, then runs the executive's loop until SIGINT or SIGTERM. Exit status 0 after a clean stop;
+// 1 with a one-line reason on stderr when initialisation fails.
 #include <csignal>
 #include <cstdio>
 #include <cstring>
 
 #include "fsw/arm/flight_arm.hpp"
 #include "fsw/executive.hpp"
+#include "fsw/flight_devices.hpp"
 #include "fsw/pipeline_factory.hpp"
 #include "hal/clock.hpp"
-#include "hal/file_stereo_camera.hpp"
 #include "hal/socketcan.hpp"
 #include "hal/udp_can.hpp"
 
@@ -48,14 +48,15 @@ int main(int argc, char** argv) {
     return 1;
   }
   static petra::hal::SystemClock clock;
-  static petra::hal::FileStereoCamera camera;
-  if (auto s = camera.open(config->camera_dir.data()); !s) {
+  static petra::fsw::FlightDevices devices;
+  if (auto s = devices.open(*config); !s) {
     std::fprintf(stderr, "petra-fsw: %s\n", s.error().message);
     return 1;
   }
   petra::fsw::Dependencies deps;
-  deps.camera = &camera;
+  deps.camera = &devices.camera();
   deps.clock = &clock;
+  deps.estop = devices.estop();  // asserted: arm quick stop and SAFE
   deps.job = petra::fsw::flight_pipeline();
   static petra::hal::SocketCanPort socketcan;
   static petra::hal::UdpCanPort udp_can;
@@ -78,6 +79,11 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "petra-fsw: arm: %s\n", opened.error().message);
       return 1;
     }
+    // Drives powered before the master boots them (a boot-up message starts configuration).
+    if (auto s = devices.power_arm(true); !s) {
+      std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
+      return 1;
+    }
     petra::fsw::arm::ArmServiceConfig arm_config;
     if (config->arm.has_mount) {
       const auto& m = config->arm.mount;
@@ -98,14 +104,17 @@ int main(int argc, char** argv) {
   }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
-  std::fprintf(stderr,
-               "petra-fsw: running: commands on udp %s:%u, telemetry to %s:%u, camera %s (%dx%d), "
-               "pipeline %s, %zu bytes allocated at init\n",
-               config->cmd_host.data(), exec.command_port(), config->tlm_host.data(),
-               config->tlm_port, camera.name(), camera.width(), camera.height(),
-               deps.job != nullptr ? deps.job->name() : "none", exec.memory_bytes());
+  std::fprintf(
+      stderr,
+      "petra-fsw: running: commands on udp %s:%u, telemetry to %s:%u, camera %s, "
+      "pipeline %s, arm %s, e-stop %s, %zu bytes allocated at init\n",
+      config->cmd_host.data(), exec.command_port(), config->tlm_host.data(), config->tlm_port,
+      devices.camera_description(), deps.job != nullptr ? deps.job->name() : "none",
+      config->arm.enabled ? config->arm.can_interface.data() : "none",
+      deps.estop != nullptr ? config->gpio.estop.line.data() : "none", exec.memory_bytes());
   exec.run(&g_stop);
   exec.shutdown();
+  devices.close();  // arm power off
   std::fprintf(stderr, "petra-fsw: stopped after %u cycles\n", exec.loop_counters().cycles);
   return 0;
 }

@@ -456,7 +456,10 @@ void ArmService::settle(std::int64_t now_ms) {
 void ArmService::step(std::int64_t now_ms) {
   master_.step(now_ms);
   drain_master_events();
-  if (master_.any_fault() && state_ != ArmState::fault && state_ != ArmState::off) {
+  // Bus-off counts as a fault: nothing reaches the drives, and what they did
+  // meanwhile (their master-heartbeat consumers) is unknown until a reboot.
+  const bool bus_off = master_.bus_state() == hal::CanBusState::bus_off;
+  if ((master_.any_fault() || bus_off) && state_ != ArmState::fault && state_ != ArmState::off) {
     enter_fault();
     return;
   }

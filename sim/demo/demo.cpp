@@ -321,7 +321,7 @@ int run(const Options& o, std::FILE* out) {
     }
   };
   // Boot builds the tables and touches the whole arena: seconds in a Debug
-  // build on a loaded machine. Wait while the process lives, within the limit.
+  // build on a loaded machine, more under emulation (HIL bench). Wait while the process lives, within the limit.
   const auto boot_deadline = Clock::now() + std::chrono::seconds(o.timeout_s);
   while (!booted && fsw.alive() && Clock::now() < boot_deadline) pump(100);
   if (!booted)

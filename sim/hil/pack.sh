@@ -125,6 +125,22 @@ for name in petra-fsw petra petra-arm-sim petra-ground; do
 done
 [ "$n" -gt 0 ] || { echo "pack: no test programs under $build/tests (build first)" >&2; exit 2; }
 
+# The system checks' calibrated scene (40-arm.sh): rendered here, natively, because the
+# renderer takes minutes under emulation. Kept beside the initramfs until petra changes.
+petra_bin=$stage/hil/bin/petra
+if [ -x "$petra_bin" ]; then
+  scene=$out/scene-seed1
+  sum=$(sha256sum < "$petra_bin" | cut -c1-16)
+  if [ "$(cat "$scene/petra.sum" 2> /dev/null)" != "$sum" ]; then
+    rm -rf "$scene"
+    "$petra_bin" sim scene --seed 1 --out "$scene" > "$out/scene.log" 2>&1 ||
+      { cat "$out/scene.log" >&2; exit 2; }
+    echo "$sum" > "$scene/petra.sum"
+  fi
+  mkdir -p "$stage/hil/scene"
+  cp "$scene"/{left.pgm,right.pgm,calib.json,truth.json} "$stage/hil/scene/"
+fi
+
 # --- guest scripts --------------------------------------------------------------------
 cp "$here/guest/init.sh" "$stage/init"
 cp "$here/guest/lib.sh" "$stage/hil/"

@@ -7,7 +7,7 @@
 # 2. pack.sh   initramfs with the drivers, tools and the project's programs from DIR
 #              (default build/dev; build it first)
 # 3. boot Debian's kernel under qemu (TCG: no KVM needed) with the initramfs; the guest
-#    builds the board (vcan0, gpio-sim chip "petra-hil", vivid x3, vimc), runs
+#    builds the board (vcan0, gpio-sim chip "petra-hil", vivid x4, vimc), runs
 #    sim/hil/guest/checks/*.sh and powers off
 # 4. print every "HIL <check> PASS|FAIL" line as it comes; exit 0 only when the guest
 #    finished ("HIL done"), at least one check ran and none failed.
@@ -58,8 +58,8 @@ timeout "${PETRA_HIL_TIMEOUT:-600}" qemu-system-x86_64 -accel tcg,thread=multi -
 qemu_rc=${PIPESTATUS[0]}
 t_boot=$(elapsed "$t2")
 
-pass=$(grep -c '^HIL .* PASS' "$out/console.log")
-fail=$(grep -c '^HIL .* FAIL' "$out/console.log")
+pass=$(grep -c -E '^HIL [^ ]+ PASS( |$)' "$out/console.log")
+fail=$(grep -c -E '^HIL [^ ]+ FAIL( |$)' "$out/console.log")
 verdict=0
 if ! grep -q '^HIL done' "$out/console.log"; then
   echo "hil: the guest did not finish (qemu exit $qemu_rc; see $out/console.log)"

@@ -74,7 +74,7 @@ class ExecutiveHarness {
     if (!config) return config.error();
     PETRA_TRY(camera_.open(config->camera_dir.data()));
     fsw::Dependencies deps;
-    deps.camera = &camera_;
+    deps.camera = camera != nullptr ? camera : &camera_;
     deps.clock = &clock_;
     deps.job = pipeline != nullptr ? pipeline : with_job_ ? &job : nullptr;
     deps.arm = arm;
@@ -158,7 +158,8 @@ class ExecutiveHarness {
   fsw::PipelineJob* pipeline = nullptr;  // optional: replaces the scripted job (set before boot())
   std::string budget;           // optional: the config's budget object instead of the small one
   fsw::ArmPort* arm = nullptr;  // optional, set before boot()
-  hal::DigitalInput* estop = nullptr;  // optional, set before boot()
+  hal::DigitalInput* estop = nullptr;   // optional, set before boot()
+  hal::StereoCamera* camera = nullptr;  // optional: replaces the file camera (set before boot())
   std::uint32_t counter = 0;
   std::size_t queue_packets = 256;
   std::string loop = R"({"cycle_ms":10})";

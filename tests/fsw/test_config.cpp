@@ -36,7 +36,19 @@ TEST(Config, EveryErrorNamesTheField) {
        "loop.cycle_ms"},
       {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"budget":{"arena_mb":"big"}})",
        "budget.arena_mb"},
-      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"v4l2","dir":"x"}})", "camera.kind"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"usb","dir":"x"}})", "camera.kind"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"v4l2","left":"a","right":"b"}})",
+       "camera.width"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"v4l2","left":"a","width":64,"height":48}})",
+       "camera.right"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"v4l2","left":"a","right":"b","width":64,"height":48,"fps":5000}})",
+       "camera.fps"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"v4l2","left":"a","right":"b","width":64,"height":48,"triggered":true}})",
+       "gpio.trigger"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"gpio":{"estop":"estop"}})",
+       "gpio.estop"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"gpio":{"chip":"c","arm_power":7}})",
+       "gpio.arm_power"},
       {R"({"uplink":{"key_file":"k"}})", "camera"},
       {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},)", "json"},
       {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"arm":{"can_interface":"udp:1:0"}})",
@@ -56,6 +68,35 @@ TEST(Config, ArmOnCanOverUdpKeepsTheSpec) {
   ASSERT_TRUE(c.ok()) << c.error().message;
   EXPECT_TRUE(c->arm.enabled);
   EXPECT_STREQ(c->arm.can_interface.data(), "udp:47200:47201");
+}
+
+TEST(Config, AV4l2CameraAndTheGpioLinesAreReadForTheDevices) {
+  auto c = parse(R"({"uplink":{"key_file":"k"},
+      "camera":{"kind":"v4l2","left":"vivid-000-vid-cap","right":"vivid-001-vid-cap",
+                "width":640,"height":480,"formats":["YUYV","GREY"],"fps":25,"timeout_ms":500,
+                "max_skew_us":20000,"triggered":true},
+      "gpio":{"chip":"petra-hil","trigger":"cam_trigger","arm_power":"arm_power",
+              "estop":{"line":"estop","active_low":true}},
+      "arm":{"can_interface":"vcan0"}})");
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_EQ(c->camera_kind, CameraKind::v4l2);
+  EXPECT_STREQ(c->v4l2.config.left.device.data(), "vivid-000-vid-cap");
+  EXPECT_STREQ(c->v4l2.config.right.device.data(), "vivid-001-vid-cap");
+  EXPECT_EQ(c->v4l2.config.timing.width, 640);
+  EXPECT_EQ(c->v4l2.config.timing.timeout_ms, 500);
+  EXPECT_EQ(c->v4l2.config.left.fps, 25);
+  EXPECT_TRUE(c->v4l2.triggered);
+  EXPECT_TRUE(c->gpio.has_trigger && c->gpio.has_arm_power && c->gpio.has_estop);
+  EXPECT_STREQ(c->gpio.estop.chip.data(), "petra-hil");
+  EXPECT_STREQ(c->gpio.estop.line.data(), "estop");
+  EXPECT_TRUE(c->gpio.estop.active_low);
+  EXPECT_FALSE(c->gpio.arm_power.active_low);
+  EXPECT_STREQ(c->arm.can_interface.data(), "vcan0");
+  // Without a gpio section nothing is wired; a file camera stays the default.
+  auto plain = parse(kMinimal);
+  ASSERT_TRUE(plain.ok());
+  EXPECT_EQ(plain->camera_kind, CameraKind::file);
+  EXPECT_FALSE(plain->gpio.has_estop || plain->gpio.has_arm_power || plain->gpio.has_trigger);
 }
 
 }  // namespace

@@ -16,10 +16,11 @@ mount -t tmpfs tmpfs /run
 echo "HIL boot: kernel $(uname -r), $(nproc) cpus, uptime $(cut -d' ' -f1 /proc/uptime) s"
 
 # --- drivers ---------------------------------------------------------------------
-# vivid: three capture-only instances (0 and 1 the stereo pair, 2 the one tests disconnect).
+# vivid: four capture-only instances (0 and 1 the stereo pair, 2 the one the hal tests
+# disconnect, 3 the one the system checks disconnect under petra-fsw).
 while read -r ko; do
   args=
-  case $ko in */vivid.ko) args="n_devs=3 node_types=0x1,0x1,0x1" ;; esac
+  case $ko in */vivid.ko) args="n_devs=4 node_types=0x1,0x1,0x1,0x1" ;; esac
   insmod "$ko" $args 2> /tmp/insmod.err || grep -q 'File exists' /tmp/insmod.err ||
     echo "insmod $ko: $(cat /tmp/insmod.err)"
 done < /etc/modules.load
@@ -55,7 +56,10 @@ echo "  gpio: $GPIO_CHIP ($GPIO_SIM)  uptime $(cut -d' ' -f1 /proc/uptime) s"
 export PETRA_CAN_IF=vcan0
 export LIBCAMERA_LOG_LEVELS='*:ERROR'  # its INFO/WARN lines would drown the test logs
 cd /tmp
+# hil.only=NN on the kernel command line (PETRA_HIL_APPEND) runs only checks/NN-*.sh.
+only=$(sed -n 's/.*hil\.only=\([^ ]*\).*/\1/p' /proc/cmdline)
 for c in /hil/checks/*.sh; do
+  case $(basename "$c") in ${only:-*}*) ;; *) continue ;; esac
   echo "=== $(basename "$c" .sh)  (uptime $(cut -d' ' -f1 /proc/uptime) s)"
   . "$c"
 done

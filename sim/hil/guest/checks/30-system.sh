@@ -1,7 +1,6 @@
 # The whole system inside the guest: petra-fsw as a process with the ground tools talking
-# CCSDS over UDP through the guest kernel. What exists on this build is exercised; the
-# parts of docs/hil.md "system checks" that need the arm or device-backed executive
-# configuration are reported by the check that needs them.
+# CCSDS over UDP through the guest kernel, on a small uncalibrated pair (the arm, the
+# devices and grind planes from a calibrated scene: 40-arm.sh).
 
 system_scene() {  # a small scene folder: two 160x120 pictures and an ROI
   mkdir -p /tmp/sys/scene
@@ -28,14 +27,13 @@ if [ -x /hil/bin/petra ] && [ -x /hil/bin/petra-fsw ]; then
   else
     hil_fail system/roi-command-over-udp
   fi
-  # EVALUATE ends with grind planes, or with the refusal docs/ops.md gives for a
-  # build without the pipeline.
-  if grep -q '^5. evaluation' /tmp/sys/demo.txt && [ "$demo_rc" -eq 0 ]; then
-    hil_pass system/evaluate-grind-planes
-  elif grep -q 'EVALUATE FAILED: NO_PIPELINE' /tmp/sys/demo.txt; then
-    hil_pass system/evaluate-grind-planes "refused NO_PIPELINE: this build has no pipeline"
+  # This pair has no calibration: EVALUATE fails PIPELINE_ERROR and the event names
+  # the step (docs/ops.md). Grind planes from a calibrated scene: 40-arm.sh.
+  if grep -q 'EVALUATE FAILED: PIPELINE_ERROR' /tmp/sys/demo.txt &&
+    grep -q 'not_ready in step RECTIFY' /tmp/sys/demo.txt; then
+    hil_pass system/evaluate-without-calibration-refused "PIPELINE_ERROR, not_ready in RECTIFY"
   else
-    hil_fail system/evaluate-grind-planes "demo exit $demo_rc"
+    hil_fail system/evaluate-without-calibration-refused "demo exit $demo_rc"
   fi
 else
   hil_fail system/fsw-boots "petra or petra-fsw missing from the build"
