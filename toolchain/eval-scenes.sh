@@ -4,6 +4,8 @@
 # `petra score`, and prints one table row per scene plus the summary used in
 # docs/performance.md.
 #   toolchain/eval-scenes.sh [PETRA_BINARY] [WORK_DIR] [extra petra eval options...]
+# With DISPARITY=truth in the environment each scene replays its
+# disparity_truth.pfm instead of matching (the reconstruction alone).
 set -euo pipefail
 PETRA=${1:-build/release/sim/petra}
 WORK=${2:-out/eval-scenes}
@@ -24,6 +26,8 @@ for s in scenes:
     out = os.path.join(work, "eval", s)
     cmd = [petra, "eval", "--calib", f"{sd}/calib.json", "--left", f"{sd}/left.png", "--right", f"{sd}/right.png",
            "--roi", roi, "--planes", str(truth["planes"]), "--out", out] + extra
+    if os.environ.get("DISPARITY") == "truth":
+        cmd += ["--disparity", f"{sd}/disparity_truth.pfm"]
     r = subprocess.run(cmd, capture_output=True, text=True)
     sc = truth["scene"]
     desc = f"{sc['boundary']:5s} {sc['shape']:7s} sun {sc['sun_elevation_deg']:4.0f}"
