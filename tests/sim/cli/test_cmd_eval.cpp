@@ -85,6 +85,16 @@ TEST(CmdEval, ProductsOnASceneAndReasonsForBadArguments) {
   EXPECT_EQ(static_cast<int>(planes->planes.size()), truth.planes);
   EXPECT_TRUE(io::read_rgb_image((dir / "out" / "overlay.png").string()).ok());
 
+  // The graph-cut matcher, and the truth disparity replayed through the back half.
+  Outcome gc = run(base + " --planes " + std::to_string(truth.planes) + " --method gc", dir);
+  ASSERT_EQ(gc.status, 0) << gc.err;
+  EXPECT_NE(gc.out.find("graph cut"), std::string::npos) << gc.out;
+  Outcome given = run(base + " --planes " + std::to_string(truth.planes) + " --disparity " + s +
+                          "/disparity_truth.pfm",
+                      dir);
+  ASSERT_EQ(given.status, 0) << given.err;
+  EXPECT_NE(given.out.find("given map"), std::string::npos) << given.out;
+
   // Each refusal: exit 1, one line on stderr naming the problem.
   struct Case {
     std::string args;
@@ -94,7 +104,8 @@ TEST(CmdEval, ProductsOnASceneAndReasonsForBadArguments) {
       {base + " --planes 9", "--planes 9"},
       {base + " --planes 0", "--planes 0"},
       {base + " --planes 2 --method sgm", "--method sgm"},
-      {base + " --planes 2 --method gc", "graph-cut"},
+      {base + " --planes 2 --disparity " + s + "/nothing.pfm", "nothing.pfm"},
+      {base + " --planes 2 --disparity " + s + "/left.png", "left.png"},
       {base + " --planes 2 --click 1,1", "outside the ROI"},
       {base + " --planes 2 --click 12x4", "point"},
       {"eval --calib " + s + "/nothing.json --left " + s + "/left.png --right " + s +
