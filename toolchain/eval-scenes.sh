@@ -20,7 +20,7 @@ import json, math, os, re, subprocess, sys, statistics
 petra, work, extra = sys.argv[1], sys.argv[2], sys.argv[3:]
 rows, normal_errs, dists, count_ok, on_facet_all, matched_all = [], [], [], 0, 0, 0
 # One output folder per configuration, so runs of both matchers share the set.
-label = "eval" + "".join(a.lstrip("-") if a.startswith("--") else "-" + a for a in extra) + \
+label = "eval" + "".join("-" + a.lstrip("-") for a in extra) + \
         ("-truth" if os.environ.get("DISPARITY") == "truth" else "")
 scenes = sorted(d for d in os.listdir(os.path.join(work, "set")) if d.startswith("scene_"))
 for s in scenes:
