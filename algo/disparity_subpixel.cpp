@@ -29,6 +29,9 @@ Status validate(const SubpixelParams& p) {
   if (p.window_radius < 1 || p.window_radius > 7)
     return Error::make(Errc::out_of_range, "subpixel: window_radius %d not in 1..7",
                        p.window_radius);
+  if (p.search_px < 0 || p.search_px > kMaxSearchPx)
+    return Error::make(Errc::out_of_range, "subpixel: search_px %d not in 0..%d", p.search_px,
+                       kMaxSearchPx);
   return {};
 }
 
@@ -57,19 +60,21 @@ Result<long> refine_subpixel(const StereoInput& in, const SubpixelParams& params
       const int x = roi.x + i;
       // Integer part: the nearest whole pixel (the input may already be finer).
       const int d = static_cast<int>(std::lround(disparity_px(row[i])));
-      if (x - rad < 0 || x + rad >= W || x - d - 2 - rad < 0 || x - d + 2 + rad >= W) continue;
-      std::int64_t c[5];
-      for (int k = 0; k < 5; ++k) c[k] = window_ssd(l, r, x, y, d - 2 + k, rad);
-      // The best of d-1, d, d+1 (a whole-pixel label can be one off), then
-      // the parabola through it and its neighbours.
-      int b = 2;
-      if (c[1] < c[b]) b = 1;
-      if (c[3] < c[b]) b = 3;
+      const int reach = params.search_px + 1;
+      if (x - rad < 0 || x + rad >= W || x - d - reach - rad < 0 || x - d + reach + rad >= W)
+        continue;
+      std::int64_t c[2 * kMaxSearchPx + 3];
+      for (int k = 0; k <= 2 * reach; ++k) c[k] = window_ssd(l, r, x, y, d - reach + k, rad);
+      // The best of d - search .. d + search (a whole-pixel label can be a
+      // little off), then the parabola through it and its neighbours.
+      int b = reach;
+      for (int k = 1; k < 2 * reach; ++k)
+        if (c[k] < c[b]) b = k;
       const std::int64_t cm = c[b - 1], c0 = c[b], cp = c[b + 1];
       if (!(c0 <= cm && c0 <= cp && cm + cp > 2 * c0)) continue;
       const double offset =
           static_cast<double>(cm - cp) / (2.0 * static_cast<double>(cm - 2 * c0 + cp));
-      row[i] = disparity_q4(d - 2 + b + offset);
+      row[i] = disparity_q4(d - reach + b + offset);
       ++refined;
     }
   }

@@ -65,6 +65,29 @@ TEST(DisparitySubpixel, MovesWholePixelLabelsTowardsTheTrueShift) {
   }
 }
 
+TEST(DisparitySubpixel, LabelsUpToSearchPxOffAreCorrected) {
+  const Pair p(6.3);
+  const Rect roi{20, 5, 80, 30};
+  for (int off : {-2, 2}) {
+    std::vector<std::int16_t> q4(roi.w * roi.h, disparity_q4(6 + off));
+    DisparityMap map{ImageView<std::int16_t>(q4.data(), roi.w, roi.h), roi};
+    SubpixelParams narrow;
+    narrow.search_px = 1;  // from 4 or 8 it reaches 5 or 7 at best
+    std::vector<std::int16_t> copy = q4;
+    DisparityMap map1{ImageView<std::int16_t>(copy.data(), roi.w, roi.h), roi};
+    ASSERT_TRUE(refine_subpixel(p.input(), narrow, map1).ok());
+    ASSERT_TRUE(refine_subpixel(p.input(), {}, map).ok());  // search_px 2
+    double err = 0, err1 = 0;
+    for (std::size_t i = 0; i < q4.size(); ++i) {
+      err += std::abs(disparity_px(q4[i]) - 6.3);
+      err1 += std::abs(disparity_px(copy[i]) - 6.3);
+    }
+    const double n = static_cast<double>(q4.size());
+    EXPECT_LT(err / n, 0.15) << off;
+    EXPECT_GT(err1 / n, 0.5) << off;
+  }
+}
+
 TEST(DisparitySubpixel, WindowsOutsideTheImageKeepTheirValue) {
   const Pair p(3.0);
   const Rect roi{0, 0, 6, kH};  // right windows at x - d leave the image
@@ -86,6 +109,10 @@ TEST(DisparitySubpixel, BadInputIsNamed) {
   SubpixelParams bad;
   bad.window_radius = 0;
   EXPECT_NE(std::string(refine_subpixel(p.input(), bad, map).error().message).find("window_radius"),
+            std::string::npos);
+  SubpixelParams far;
+  far.search_px = kMaxSearchPx + 1;
+  EXPECT_NE(std::string(refine_subpixel(p.input(), far, map).error().message).find("search_px"),
             std::string::npos);
 }
 
