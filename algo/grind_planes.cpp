@@ -1,5 +1,6 @@
 #include "algo/grind_planes.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -9,6 +10,10 @@
 namespace petra {
 
 namespace {
+
+// A split is kept only when it lowers the dispersion by this share (noise
+// alone lowers it a little with any extra centre).
+constexpr double kSplitGain = 0.02;
 
 constexpr std::uint8_t kNone = 0xFF;
 
@@ -158,6 +163,48 @@ std::size_t erode(std::span<const MeshTriangle> tris, const Scratch& s, std::siz
 }
 
 }  // namespace
+
+// Area-weighted angular dispersion of a clustering: sum of w (1 - cos) of
+// every sample to its class centre (what the angle clustering lowers).
+double dispersion(std::span<const Eigen::Vector3d> normals, std::span<const double> weights,
+                  std::span<const std::uint8_t> labels, const Eigen::Vector3d* centres) {
+  double sum = 0;
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    sum += weights[i] * (1.0 - normals[i].dot(centres[labels[i]]));
+  return sum;
+}
+
+// Seeds that split the widest class of a clustering in two along the main
+// direction of its normals' spread, in place of its lightest class. False
+// when no class spreads over more than `min_sep_rad`.
+bool split_seeds(std::span<const Eigen::Vector3d> normals, std::span<const double> weights,
+                 std::span<const std::uint8_t> labels, const AngleClusterResultT<double>& r,
+                 double min_sep_rad, Eigen::Vector3d* seeds) {
+  double spread[kMaxClasses] = {};
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    spread[labels[i]] += weights[i] * (1.0 - normals[i].dot(r.centres[labels[i]]));
+  int wide = 0, light = 0;
+  for (int k = 1; k < r.c; ++k) {
+    if (spread[k] > spread[wide]) wide = k;
+    if (r.weight[k] < r.weight[light]) light = k;
+  }
+  if (wide == light || !(r.weight[wide] > 0)) return false;
+  const Eigen::Vector3d u = r.centres[wide];
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < normals.size(); ++i) {
+    if (labels[i] != wide) continue;
+    const Eigen::Vector3d t = normals[i] - normals[i].dot(u) * u;  // tangent part
+    scatter += weights[i] * t * t.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
+  const double theta = std::sqrt(std::max(0.0, eig.eigenvalues()(2)) / r.weight[wide]);
+  if (!(theta > min_sep_rad)) return false;
+  const Eigen::Vector3d e = eig.eigenvectors().col(2);
+  for (int k = 0; k < r.c; ++k) seeds[k] = r.centres[k];
+  seeds[wide] = (u + std::tan(theta) * e).normalized();
+  seeds[light] = (u - std::tan(theta) * e).normalized();
+  return true;
+}
 
 int cluster_count(int c) {
   return std::min(kMaxClasses, std::max(c + 3, 2 * c));
@@ -309,6 +356,32 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
   if (!ac) return ac.error();
   out.angle_iterations = ac->iterations;
   out.converged = (k_eff == 1 || out.converged) && ac->converged;
+  // Petra adds: C-means can leave two faces in one broad class (its
+  // log-determinant term tolerates a wide class) and the angle pass keeps
+  // them there, with a centre between the faces. Split the widest class in
+  // place of the lightest while that lowers the angular dispersion.
+  {
+    const std::span<const Eigen::Vector3d> sn(s.sample.data(), m);
+    const std::span<const double> sw(s.sample_area.data(), m);
+    std::uint8_t trial_labels[kCMeansSamples];
+    const std::span<std::uint8_t> tl(trial_labels, m);
+    double best = dispersion(sn, sw, s.sample_cls.first(m), ac->centres);
+    const double min_sep = params.angle.min_separation_deg * M_PI / 180.0;
+    for (int attempt = 0; attempt < k_classes; ++attempt) {
+      Eigen::Vector3d seeds[kMaxClasses];
+      if (ac->c < 2 || !split_seeds(sn, sw, s.sample_cls.first(m), *ac, min_sep, seeds)) break;
+      auto trial = angle_cluster<double>(
+          sn, sw, std::span<const Eigen::Vector3d>(seeds, static_cast<std::size_t>(ac->c)),
+          params.angle, tl);
+      if (!trial) break;
+      const double d = dispersion(sn, sw, tl, trial->centres);
+      if (!(d < best * (1.0 - kSplitGain))) break;
+      best = d;
+      ac = trial;
+      std::copy(tl.begin(), tl.end(), s.sample_cls.begin());
+      ++out.splits;
+    }
+  }
   std::size_t members[kMaxClasses] = {};
   for (std::size_t i = 0; i < n; ++i) {
     int best = 0;

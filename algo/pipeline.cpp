@@ -19,6 +19,10 @@ ReconstructionBudget recon_budget(const PipelineBudget& b) {
   return ReconstructionBudget{b.max_roi_width, b.max_roi_height, points_of(b)};
 }
 
+GraphCutBudget graph_cut_budget(const PipelineBudget& b) {
+  return GraphCutBudget{b.max_roi_width, b.max_roi_height, b.max_disparities};
+}
+
 std::size_t image_bytes(const PipelineBudget& b) {
   return static_cast<std::size_t>(b.image_width) * static_cast<std::size_t>(b.image_height);
 }
@@ -45,6 +49,7 @@ Status validate(const PipelineParams& p) {
     return Error::make(Errc::invalid_argument, "pipeline: shadow_fraction %.3g not in [0, 1)",
                        p.shadow_fraction);
   PETRA_TRY(validate(p.range));
+  PETRA_TRY(validate(p.subpixel));
   PETRA_TRY(validate(p.reconstruction.filter));
   PETRA_TRY(validate(p.reconstruction.normals));
   PETRA_TRY(validate(p.reconstruction.mesh));
@@ -54,7 +59,9 @@ Status validate(const PipelineParams& p) {
 }
 
 std::size_t Pipeline::init_bytes(const PipelineBudget& b) {
-  return 2 * Rectifier::table_entries(b.image_width, b.image_height) * sizeof(RemapEntry) + 64;
+  const std::size_t tables =
+      2 * Rectifier::table_entries(b.image_width, b.image_height) * sizeof(RemapEntry) + 64;
+  return tables + (b.graph_cut ? GraphCutMatcher::bytes_needed(graph_cut_budget(b)) : 0);
 }
 
 std::size_t Pipeline::run_bytes(const PipelineBudget& b, const PipelineParams& p) {
@@ -93,6 +100,8 @@ Result<Pipeline> Pipeline::create(const StereoRig& rig, const PipelineBudget& bu
   auto rect = Rectifier::create(rig, *tl, *tr);
   if (!rect) return rect.error();
   Pipeline p;
+  // The graph cut's state lives for the Pipeline's life: carved once here.
+  if (budget.graph_cut) PETRA_TRY(p.graph_cut_.init(arena, graph_cut_budget(budget)));
   p.arena_ = &arena;
   p.run_mark_ = arena.mark();
   p.rectifier_ = *rect;
@@ -102,19 +111,16 @@ Result<Pipeline> Pipeline::create(const StereoRig& rig, const PipelineBudget& bu
   return p;
 }
 
-Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
-                                     const PipelineRequest& req, const StepClock& clock) {
-  if (arena_ == nullptr) return Error::make(Errc::not_ready, "pipeline: not created");
-  Arena& arena = *arena_;
-  arena.release_to(run_mark_);
+Status Pipeline::prepare(ConstGray8View left, const PipelineRequest& req,
+                         PipelineOutput& out) const {
   const int W = budget_.image_width, H = budget_.image_height;
-  if (left.width() != W || left.height() != H || right.width() != W || right.height() != H)
+  if (left.width() != W || left.height() != H)
+    return Error::make(Errc::invalid_argument, "pipeline: left image %dx%d, calibration %dx%d",
+                       left.width(), left.height(), W, H);
+  if (req.method == MatchMethod::graph_cut && !budget_.graph_cut)
     return Error::make(Errc::invalid_argument,
-                       "pipeline: images %dx%d and %dx%d, calibration %dx%d", left.width(),
-                       left.height(), right.width(), right.height(), W, H);
-  if (req.method == MatchMethod::graph_cut)
-    return Error::make(Errc::invalid_argument,
-                       "pipeline: the graph-cut matcher is not in this build (use dp)");
+                       "pipeline: method graph-cut, but its memory was not reserved at create "
+                       "(PipelineBudget::graph_cut)");
   if (req.planes < 1 || req.planes > kMaxClasses)
     return Error::make(Errc::out_of_range, "pipeline: c = %d planes, must be 1..%d", req.planes,
                        kMaxClasses);
@@ -124,9 +130,6 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
   if (req.has_click && !req.roi.contains(req.click_u, req.click_v))
     return Error::make(Errc::out_of_range, "pipeline: click (%d, %d) outside the ROI (%d,%d %dx%d)",
                        req.click_u, req.click_v, req.roi.x, req.roi.y, req.roi.w, req.roi.h);
-
-  PipelineOutput out;
-  StepTimings& timings = out.timings;
   auto rroi = rectifier_.roi_to_rectified(StereoSide::left, req.roi);
   if (!rroi) return rroi.error();
   const Rect roi = *rroi;
@@ -145,6 +148,57 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
                          "pipeline: click (%d, %d) maps outside the rectified ROI", req.click_u,
                          req.click_v);
   }
+  return {};
+}
+
+Result<PipelineOutput> Pipeline::run_with_disparity(ConstGray8View left,
+                                                    ConstDisparityMap disparity,
+                                                    const PipelineRequest& req,
+                                                    const StepClock& clock) {
+  if (arena_ == nullptr) return Error::make(Errc::not_ready, "pipeline: not created");
+  Arena& arena = *arena_;
+  arena.release_to(run_mark_);
+  PipelineOutput out;
+  PETRA_TRY(prepare(left, req, out));
+  const Rect& roi = out.roi_rectified;
+  if (!(disparity.roi == roi) || disparity.q4.width() != roi.w || disparity.q4.height() != roi.h)
+    return Error::make(
+        Errc::invalid_argument,
+        "pipeline: disparity covers (%d,%d %dx%d), the ROI is (%d,%d %dx%d) rectified",
+        disparity.roi.x, disparity.roi.y, disparity.q4.width(), disparity.q4.height(), roi.x, roi.y,
+        roi.w, roi.h);
+  auto lbuf = arena.allocate<std::uint8_t>(image_bytes(budget_), "rectified left");
+  if (!lbuf) return lbuf.error();
+  const Gray8View rl(lbuf->data(), budget_.image_width, budget_.image_height);
+  out.left_rectified = rl;
+  {
+    StepTimer timer(clock, out.timings, "rectify");
+    PETRA_TRY(rectifier_.rectify(StereoSide::left, left, rl, roi));
+  }
+  out.disparity = disparity;
+  ReconstructionRequest rr_req;
+  rr_req.planes = req.planes;
+  rr_req.click = out.click_rectified;
+  auto r = reconstruct(rectifier_.rig(), rectifier_.geometry(), disparity, rr_req,
+                       params_.reconstruction, recon_budget(budget_), arena, clock, out.timings);
+  if (!r) return r.error();
+  out.result = *r;
+  return out;
+}
+
+Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
+                                     const PipelineRequest& req, const StepClock& clock) {
+  if (arena_ == nullptr) return Error::make(Errc::not_ready, "pipeline: not created");
+  Arena& arena = *arena_;
+  arena.release_to(run_mark_);
+  const int W = budget_.image_width, H = budget_.image_height;
+  if (right.width() != W || right.height() != H)
+    return Error::make(Errc::invalid_argument, "pipeline: right image %dx%d, calibration %dx%d",
+                       right.width(), right.height(), W, H);
+  PipelineOutput out;
+  StepTimings& timings = out.timings;
+  PETRA_TRY(prepare(left, req, out));
+  const Rect roi = out.roi_rectified;
 
   // Rectify the ROI and the right search area of the whole envelope.
   auto lbuf = arena.allocate<std::uint8_t>(image_bytes(budget_), "rectified left");
@@ -230,10 +284,23 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
     in.right = rr;
     in.left_shadow = &out.left_shadow;
     in.right_shadow = &right_shadow;
-    const MatchBudget mb{budget_.max_roi_width, budget_.max_roi_height, budget_.max_disparities};
-    auto st = match_dp(in, roi, mp, mb, arena, disp);
-    if (!st) return st.error();
-    out.match = *st;
+    out.method = req.method;
+    if (req.method == MatchMethod::graph_cut) {
+      GraphCutParams gp = params_.graph_cut;
+      gp.disp_min = mp.disp_min;
+      gp.disp_max = mp.disp_max;
+      auto st = graph_cut_.match(in, roi, gp, disp);
+      if (!st) return st.error();
+      out.graph_cut = *st;
+      auto refined = refine_subpixel(in, params_.subpixel, disp);
+      if (!refined) return refined.error();
+      out.subpixel_refined = *refined;
+    } else {
+      const MatchBudget mb{budget_.max_roi_width, budget_.max_roi_height, budget_.max_disparities};
+      auto st = match_dp(in, roi, mp, mb, arena, disp);
+      if (!st) return st.error();
+      out.match = *st;
+    }
   }
   out.disparity = disp;
 

@@ -2,12 +2,14 @@
 // ranked grind planes (SEED.md 0-4), as one object the executive (fsw) and
 // the ground tool (`petra eval`) both drive:
 //   rectify (ROI and search area) -> disparity range (coarse match)
-//   -> shadow masks -> match (dp) -> reconstruct (mean filter, triangulate,
+//   -> shadow masks -> match (dp or graph cut) -> reconstruct (mean filter, triangulate,
 //   Delaunay, mesh filter, segmentation, grind planes; algo/reconstruction).
 // Memory: one caller arena. create() takes the remap tables from it (init);
 // every run() releases the arena back to that point and takes what the run
 // needs; outputs are views into the arena, valid until the next run().
 // Pipeline::arena_bytes(budget, params) is the exact bound to allocate at init.
+// The graph-cut matcher's state (GraphCutMatcher::bytes_needed, about 200 B
+// per ROI pixel) is taken at create() only when the budget asks for it.
 // Time: per-step timings through the caller's clock (algo makes no OS calls).
 #pragma once
 
@@ -17,7 +19,9 @@
 #include "algo/core/arena.hpp"
 #include "algo/core/result.hpp"
 #include "algo/disparity_range.hpp"
+#include "algo/disparity_subpixel.hpp"
 #include "algo/match_dp.hpp"
+#include "algo/match_graphcut.hpp"
 #include "algo/reconstruction.hpp"
 #include "algo/rectify.hpp"
 #include "algo/shadow.hpp"
@@ -33,6 +37,9 @@ struct PipelineBudget {
   int max_roi_height = 480;
   int max_disparities = 160;   // fine matcher: disp_max - disp_min + 1
   std::size_t max_points = 0;  // 3-D points; 0 = one per ROI pixel
+  // Reserve the graph-cut matcher (MatchMethod::graph_cut) at create; the DP
+  // matcher is always available (the range search uses it).
+  bool graph_cut = false;
 };
 Status validate(const PipelineBudget& b);
 
@@ -42,7 +49,9 @@ struct PipelineParams {
   // (docs/reconstruction.md has the scene-set figures for 0..8 %).
   double shadow_fraction = 0.01;
   RangeSearchParams range;
-  MatchDpParams match;  // disp_min/max are set per run by the range search
+  MatchDpParams match;       // disp_min/max are set per run by the range search
+  GraphCutParams graph_cut;  // disp_min/max likewise
+  SubpixelParams subpixel;   // refines the graph cut's whole-pixel labels
   ReconstructionParams reconstruction;
 };
 Status validate(const PipelineParams& p);
@@ -67,8 +76,11 @@ struct PipelineOutput {
   ShadowMask left_shadow;         // over roi_rectified
   ShadowThreshold shadow_left, shadow_right;
   DisparityRange range;
-  ConstDisparityMap disparity;  // matcher output before the mean filter
-  MatchDpStats match;
+  ConstDisparityMap disparity;           // matcher output before the mean filter
+  MatchMethod method = MatchMethod::dp;  // the matcher that made `disparity`
+  MatchDpStats match;                    // method dp
+  GraphCutReport graph_cut;              // method graph_cut
+  long subpixel_refined = 0;             // graph-cut pixels given a sub-pixel value
   StepTimings timings;
 };
 
@@ -90,14 +102,23 @@ class Pipeline {
   Result<PipelineOutput> run(ConstGray8View left, ConstGray8View right,
                              const PipelineRequest& request, const StepClock& clock);
 
+  // Replays a given disparity map (rectified left view: a ground truth, a
+  // recorded or another matcher's map) through the back half only; the map
+  // must cover exactly the request's rectified ROI. Left image for products.
+  Result<PipelineOutput> run_with_disparity(ConstGray8View left, ConstDisparityMap disparity,
+                                            const PipelineRequest& request, const StepClock& clock);
+
   const Rectifier& rectifier() const { return rectifier_; }
   const PipelineBudget& budget() const { return budget_; }
   const PipelineParams& params() const { return params_; }
 
  private:
+  Status prepare(ConstGray8View left, const PipelineRequest& request, PipelineOutput& out) const;
+
   Arena* arena_ = nullptr;
   std::size_t run_mark_ = 0;
   Rectifier rectifier_;
+  GraphCutMatcher graph_cut_;  // initialised only when budget_.graph_cut
   PipelineBudget budget_;
   PipelineParams params_;
   std::size_t max_points_ = 0;

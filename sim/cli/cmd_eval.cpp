@@ -4,9 +4,12 @@
 // writes planes.json, cloud.ply, mesh.ply, disparity.png and overlay.png into
 // DIR (docs/icd.md), and prints a summary like the paper's Table 1 with the
 // time of every step. Steps that run over a second report progress on stderr.
+// --disparity D.pfm replays a given map instead of matching (to tell the
+// matcher's errors from the reconstruction's).
 #include <time.h>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <exception>
@@ -31,7 +34,7 @@ namespace petra::cli {
 namespace {
 
 struct EvalOptions {
-  std::string calib, left, right, roi, click, method = "dp", out;
+  std::string calib, left, right, roi, click, method = "dp", out, disparity;
   int planes = 0;
   double shadow_fraction = PipelineParams{}.shadow_fraction;
 };
@@ -128,13 +131,32 @@ void print_summary(const EvalOptions& o, const PipelineOutput& out, double total
   const Rect& q = out.roi_rectified;
   std::printf("petra eval: ROI %s (rectified %d,%d %dx%d), c = %d, method %s\n", o.roi.c_str(), q.x,
               q.y, q.w, q.h, o.planes, o.method.c_str());
-  std::printf(
-      "  disparity range        %.1f .. %.1f px   (search %d..%d px, coarse 1/%d: %ld matches)\n",
-      s.disparity_min_px, s.disparity_max_px, out.range.min_px, out.range.max_px, out.range.factor,
-      out.range.coarse_matches);
-  std::printf("  shadow                 %ld + %ld px   (threshold %d left, %d right)\n",
-              out.shadow_left.shadow_pixels, out.match.rejected_shadow_right,
-              out.shadow_left.threshold, out.shadow_right.threshold);
+  if (out.range.factor == 0) {
+    std::printf("  disparity range        %.1f .. %.1f px   (given map, no matching)\n",
+                s.disparity_min_px, s.disparity_max_px);
+  } else {
+    std::printf(
+        "  disparity range        %.1f .. %.1f px   (search %d..%d px, coarse 1/%d: %ld matches)\n",
+        s.disparity_min_px, s.disparity_max_px, out.range.min_px, out.range.max_px,
+        out.range.factor, out.range.coarse_matches);
+    if (out.method == MatchMethod::graph_cut) {
+      const GraphCutReport& g = out.graph_cut;
+      std::printf(
+          "  shadow                 %ld px left, %ld left px touched by shadow   "
+          "(threshold %d left, %d right)\n",
+          out.shadow_left.shadow_pixels, g.shadow_pixels, out.shadow_left.threshold,
+          out.shadow_right.threshold);
+      std::printf(
+          "  graph cut              %d cycles, %d expansions (%d skipped), energy %lld -> "
+          "%lld, %ld matched, %ld occluded\n",
+          g.cycles, g.expansions, g.expansions_skipped, static_cast<long long>(g.energy_start),
+          static_cast<long long>(g.energy), g.matched_pixels, g.occluded_pixels);
+    } else {
+      std::printf("  shadow                 %ld + %ld px   (threshold %d left, %d right)\n",
+                  out.shadow_left.shadow_pixels, out.match.rejected_shadow_right,
+                  out.shadow_left.threshold, out.shadow_right.threshold);
+    }
+  }
   std::printf("  dense points           %ld of %ld ROI px   (before the mean filter)\n",
               s.dense_points, static_cast<long>(q.w) * q.h);
   std::printf("  filtered points        %ld\n", s.filtered_points);
@@ -235,6 +257,7 @@ int run(const EvalOptions& o) {
   budget.max_roi_width = std::clamp(rroi->w, 16, left->width);
   budget.max_roi_height = std::clamp(rroi->h, 16, left->height);
   budget.max_disparities = params.range.search_max_px - params.range.search_min_px + 1;
+  budget.graph_cut = req.method == MatchMethod::graph_cut;
   const Status valid = validate(params);
   if (!valid.ok()) return fail("eval", valid.error().message);
   std::vector<std::byte> block(Pipeline::arena_bytes(budget, params));
@@ -245,7 +268,29 @@ int run(const EvalOptions& o) {
   progress.step(nullptr);
   if (!pipeline) return fail("eval", pipeline.error().message);
   StepClock clock{thread_cpu_ns, &progress, &Progress::on_step};
-  auto out = pipeline->run(left->view(), right->view(), req, clock);
+  std::vector<std::int16_t> given;  // --disparity: the map replayed instead of matching
+  Result<PipelineOutput> out = Error::make(Errc::not_ready, "not run");
+  if (o.disparity.empty()) {
+    out = pipeline->run(left->view(), right->view(), req, clock);
+  } else {
+    auto pfm = io::read_pfm(o.disparity);
+    if (!pfm) return fail("eval", pfm.error().message);
+    if (pfm->width != left->width || pfm->height != left->height)
+      return fail("eval", ("--disparity " + o.disparity + ": not the size of the images").c_str());
+    auto droi = pipeline->rectifier().roi_to_rectified(StereoSide::left, req.roi);
+    if (!droi) return fail("eval", droi.error().message);
+    given.assign(static_cast<std::size_t>(droi->w) * static_cast<std::size_t>(droi->h),
+                 kInvalidDisparity);
+    for (int y = 0; y < droi->h; ++y)
+      for (int x = 0; x < droi->w; ++x) {
+        const float d = pfm->view()(droi->x + x, droi->y + y);
+        if (std::isfinite(d) && std::abs(d) < 2000)
+          given[static_cast<std::size_t>(y) * droi->w + x] = disparity_q4(d);
+      }
+    const ConstDisparityMap map(ImageView<const std::int16_t>(given.data(), droi->w, droi->h),
+                                *droi);
+    out = pipeline->run_with_disparity(left->view(), map, req, clock);
+  }
   if (!out) return fail("eval", out.error().message);
 
   std::error_code ec;
@@ -278,9 +323,12 @@ void add_eval(CLI::App& app, Outcome& outcome) {
   cmd->add_option("--roi", o.roi, "x,y,w,h in the left image")->required();
   cmd->add_option("--planes", o.planes, "c: flat faces to find (1..8, usually 2 or 3)")->required();
   cmd->add_option("--click", o.click, "u,v: a point on the rock in the left image");
-  cmd->add_option("--method", o.method, "matcher: dp (gc is not in this build)");
+  cmd->add_option("--method", o.method, "matcher: dp (scanline DP, default) or gc (graph cut)");
   cmd->add_option("--shadow-fraction", o.shadow_fraction,
                   "expected shadow share of the ROI, [0, 1)");
+  cmd->add_option(
+      "--disparity", o.disparity,
+      "replay this rectified left-view PFM instead of matching (e.g. disparity_truth.pfm)");
   cmd->add_option("--out", o.out, "output directory")->required();
   cmd->callback([&outcome] {
     try {

@@ -85,7 +85,23 @@ TEST(CmdEval, ProductsOnASceneAndReasonsForBadArguments) {
   EXPECT_EQ(static_cast<int>(planes->planes.size()), truth.planes);
   EXPECT_TRUE(io::read_rgb_image((dir / "out" / "overlay.png").string()).ok());
 
+  // The truth disparity replayed through the back half (--method gc is run on
+  // the scene set by toolchain/eval-scenes.sh and in test_eval_pipeline).
+  Outcome given = run(base + " --planes " + std::to_string(truth.planes) + " --disparity " + s +
+                          "/disparity_truth.pfm",
+                      dir);
+  ASSERT_EQ(given.status, 0) << given.err;
+  EXPECT_NE(given.out.find("given map"), std::string::npos) << given.out;
+
   // Each refusal: exit 1, one line on stderr naming the problem.
+  // Degenerate ROIs (the "bad input"): ground only below the rock,
+  // the rock's upper half without ground, and too few pixels to match.
+  auto roi_args = [&](int x, int y, int w, int h) {
+    return "eval --calib " + s + "/calib.json --left " + s + "/left.png --right " + s +
+           "/right.png --planes 2 --out " + (dir / "out").string() + " --roi " + std::to_string(x) +
+           "," + std::to_string(y) + "," + std::to_string(w) + "," + std::to_string(h);
+  };
+  ASSERT_LT(r.y + r.h + 110, 768);
   struct Case {
     std::string args;
     const char* says;
@@ -94,9 +110,13 @@ TEST(CmdEval, ProductsOnASceneAndReasonsForBadArguments) {
       {base + " --planes 9", "--planes 9"},
       {base + " --planes 0", "--planes 0"},
       {base + " --planes 2 --method sgm", "--method sgm"},
-      {base + " --planes 2 --method gc", "graph-cut"},
+      {base + " --planes 2 --disparity " + s + "/nothing.pfm", "nothing.pfm"},
+      {base + " --planes 2 --disparity " + s + "/left.png", "left.png"},
       {base + " --planes 2 --click 1,1", "outside the ROI"},
       {base + " --planes 2 --click 12x4", "point"},
+      {roi_args(r.x, r.y + r.h + 10, r.w, 100), "no rock: the points lie on one plane"},
+      {roi_args(r.x + r.w / 4, r.y + r.h / 8, r.w / 2, r.h / 2), "no ground in the ROI"},
+      {roi_args(r.x, r.y, 3, 2), "coarse matches"},
       {"eval --calib " + s + "/nothing.json --left " + s + "/left.png --right " + s +
            "/right.png --roi " + roi + " --planes 2 --out " + (dir / "out").string(),
        "nothing.json"},

@@ -55,8 +55,9 @@ struct Run {
   Result<Pipeline> pipeline = Error::make(Errc::not_ready, "not created");
 };
 
-PipelineBudget budget_for(const StereoRig& rig) {
+PipelineBudget budget_for(const StereoRig& rig, bool graph_cut = false) {
   PipelineBudget b;
+  b.graph_cut = graph_cut;
   b.image_width = rig.left.width;
   b.image_height = rig.left.height;
   b.max_roi_width = 320;
@@ -65,9 +66,10 @@ PipelineBudget budget_for(const StereoRig& rig) {
   return b;
 }
 
-std::unique_ptr<Run> make_run(const Fixture& f, const PipelineParams& params = {}) {
+std::unique_ptr<Run> make_run(const Fixture& f, const PipelineParams& params = {},
+                              bool graph_cut = false) {
   auto r = std::make_unique<Run>();
-  const PipelineBudget b = budget_for(f.rig);
+  const PipelineBudget b = budget_for(f.rig, graph_cut);
   r->block.resize(Pipeline::arena_bytes(b, params));
   r->arena = Arena(r->block);
   r->pipeline = Pipeline::create(f.rig, b, params, r->arena);
@@ -173,6 +175,45 @@ TEST(EvalPipeline, FindsTheSceneFacesWithinTheTargetsWithoutHeap) {
   EXPECT_EQ(again->result.planes.accepted, accepted);
   EXPECT_EQ(again->result.planes.planes[0].normal, first_normal);  // deterministic
   products_are_well_formed(*again, run->pipeline->rectifier().geometry());
+}
+
+TEST(EvalPipeline, GraphCutMatcherFindsTheSceneFacesWithoutHeap) {
+  const Fixture& f = fixture();
+  auto run = make_run(f, {}, true);
+  // The graph cut's state is taken at create, inside the stated bound.
+  EXPECT_GE(
+      Pipeline::init_bytes(budget_for(f.rig, true)),
+      Pipeline::init_bytes(budget_for(f.rig)) + GraphCutMatcher::bytes_needed({320, 320, 128}));
+  PipelineRequest q = request(f);
+  q.method = MatchMethod::graph_cut;
+  auto out = run->pipeline->run(f.scene.left.image.view(), f.scene.right.image.view(), q, {});
+  ASSERT_TRUE(out.ok()) << out.error().message;
+  EXPECT_EQ(out->method, MatchMethod::graph_cut);
+  EXPECT_GT(out->graph_cut.expansions, 0);
+  EXPECT_GT(out->graph_cut.matched_pixels, out->roi_rectified.w * out->roi_rectified.h / 2);
+  const sim::PlaneScore score = sim::score_planes(f.truth, to_planes_file(*out));
+  EXPECT_TRUE(score.count_agrees) << score.output_planes << " planes for " << score.truth_planes;
+  for (const sim::FacetScore& s : score.facets) {
+    ASSERT_GE(s.plane, 0) << "facet " << s.facet << " unmatched";
+    EXPECT_LE(s.normal_error_deg, 1.5) << "facet " << s.facet;
+    EXPECT_LE(s.centroid_plane_distance_mm, 1.0) << "facet " << s.facet;
+    EXPECT_TRUE(s.centroid_on_facet) << "facet " << s.facet;
+  }
+  EXPECT_LE(run->arena.high_water(), run->arena.capacity());
+
+  // Steady state: the second run allocates nothing and repeats the first
+  // (the graph cut's random disparity order is seeded).
+  const Eigen::Vector3d first_normal = out->result.planes.planes[0].normal;
+  test::HeapScope scope;
+  auto again = run->pipeline->run(f.scene.left.image.view(), f.scene.right.image.view(), q, {});
+  EXPECT_EQ(scope.allocations(), 0u);
+  ASSERT_TRUE(again.ok()) << again.error().message;
+  EXPECT_EQ(again->result.planes.planes[0].normal, first_normal);
+  // The DP matcher stays available in a pipeline that reserved the graph cut.
+  auto dp =
+      run->pipeline->run(f.scene.left.image.view(), f.scene.right.image.view(), request(f), {});
+  ASSERT_TRUE(dp.ok()) << dp.error().message;
+  EXPECT_EQ(dp->method, MatchMethod::dp);
 }
 
 std::string error_of(const Result<PipelineOutput>& r) {
