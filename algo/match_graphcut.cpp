@@ -473,6 +473,10 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
       step.cycle = cycle;
       step.disparity = disp_min_ + alpha;
       step.energy_before = e;
+      if (params.cancel != nullptr && params.cancel->cancelled()) {
+        return Error::make(Errc::cancelled, "graphcut: cancelled in cycle %d after %d expansions",
+                           cycle + 1, report.expansions);
+      }
       if (last_change_[alpha] == changes) {
         // Unchanged since alpha's last expansion, whose result is optimal
         // over every move this one could make.

@@ -56,6 +56,7 @@
 #include "algo/match_dp.hpp"
 #include "algo/match_graphcut_terms.hpp"
 #include "algo/maxflow.hpp"
+#include "algo/step_clock.hpp"
 
 namespace petra {
 
@@ -102,6 +103,10 @@ struct GraphCutParams {
   // (an exact reduction: the minimum is unchanged). Off only to test it.
   bool prune = true;
   GraphCutObserver observer{};
+  // Optional: polled (StepClock::cancelled()) before each expansion, so an
+  // operator's ABORT ends a long match within one expansion (Errc::cancelled;
+  // `out` is then left unchanged). Null: never cancelled.
+  const StepClock* cancel = nullptr;
 };
 
 struct GraphCutBudget {

@@ -290,11 +290,18 @@ std::int64_t GraphCutMatcher::expand(int alpha, std::int64_t& nodes_used) {
   if (delta >= 0) return 0;  // ties keep the current labelling
 
   // Release the matches that end, then take the new ones (a right pixel
-  // freed and retaken in the same move is released first).
+  // freed and retaken in the same move is released first). One pass over the
+  // nodes: the alpha nodes taken are compacted to the front of node_pixel
+  // (their index never passes the node id being read).
   int changed = 0;
+  int taken = 0;
   for (std::int32_t id = 0; id < num_nodes; ++id) {
+    if (!maxflow_.in_sink_side(id)) continue;
     const std::int32_t np = node_pixel[id];
-    if ((np & 1) == 0 || !maxflow_.in_sink_side(id)) continue;
+    if ((np & 1) == 0) {
+      node_pixel[taken++] = np;
+      continue;
+    }
     const int p = np >> 1;
     const int y = p / w;
     const int x = p - y * w;
@@ -302,10 +309,8 @@ std::int64_t GraphCutMatcher::expand(int alpha, std::int64_t& nodes_used) {
     label[p] = kOccluded;
     work[changed++] = p;
   }
-  for (std::int32_t id = 0; id < num_nodes; ++id) {
-    const std::int32_t np = node_pixel[id];
-    if ((np & 1) != 0 || !maxflow_.in_sink_side(id)) continue;
-    const int p = np >> 1;
+  for (int t = 0; t < taken; ++t) {
+    const int p = node_pixel[t] >> 1;
     const int y = p / w;
     const int x = p - y * w;
     const int q = y * sw + shift + x;

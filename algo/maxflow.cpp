@@ -45,6 +45,7 @@ Status MaxFlow<D>::reset(std::int32_t num_nodes) {
   orphan_head_ = orphan_count_ = 0;
   time_ = 0;
   flow_ = 0;
+  sink_links_ = 0;
   augmentations_ = 0;
   for (std::int32_t i = 0; i < num_nodes; ++i) (void)add_node();
   return ok_status();
@@ -100,8 +101,16 @@ void MaxFlow<D>::make_orphan(std::int32_t i, bool front) {
 // allow, before any search: in the matcher's graphs much of the flow takes
 // such two-node paths (a current match and a competing new one), and one pass
 // in node order is far cheaper than one tree search per path.
+//
+// It also counts the nodes left linked to each terminal (solve() chooses the
+// trees to grow from them) without another pass over the nodes: a source
+// node's capacity is final after its own turn, and a sink node leaves the
+// count when a push empties it.
 template <int D>
-void MaxFlow<D>::push_short_paths() {
+void MaxFlow<D>::push_short_paths(std::int32_t& sources, std::int32_t& sinks) {
+  sources = 0;
+  sinks = 0;
+  sinks = sink_links_;
   for (std::int32_t i = 0; i < num_nodes_; ++i) {
     Record& r = records_[i];
     if (r.node.tr_cap <= 0) continue;
@@ -116,7 +125,9 @@ void MaxFlow<D>::push_short_paths() {
       a.r_cap -= f;
       arc(static_cast<std::int32_t>(a.sister)).r_cap += f;
       flow_ += f;
+      sinks -= m.tr_cap == 0 ? 1 : 0;
     }
+    sources += r.node.tr_cap > 0 ? 1 : 0;
   }
 }
 
@@ -325,7 +336,9 @@ void MaxFlow<D>::adopt_orphans() {
 
 template <int D>
 typename MaxFlow<D>::Flow MaxFlow<D>::solve() {
-  push_short_paths();
+  std::int32_t sources = 0;
+  std::int32_t sinks = 0;
+  push_short_paths(sources, sinks);
   active_head_ = active_count_ = 0;
   orphan_head_ = orphan_count_ = 0;
   time_ = 0;
@@ -335,13 +348,6 @@ typename MaxFlow<D>::Flow MaxFlow<D>::solve() {
   // other, only its tree is grown: a path is found as soon as it touches a
   // node of the other terminal, and the large tree (often the whole graph)
   // is never built. Both ways end with one tree closed, so the cut is minimum.
-  std::int32_t sources = 0;
-  std::int32_t sinks = 0;
-  for (std::int32_t i = 0; i < num_nodes_; ++i) {
-    const Capacity c = records_[i].node.tr_cap;
-    sources += c > 0 ? 1 : 0;
-    sinks += c < 0 ? 1 : 0;
-  }
   const std::int64_t ratio = one_sided_ratio_;
   grow_source_ = ratio == 0 || sources <= ratio * sinks;
   grow_sink_ = ratio == 0 || sinks <= ratio * sources;

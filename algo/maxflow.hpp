@@ -80,6 +80,7 @@ class MaxFlow {
     flow_ += cs < ct ? cs : ct;
     const std::int64_t net = cs - ct;
     PETRA_ASSERT(net < (std::int64_t{1} << 31) && net > -(std::int64_t{1} << 31));
+    sink_links_ += (net < 0 ? 1 : 0) - (n.tr_cap < 0 ? 1 : 0);
     n.tr_cap = static_cast<Capacity>(net);
   }
 
@@ -161,7 +162,7 @@ class MaxFlow {
   void set_active(std::int32_t i);
   std::int32_t next_active();
   void make_orphan(std::int32_t i, bool front);
-  void push_short_paths();
+  void push_short_paths(std::int32_t& sources, std::int32_t& sinks);
   std::int32_t grow(std::int32_t i);
   void augment(std::int32_t middle);
   void adopt_orphans();
@@ -183,6 +184,7 @@ class MaxFlow {
   bool grow_source_ = true;
   bool grow_sink_ = true;
   Flow flow_ = 0;
+  std::int32_t sink_links_ = 0;  // nodes with tr_cap < 0, kept by add_terminal_weights()
   std::int64_t augmentations_ = 0;
   std::int64_t orphans_seen_ = 0;
   int one_sided_ratio_ = 8;

@@ -457,6 +457,49 @@ TEST(MatchGraphCut, RepeatedCallsAllocateNothing) {
   EXPECT_EQ(scope.allocations(), 0u);
 }
 
+// A cancel hook that answers "stop" from its n-th question on.
+struct CancelAfter {
+  int questions = 0;
+  int stop_at = 0;
+  static bool ask(void* context) {
+    auto& c = *static_cast<CancelAfter*>(context);
+    return ++c.questions >= c.stop_at;
+  }
+};
+
+TEST(MatchGraphCut, CancelStopsBetweenExpansionsAndLeavesTheOutputAlone) {
+  const Scene s = square_scene(40, 24, 2, 6, {16, 6, 12, 10}, {0, 0, 40, 24}, 0, 8, 4);
+  Matcher m({40, 24, 9});
+  std::vector<std::int16_t> q4(40 * 24, 123);
+  DisparityMap out{ImageView<std::int16_t>(q4.data(), 40, 24), {}};
+  StereoInput in{ConstGray8View(s.pr.left.data(), 40, 24),
+                 ConstGray8View(s.pr.right.data(), 40, 24)};
+  GraphCutParams params;
+  params.disp_max = 8;
+  params.random_order = false;
+  CancelAfter asked{0, 4};
+  StepClock clock;
+  clock.cancel_requested = CancelAfter::ask;
+  clock.context = &asked;
+  params.cancel = &clock;
+  auto stopped = m.matcher().match(in, {0, 0, 40, 24}, params, out);
+  ASSERT_FALSE(stopped.ok());
+  EXPECT_EQ(stopped.error().code, Errc::cancelled);
+  EXPECT_EQ(asked.questions, 4);  // asked once per expansion, stopped at once
+  EXPECT_TRUE(std::all_of(q4.begin(), q4.end(), [](std::int16_t v) { return v == 123; }));
+  // Never asked to stop: the hook is polled before every expansion and the
+  // result is that of a run without it.
+  CancelAfter never{0, 1 << 30};
+  clock.context = &never;
+  auto full = m.matcher().match(in, {0, 0, 40, 24}, params, out);
+  ASSERT_TRUE(full.ok());
+  EXPECT_EQ(never.questions, full->expansions + full->expansions_skipped);
+  const std::vector<std::int16_t> with_hook = q4;
+  params.cancel = nullptr;
+  ASSERT_TRUE(m.matcher().match(in, {0, 0, 40, 24}, params, out).ok());
+  EXPECT_EQ(q4, with_hook);
+}
+
 TEST(MatchGraphCut, BadInputIsRefusedWithTheFieldNamed) {
   const Scene s = square_scene(40, 24, 2, 6, {16, 6, 12, 10}, {0, 0, 40, 24}, 0, 8, 4);
   Matcher m({40, 24, 9});
