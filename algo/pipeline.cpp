@@ -289,6 +289,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
       GraphCutParams gp = params_.graph_cut;
       gp.disp_min = mp.disp_min;
       gp.disp_max = mp.disp_max;
+      gp.cancel = &clock;  // the caller's cancel is seen between expansions, not only steps
       auto st = graph_cut_.match(in, roi, gp, disp);
       if (!st) return st.error();
       out.graph_cut = *st;

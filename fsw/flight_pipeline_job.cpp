@@ -182,6 +182,7 @@ petra::PipelineBudget roi_budget(int image_width, int image_height, int roi_widt
   b.image_height = image_height;
   b.max_roi_width = std::min(roi_width, image_width);
   b.max_roi_height = std::min(roi_width * 3 / 4, image_height);
+  b.graph_cut = true;  // reserved at init: MATCH_METHOD 1 needs no new memory
   const petra::PipelineParams p =
       FlightPipelineJob::pipeline_params(FlightPipelineJob::default_settings());
   b.max_disparities = p.range.search_max_px - p.range.search_min_px + 1;
@@ -269,9 +270,8 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
     return Error::make(Errc::not_ready, "no calib.json configured: the pipeline needs the rig");
   if (&arena != arena_)
     return Error::make(Errc::invalid_argument, "run: not the arena given to init");
-  if (request.match_method != 0)
-    return Error::make(Errc::invalid_argument,
-                       "MATCH_METHOD %d: the graph-cut matcher is not in this build (set 0, dp)",
+  if (request.match_method != 0 && request.match_method != 1)
+    return Error::make(Errc::invalid_argument, "MATCH_METHOD %d: 0 (dp) or 1 (graph cut)",
                        request.match_method);
   if (request.left.empty() || request.right.empty())
     return Error::make(Errc::invalid_argument, "run: no stereo pair");
@@ -286,7 +286,7 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   pr.has_click = request.has_click;
   pr.click_u = request.click_u_px;
   pr.click_v = request.click_v_px;
-  pr.method = MatchMethod::dp;
+  pr.method = request.match_method == 1 ? MatchMethod::graph_cut : MatchMethod::dp;
   StepTracker tracker;
   tracker.cancel = &cancel;
   const StepClock clock{monotonic_ns, &tracker, &StepTracker::on_step,

@@ -3,12 +3,12 @@
 //   init: builds the rectification tables once in the worker's arena
 //     (they stay for every run); with no calib.json it stays unready and
 //     every run fails not_ready naming the missing file;
-//   run: EvalRequest -> PipelineRequest (ROI, c, click; graph cut refused
-//     with a named error), the pipeline, then EvalOutput: accepted planes
-//     (ranked, normals out of the rock) not smaller than MIN_PLANE_AREA_MM2,
-//     ground plane, point counts, disparity range, step times in the fsw
-//     slots, and products built in the arena (disparity as 8-bit gray of the
-//     rectified ROI, an RGB overlay of the classes, the cloud in mm).
+//   run: EvalRequest -> PipelineRequest (ROI, c, click; MATCH_METHOD 0 DP,
+//     1 graph cut, whose matcher is reserved at init), the pipeline, then EvalOutput: accepted
+//     planes (ranked, normals out of the rock) not smaller than MIN_PLANE_AREA_MM2, ground plane,
+//     point counts, disparity range, step times in the fsw slots, and products built in the arena
+//     (disparity as 8-bit gray of the rectified ROI, an RGB overlay of the classes, the cloud in
+//     mm).
 // ROI size: the largest 4:3 rectified ROI (640 x 480 down to 64 x 48) whose
 // run fits the configured arena; larger ROIs are refused capacity_exceeded
 // naming both sizes (so a small budget.arena_mb still boots).
@@ -31,7 +31,9 @@ namespace petra::fsw {
 
 class FlightPipelineJob final : public PipelineJob {
  public:
-  const char* name() const override { return "onboard chain (algo/pipeline, dp matcher)"; }
+  const char* name() const override {
+    return "onboard chain (algo/pipeline, dp and graph-cut matchers)";
+  }
   std::size_t arena_bytes(const PipelineBudget& budget) const override;
   Status init(const PipelineBudget& budget, const StereoRig* rig, Arena& arena) override;
   Status run(const EvalRequest& request, Arena& arena, const std::atomic<bool>& cancel,

@@ -4,6 +4,8 @@
 // what this build cannot do by name.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -122,17 +124,47 @@ TEST_F(FlightJob, RepeatedEvaluationsAllocateNothingAndAgree) {
 TEST_F(FlightJob, RefusesWhatThisBuildCannotDoByName) {
   ASSERT_TRUE(job_.init(budget_, &rig_, arena_).ok());
   fsw::EvalOutput out;
-  request_.match_method = 1;
-  const Status gc = job_.run(request_, arena_, cancel_, out);
-  ASSERT_FALSE(gc.ok());
-  EXPECT_EQ(gc.code(), Errc::invalid_argument);
-  EXPECT_NE(std::strstr(gc.error().message, "graph-cut"), nullptr) << gc.error().message;
+  request_.match_method = 2;
+  const Status m = job_.run(request_, arena_, cancel_, out);
+  ASSERT_FALSE(m.ok());
+  EXPECT_EQ(m.code(), Errc::invalid_argument);
+  EXPECT_NE(std::strstr(m.error().message, "MATCH_METHOD 2"), nullptr) << m.error().message;
 
   request_.match_method = 0;
   request_.roi = Rect{left_.width - 10, 0, 50, 50};  // leaves the image
   const Status roi = job_.run(request_, arena_, cancel_, out);
   ASSERT_FALSE(roi.ok());
   EXPECT_EQ(roi.code(), Errc::out_of_range);
+}
+
+// MATCH_METHOD 1: the graph-cut matcher, reserved at init, finds the same
+// faces as DP on the scene, and its second run allocates nothing.
+TEST_F(FlightJob, GraphCutFindsTheSameFacesWithoutHeap) {
+  ASSERT_TRUE(job_.init(budget_, &rig_, arena_).ok());
+  const std::size_t after_init = arena_.mark();
+  fsw::EvalOutput dp;
+  ASSERT_TRUE(job_.run(request_, arena_, cancel_, dp).ok());
+  request_.match_method = 1;
+  arena_.release_to(after_init);
+  fsw::EvalOutput gc;
+  const Status s = job_.run(request_, arena_, cancel_, gc);
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  ASSERT_EQ(gc.planes.size(), dp.planes.size());
+  for (std::size_t k = 0; k < dp.planes.size(); ++k) {
+    double best = 180;
+    for (const fsw::PlaneOut& g : gc.planes) {
+      const double c = g.normal[0] * dp.planes[k].normal[0] + g.normal[1] * dp.planes[k].normal[1] +
+                       g.normal[2] * dp.planes[k].normal[2];
+      best = std::min(best, std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI);
+    }
+    EXPECT_LT(best, 3.0) << "DP plane " << k << " has no graph-cut plane within 3 deg";
+  }
+  petra::test::HeapScope scope;
+  arena_.release_to(after_init);
+  fsw::EvalOutput again;
+  ASSERT_TRUE(job_.run(request_, arena_, cancel_, again).ok());
+  EXPECT_EQ(scope.allocations(), 0u);
+  EXPECT_LE(arena_.high_water(), arena_.capacity());
 }
 
 TEST_F(FlightJob, WithoutCalibrationItBootsAndSaysWhyItCannotRun) {
