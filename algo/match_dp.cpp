@@ -141,8 +141,10 @@ struct LaneNumbers {
 };
 constexpr LaneNumbers kLaneNumbers{};
 
+// Best lane and its value (the second best is computed only for pixels that
+// pass the cheaper checks: it is a third pass over the lanes).
 template <int kLanes, class T>
-[[gnu::noinline]] Winner winner(const T* __restrict v, int n_arg) {
+[[gnu::noinline]] Winner best_lane(const T* __restrict v, int n_arg) {
   const int n = kLanes > 0 ? kLanes : n_arg;
   constexpr T kTop = std::numeric_limits<T>::max();
   const std::int16_t* __restrict lane = kLaneNumbers.k;
@@ -154,14 +156,39 @@ template <int kLanes, class T>
     const std::int16_t c = static_cast<std::int16_t>((lane[k] & hit) | (0x7FFF & ~hit));
     k1 = c < k1 ? c : k1;
   }
-  const std::int16_t lo = static_cast<std::int16_t>(k1 - 1), hi = static_cast<std::int16_t>(k1 + 1);
-  T m2 = kTop;  // best more than one lane away
+  return Winner{k1, m, 0};
+}
+
+// Fills w.second: the best value more than one lane away from w.k.
+template <int kLanes, class T>
+[[gnu::noinline]] void second_best(const T* __restrict v, int n_arg, Winner& w) {
+  const int n = kLanes > 0 ? kLanes : n_arg;
+  constexpr T kTop = std::numeric_limits<T>::max();
+  const std::int16_t* __restrict lane = kLaneNumbers.k;
+  const std::int16_t lo = static_cast<std::int16_t>(w.k - 1),
+                     hi = static_cast<std::int16_t>(w.k + 1);
+  T m2 = kTop;
   for (int k = 0; k < n; ++k) {
     const T near = static_cast<T>(-((lane[k] >= lo) & (lane[k] <= hi)));
     const T c = static_cast<T>((v[k] & ~near) | (kTop & near));
     m2 = c < m2 ? c : m2;
   }
-  return Winner{k1, m, m2};
+  w.second = m2;
+}
+
+template <int kLanes>
+[[gnu::noinline]] int lane_min(const std::int16_t* __restrict v, int n_arg) {
+  const int n = kLanes > 0 ? kLanes : n_arg;
+  std::int16_t m = 0x7FFF;
+  for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
+  return m;
+}
+
+template <int kLanes, class T>
+Winner winner(const T* v, int n) {
+  Winner w = best_lane<kLanes>(v, n);
+  second_best<kLanes>(v, n, w);
+  return w;
 }
 
 bool unique_enough(const Winner& w, int pct) {
@@ -334,6 +361,9 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
 
   // p2 lowered at intensity edges: P2 * 8 / (8 + |dI|), never below P1 + 1.
   const int p2_floor = std::min(p.p2, p.p1 + 1);
+  std::uint16_t p2_of_step[256];  // by |dI|: one division per level, not per pixel
+  for (int g = 0; g < 256; ++g)
+    p2_of_step[g] = static_cast<std::uint16_t>(std::max(p2_floor, p.p2 * 8 / (8 + g)));
   const int tol = p.edge_tolerance_px;
   const long cost_ceiling = static_cast<long>(p.max_mean_cost) * kWindowPixels;
   const int zfloor = p.edge_zncc_floor_pct * match::kZnccOne / 100;
@@ -422,7 +452,7 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
     const std::uint8_t* img_row = in.left.row(y) + roi.x;
     for (int i = 1; i < w; ++i) {
       const int g = std::abs(img_row[i] - img_row[i - 1]);
-      p2[i] = static_cast<std::uint16_t>(std::max(p2_floor, p.p2 * 8 / (8 + g)));
+      p2[i] = p2_of_step[g];
     }
     p2[0] = static_cast<std::uint16_t>(p.p2);
     match::apply_bounds<kLanes>(agg.data(), w, Dp, lo.data(), hi.data(), D - 1);
@@ -445,7 +475,7 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
       const std::int16_t* s = S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
       const int klo = lo[i], khi = hi[i];
       // Lanes outside [klo, khi] carry kForbiddenCost and never win.
-      const Winner win = winner<kLanes>(s, Dp);
+      Winner win = best_lane<kLanes>(s, Dp);
       const int k1 = win.k;
       const int d = dmin + k1;
       if (x - d < 0 || x - d >= W) {
@@ -456,6 +486,13 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
         ++st.rejected_lr;
         continue;
       }
+      // Second best more than one lane away: mask the winner's lanes in place
+      // (S of this pixel is not read again after a, b, c below; lanes -1 and
+      // Dp are guard lanes) and take one plain minimum.
+      std::int16_t* sm = S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
+      const int a = sm[k1 - 1], b = sm[k1], c = sm[k1 + 1];
+      sm[k1 - 1] = sm[k1] = sm[k1 + 1] = std::numeric_limits<std::int16_t>::max();
+      win.second = lane_min<kLanes>(sm, Dp);
       if (!unique_enough(win, p.uniqueness_pct)) {
         ++st.rejected_uniqueness;
         continue;
@@ -470,7 +507,6 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
       }
       int q = d * kDisparityScale;
       if (k1 > klo && k1 < khi) {
-        const int a = s[k1 - 1], b = s[k1], c = s[k1 + 1];
         const int den = a + c - 2 * b;
         if (den > 0) {
           const int num = 8 * (a - c);  // offset (a - c) / (2 den) px, in 1/16 px
