@@ -176,11 +176,29 @@ template <int kLanes, class T>
   w.second = m2;
 }
 
+// kNearMask.m[kMaxLanes - k1 + k] is 0x7FFF for |k - k1| <= 1 and -32768
+// elsewhere: a maximum with it hides the winner's lanes without a store
+// into the row (stores followed by vector loads of the same row stall).
+struct NearMask {
+  std::int16_t m[2 * match::kMaxLanes + 1];
+  constexpr NearMask() : m() {
+    for (int i = 0; i <= 2 * match::kMaxLanes; ++i)
+      m[i] = static_cast<std::int16_t>(
+          (i >= match::kMaxLanes - 1 && i <= match::kMaxLanes + 1) ? 0x7FFF : -32768);
+  }
+};
+constexpr NearMask kNearMask{};
+
+// The best value more than one lane away from lane k1.
 template <int kLanes>
-[[gnu::noinline]] int lane_min(const std::int16_t* __restrict v, int n_arg) {
+[[gnu::noinline]] int second_best_away(const std::int16_t* __restrict v, int n_arg, int k1) {
   const int n = kLanes > 0 ? kLanes : n_arg;
+  const std::int16_t* __restrict mask = kNearMask.m + match::kMaxLanes - k1;
   std::int16_t m = 0x7FFF;
-  for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
+  for (int k = 0; k < n; ++k) {
+    const std::int16_t c = v[k] < mask[k] ? mask[k] : v[k];
+    m = c < m ? c : m;
+  }
   return m;
 }
 
@@ -486,13 +504,7 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
         ++st.rejected_lr;
         continue;
       }
-      // Second best more than one lane away: mask the winner's lanes in place
-      // (S of this pixel is not read again after a, b, c below; lanes -1 and
-      // Dp are guard lanes) and take one plain minimum.
-      std::int16_t* sm = S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
-      const int a = sm[k1 - 1], b = sm[k1], c = sm[k1 + 1];
-      sm[k1 - 1] = sm[k1] = sm[k1 + 1] = std::numeric_limits<std::int16_t>::max();
-      win.second = lane_min<kLanes>(sm, Dp);
+      win.second = second_best_away<kLanes>(s, Dp, k1);
       if (!unique_enough(win, p.uniqueness_pct)) {
         ++st.rejected_uniqueness;
         continue;
@@ -507,6 +519,7 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
       }
       int q = d * kDisparityScale;
       if (k1 > klo && k1 < khi) {
+        const int a = s[k1 - 1], b = s[k1], c = s[k1 + 1];
         const int den = a + c - 2 * b;
         if (den > 0) {
           const int num = 8 * (a - c);  // offset (a - c) / (2 den) px, in 1/16 px
