@@ -140,23 +140,33 @@ struct LaneNumbers {
   }
 };
 constexpr LaneNumbers kLaneNumbers{};
+struct LaneRanks {
+  std::int16_t r[match::kMaxLanes];
+  constexpr LaneRanks() : r() {
+    for (int i = 0; i < match::kMaxLanes; ++i) r[i] = static_cast<std::int16_t>(0x7FFF - i);
+  }
+};
+constexpr LaneRanks kLaneRanks{};
 
 // Best lane and its value (the second best is computed only for pixels that
-// pass the cheaper checks: it is a third pass over the lanes).
+// pass the cheaper checks: it is another pass over the lanes).
 template <int kLanes, class T>
 [[gnu::noinline]] Winner best_lane(const T* __restrict v, int n_arg) {
   const int n = kLanes > 0 ? kLanes : n_arg;
   constexpr T kTop = std::numeric_limits<T>::max();
-  const std::int16_t* __restrict lane = kLaneNumbers.k;
   T m = kTop;
   for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
-  std::int16_t k1 = 0x7FFF;      // first lane holding the minimum
-  for (int k = 0; k < n; ++k) {  // masks, not ?:, keep it one basic block
+  // First lane holding the minimum: the largest rank 0x7FFF - k among the
+  // hits (a mask and a maximum, where a minimum over lane-or-0x7FFF needs two
+  // more operations for the select).
+  const std::int16_t* __restrict rank = kLaneRanks.r;
+  std::int16_t top_rank = 0;
+  for (int k = 0; k < n; ++k) {
     const std::int16_t hit = static_cast<std::int16_t>(-(v[k] == m));
-    const std::int16_t c = static_cast<std::int16_t>((lane[k] & hit) | (0x7FFF & ~hit));
-    k1 = c < k1 ? c : k1;
+    const std::int16_t c = static_cast<std::int16_t>(rank[k] & hit);
+    top_rank = c > top_rank ? c : top_rank;
   }
-  return Winner{k1, m, 0};
+  return Winner{0x7FFF - top_rank, m, 0};
 }
 
 // Fills w.second: the best value more than one lane away from w.k.
