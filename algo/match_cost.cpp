@@ -137,7 +137,7 @@ void box_and_shift_row(const std::uint16_t* colsum, int n, int stride_arg, std::
   // Minimum over five box positions: min(min(h0,h1), min(h2,h3), h4). The
   // sums stay below 2^15 (kAggregatedMax, padding 45 kRawPad), so they are
   // compared as int16: x86-64's baseline SSE2 has a one-instruction signed
-  // 16-bit minimum but none for unsigned (emulated in five, measured 5x).
+  // 16-bit minimum but none for unsigned (GCC emulates it in five).
   for (int i = 0; i < n; ++i) {
     const std::int16_t* __restrict h0 =
         reinterpret_cast<const std::int16_t*>(hs) + static_cast<std::ptrdiff_t>(i) * stride;
