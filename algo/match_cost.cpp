@@ -6,6 +6,9 @@
 
 namespace petra::match {
 
+static_assert(kRawPad > kRawMax, "padding lanes are selected by a maximum");
+static_assert(kRawPad * (2 * kBoxRadiusX + 1) * kWindowRows < 32768, "box sums compare as int16");
+
 namespace {
 
 // (dx, dy) of the 16 census neighbours.
@@ -25,12 +28,17 @@ void padded_row(ConstGray8View img, int y, int x0, int n, std::uint8_t* out) {
   for (int i = 0; i < n; ++i) out[i] = s[std::clamp(x0 + i, 0, last)];
 }
 
-// Bit count of a byte by halving steps (no multiply, no table), so the
-// compiler keeps it in byte lanes on any target.
-inline std::uint8_t popcount8(std::uint8_t v) {
-  v = static_cast<std::uint8_t>(v - ((v >> 1) & 0x55));
-  v = static_cast<std::uint8_t>((v & 0x33) + ((v >> 2) & 0x33));
-  return static_cast<std::uint8_t>((v + (v >> 4)) & 0x0F);
+// Bit count of the two census bytes, popcount(a) + popcount(b), by halving
+// steps (no multiply, no table) so the compiler keeps it in byte lanes on
+// any target. After two steps each nibble holds at most 4, so the two words
+// add without carry and share the last step.
+inline std::uint8_t popcount16(std::uint8_t a, std::uint8_t b) {
+  a = static_cast<std::uint8_t>(a - ((a >> 1) & 0x55));
+  b = static_cast<std::uint8_t>(b - ((b >> 1) & 0x55));
+  a = static_cast<std::uint8_t>((a & 0x33) + ((a >> 2) & 0x33));
+  b = static_cast<std::uint8_t>((b & 0x33) + ((b >> 2) & 0x33));
+  const std::uint8_t s = static_cast<std::uint8_t>(a + b);
+  return static_cast<std::uint8_t>((s & 0x0F) + (s >> 4));
 }
 
 inline std::uint8_t min8(std::uint8_t a, std::uint8_t b) {
@@ -38,6 +46,10 @@ inline std::uint8_t min8(std::uint8_t a, std::uint8_t b) {
 }
 inline std::uint8_t max8(std::uint8_t a, std::uint8_t b) {
   return a < b ? b : a;
+}
+// Values, not references (std::min on references stops the vectoriser).
+inline std::int16_t min16(std::int16_t a, std::int16_t b) {
+  return a < b ? a : b;
 }
 
 }  // namespace
@@ -93,12 +105,13 @@ void raw_cost_row(const RawRowInputs& in, int k_count, std::uint8_t* raw, std::u
     const std::uint8_t* __restrict ov = in.override_rev + base;
     for (int k = 0; k < stride; ++k) {
       const std::uint8_t ad = static_cast<std::uint8_t>(max8(gl, gr[k]) - min8(gl, gr[k]));
-      const std::uint8_t c = static_cast<std::uint8_t>(
-          popcount8(static_cast<std::uint8_t>(ci ^ cri[k])) +
-          popcount8(static_cast<std::uint8_t>(co ^ cro[k])) + (min8(ad, 32) >> 2));
+      const std::uint8_t c =
+          static_cast<std::uint8_t>(popcount16(static_cast<std::uint8_t>(ci ^ cri[k]),
+                                               static_cast<std::uint8_t>(co ^ cro[k])) +
+                                    (min8(ad, 32) >> 2));
       // Overrides as branch-free selects: padding lanes, then right samples.
-      std::uint8_t v = ov[k] != 0 ? ov[k] : c;
-      v = pad[k] != 0 ? pad[k] : v;
+      // pad is 0 or kRawPad > kRawMax, so a maximum (one instruction) selects it.
+      const std::uint8_t v = max8(ov[k] != 0 ? ov[k] : c, pad[k]);
       sum[k] = static_cast<std::uint16_t>(sum[k] + v - out[k]);
       out[k] = v;
     }
@@ -121,14 +134,19 @@ void box_and_shift_row(const std::uint16_t* colsum, int n, int stride_arg, std::
     std::uint16_t* __restrict cur = hs + static_cast<std::ptrdiff_t>(j) * stride;
     for (int k = 0; k < stride; ++k) cur[k] = static_cast<std::uint16_t>(prev[k] + add[k] - sub[k]);
   }
-  // Minimum over five box positions: min(min(h0,h1), min(h2,h3), h4).
+  // Minimum over five box positions: min(min(h0,h1), min(h2,h3), h4). The
+  // sums stay below 2^15 (kAggregatedMax, padding 45 kRawPad), so they are
+  // compared as int16: x86-64's baseline SSE2 has a one-instruction signed
+  // 16-bit minimum but none for unsigned (GCC emulates it in five).
   for (int i = 0; i < n; ++i) {
-    const std::uint16_t* __restrict h0 = hs + static_cast<std::ptrdiff_t>(i) * stride;
-    std::uint16_t* __restrict out = agg + static_cast<std::ptrdiff_t>(i) * stride;
+    const std::int16_t* __restrict h0 =
+        reinterpret_cast<const std::int16_t*>(hs) + static_cast<std::ptrdiff_t>(i) * stride;
+    std::int16_t* __restrict out =
+        reinterpret_cast<std::int16_t*>(agg) + static_cast<std::ptrdiff_t>(i) * stride;
     for (int k = 0; k < stride; ++k) {
-      const std::uint16_t a = std::min(h0[k], h0[stride + k]);
-      const std::uint16_t b = std::min(h0[2 * stride + k], h0[3 * stride + k]);
-      out[k] = std::min(std::min(a, b), h0[4 * stride + k]);
+      const std::int16_t a = min16(h0[k], h0[stride + k]);
+      const std::int16_t b = min16(h0[2 * stride + k], h0[3 * stride + k]);
+      out[k] = min16(min16(a, b), h0[4 * stride + k]);
     }
   }
 }

@@ -140,28 +140,83 @@ struct LaneNumbers {
   }
 };
 constexpr LaneNumbers kLaneNumbers{};
+struct LaneRanks {
+  std::int16_t r[match::kMaxLanes];
+  constexpr LaneRanks() : r() {
+    for (int i = 0; i < match::kMaxLanes; ++i) r[i] = static_cast<std::int16_t>(0x7FFF - i);
+  }
+};
+constexpr LaneRanks kLaneRanks{};
 
+// Best lane and its value (the second best is computed only for pixels that
+// pass the cheaper checks: it is another pass over the lanes).
 template <int kLanes, class T>
-[[gnu::noinline]] Winner winner(const T* __restrict v, int n_arg) {
+[[gnu::noinline]] Winner best_lane(const T* __restrict v, int n_arg) {
+  const int n = kLanes > 0 ? kLanes : n_arg;
+  constexpr T kTop = std::numeric_limits<T>::max();
+  T m = kTop;
+  for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
+  // First lane holding the minimum: the largest rank 0x7FFF - k among the
+  // hits (a mask and a maximum, where a minimum over lane-or-0x7FFF needs two
+  // more operations for the select).
+  const std::int16_t* __restrict rank = kLaneRanks.r;
+  std::int16_t top_rank = 0;
+  for (int k = 0; k < n; ++k) {
+    const std::int16_t hit = static_cast<std::int16_t>(-(v[k] == m));
+    const std::int16_t c = static_cast<std::int16_t>(rank[k] & hit);
+    top_rank = c > top_rank ? c : top_rank;
+  }
+  return Winner{0x7FFF - top_rank, m, 0};
+}
+
+// Fills w.second: the best value more than one lane away from w.k.
+template <int kLanes, class T>
+[[gnu::noinline]] void second_best(const T* __restrict v, int n_arg, Winner& w) {
   const int n = kLanes > 0 ? kLanes : n_arg;
   constexpr T kTop = std::numeric_limits<T>::max();
   const std::int16_t* __restrict lane = kLaneNumbers.k;
-  T m = kTop;
-  for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
-  std::int16_t k1 = 0x7FFF;      // first lane holding the minimum
-  for (int k = 0; k < n; ++k) {  // masks, not ?:, keep it one basic block
-    const std::int16_t hit = static_cast<std::int16_t>(-(v[k] == m));
-    const std::int16_t c = static_cast<std::int16_t>((lane[k] & hit) | (0x7FFF & ~hit));
-    k1 = c < k1 ? c : k1;
-  }
-  const std::int16_t lo = static_cast<std::int16_t>(k1 - 1), hi = static_cast<std::int16_t>(k1 + 1);
-  T m2 = kTop;  // best more than one lane away
+  const std::int16_t lo = static_cast<std::int16_t>(w.k - 1),
+                     hi = static_cast<std::int16_t>(w.k + 1);
+  T m2 = kTop;
   for (int k = 0; k < n; ++k) {
     const T near = static_cast<T>(-((lane[k] >= lo) & (lane[k] <= hi)));
     const T c = static_cast<T>((v[k] & ~near) | (kTop & near));
     m2 = c < m2 ? c : m2;
   }
-  return Winner{k1, m, m2};
+  w.second = m2;
+}
+
+// kNearMask.m[kMaxLanes - k1 + k] is 0x7FFF for |k - k1| <= 1 and -32768
+// elsewhere: a maximum with it hides the winner's lanes without a store
+// into the row (stores followed by vector loads of the same row stall).
+struct NearMask {
+  std::int16_t m[2 * match::kMaxLanes + 1];
+  constexpr NearMask() : m() {
+    for (int i = 0; i <= 2 * match::kMaxLanes; ++i)
+      m[i] = static_cast<std::int16_t>(
+          (i >= match::kMaxLanes - 1 && i <= match::kMaxLanes + 1) ? 0x7FFF : -32768);
+  }
+};
+constexpr NearMask kNearMask{};
+
+// The best value more than one lane away from lane k1.
+template <int kLanes>
+[[gnu::noinline]] int second_best_away(const std::int16_t* __restrict v, int n_arg, int k1) {
+  const int n = kLanes > 0 ? kLanes : n_arg;
+  const std::int16_t* __restrict mask = kNearMask.m + match::kMaxLanes - k1;
+  std::int16_t m = 0x7FFF;
+  for (int k = 0; k < n; ++k) {
+    const std::int16_t c = v[k] < mask[k] ? mask[k] : v[k];
+    m = c < m ? c : m;
+  }
+  return m;
+}
+
+template <int kLanes, class T>
+Winner winner(const T* v, int n) {
+  Winner w = best_lane<kLanes>(v, n);
+  second_best<kLanes>(v, n, w);
+  return w;
 }
 
 bool unique_enough(const Winner& w, int pct) {
@@ -334,6 +389,9 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
 
   // p2 lowered at intensity edges: P2 * 8 / (8 + |dI|), never below P1 + 1.
   const int p2_floor = std::min(p.p2, p.p1 + 1);
+  std::uint16_t p2_of_step[256];  // by |dI|: one division per level, not per pixel
+  for (int g = 0; g < 256; ++g)
+    p2_of_step[g] = static_cast<std::uint16_t>(std::max(p2_floor, p.p2 * 8 / (8 + g)));
   const int tol = p.edge_tolerance_px;
   const long cost_ceiling = static_cast<long>(p.max_mean_cost) * kWindowPixels;
   const int zfloor = p.edge_zncc_floor_pct * match::kZnccOne / 100;
@@ -422,7 +480,7 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
     const std::uint8_t* img_row = in.left.row(y) + roi.x;
     for (int i = 1; i < w; ++i) {
       const int g = std::abs(img_row[i] - img_row[i - 1]);
-      p2[i] = static_cast<std::uint16_t>(std::max(p2_floor, p.p2 * 8 / (8 + g)));
+      p2[i] = p2_of_step[g];
     }
     p2[0] = static_cast<std::uint16_t>(p.p2);
     match::apply_bounds<kLanes>(agg.data(), w, Dp, lo.data(), hi.data(), D - 1);
@@ -445,7 +503,7 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
       const std::int16_t* s = S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
       const int klo = lo[i], khi = hi[i];
       // Lanes outside [klo, khi] carry kForbiddenCost and never win.
-      const Winner win = winner<kLanes>(s, Dp);
+      Winner win = best_lane<kLanes>(s, Dp);
       const int k1 = win.k;
       const int d = dmin + k1;
       if (x - d < 0 || x - d >= W) {
@@ -456,6 +514,7 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
         ++st.rejected_lr;
         continue;
       }
+      win.second = second_best_away<kLanes>(s, Dp, k1);
       if (!unique_enough(win, p.uniqueness_pct)) {
         ++st.rejected_uniqueness;
         continue;

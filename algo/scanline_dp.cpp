@@ -23,10 +23,12 @@ inline std::int16_t min16(std::int16_t a, std::int16_t b) {
 
 // One step of the recursion, returning min_k of the new row:
 //   cur = C + min(prev, prev(k+-1) + P1, mn + P2) - mn,  mn = min_k prev.
-template <int kLanes>
+// With kAccumulate (the backward pass), the new row is also added into
+// acc, in the same loop while it is in registers.
+template <int kLanes, bool kAccumulate = false>
 inline std::int16_t step(const std::int16_t* __restrict prev, const std::uint16_t* __restrict c,
                          std::int16_t* __restrict cur, int stride_arg, int p1, int p2,
-                         std::int16_t mn) {
+                         std::int16_t mn, std::int16_t* __restrict acc = nullptr) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   const std::int16_t jump = static_cast<std::int16_t>(mn + p2);
   const std::int16_t pen1 = static_cast<std::int16_t>(p1);
@@ -36,6 +38,7 @@ inline std::int16_t step(const std::int16_t* __restrict prev, const std::uint16_
     const std::int16_t best = min16(min16(prev[k], near), jump);
     const std::int16_t v = static_cast<std::int16_t>(c[k] + best - mn);
     cur[k] = v;
+    if constexpr (kAccumulate) acc[k] = static_cast<std::int16_t>(acc[k] + v);
     m = min16(m, v);
   }
   return m;
@@ -92,9 +95,7 @@ void scanline_dp(const ScanlineInputs& in, std::int16_t* S, std::int16_t* rows) 
   std::int16_t* s_last = srow(in.n - 1);
   for (int k = 0; k < stride; ++k) s_last[k] = static_cast<std::int16_t>(s_last[k] + a[k]);
   for (int x = in.n - 2; x >= 0; --x) {
-    mn = step<kLanes>(a, cost(x), b, stride, in.p1, in.p2[x + 1], mn);
-    std::int16_t* __restrict s = srow(x);
-    for (int k = 0; k < stride; ++k) s[k] = static_cast<std::int16_t>(s[k] + b[k]);
+    mn = step<kLanes, true>(a, cost(x), b, stride, in.p1, in.p2[x + 1], mn, srow(x));
     std::swap(a, b);
   }
 }
