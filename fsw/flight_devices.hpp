@@ -41,7 +41,7 @@ class FlightDevices {
   hal::GpioDigitalInput estop_{estop_line_};
   bool has_estop_ = false;
   bool has_arm_power_ = false;
-  char camera_text_[160] = "";
+  char camera_text_[256] = "";  // for the boot line; long names are cut
 };
 
 }  // namespace petra::fsw
