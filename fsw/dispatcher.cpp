@@ -225,6 +225,8 @@ void Executive::on_evaluate(const cmd::Command& c) {
   r.disp_max_px = params_.get_int(ParamId::DISP_MAX_PX);
   r.shadow_fraction = params_.get(ParamId::SHADOW_FRACTION);
   r.min_plane_area_mm2 = params_.get(ParamId::MIN_PLANE_AREA_MM2);
+  // Stamped before the worker can start: the total then always covers its steps.
+  eval_started_ns_ = deps_.clock->monotonic_ns();
   const Status s = runner_.start(r);
   if (!s) {
     modes_.request(Mode::IDLE, 0);
@@ -232,7 +234,6 @@ void Executive::on_evaluate(const cmd::Command& c) {
   }
   ++loop_.evaluations;
   pending_eval_ = {true, fc_of(c), c.counter};
-  eval_started_ns_ = deps_.clock->monotonic_ns();
   events_.raise(EventId::EVAL_STARTED, static_cast<std::int32_t>(r.eval_id),
                 static_cast<std::int32_t>(r.frame), r.planes, r.match_method);
 }
