@@ -171,6 +171,7 @@ Result<PipelineOutput> Pipeline::run_with_disparity(ConstGray8View left,
   if (!lbuf) return lbuf.error();
   const Gray8View rl(lbuf->data(), budget_.image_width, budget_.image_height);
   out.left_rectified = rl;
+  PETRA_TRY(checkpoint(clock, "rectify"));
   {
     StepTimer timer(clock, out.timings, "rectify");
     PETRA_TRY(rectifier_.rectify(StereoSide::left, left, rl, roi));

@@ -65,6 +65,11 @@ constexpr const ParamDesc* find_param(std::uint16_t id) {
   return nullptr;
 }
 
+// Default of a defined parameter (every ParamId has a row in the table).
+constexpr double param_default(ParamId id) {
+  return find_param(static_cast<std::uint16_t>(id))->default_value;
+}
+
 // True when v is a legal value of p (finite, in range, whole when integer).
 bool param_value_valid(const ParamDesc& p, double v);
 

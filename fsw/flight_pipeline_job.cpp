@@ -19,12 +19,6 @@ constexpr int kMaxRoiWidth = 640;
 constexpr int kMinRoiWidth = 64;
 constexpr std::size_t kSlack = 4 * 64;
 
-double param_default(ParamId id) {
-  for (const ParamDesc& d : param_table())
-    if (d.id == static_cast<std::uint16_t>(id)) return d.default_value;
-  return 0;
-}
-
 std::uint64_t monotonic_ns(void*) {
   timespec t{};
   clock_gettime(CLOCK_MONOTONIC, &t);

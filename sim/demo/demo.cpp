@@ -146,13 +146,6 @@ std::string write_png_of(const ground::Product& p, const fs::path& dir) {
   return path;
 }
 
-// The flight default of SHADOW_FRACTION (the demo leaves it as it is).
-double flight_shadow_fraction() {
-  for (const ParamDesc& d : param_table())
-    if (d.id == static_cast<std::uint16_t>(ParamId::SHADOW_FRACTION)) return d.default_value;
-  return 0;
-}
-
 std::string quote(const std::string& s) {
   return "'" + s + "'";
 }
@@ -321,7 +314,8 @@ int run(const Options& o, std::FILE* out) {
     }
   };
   // Boot builds the tables and touches the whole arena: seconds in a Debug
-  // build on a loaded machine, more under emulation (HIL bench). Wait while the process lives, within the limit.
+  // build on a loaded machine, more under emulation (HIL bench). Wait while the process lives,
+  // within the limit.
   const auto boot_deadline = Clock::now() + std::chrono::seconds(o.timeout_s);
   while (!booted && fsw.alive() && Clock::now() < boot_deadline) pump(100);
   if (!booted)
@@ -388,9 +382,10 @@ int run(const Options& o, std::FILE* out) {
 
   // 6. The same pair on the ground, with the same parameters.
   std::fprintf(out, "6. the same pair through `petra eval` on the ground:\n");
-  const std::string eval_json = scene->calib.empty()
-                                    ? std::string()
-                                    : run_petra_eval(o, *scene, dir, flight_shadow_fraction(), out);
+  const std::string eval_json =
+      scene->calib.empty() ? std::string()
+                           : run_petra_eval(o, *scene, dir, param_default(ParamId::SHADOW_FRACTION),
+                                            out);  // the demo leaves it as it is
   if (!eval_json.empty())
     std::fprintf(out, "   %s\n",
                  same_planes(eval_json, tlm_json)

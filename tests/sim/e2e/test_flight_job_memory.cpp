@@ -32,12 +32,6 @@ std::string read_all(const fs::path& p) {
   return s.str();
 }
 
-double param_default(ParamId id) {
-  for (const ParamDesc& d : param_table())
-    if (d.id == static_cast<std::uint16_t>(id)) return d.default_value;
-  return -1;
-}
-
 class FlightJob : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {

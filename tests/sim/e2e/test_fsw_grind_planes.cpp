@@ -32,12 +32,6 @@ std::string read_all(const fs::path& p) {
   return s.str();
 }
 
-double param_default(ParamId id) {
-  for (const ParamDesc& d : param_table())
-    if (d.id == static_cast<std::uint16_t>(id)) return d.default_value;
-  return -1;
-}
-
 TEST(FswGrindPlanes, TelemetryEqualsTheOnboardChainOnTheSamePair) {
   const fs::path dir = fs::temp_directory_path() / ("petra_planes_" + std::to_string(::getpid()));
   fs::remove_all(dir);
