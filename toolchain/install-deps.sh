@@ -3,7 +3,8 @@
 # Usage: toolchain/install-deps.sh [build|test|bench]
 #   build: compilers, CMake, Eigen, CLI11, libsodium, libpng (enough for the demo)
 #   test:  build + GoogleTest, Google Benchmark, the aarch64 cross toolchain and
-#          qemu user emulation, and the peers/oracles tests use.
+#          qemu user emulation, the peers/oracles tests use, and the HIL bench's
+#          host packages (qemu-system, busybox, kernel headers...: packages-hil.txt).
 #   bench: test + OpenCV and hyperfine (the peers benchmarks measure against).
 set -euo pipefail
 kind=${1:-build}
@@ -13,8 +14,8 @@ mapfile -t wanted < <(grep -v '^#' "$here/packages-build.txt" | sed '/^$/d')
 add_list() { mapfile -t -O "${#wanted[@]}" wanted < <(grep -v '^#' "$here/$1" | sed '/^$/d'); }
 case "$kind" in
   build) ;;
-  test) add_list packages-test.txt ;;
-  bench) add_list packages-test.txt; add_list packages-bench.txt ;;
+  test) add_list packages-test.txt; add_list packages-hil.txt ;;
+  bench) add_list packages-test.txt; add_list packages-hil.txt; add_list packages-bench.txt ;;
   *) echo "install-deps: unknown kind '$kind' (build|test|bench)" >&2; exit 2 ;;
 esac
 
