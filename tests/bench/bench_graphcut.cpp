@@ -95,6 +95,8 @@ void BM_GraphCut(benchmark::State& state, const char* name) {
   state.counters["cycles"] = r.cycles;
   state.counters["expansions"] = r.expansions;
   state.counters["K"] = r.occlusion_k;
+  state.counters["energy"] = static_cast<double>(r.energy);
+  state.counters["nodes"] = static_cast<double>(r.graph_nodes);
   state.counters["MB"] = static_cast<double>(mt.block.size()) / 1e6;
 }
 
@@ -165,6 +167,8 @@ void BM_GraphCutRoi(benchmark::State& state) {
   state.counters["cycles"] = r.cycles;
   state.counters["expansions"] = r.expansions;
   state.counters["disp_min"] = p.disp_min;
+  state.counters["energy"] = static_cast<double>(r.energy);
+  state.counters["nodes"] = static_cast<double>(r.graph_nodes);
   state.counters["MB"] = static_cast<double>(mt.block.size()) / 1e6;
 }
 
