@@ -19,6 +19,16 @@ SUDO=""
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 
 say() { echo "hil-setup: $*"; }
+# apt-get download with retries: a mirror's hiccup should not fail the test command.
+fetch() {
+  local i
+  for i in 1 2 3; do
+    apt-get download -q "$@" && return 0
+    say "download of $* failed (try $i of 3)"
+    sleep $((i * 5))
+  done
+  return 1
+}
 
 # --- host packages ---------------------------------------------------------------
 mapfile -t wanted < <(grep -v '^#' "$repo/toolchain/packages-hil.txt" | sed '/^$/d')
@@ -66,7 +76,7 @@ cd "$dir"
 # --- guest kernel image (unpacked, not installed) ------------------------------
 if [ ! -f kroot/boot/vmlinuz-"$kver" ]; then
   say "fetching $kpkg"
-  (cd dl && apt-get download -q "$kpkg")
+  (cd dl && fetch "$kpkg")
   rm -rf kroot
   dpkg -x dl/"${kpkg}"_*.deb kroot
 fi
@@ -88,7 +98,7 @@ srcv=$(echo "$kver" | cut -d. -f1,2)
 src=linux-source-$srcv
 if [ ! -f "$src/drivers/gpio/gpio-sim.c" ] || [ ! -f "$src/drivers/media/test-drivers/vimc/vimc-core.c" ]; then
   say "fetching linux-source-$srcv (only gpio-sim, irq_sim and vimc are extracted)"
-  (cd dl && { ls linux-source-"${srcv}"_*.deb >/dev/null 2>&1 || apt-get download -q "linux-source-$srcv"; })
+  (cd dl && { ls linux-source-"${srcv}"_*.deb >/dev/null 2>&1 || fetch "linux-source-$srcv"; })
   rm -rf srcdeb
   dpkg -x dl/linux-source-"${srcv}"_*.deb srcdeb
   tar -xJf srcdeb/usr/src/"$src".tar.xz --wildcards \
@@ -125,7 +135,7 @@ fi
 # --- udev for the guest (unpacked only) ----------------------------------------
 if [ ! -x udevroot/bin/udevadm ]; then
   say "fetching udev (unpacked for the guest only)"
-  (cd dl && apt-get download -q udev libsystemd-shared)
+  (cd dl && fetch udev libsystemd-shared)
   rm -rf udevroot
   for d in dl/udev_*.deb dl/libsystemd-shared_*.deb; do dpkg -x "$d" udevroot; done
 fi
