@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "algo/core/assert.hpp"
+#include "algo/vector_clones.hpp"
 
 namespace petra::match {
 
@@ -54,7 +55,8 @@ inline std::int16_t min16(std::int16_t a, std::int16_t b) {
 
 }  // namespace
 
-void census_row(ConstGray8View image, int y, int x0, int n, std::uint8_t* __restrict inner,
+PETRA_VECTOR_CLONES void census_row(ConstGray8View image, int y, int x0, int n,
+                                    std::uint8_t* __restrict inner,
                 std::uint8_t* __restrict outer, std::uint8_t* rows) {
   const int pw = n + 2 * kCensusRadius;
   for (int r = 0; r < 5; ++r)
@@ -75,51 +77,94 @@ void gray_row(ConstGray8View image, int y, int x0, int n, std::uint8_t* gray) {
   padded_row(image, y, x0, n, gray);
 }
 
+// One column of raw_cost_row: every pointer a restrict parameter, so the
+// compiler neither re-reads the inputs after each byte store (a byte store
+// may alias anything) nor emits run-time overlap checks per column.
 template <int kLanes>
-void raw_cost_row(const RawRowInputs& in, int k_count, std::uint8_t* raw, std::uint16_t* colsum,
-                  int stride_arg) {
+[[gnu::always_inline]] inline void raw_cost_column(
+    std::uint8_t ci, std::uint8_t co, std::uint8_t gl, const std::uint8_t* __restrict cri,
+    const std::uint8_t* __restrict cro, const std::uint8_t* __restrict gr,
+    const std::uint8_t* __restrict ov, const std::uint8_t* __restrict pad,
+    std::uint8_t* __restrict out, std::uint16_t* __restrict sum) {
+  for (int k = 0; k < kLanes; ++k) {
+    const std::uint8_t ad = static_cast<std::uint8_t>(max8(gl, gr[k]) - min8(gl, gr[k]));
+    const std::uint8_t c =
+        static_cast<std::uint8_t>(popcount16(static_cast<std::uint8_t>(ci ^ cri[k]),
+                                             static_cast<std::uint8_t>(co ^ cro[k])) +
+                                  (min8(ad, 32) >> 2));
+    // Overrides as branch-free selects: padding lanes, then right samples.
+    // pad is 0 or kRawPad > kRawMax, so a maximum (one instruction) selects it.
+    const std::uint8_t v = max8(ov[k] != 0 ? ov[k] : c, pad[k]);
+    sum[k] = static_cast<std::uint16_t>(sum[k] + v - out[k]);
+    out[k] = v;
+  }
+}
+
+template <int kLanes>
+[[gnu::always_inline]] inline void neutral_column(const std::uint8_t* __restrict pad,
+                                                  std::uint8_t* __restrict out,
+                                                  std::uint16_t* __restrict sum) {
+  for (int k = 0; k < kLanes; ++k) {
+    const std::uint8_t v = pad[k] != 0 ? pad[k] : std::uint8_t{kRawNeutral};
+    sum[k] = static_cast<std::uint16_t>(sum[k] + v - out[k]);
+    out[k] = v;
+  }
+}
+
+template <int kLanes>
+[[gnu::always_inline]] inline void raw_cost_columns(const RawRowInputs& in, int stride,
+                                                    const std::uint8_t* pad, std::uint8_t* raw,
+                                                    std::uint16_t* colsum) {
+  // Copies of the inputs: the stores below are bytes, which may alias `in`.
+  const int n = in.n_left;
+  const std::uint8_t* const cil = in.census_inner_left;
+  const std::uint8_t* const col = in.census_outer_left;
+  const std::uint8_t* const gll = in.gray_left;
+  const std::uint8_t* const cir = in.census_inner_right_rev;
+  const std::uint8_t* const cor = in.census_outer_right_rev;
+  const std::uint8_t* const grr = in.gray_right_rev;
+  const std::uint8_t* const ovr = in.override_rev;
+  const std::uint8_t* const neu = in.neutral_left;
+  for (int i = 0; i < n; ++i) {
+    std::uint8_t* out = raw + static_cast<std::ptrdiff_t>(i) * stride;
+    std::uint16_t* sum = colsum + static_cast<std::ptrdiff_t>(i) * stride;
+    // All `stride` lanes in one vectorised loop (no scalar tail); the lanes
+    // beyond k_count keep kRawPad.
+    if (neu[i]) {
+      neutral_column<kLanes>(pad, out, sum);
+      continue;
+    }
+    const int base = n - 1 - i;
+    raw_cost_column<kLanes>(cil[i], col[i], gll[i], cir + base, cor + base, grr + base,
+                            ovr + base, pad, out, sum);
+  }
+}
+
+template <int kLanes>
+PETRA_VECTOR_CLONES void raw_cost_row(const RawRowInputs& in, int k_count, std::uint8_t* raw,
+                                      std::uint16_t* colsum, int stride_arg) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   PETRA_ASSERT(k_count <= stride && stride <= kMaxLanes);
   std::uint8_t pad[kMaxLanes];  // kRawPad on the lanes beyond the range
   for (int k = 0; k < stride; ++k) pad[k] = k < k_count ? 0 : kRawPad;
-  for (int i = 0; i < in.n_left; ++i) {
-    std::uint8_t* __restrict out = raw + static_cast<std::ptrdiff_t>(i) * stride;
-    std::uint16_t* __restrict sum = colsum + static_cast<std::ptrdiff_t>(i) * stride;
-    // All `stride` lanes in one vectorised loop (no scalar tail); the lanes
-    // beyond k_count keep kRawPad.
-    if (in.neutral_left[i]) {
-      for (int k = 0; k < stride; ++k) {
-        const std::uint8_t v = pad[k] != 0 ? pad[k] : std::uint8_t{kRawNeutral};
-        sum[k] = static_cast<std::uint16_t>(sum[k] + v - out[k]);
-        out[k] = v;
-      }
-      continue;
-    }
-    const int base = in.n_left - 1 - i;
-    const std::uint8_t ci = in.census_inner_left[i];
-    const std::uint8_t co = in.census_outer_left[i];
-    const std::uint8_t gl = in.gray_left[i];
-    const std::uint8_t* __restrict cri = in.census_inner_right_rev + base;
-    const std::uint8_t* __restrict cro = in.census_outer_right_rev + base;
-    const std::uint8_t* __restrict gr = in.gray_right_rev + base;
-    const std::uint8_t* __restrict ov = in.override_rev + base;
-    for (int k = 0; k < stride; ++k) {
-      const std::uint8_t ad = static_cast<std::uint8_t>(max8(gl, gr[k]) - min8(gl, gr[k]));
-      const std::uint8_t c =
-          static_cast<std::uint8_t>(popcount16(static_cast<std::uint8_t>(ci ^ cri[k]),
-                                               static_cast<std::uint8_t>(co ^ cro[k])) +
-                                    (min8(ad, 32) >> 2));
-      // Overrides as branch-free selects: padding lanes, then right samples.
-      // pad is 0 or kRawPad > kRawMax, so a maximum (one instruction) selects it.
-      const std::uint8_t v = max8(ov[k] != 0 ? ov[k] : c, pad[k]);
-      sum[k] = static_cast<std::uint16_t>(sum[k] + v - out[k]);
-      out[k] = v;
+  if constexpr (kLanes > 0) {
+    raw_cost_columns<kLanes>(in, stride, pad, raw, colsum);
+  } else {
+    // Generic lane count: 16 lanes at a time (stride is a multiple of 16).
+    PETRA_ASSERT(stride % 16 == 0);
+    for (int k0 = 0; k0 < stride; k0 += 16) {
+      RawRowInputs part = in;
+      part.census_inner_right_rev += k0;
+      part.census_outer_right_rev += k0;
+      part.gray_right_rev += k0;
+      part.override_rev += k0;
+      raw_cost_columns<16>(part, stride, pad + k0, raw + k0, colsum + k0);
     }
   }
 }
 
 template <int kLanes>
-void box_and_shift_row(const std::uint16_t* colsum, int n, int stride_arg, std::uint16_t* hs,
+PETRA_VECTOR_CLONES void box_and_shift_row(const std::uint16_t* colsum, int n, int stride_arg, std::uint16_t* hs,
                        std::uint16_t* agg) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   const int nh = n + 2 * kShiftRadiusX;

@@ -10,6 +10,7 @@
 #include "algo/edge_pairs.hpp"
 #include "algo/match_cost.hpp"
 #include "algo/scanline_dp.hpp"
+#include "algo/vector_clones.hpp"
 
 namespace petra {
 
@@ -151,7 +152,7 @@ constexpr LaneRanks kLaneRanks{};
 // Best lane and its value (the second best is computed only for pixels that
 // pass the cheaper checks: it is another pass over the lanes).
 template <int kLanes, class T>
-[[gnu::noinline]] Winner best_lane(const T* __restrict v, int n_arg) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] Winner best_lane(const T* __restrict v, int n_arg) {
   const int n = kLanes > 0 ? kLanes : n_arg;
   constexpr T kTop = std::numeric_limits<T>::max();
   T m = kTop;
@@ -171,7 +172,7 @@ template <int kLanes, class T>
 
 // Fills w.second: the best value more than one lane away from w.k.
 template <int kLanes, class T>
-[[gnu::noinline]] void second_best(const T* __restrict v, int n_arg, Winner& w) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] void second_best(const T* __restrict v, int n_arg, Winner& w) {
   const int n = kLanes > 0 ? kLanes : n_arg;
   constexpr T kTop = std::numeric_limits<T>::max();
   const std::int16_t* __restrict lane = kLaneNumbers.k;
@@ -201,7 +202,7 @@ constexpr NearMask kNearMask{};
 
 // The best value more than one lane away from lane k1.
 template <int kLanes>
-[[gnu::noinline]] int second_best_away(const std::int16_t* __restrict v, int n_arg, int k1) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] int second_best_away(const std::int16_t* __restrict v, int n_arg, int k1) {
   const int n = kLanes > 0 ? kLanes : n_arg;
   const std::int16_t* __restrict mask = kNearMask.m + match::kMaxLanes - k1;
   std::int16_t m = 0x7FFF;
@@ -224,7 +225,7 @@ bool unique_enough(const Winner& w, int pct) {
 }
 
 // out[m] = in[n - 1 - m].
-[[gnu::noinline]] void reverse_copy(const std::uint8_t* __restrict in, int n,
+PETRA_VECTOR_CLONES [[gnu::noinline]] void reverse_copy(const std::uint8_t* __restrict in, int n,
                                     std::uint8_t* __restrict out) {
   for (int m = 0; m < n; ++m) out[m] = in[n - 1 - m];
 }
@@ -234,7 +235,7 @@ bool unique_enough(const Winner& w, int pct) {
 // `lanes` lanes are scanned (padding lanes never win), so no scalar tail;
 // rmin and rk hold w + lanes - 1 entries.
 template <int kLanes>
-[[gnu::noinline]] void right_winners(const std::int16_t* __restrict S, int w, int row_stride,
+PETRA_VECTOR_CLONES [[gnu::noinline]] void right_winners(const std::int16_t* __restrict S, int w, int row_stride,
                                      int lanes_arg, const std::uint8_t* __restrict skip,
                                      std::int16_t* __restrict rmin, std::int16_t* __restrict rk) {
   const int lanes = kLanes > 0 ? kLanes : lanes_arg;
@@ -274,7 +275,7 @@ namespace {
 // The whole matcher for one lane count (kLanes = Dp, or 0 for any), so every
 // row kernel runs with a compile-time lane count.
 template <int kLanes>
-Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpParams& p,
+PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpParams& p,
                                 Arena& arena, DisparityMap& out,
                                 ImageView<std::uint8_t> confidence) {
   const int W = in.left.width();

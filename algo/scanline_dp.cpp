@@ -4,6 +4,7 @@
 
 #include "algo/core/assert.hpp"
 #include "algo/match_cost.hpp"
+#include "algo/vector_clones.hpp"
 
 namespace petra::match {
 
@@ -59,7 +60,7 @@ inline std::int16_t first(const std::uint16_t* __restrict c, std::int16_t* __res
 }  // namespace
 
 template <int kLanes>
-void apply_bounds(std::uint16_t* cost, int n, int stride_arg, const std::int16_t* lo,
+PETRA_VECTOR_CLONES void apply_bounds(std::uint16_t* cost, int n, int stride_arg, const std::int16_t* lo,
                   const std::int16_t* hi, int full_hi) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   for (int x = 0; x < n; ++x) {
@@ -72,7 +73,7 @@ void apply_bounds(std::uint16_t* cost, int n, int stride_arg, const std::int16_t
 }
 
 template <int kLanes>
-void scanline_dp(const ScanlineInputs& in, std::int16_t* S, std::int16_t* rows) {
+PETRA_VECTOR_CLONES void scanline_dp(const ScanlineInputs& in, std::int16_t* S, std::int16_t* rows) {
   PETRA_ASSERT(in.n > 0 && in.stride > 0 && in.p1 >= 0);
   PETRA_ASSERT(kLanes == 0 || in.stride == kLanes);
   const int stride = kLanes > 0 ? kLanes : in.stride;
