@@ -52,7 +52,7 @@ struct Layout {
     b += 2 * cells;                                 // column sums
     b += 2 * z(w + 4) * z(dp) + 2 * z(w) * z(dp);   // box sums, cost
     b += 2 * z(w) * z(match::path_row_stride(dp));  // path costs S
-    b += 2 * 2 * z(dp + 2);                         // DP rows
+    b += 2 * z(w) * z(match::path_row_stride(dp));  // backward path costs
     b += 5 * z(nrp + 4) + 4 * z(wc) + 6 * z(nrp);   // census, gray, overrides
     b += 2 * 2 * z(w) + 2 * z(w);                   // bounds, p2
     b += 2 * 2 * z(w + dp);                         // right winners
@@ -334,7 +334,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   PETRA_TRY(take(arena, static_cast<std::size_t>(w) * Dp, "aggregated cost", agg));
   const int sp = match::path_row_stride(Dp);
   PETRA_TRY(take(arena, static_cast<std::size_t>(w) * sp, "path costs", S));
-  PETRA_TRY(take(arena, 2 * static_cast<std::size_t>(Dp + 2), "DP rows", dp_rows));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w) * sp, "backward path costs", dp_rows));
   PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(nrp + 4), "census rows", census_rows));
   PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census inner", cli));
   PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census outer", clo));

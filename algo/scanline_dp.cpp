@@ -24,12 +24,10 @@ inline std::int16_t min16(std::int16_t a, std::int16_t b) {
 
 // One step of the recursion, returning min_k of the new row:
 //   cur = C + min(prev, prev(k+-1) + P1, mn + P2) - mn,  mn = min_k prev.
-// With kAccumulate (the backward pass), the new row is also added into
-// acc, in the same loop while it is in registers.
-template <int kLanes, bool kAccumulate = false>
+template <int kLanes>
 inline std::int16_t step(const std::int16_t* __restrict prev, const std::uint16_t* __restrict c,
                          std::int16_t* __restrict cur, int stride_arg, int p1, int p2,
-                         std::int16_t mn, std::int16_t* __restrict acc = nullptr) {
+                         std::int16_t mn) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   const std::int16_t jump = static_cast<std::int16_t>(mn + p2);
   const std::int16_t pen1 = static_cast<std::int16_t>(p1);
@@ -39,7 +37,6 @@ inline std::int16_t step(const std::int16_t* __restrict prev, const std::uint16_
     const std::int16_t best = min16(min16(prev[k], near), jump);
     const std::int16_t v = static_cast<std::int16_t>(c[k] + best - mn);
     cur[k] = v;
-    if constexpr (kAccumulate) acc[k] = static_cast<std::int16_t>(acc[k] + v);
     m = min16(m, v);
   }
   return m;
@@ -73,31 +70,37 @@ PETRA_VECTOR_CLONES void apply_bounds(std::uint16_t* cost, int n, int stride_arg
 }
 
 template <int kLanes>
-PETRA_VECTOR_CLONES void scanline_dp(const ScanlineInputs& in, std::int16_t* S, std::int16_t* rows) {
+PETRA_VECTOR_CLONES void scanline_dp(const ScanlineInputs& in, std::int16_t* S,
+                                     std::int16_t* backward) {
   PETRA_ASSERT(in.n > 0 && in.stride > 0 && in.p1 >= 0);
   PETRA_ASSERT(kLanes == 0 || in.stride == kLanes);
   const int stride = kLanes > 0 ? kLanes : in.stride;
   const int sp = path_row_stride(stride);
+  const int n = in.n;
   auto cost = [&](int x) { return in.cost + static_cast<std::ptrdiff_t>(x) * stride; };
   auto srow = [&](int x) { return S + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes; };
-
-  // Forward pass, straight into S: S = L_fwd.
-  for (int x = 0; x < in.n; ++x) srow(x)[-1] = srow(x)[stride] = kGuard;
-  std::int16_t mn = first<kLanes>(cost(0), srow(0), stride);
-  for (int x = 1; x < in.n; ++x) {
-    PETRA_ASSERT(in.p2[x] <= kMaxP2);
-    mn = step<kLanes>(srow(x - 1), cost(x), srow(x), stride, in.p1, in.p2[x], mn);
+  auto brow = [&](int x) { return backward + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes; };
+  for (int x = 0; x < n; ++x) {
+    srow(x)[-1] = srow(x)[stride] = kGuard;
+    brow(x)[-1] = brow(x)[stride] = kGuard;
   }
-  // Backward pass in two scratch rows, added in place: S = L_fwd + L_bwd.
-  std::int16_t* a = rows + 1;
-  std::int16_t* b = rows + stride + 3;
-  a[-1] = a[stride] = b[-1] = b[stride] = kGuard;
-  mn = first<kLanes>(cost(in.n - 1), a, stride);
-  std::int16_t* s_last = srow(in.n - 1);
-  for (int k = 0; k < stride; ++k) s_last[k] = static_cast<std::int16_t>(s_last[k] + a[k]);
-  for (int x = in.n - 2; x >= 0; --x) {
-    mn = step<kLanes, true>(a, cost(x), b, stride, in.p1, in.p2[x + 1], mn, srow(x));
-    std::swap(a, b);
+  // The forward (S = L_fwd) and backward (L_bwd) passes are independent
+  // chains: run in the same loop, each step of one overlaps the latency of
+  // the other (a step waits for the previous row's minimum and for its
+  // stores to reach the shifted loads of prev(k+-1)).
+  std::int16_t mf = first<kLanes>(cost(0), srow(0), stride);
+  std::int16_t mb = first<kLanes>(cost(n - 1), brow(n - 1), stride);
+  for (int t = 1; t < n; ++t) {
+    PETRA_ASSERT(in.p2[t] <= kMaxP2);
+    const int xb = n - 1 - t;
+    mf = step<kLanes>(srow(t - 1), cost(t), srow(t), stride, in.p1, in.p2[t], mf);
+    mb = step<kLanes>(brow(xb + 1), cost(xb), brow(xb), stride, in.p1, in.p2[xb + 1], mb);
+  }
+  // S = L_fwd + L_bwd.
+  for (int x = 0; x < n; ++x) {
+    std::int16_t* __restrict s = srow(x);
+    const std::int16_t* __restrict b = brow(x);
+    for (int k = 0; k < stride; ++k) s[k] = static_cast<std::int16_t>(s[k] + b[k]);
   }
 }
 
