@@ -135,79 +135,82 @@ struct Winner {
 // Lane numbers as data: the reductions below compare them with loaded
 // values instead of an induction variable, which keeps them vectorised.
 struct LaneNumbers {
-  std::int16_t k[match::kMaxLanes];
+  std::uint16_t k[match::kMaxLanes];
   constexpr LaneNumbers() : k() {
-    for (int i = 0; i < match::kMaxLanes; ++i) k[i] = static_cast<std::int16_t>(i);
+    for (int i = 0; i < match::kMaxLanes; ++i) k[i] = static_cast<std::uint16_t>(i);
   }
 };
 constexpr LaneNumbers kLaneNumbers{};
-struct LaneRanks {
-  std::int16_t r[match::kMaxLanes];
-  constexpr LaneRanks() : r() {
-    for (int i = 0; i < match::kMaxLanes; ++i) r[i] = static_cast<std::int16_t>(0x7FFF - i);
-  }
-};
-constexpr LaneRanks kLaneRanks{};
+
+// The reductions run on the values as uint16 (costs and path costs are never
+// negative): an unsigned 16-bit minimum over a vector is one instruction
+// (SSE4.1 phminposuw) where the signed one is a chain of shuffles.
+template <class T>
+const std::uint16_t* as_unsigned(const T* v) {
+  static_assert(sizeof(T) == 2, "16-bit lanes");
+  return reinterpret_cast<const std::uint16_t*>(v);
+}
 
 // Best lane and its value (the second best is computed only for pixels that
 // pass the cheaper checks: it is another pass over the lanes).
 template <int kLanes, class T>
-PETRA_VECTOR_CLONES [[gnu::noinline]] Winner best_lane(const T* __restrict v, int n_arg) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] Winner best_lane(const T* v_in, int n_arg) {
   const int n = kLanes > 0 ? kLanes : n_arg;
-  constexpr T kTop = std::numeric_limits<T>::max();
-  T m = kTop;
+  const std::uint16_t* __restrict v = as_unsigned(v_in);
+  std::uint16_t m = 0xFFFF;
   for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
-  // First lane holding the minimum: the largest rank 0x7FFF - k among the
-  // hits (a mask and a maximum, where a minimum over lane-or-0x7FFF needs two
-  // more operations for the select).
-  const std::int16_t* __restrict rank = kLaneRanks.r;
-  std::int16_t top_rank = 0;
+  // First lane holding the minimum: the smallest of lane-or-0xFFFF over the
+  // hits (a compare, an or-not and a minimum).
+  const std::uint16_t* __restrict lane = kLaneNumbers.k;
+  std::uint16_t first = 0xFFFF;
   for (int k = 0; k < n; ++k) {
-    const std::int16_t hit = static_cast<std::int16_t>(-(v[k] == m));
-    const std::int16_t c = static_cast<std::int16_t>(rank[k] & hit);
-    top_rank = c > top_rank ? c : top_rank;
+    const std::uint16_t miss = static_cast<std::uint16_t>(~-(v[k] == m));
+    const std::uint16_t c = static_cast<std::uint16_t>(lane[k] | miss);
+    first = c < first ? c : first;
   }
-  return Winner{0x7FFF - top_rank, m, 0};
+  return Winner{first, m, 0};
 }
 
 // Fills w.second: the best value more than one lane away from w.k.
 template <int kLanes, class T>
-PETRA_VECTOR_CLONES [[gnu::noinline]] void second_best(const T* __restrict v, int n_arg, Winner& w) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] void second_best(const T* v_in, int n_arg, Winner& w) {
   const int n = kLanes > 0 ? kLanes : n_arg;
-  constexpr T kTop = std::numeric_limits<T>::max();
-  const std::int16_t* __restrict lane = kLaneNumbers.k;
-  const std::int16_t lo = static_cast<std::int16_t>(w.k - 1),
-                     hi = static_cast<std::int16_t>(w.k + 1);
-  T m2 = kTop;
+  const std::uint16_t* __restrict v = as_unsigned(v_in);
+  const std::uint16_t* __restrict lane = kLaneNumbers.k;
+  const std::uint16_t lo = static_cast<std::uint16_t>(std::max(w.k - 1, 0)),
+                      hi = static_cast<std::uint16_t>(w.k + 1);
+  std::uint16_t m2 = static_cast<std::uint16_t>(std::numeric_limits<T>::max());
   for (int k = 0; k < n; ++k) {
-    const T near = static_cast<T>(-((lane[k] >= lo) & (lane[k] <= hi)));
-    const T c = static_cast<T>((v[k] & ~near) | (kTop & near));
+    const std::uint16_t near = static_cast<std::uint16_t>(-((lane[k] >= lo) & (lane[k] <= hi)));
+    const std::uint16_t c = static_cast<std::uint16_t>(v[k] | near);
     m2 = c < m2 ? c : m2;
   }
   w.second = m2;
 }
 
-// kNearMask.m[kMaxLanes - k1 + k] is 0x7FFF for |k - k1| <= 1 and -32768
-// elsewhere: a maximum with it hides the winner's lanes without a store
-// into the row (stores followed by vector loads of the same row stall).
+// kNearMask.m[kMaxLanes - k1 + k] is 0xFFFF for |k - k1| <= 1 and 0
+// elsewhere: an or with it hides the winner's lanes without a store into
+// the row (stores followed by vector loads of the same row stall).
 struct NearMask {
-  std::int16_t m[2 * match::kMaxLanes + 1];
+  std::uint16_t m[2 * match::kMaxLanes + 1];
   constexpr NearMask() : m() {
     for (int i = 0; i <= 2 * match::kMaxLanes; ++i)
-      m[i] = static_cast<std::int16_t>(
-          (i >= match::kMaxLanes - 1 && i <= match::kMaxLanes + 1) ? 0x7FFF : -32768);
+      m[i] = static_cast<std::uint16_t>(
+          (i >= match::kMaxLanes - 1 && i <= match::kMaxLanes + 1) ? 0xFFFF : 0);
   }
 };
 constexpr NearMask kNearMask{};
 
 // The best value more than one lane away from lane k1.
 template <int kLanes>
-PETRA_VECTOR_CLONES [[gnu::noinline]] int second_best_away(const std::int16_t* __restrict v, int n_arg, int k1) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] int second_best_away(const std::int16_t* v_in, int n_arg,
+                                                           int k1) {
   const int n = kLanes > 0 ? kLanes : n_arg;
-  const std::int16_t* __restrict mask = kNearMask.m + match::kMaxLanes - k1;
-  std::int16_t m = 0x7FFF;
+  const std::uint16_t* __restrict v = as_unsigned(v_in);
+  const std::uint16_t* __restrict mask = kNearMask.m + match::kMaxLanes - k1;
+  std::uint16_t m = 0x7FFF;
   for (int k = 0; k < n; ++k) {
-    const std::int16_t c = v[k] < mask[k] ? mask[k] : v[k];
+    const std::uint16_t c = static_cast<std::uint16_t>(v[k] | mask[k]);
     m = c < m ? c : m;
   }
   return m;

@@ -31,15 +31,19 @@ inline std::int16_t step(const std::int16_t* __restrict prev, const std::uint16_
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   const std::int16_t jump = static_cast<std::int16_t>(mn + p2);
   const std::int16_t pen1 = static_cast<std::int16_t>(p1);
-  std::int16_t m = kGuard;
+  // v >= 0 (best >= mn), so its minimum is taken as uint16: one instruction
+  // per vector (SSE4.1 phminposuw) where the signed one is a shuffle chain,
+  // and this minimum is on the critical path from one step to the next.
+  std::uint16_t m = kGuard;
   for (int k = 0; k < stride; ++k) {
     const std::int16_t near = static_cast<std::int16_t>(min16(prev[k - 1], prev[k + 1]) + pen1);
     const std::int16_t best = min16(min16(prev[k], near), jump);
     const std::int16_t v = static_cast<std::int16_t>(c[k] + best - mn);
     cur[k] = v;
-    m = min16(m, v);
+    const std::uint16_t u = static_cast<std::uint16_t>(v);
+    m = u < m ? u : m;
   }
-  return m;
+  return static_cast<std::int16_t>(m);
 }
 
 template <int kLanes>
