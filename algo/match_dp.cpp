@@ -23,6 +23,7 @@ using match::kWindowRows;
 
 constexpr std::size_t kAlignSlack = 64;  // per arena allocation
 constexpr int kLaneMultiple = 16;
+constexpr int kRightChains = 4;  // see right_winners
 constexpr int kMaxAbsDisparity = 2047;  // Q4 in int16
 constexpr int kWindowPixels = (2 * match::kBoxRadiusX + 1) * kWindowRows;
 // A textureless ROI has fewer edge pixels than this (and than 1 in 500).
@@ -55,7 +56,7 @@ struct Layout {
     b += 2 * z(w) * z(match::path_row_stride(dp));  // backward path costs
     b += 5 * z(nrp + 4) + 4 * z(wc) + 6 * z(nrp);   // census, gray, overrides
     b += 2 * 2 * z(w) + 2 * z(w);                   // bounds, p2
-    b += 2 * 2 * z(w + dp);                         // right winners
+    b += 2 * 2 * kRightChains * z(w + dp);          // right winners
     b += sizeof(match::EdgePair) * z(w);            // pairs
     b += 2 * median3x3_scratch(w) + z(w);           // median rows, shadow row
     b += 24 * kAlignSlack;
@@ -234,27 +235,46 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void reverse_copy(const std::uint8_t* __re
 }
 
 // Right-view winners: for right pixel (reversed index m), the lane k of the
-// smallest path cost over the left pixels i with m = (w - 1 - i) + k. All
-// `lanes` lanes are scanned (padding lanes never win), so no scalar tail;
-// rmin and rk hold w + lanes - 1 entries.
+// smallest path cost over the left pixels i with m = (w - 1 - i) + k, the
+// first (smallest i, so smallest k) on ties. All `lanes` lanes are scanned
+// (padding lanes never win), so no scalar tail. Column i updates the running
+// minima one entry left of column i - 1's: done in one array, every load
+// waits for the previous unaligned stores to drain. So column i goes to
+// chain i % kRightChains (independent chains overlap those waits; 4 measured
+// faster than 2 or 16, whose merge costs more than it saves), and the chains
+// are merged at the end, smaller lane first on ties, which is the same
+// first-i rule. rmin and rk hold kRightChains * (w + lanes) entries; the
+// result is in the first w + lanes - 1.
 template <int kLanes>
-PETRA_VECTOR_CLONES [[gnu::noinline]] void right_winners(const std::int16_t* __restrict S, int w, int row_stride,
-                                     int lanes_arg, const std::uint8_t* __restrict skip,
-                                     std::int16_t* __restrict rmin, std::int16_t* __restrict rk) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] void right_winners(
+    const std::int16_t* __restrict S, int w, int row_stride, int lanes_arg,
+    const std::uint8_t* __restrict skip, std::int16_t* __restrict rmin,
+    std::int16_t* __restrict rk) {
   const int lanes = kLanes > 0 ? kLanes : lanes_arg;
-  for (int m = 0; m < w + lanes - 1; ++m) {
+  const int len = w + lanes;
+  for (int m = 0; m < kRightChains * len; ++m) {
     rmin[m] = 0x7FFF;
     rk[m] = -1;
   }
   for (int i = 0; i < w; ++i) {
     if (skip[i]) continue;
+    const std::ptrdiff_t chain = static_cast<std::ptrdiff_t>(i % kRightChains) * len;
     const std::int16_t* __restrict s = S + static_cast<std::size_t>(i) * row_stride;
-    std::int16_t* __restrict rm = rmin + (w - 1 - i);
-    std::int16_t* __restrict rl = rk + (w - 1 - i);
+    std::int16_t* __restrict rm = rmin + chain + (w - 1 - i);
+    std::int16_t* __restrict rl = rk + chain + (w - 1 - i);
     for (int k = 0; k < lanes; ++k) {
       const bool better = s[k] < rm[k];
       rm[k] = better ? s[k] : rm[k];
       rl[k] = better ? static_cast<std::int16_t>(k) : rl[k];
+    }
+  }
+  for (int c = 1; c < kRightChains; ++c) {
+    const std::int16_t* __restrict cm = rmin + static_cast<std::ptrdiff_t>(c) * len;
+    const std::int16_t* __restrict cl = rk + static_cast<std::ptrdiff_t>(c) * len;
+    for (int m = 0; m < len - 1; ++m) {
+      const bool better = cm[m] < rmin[m] || (cm[m] == rmin[m] && cl[m] < rk[m]);
+      rmin[m] = better ? cm[m] : rmin[m];
+      rk[m] = better ? cl[m] : rk[m];
     }
   }
 }
@@ -352,8 +372,9 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "lower bounds", lo));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "upper bounds", hi));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "jump penalties", p2));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w + Dp), "right winners", rmin));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w + Dp), "right winner lanes", rk));
+  const std::size_t right_len = static_cast<std::size_t>(kRightChains) * (w + Dp);
+  PETRA_TRY(take(arena, right_len, "right winners", rmin));
+  PETRA_TRY(take(arena, right_len, "right winner lanes", rk));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "edge pairs", pairs));
   PETRA_TRY(take(arena, median3x3_scratch(w), "median rows", med));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "shadow row", skip));
