@@ -57,6 +57,7 @@ struct Layout {
     b += 5 * z(nrp + 4) + 4 * z(wc) + 6 * z(nrp);   // census, gray, overrides
     b += 2 * 2 * z(w) + 2 * z(w);                   // bounds, p2
     b += 2 * 2 * kRightChains * z(w + dp);          // right winners
+    b += 3 * 2 * z(w);                              // left winners
     b += sizeof(match::EdgePair) * z(w);            // pairs
     b += 2 * median3x3_scratch(w) + z(w);           // median rows, shadow row
     b += 24 * kAlignSlack;
@@ -155,7 +156,7 @@ const std::uint16_t* as_unsigned(const T* v) {
 // Best lane and its value (the second best is computed only for pixels that
 // pass the cheaper checks: it is another pass over the lanes).
 template <int kLanes, class T>
-PETRA_VECTOR_CLONES [[gnu::noinline]] Winner best_lane(const T* v_in, int n_arg) {
+[[gnu::always_inline]] inline Winner best_lane_inline(const T* v_in, int n_arg) {
   const int n = kLanes > 0 ? kLanes : n_arg;
   const std::uint16_t* __restrict v = as_unsigned(v_in);
   std::uint16_t m = 0xFFFF;
@@ -170,6 +171,11 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] Winner best_lane(const T* v_in, int n_arg)
     first = c < first ? c : first;
   }
   return Winner{first, m, 0};
+}
+
+template <int kLanes, class T>
+PETRA_VECTOR_CLONES [[gnu::noinline]] Winner best_lane(const T* v, int n) {
+  return best_lane_inline<kLanes>(v, n);
 }
 
 // Fills w.second: the best value more than one lane away from w.k.
@@ -204,8 +210,8 @@ constexpr NearMask kNearMask{};
 
 // The best value more than one lane away from lane k1.
 template <int kLanes>
-PETRA_VECTOR_CLONES [[gnu::noinline]] int second_best_away(const std::int16_t* v_in, int n_arg,
-                                                           int k1) {
+[[gnu::always_inline]] inline int second_best_away_inline(const std::int16_t* v_in, int n_arg,
+                                                          int k1) {
   const int n = kLanes > 0 ? kLanes : n_arg;
   const std::uint16_t* __restrict v = as_unsigned(v_in);
   const std::uint16_t* __restrict mask = kNearMask.m + match::kMaxLanes - k1;
@@ -215,6 +221,25 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] int second_best_away(const std::int16_t* v
     m = c < m ? c : m;
   }
   return m;
+}
+
+// Winner lane, its value and the best value more than one lane away, for
+// every column of a row of path costs, in one branch-free loop: the
+// reductions of successive columns are independent and overlap, where
+// interleaved with the per-pixel checks each one's latency was exposed.
+template <int kLanes>
+PETRA_VECTOR_CLONES [[gnu::noinline]] void row_winners(const std::int16_t* __restrict S, int w,
+                                                       int row_stride, int lanes_arg,
+                                                       std::int16_t* __restrict k1,
+                                                       std::int16_t* __restrict best,
+                                                       std::int16_t* __restrict second) {
+  for (int i = 0; i < w; ++i) {
+    const std::int16_t* s = S + static_cast<std::size_t>(i) * row_stride;
+    const Winner win = best_lane_inline<kLanes>(s, lanes_arg);
+    k1[i] = static_cast<std::int16_t>(win.k);
+    best[i] = static_cast<std::int16_t>(win.best);
+    second[i] = static_cast<std::int16_t>(second_best_away_inline<kLanes>(s, lanes_arg, win.k));
+  }
 }
 
 template <int kLanes, class T>
@@ -348,7 +373,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   // Row buffers.
   std::span<std::uint8_t> ring, census_rows, skip, cli, clo, gl, cri, cro, gr, ov, t1, t2, neutral;
   std::span<std::uint16_t> colsum, hs, agg, p2;
-  std::span<std::int16_t> S, dp_rows, lo, hi, rmin, rk, med;
+  std::span<std::int16_t> S, dp_rows, lo, hi, rmin, rk, med, wk, wbest, wsecond;
   std::span<match::EdgePair> pairs;
   const std::size_t cells = static_cast<std::size_t>(wc) * Dp;
   PETRA_TRY(take(arena, kWindowRows * cells, "raw cost ring", ring));
@@ -376,6 +401,9 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   PETRA_TRY(take(arena, right_len, "right winners", rmin));
   PETRA_TRY(take(arena, right_len, "right winner lanes", rk));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "edge pairs", pairs));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "winner lanes", wk));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "winner costs", wbest));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "second best costs", wsecond));
   PETRA_TRY(take(arena, median3x3_scratch(w), "median rows", med));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "shadow row", skip));
 
@@ -518,17 +546,19 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
                           rk.data());
 
     // Steps 4-5: select, reject, refine.
+    row_winners<kLanes>(S.data() + match::kGuardLanes, w, sp, Dp, wk.data(), wbest.data(),
+                        wsecond.data());
     std::int16_t* o = out.q4.row(t);
     std::uint8_t* conf = confidence.empty() ? nullptr : confidence.row(t);
     for (int i = 0; i < w; ++i) {
       const int x = roi.x + i;
       o[i] = kInvalidDisparity;
       if (conf) conf[i] = 0;
-      if (shadow_at(in.left_shadow, x, y)) continue;
+      if (skip[i]) continue;
       const std::int16_t* s = S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
       const int klo = lo[i], khi = hi[i];
       // Lanes outside [klo, khi] carry kForbiddenCost and never win.
-      Winner win = best_lane<kLanes>(s, Dp);
+      const Winner win{wk[i], wbest[i], wsecond[i]};
       const int k1 = win.k;
       const int d = dmin + k1;
       if (x - d < 0 || x - d >= W) {
@@ -539,7 +569,6 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
         ++st.rejected_lr;
         continue;
       }
-      win.second = second_best_away<kLanes>(s, Dp, k1);
       if (!unique_enough(win, p.uniqueness_pct)) {
         ++st.rejected_uniqueness;
         continue;
