@@ -55,21 +55,34 @@ inline std::int16_t min16(std::int16_t a, std::int16_t b) {
 
 }  // namespace
 
+// One pass over the row: both census bytes of a pixel are built in
+// registers (16 compares), instead of 16 read-modify-write passes over the
+// two planes.
 PETRA_VECTOR_CLONES void census_row(ConstGray8View image, int y, int x0, int n,
                                     std::uint8_t* __restrict inner,
-                std::uint8_t* __restrict outer, std::uint8_t* rows) {
+                                    std::uint8_t* __restrict outer, std::uint8_t* rows) {
   const int pw = n + 2 * kCensusRadius;
   for (int r = 0; r < 5; ++r)
     padded_row(image, y - kCensusRadius + r, x0 - kCensusRadius, pw, rows + r * pw);
-  const std::uint8_t* __restrict centre = rows + 2 * pw + kCensusRadius;
-  for (int i = 0; i < n; ++i) inner[i] = outer[i] = 0;
-  for (int b = 0; b < 16; ++b) {
-    const std::uint8_t* __restrict nb =
-        rows + (2 + kCensusOffsets[b][1]) * pw + kCensusRadius + kCensusOffsets[b][0];
-    std::uint8_t* __restrict plane = b < 8 ? inner : outer;
-    const std::uint8_t bit = static_cast<std::uint8_t>(1u << (b & 7));
-    for (int i = 0; i < n; ++i)
-      plane[i] = static_cast<std::uint8_t>(plane[i] | (nb[i] < centre[i] ? bit : 0));
+  const std::uint8_t* __restrict r0 = rows;
+  const std::uint8_t* __restrict r1 = rows + pw;
+  const std::uint8_t* __restrict r2 = rows + 2 * pw;
+  const std::uint8_t* __restrict r3 = rows + 3 * pw;
+  const std::uint8_t* __restrict r4 = rows + 4 * pw;
+  // Bit b is set when neighbour kCensusOffsets[b] is darker than the centre.
+  auto bit = [](std::uint8_t v, std::uint8_t c, int b) {
+    return static_cast<std::uint8_t>(v < c ? (1u << b) : 0u);
+  };
+  for (int i = 0; i < n; ++i) {
+    const std::uint8_t c = r2[i + 2];
+    inner[i] = static_cast<std::uint8_t>(bit(r1[i + 1], c, 0) | bit(r1[i + 2], c, 1) |
+                                         bit(r1[i + 3], c, 2) | bit(r2[i + 1], c, 3) |
+                                         bit(r2[i + 3], c, 4) | bit(r3[i + 1], c, 5) |
+                                         bit(r3[i + 2], c, 6) | bit(r3[i + 3], c, 7));
+    outer[i] = static_cast<std::uint8_t>(bit(r0[i], c, 0) | bit(r0[i + 2], c, 1) |
+                                         bit(r0[i + 4], c, 2) | bit(r2[i], c, 3) |
+                                         bit(r2[i + 4], c, 4) | bit(r4[i], c, 5) |
+                                         bit(r4[i + 2], c, 6) | bit(r4[i + 4], c, 7));
   }
 }
 
@@ -168,16 +181,14 @@ PETRA_VECTOR_CLONES void box_and_shift_row(const std::uint16_t* colsum, int n, i
                        std::uint16_t* agg) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   const int nh = n + 2 * kShiftRadiusX;
-  // Box sums by a running sum along x, vectorised over k.
-  for (int k = 0; k < stride; ++k)
-    hs[k] = static_cast<std::uint16_t>(colsum[k] + colsum[stride + k] + colsum[2 * stride + k] +
-                                       colsum[3 * stride + k] + colsum[4 * stride + k]);
-  for (int j = 1; j < nh; ++j) {
-    const std::uint16_t* __restrict prev = hs + static_cast<std::ptrdiff_t>(j - 1) * stride;
-    const std::uint16_t* __restrict add = colsum + static_cast<std::ptrdiff_t>(j + 4) * stride;
-    const std::uint16_t* __restrict sub = colsum + static_cast<std::ptrdiff_t>(j - 1) * stride;
+  // Box sums of five columns, each computed directly: a running sum along x
+  // would chain every column to the previous one's store.
+  for (int j = 0; j < nh; ++j) {
+    const std::uint16_t* __restrict c0 = colsum + static_cast<std::ptrdiff_t>(j) * stride;
     std::uint16_t* __restrict cur = hs + static_cast<std::ptrdiff_t>(j) * stride;
-    for (int k = 0; k < stride; ++k) cur[k] = static_cast<std::uint16_t>(prev[k] + add[k] - sub[k]);
+    for (int k = 0; k < stride; ++k)
+      cur[k] = static_cast<std::uint16_t>(c0[k] + c0[stride + k] + c0[2 * stride + k] +
+                                          c0[3 * stride + k] + c0[4 * stride + k]);
   }
   // Minimum over five box positions: min(min(h0,h1), min(h2,h3), h4). The
   // sums stay below 2^15 (kAggregatedMax, padding 45 kRawPad), so they are
