@@ -78,6 +78,17 @@ bool shadow_at(const ShadowMask* m, int x, int y) {
   return m != nullptr && m->is_shadow(x, y);
 }
 
+// out[i] = `yes` where column x0 + i of row y is shadow, else `no`: one
+// pass over the mask row instead of a bounds test per pixel.
+void shadow_row(const ShadowMask* m, int y, int x0, int n, std::uint8_t yes, std::uint8_t no,
+                std::uint8_t* out) {
+  std::fill(out, out + n, no);
+  if (m == nullptr || y < m->area.y || y >= m->area.y + m->area.h) return;
+  const int a = std::max(x0, m->area.x), b = std::min(x0 + n, m->area.x + m->area.w);
+  const std::uint8_t* row = m->mask.row(y - m->area.y) - m->area.x;
+  for (int x = a; x < b; ++x) out[x - x0] = row[x] != 0 ? yes : no;
+}
+
 Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const MatchBudget& budget,
                 const DisparityMap& out, ImageView<std::uint8_t> confidence) {
   if (in.left.empty() || in.right.empty())
@@ -342,8 +353,10 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   const std::size_t used_at_entry = arena.used();
   MatchDpStats st;
   st.roi_pixels = roi.area();
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) st.shadow_left += shadow_at(in.left_shadow, roi.x + x, roi.y + y);
+  if (in.left_shadow != nullptr)
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        st.shadow_left += shadow_at(in.left_shadow, roi.x + x, roi.y + y);
   if (st.shadow_left == st.roi_pixels)
     return Error::make(Errc::degenerate, "match_dp: all %ld pixels of the ROI are shadow",
                        st.roi_pixels);
@@ -420,17 +433,18 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     match::gray_row(in.right, y, xr_hi - nrp + 1, nrp, t1.data());
     reverse_copy(t1.data(), nrp, gr.data());
     const int yc = std::clamp(y, 0, H - 1);
-    for (int m = 0; m < nrp; ++m) {
-      const int x = xr_hi - m;
-      ov[m] = static_cast<std::uint8_t>((m >= nr || x < 0 || x >= W)        ? kRawMax
-                                        : shadow_at(in.right_shadow, x, yc) ? kRawNeutral
-                                                                            : 0);
-    }
+    // Right samples: kRawMax outside the image or the range, kRawNeutral in
+    // shadow (reversed index m is column xr_hi - m).
+    shadow_row(in.right_shadow, yc, xr_hi - nrp + 1, nrp, kRawNeutral, 0, t1.data());
+    reverse_copy(t1.data(), nrp, ov.data());
+    const int m_lo = std::max(0, xr_hi - W + 1), m_hi = std::min(nr - 1, xr_hi);  // inside
+    std::fill(ov.data(), ov.data() + std::clamp(m_lo, 0, nrp), std::uint8_t{kRawMax});
+    std::fill(ov.data() + std::clamp(m_hi + 1, 0, nrp), ov.data() + nrp, std::uint8_t{kRawMax});
     // Left pixels outside the image or in shadow carry no information.
-    for (int i = 0; i < wc; ++i) {
-      const int x = xl_first + i;
-      neutral[i] = (x < 0 || x >= W || shadow_at(in.left_shadow, x, yc)) ? 1 : 0;
-    }
+    shadow_row(in.left_shadow, yc, xl_first, wc, 1, 0, neutral.data());
+    std::fill(neutral.data(), neutral.data() + std::clamp(-xl_first, 0, wc), std::uint8_t{1});
+    std::fill(neutral.data() + std::clamp(W - xl_first, 0, wc), neutral.data() + wc,
+              std::uint8_t{1});
     match::RawRowInputs ri{cli.data(), clo.data(), gl.data(),     wc, cri.data(), cro.data(),
                            gr.data(),  ov.data(),  neutral.data()};
     match::raw_cost_row<kLanes>(ri, D, raw, colsum.data(), Dp);
@@ -541,7 +555,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     match::scanline_dp<kLanes>(si, S.data(), dp_rows.data());
 
     // Right view winners along the same path costs (reversed index m).
-    for (int i = 0; i < w; ++i) skip[i] = shadow_at(in.left_shadow, roi.x + i, y);
+    shadow_row(in.left_shadow, y, roi.x, w, 1, 0, skip.data());
     right_winners<kLanes>(S.data() + match::kGuardLanes, w, sp, Dp, skip.data(), rmin.data(),
                           rk.data());
 
