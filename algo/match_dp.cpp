@@ -564,53 +564,51 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
                         wsecond.data());
     std::int16_t* o = out.q4.row(t);
     std::uint8_t* conf = confidence.empty() ? nullptr : confidence.row(t);
+    // Every check is evaluated for every pixel and combined without
+    // branches: which check rejects a pixel is data, and a branch on it
+    // mispredicts. The counters keep the order of the checks (a pixel counts
+    // for the first one it fails).
+    long c_range = 0, c_lr = 0, c_uniq = 0, c_cost = 0, c_shadow = 0;
     for (int i = 0; i < w; ++i) {
       const int x = roi.x + i;
-      o[i] = kInvalidDisparity;
-      if (conf) conf[i] = 0;
-      if (skip[i]) continue;
       const std::int16_t* s = S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
-      const int klo = lo[i], khi = hi[i];
-      // Lanes outside [klo, khi] carry kForbiddenCost and never win.
+      // Lanes outside [lo, hi] carry kForbiddenCost and never win.
       const Winner win{wk[i], wbest[i], wsecond[i]};
       const int k1 = win.k;
       const int d = dmin + k1;
-      if (x - d < 0 || x - d >= W) {
-        ++st.rejected_range;
-        continue;
-      }
-      if (std::abs(rk[static_cast<std::size_t>(w - 1 - i + k1)] - k1) > p.lr_tolerance_px) {
-        ++st.rejected_lr;
-        continue;
-      }
-      if (!unique_enough(win, p.uniqueness_pct)) {
-        ++st.rejected_uniqueness;
-        continue;
-      }
-      if (agg[static_cast<std::size_t>(i) * Dp + k1] > cost_ceiling) {
-        ++st.rejected_cost;
-        continue;
-      }
-      if (shadow_at(in.right_shadow, x - d, y)) {
-        ++st.rejected_shadow_right;
-        continue;
-      }
-      int q = d * kDisparityScale;
-      if (k1 > klo && k1 < khi) {
-        const int a = s[k1 - 1], b = s[k1], c = s[k1 + 1];
-        const int den = a + c - 2 * b;
-        if (den > 0) {
-          const int num = 8 * (a - c);  // offset (a - c) / (2 den) px, in 1/16 px
-          const int off = (num >= 0 ? num + den / 2 : num - den / 2) / den;
-          q += std::clamp(off, -8, 8);
-        }
-      }
-      o[i] = static_cast<std::int16_t>(q);
+      const bool left = skip[i] == 0;
+      const bool in_range = x - d >= 0 && x - d < W;
+      const bool lr = std::abs(rk[static_cast<std::size_t>(w - 1 - i + k1)] - k1) <=
+                      p.lr_tolerance_px;
+      const bool unique = unique_enough(win, p.uniqueness_pct);
+      const bool cheap = agg[static_cast<std::size_t>(i) * Dp + k1] <= cost_ceiling;
+      const bool lit = !in_range || !shadow_at(in.right_shadow, x - d, y);
+      c_range += left & !in_range;
+      c_lr += left & in_range & !lr;
+      c_uniq += left & in_range & lr & !unique;
+      c_cost += left & in_range & lr & unique & !cheap;
+      c_shadow += left & in_range & lr & unique & cheap & !lit;
+      const bool valid = left & in_range & lr & unique & cheap & lit;
+      // Sub-pixel: parabola through S at k1 - 1, k1, k1 + 1 when both
+      // neighbours are allowed lanes (the guard lanes make the reads safe).
+      const int sa = s[k1 - 1], sb = s[k1], sc = s[k1 + 1];
+      const int den = sa + sc - 2 * sb;
+      const bool fit = k1 > lo[i] && k1 < hi[i] && den > 0;
+      const int den_s = fit ? den : 1;
+      const int num = 8 * (sa - sc);  // offset (a - c) / (2 den) px, in 1/16 px
+      const int off = (num >= 0 ? num + den_s / 2 : num - den_s / 2) / den_s;
+      const int q = d * kDisparityScale + (fit ? std::clamp(off, -8, 8) : 0);
+      o[i] = valid ? static_cast<std::int16_t>(q) : kInvalidDisparity;
       if (conf) {
         const int margin = 255 * (win.second - win.best) / std::max(win.second, 1);
-        conf[i] = static_cast<std::uint8_t>(std::clamp(margin, 1, 255));
+        conf[i] = valid ? static_cast<std::uint8_t>(std::clamp(margin, 1, 255)) : std::uint8_t{0};
       }
     }
+    st.rejected_range += c_range;
+    st.rejected_lr += c_lr;
+    st.rejected_uniqueness += c_uniq;
+    st.rejected_cost += c_cost;
+    st.rejected_shadow_right += c_shadow;
   }
 
   if (p.median) PETRA_TRY(median3x3_valid(out.q4, med));
