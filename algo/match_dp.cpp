@@ -499,19 +499,22 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
         const match::EdgePair e = pairs[static_cast<std::size_t>(a)];
         const int i = e.x_left - roi.x;
         const int kp = e.x_left - e.x_right - dmin;
-        const Winner wl = winner<0>(agg.data() + static_cast<std::size_t>(i) * Dp, D);
+        // All Dp lanes: the padding lanes' cost exceeds every real one, so
+        // they win neither the best nor the second best of a real lane.
+        const Winner wl = winner<kLanes>(agg.data() + static_cast<std::size_t>(i) * Dp, Dp);
         if (std::abs(wl.k - kp) > tol || !unique_enough(wl, p.edge_uniqueness_pct)) continue;
-        int kr = -1, best = 0;
-        for (int k = 0; k < D; ++k) {
-          const int ii = e.x_right - roi.x + dmin + k;
-          if (ii < 0 || ii >= w) continue;
-          const int v = agg[static_cast<std::size_t>(ii) * Dp + k];
-          if (kr < 0 || v < best) {
-            best = v;
-            kr = k;
-          }
+        // Right view: lanes k whose left column base + k lies in the ROI.
+        const int base = e.x_right - roi.x + dmin;
+        const int k_first = std::max(0, -base), k_last = std::min(D - 1, w - 1 - base);
+        if (k_first > k_last) continue;
+        int kr = k_first;
+        int best = agg[static_cast<std::size_t>(base + k_first) * Dp + k_first];
+        for (int k = k_first + 1; k <= k_last; ++k) {
+          const int v = agg[static_cast<std::size_t>(base + k) * Dp + k];
+          kr = v < best ? k : kr;
+          best = v < best ? v : best;
         }
-        if (kr < 0 || std::abs(kr - kp) > tol) continue;
+        if (std::abs(kr - kp) > tol) continue;
         pairs[static_cast<std::size_t>(n_anchor++)] = e;
       }
       st.anchors += n_anchor;
