@@ -24,29 +24,39 @@ struct Window {
 };
 
 void load_window(ConstGray8View img, int x, int y, Window& w) {
-  long s = 0, ss = 0;
   int n = 0;
-  for (int dy = -kZnccRadius; dy <= kZnccRadius; ++dy) {
-    const std::uint8_t* row = img.row(std::clamp(y + dy, 0, img.height() - 1));
-    for (int dx = -kZnccRadius; dx <= kZnccRadius; ++dx) {
-      const std::uint8_t p = row[std::clamp(x + dx, 0, img.width() - 1)];
-      w.px[n++] = p;
-      s += p;
-      ss += p * p;
+  if (x >= kZnccRadius && x < img.width() - kZnccRadius) {  // no column clamping
+    for (int dy = -kZnccRadius; dy <= kZnccRadius; ++dy) {
+      const std::uint8_t* row = img.row(std::clamp(y + dy, 0, img.height() - 1)) + x;
+      for (int dx = -kZnccRadius; dx <= kZnccRadius; ++dx) w.px[n++] = row[dx];
+    }
+  } else {
+    for (int dy = -kZnccRadius; dy <= kZnccRadius; ++dy) {
+      const std::uint8_t* row = img.row(std::clamp(y + dy, 0, img.height() - 1));
+      for (int dx = -kZnccRadius; dx <= kZnccRadius; ++dx)
+        w.px[n++] = row[std::clamp(x + dx, 0, img.width() - 1)];
     }
   }
+  int s = 0, ss = 0;  // at most 25 * 255^2
+  for (int i = 0; i < kN; ++i) {
+    s += w.px[i];
+    ss += w.px[i] * w.px[i];
+  }
   w.sum = s;
-  w.var = kN * ss - s * s;
+  w.var = kN * static_cast<long>(ss) - static_cast<long>(s) * s;
   w.sd = std::sqrt(static_cast<double>(w.var));
 }
 
 int zncc(const Window& a, const Window& b) {
   if (a.var < kMinVariance || b.var < kMinVariance) return 0;
-  long cross = 0;
+  int cross = 0;  // at most 25 * 255^2: an int, which vectorises as 16-bit products
   for (int i = 0; i < kN; ++i) cross += a.px[i] * b.px[i];
-  const long num = kN * cross - a.sum * b.sum;
+  const long num = kN * static_cast<long>(cross) - a.sum * b.sum;
   // var products stay below 2^50: the product of the roots is exact enough.
-  const long den = std::lround(a.sd * b.sd);
+  // Rounded inline: for 1 <= v < 2^52, v + 0.5 is exact and truncation
+  // gives lround(v) (a library call per pair otherwise).
+  const double v = a.sd * b.sd;
+  const long den = static_cast<long>(v + 0.5);
   if (den <= 0) return 0;
   return static_cast<int>(num * kZnccOne / den);
 }
@@ -106,12 +116,25 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
 
   // F(i, j): best score pairing the first i left and first j right edges in
   // order. O(m n) per row; only pairs within the disparity range are scored.
+  // Right edges are sorted by x, so those within the disparity range of a
+  // left edge are one run [j0, j1) of the list, moving right with i. Outside
+  // it a cell only carries the best of its two predecessors.
+  int j0 = 1, j1 = 1;  // 1-based, [j0, j1)
   for (int i = 1; i <= m; ++i) {
     const int xl = (*lx)[i - 1];
     const std::uint8_t gl = in.left_edges[xl - in.left_x0] & kEdgeGxNegative;
+    while (j0 <= n && xl - (*rx)[j0 - 1] > in.disp_max) ++j0;
+    j1 = std::max(j1, j0);
+    while (j1 <= n && xl - (*rx)[j1 - 1] >= in.disp_min) ++j1;
     cur[0] = 0;
     std::uint8_t* brow = back->data() + static_cast<std::size_t>(i) * cols;
-    for (int j = 1; j <= n; ++j) {
+    auto carry = [&](int j) {
+      const bool left = cur[j - 1] > prev[j];
+      cur[j] = left ? cur[j - 1] : prev[j];
+      brow[j] = left ? kFromLeft : kFromUp;
+    };
+    for (int j = 1; j < j0; ++j) carry(j);
+    for (int j = j0; j < j1; ++j) {
       std::int32_t best = prev[j];
       std::uint8_t from = kFromUp;
       if (cur[j - 1] > best) {
@@ -119,9 +142,7 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
         from = kFromLeft;
       }
       const int xr = (*rx)[j - 1];
-      const int d = xl - xr;
-      if (d >= in.disp_min && d <= in.disp_max &&
-          (in.right_edges[xr - in.right_x0] & kEdgeGxNegative) == gl) {
+      if ((in.right_edges[xr - in.right_x0] & kEdgeGxNegative) == gl) {
         const int z = zncc((*lw)[i - 1], (*rw)[j - 1]);
         if (z >= in.zncc_floor_q10 && prev[j - 1] + (z - in.zncc_floor_q10) + 1 > best) {
           best = prev[j - 1] + (z - in.zncc_floor_q10) + 1;  // +1: a pair at the floor still counts
@@ -131,6 +152,7 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
       cur[j] = best;
       brow[j] = from;
     }
+    for (int j = j1; j <= n; ++j) carry(j);
     std::swap(prev, cur);
   }
 
