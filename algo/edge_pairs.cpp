@@ -91,10 +91,17 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
   auto rx = arena.allocate<std::int16_t>(static_cast<std::size_t>(in.right_n), "edge list right");
   if (!rx) return rx.error();
   int m = 0, n = 0;
-  for (int i = 0; i < in.left_n; ++i)
-    if (usable(in.left_edges[i])) (*lx)[m++] = static_cast<std::int16_t>(in.left_x0 + i);
-  for (int j = 0; j < in.right_n; ++j)
-    if (usable(in.right_edges[j])) (*rx)[n++] = static_cast<std::int16_t>(in.right_x0 + j);
+  // Branch-free compaction: whether a pixel is an edge is data, and a branch
+  // on it mispredicts. The lists hold left_n / right_n entries, so the
+  // unconditional store stays inside them.
+  for (int i = 0; i < in.left_n; ++i) {
+    (*lx)[static_cast<std::size_t>(m)] = static_cast<std::int16_t>(in.left_x0 + i);
+    m += usable(in.left_edges[i]);
+  }
+  for (int j = 0; j < in.right_n; ++j) {
+    (*rx)[static_cast<std::size_t>(n)] = static_cast<std::int16_t>(in.right_x0 + j);
+    n += usable(in.right_edges[j]);
+  }
   if (m == 0 || n == 0) return 0;
 
   auto lw = arena.allocate<Window>(static_cast<std::size_t>(m), "edge windows left");
@@ -128,12 +135,12 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
     while (j1 <= n && xl - (*rx)[j1 - 1] >= in.disp_min) ++j1;
     cur[0] = 0;
     std::uint8_t* brow = back->data() + static_cast<std::size_t>(i) * cols;
-    auto carry = [&](int j) {
-      const bool left = cur[j - 1] > prev[j];
-      cur[j] = left ? cur[j - 1] : prev[j];
-      brow[j] = left ? kFromLeft : kFromUp;
-    };
-    for (int j = 1; j < j0; ++j) carry(j);
+    // Before the run: F(i, j) = F(i - 1, j), since F(i, j - 1) = F(i - 1, j - 1)
+    // <= F(i - 1, j) (F never decreases along j), and ties go up.
+    for (int j = 1; j < j0; ++j) {
+      cur[j] = prev[j];
+      brow[j] = kFromUp;
+    }
     for (int j = j0; j < j1; ++j) {
       std::int32_t best = prev[j];
       std::uint8_t from = kFromUp;
@@ -152,7 +159,14 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
       cur[j] = best;
       brow[j] = from;
     }
-    for (int j = j1; j <= n; ++j) carry(j);
+    // After the run: the better of the two predecessors, as a running value.
+    std::int32_t run = cur[j1 - 1];
+    for (int j = j1; j <= n; ++j) {
+      const bool left = run > prev[j];
+      run = left ? run : prev[j];
+      cur[j] = run;
+      brow[j] = left ? kFromLeft : kFromUp;
+    }
     std::swap(prev, cur);
   }
 
