@@ -62,8 +62,8 @@ int zncc(const Window& a, const Window& b) {
 }
 
 // A usable edge has a position along the row: not a horizontal edge.
-bool usable(std::uint8_t code) {
-  return is_edge(code) && edge_sector(code) != kSectorVertical;
+int usable(std::uint8_t code) {  // & not &&: no branch in the list compaction
+  return static_cast<int>(is_edge(code)) & static_cast<int>(edge_sector(code) != kSectorVertical);
 }
 
 enum : std::uint8_t { kFromUp = 0, kFromLeft = 1, kMatch = 2 };
