@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "algo/vector_clones.hpp"
+
 namespace petra {
 
 namespace {
@@ -18,7 +20,7 @@ constexpr int kTanDen = 32;
 
 // The row kernels are out of line: inlined into canny() they are not
 // vectorised by GCC 12.
-[[gnu::noinline]] void vertical_binomial(const std::uint16_t* __restrict a,
+PETRA_VECTOR_CLONES [[gnu::noinline]] void vertical_binomial(const std::uint16_t* __restrict a,
                                          const std::uint16_t* __restrict b,
                                          const std::uint16_t* __restrict c,
                                          const std::uint16_t* __restrict d,
@@ -29,7 +31,7 @@ constexpr int kTanDen = 32;
 }
 
 // Sobel gradients and L1 magnitude of one row from three smoothed rows.
-[[gnu::noinline]] void sobel_row(const std::uint8_t* __restrict up,
+PETRA_VECTOR_CLONES [[gnu::noinline]] void sobel_row(const std::uint8_t* __restrict up,
                                  const std::uint8_t* __restrict mid,
                                  const std::uint8_t* __restrict dn, int n,
                                  std::int16_t* __restrict ox, std::int16_t* __restrict oy,
@@ -47,7 +49,7 @@ constexpr int kTanDen = 32;
 // above, at and below, offset so that index i is the pixel's column
 // (i - 1 and i + 1 are valid). Writes 0, or the sector and sign with kWeak
 // or kEdgeBit. Branch-free so the compiler runs it in vector lanes.
-[[gnu::noinline]] void nms_row(const std::int16_t* __restrict gx, const std::int16_t* __restrict gy,
+PETRA_VECTOR_CLONES [[gnu::noinline]] void nms_row(const std::int16_t* __restrict gx, const std::int16_t* __restrict gy,
                                const std::uint16_t* __restrict up,
                                const std::uint16_t* __restrict mid,
                                const std::uint16_t* __restrict dn, int w, int low, int high,
