@@ -30,6 +30,15 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void vertical_binomial(const std::uint16_t
     o[i] = static_cast<std::uint8_t>((a[i] + 4 * b[i] + 6 * c[i] + 4 * d[i] + e[i] + 128) >> 8);
 }
 
+// Horizontal [1 4 6 4 1] of one padded row: out[i] from s[i .. i + 4].
+PETRA_VECTOR_CLONES [[gnu::noinline]] void horizontal_binomial(const std::uint8_t* __restrict s,
+                                                               int n,
+                                                               std::uint16_t* __restrict out) {
+  for (int i = 0; i < n; ++i)
+    out[i] =
+        static_cast<std::uint16_t>(s[i] + 4 * s[i + 1] + 6 * s[i + 2] + 4 * s[i + 3] + s[i + 4]);
+}
+
 // Sobel gradients and L1 magnitude of one row from three smoothed rows.
 PETRA_VECTOR_CLONES [[gnu::noinline]] void sobel_row(const std::uint8_t* __restrict up,
                                  const std::uint8_t* __restrict mid,
@@ -150,9 +159,7 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
   auto hfilter = [&](int y_img, std::uint16_t* out) {
     std::uint8_t* s = src_row->data();
     padded_row(image, y_img, area.x - 4, w + 8, s);
-    for (int i = 0; i < sw; ++i)  // out[i] is column area.x - 2 + i
-      out[i] =
-          static_cast<std::uint16_t>(s[i] + 4 * s[i + 1] + 6 * s[i + 2] + 4 * s[i + 3] + s[i + 4]);
+    horizontal_binomial(s, sw, out);  // out[i] is column area.x - 2 + i
   };
   std::uint16_t* ring = hring->data();
   const int y_first = area.y - 4;  // first source row needed
@@ -182,12 +189,14 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
     std::uint8_t* out = edges.row(j);
     nms_row(gx.row(j + 1) + 1, gy.row(j + 1) + 1, mg.row(j) + 1, mg.row(j + 1) + 1,
             mg.row(j + 2) + 1, w, params.low, params.high, out);
-    for (int i = 0; i < w; ++i)
-      if (out[i] & kEdgeBit) {
-        (*stack)[top++] = static_cast<std::uint32_t>(j * w + i);
-        ++stats.strong_pixels;
-      }
+    // Branch-free push (the stack holds w h entries, top <= j w + i).
+    for (int i = 0; i < w; ++i) {
+      (*stack)[top] = static_cast<std::uint32_t>(j * w + i);
+      top += (out[i] & kEdgeBit) != 0;
+    }
   }
+
+  stats.strong_pixels = static_cast<long>(top);
 
   // 4. Hysteresis: grow strong edges into 8-connected weak pixels. A pixel is
   // pushed only when it becomes an edge, so the stack never exceeds w*h.
@@ -212,7 +221,7 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
   for (int j = 0; j < h; ++j) {
     std::uint8_t* row = edges.row(j);
     for (int i = 0; i < w; ++i) {
-      if (row[i] & kWeak) row[i] = 0;
+      row[i] = (row[i] & kWeak) != 0 ? std::uint8_t{0} : row[i];
       stats.edge_pixels += is_edge(row[i]);
     }
   }
