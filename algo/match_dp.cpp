@@ -78,6 +78,12 @@ bool shadow_at(const ShadowMask* m, int x, int y) {
   return m != nullptr && m->is_shadow(x, y);
 }
 
+// std::clamp by value: the reference version made GCC keep the bounds in
+// memory in the per-pixel loop.
+constexpr int clamp_value(int v, int lo, int hi) {
+  return v < lo ? lo : (v > hi ? hi : v);
+}
+
 // out[i] = `yes` where column x0 + i of row y is shadow, else `no`: one
 // pass over the mask row instead of a bounds test per pixel.
 void shadow_row(const ShadowMask* m, int y, int x0, int n, std::uint8_t yes, std::uint8_t no,
@@ -600,11 +606,11 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
       const int den_s = fit ? den : 1;
       const int num = 8 * (sa - sc);  // offset (a - c) / (2 den) px, in 1/16 px
       const int off = (num >= 0 ? num + den_s / 2 : num - den_s / 2) / den_s;
-      const int q = d * kDisparityScale + (fit ? std::clamp(off, -8, 8) : 0);
+      const int q = d * kDisparityScale + (fit ? clamp_value(off, -8, 8) : 0);
       o[i] = valid ? static_cast<std::int16_t>(q) : kInvalidDisparity;
       if (conf) {
         const int margin = 255 * (win.second - win.best) / std::max(win.second, 1);
-        conf[i] = valid ? static_cast<std::uint8_t>(std::clamp(margin, 1, 255)) : std::uint8_t{0};
+        conf[i] = valid ? static_cast<std::uint8_t>(clamp_value(margin, 1, 255)) : std::uint8_t{0};
       }
     }
     st.rejected_range += c_range;
