@@ -51,16 +51,16 @@ struct Layout {
     std::size_t b = 0;
     b += kWindowRows * cells;                       // raw ring
     b += 2 * cells;                                 // column sums
-    b += 2 * z(w + 4) * z(dp) + 2 * z(w) * z(dp);   // box sums, cost
-    b += 2 * z(w) * z(match::path_row_stride(dp));  // path costs S
-    b += 2 * z(w) * z(match::path_row_stride(dp));  // backward path costs
+    b += 2 * z(w + 4) * z(dp);                      // box sums
+    // Per row in flight (two): cost, path costs S, backward path costs,
+    // bounds, jump penalties.
+    b += 2 * (2 * z(w) * z(dp) + 2 * 2 * z(w) * z(match::path_row_stride(dp)) + 3 * 2 * z(w));
     b += 5 * z(nrp + 4) + 4 * z(wc) + 6 * z(nrp);   // census, gray, overrides
-    b += 2 * 2 * z(w) + 2 * z(w);                   // bounds, p2
     b += 2 * 2 * kRightChains * z(w + dp);          // right winners
     b += 3 * 2 * z(w);                              // left winners
     b += sizeof(match::EdgePair) * z(w);            // pairs
     b += 2 * median3x3_scratch(w) + z(w);           // median rows, shadow row
-    b += 24 * kAlignSlack;
+    b += 32 * kAlignSlack;  // one per allocation below, with room
     return b + match::edge_row_scratch_bytes(w, band);
   }
   std::size_t total() const { return edge_maps() + std::max(canny(), rows()); }
@@ -391,17 +391,34 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
 
   // Row buffers.
   std::span<std::uint8_t> ring, census_rows, skip, cli, clo, gl, cri, cro, gr, ov, t1, t2, neutral;
-  std::span<std::uint16_t> colsum, hs, agg, p2;
-  std::span<std::int16_t> S, dp_rows, lo, hi, rmin, rk, med, wk, wbest, wsecond;
+  std::span<std::uint16_t> colsum, hs;
+  std::span<std::int16_t> rmin, rk, med, wk, wbest, wsecond;
   std::span<match::EdgePair> pairs;
   const std::size_t cells = static_cast<std::size_t>(wc) * Dp;
   PETRA_TRY(take(arena, kWindowRows * cells, "raw cost ring", ring));
   PETRA_TRY(take(arena, cells, "column sums", colsum));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w + 4) * Dp, "box sums", hs));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w) * Dp, "aggregated cost", agg));
+
   const int sp = match::path_row_stride(Dp);
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w) * sp, "path costs", S));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w) * sp, "backward path costs", dp_rows));
+  // Rows go through in pairs: steps 1-3 for two rows, then both DPs at once
+  // (scanline_dp_pair: the DP is latency-bound, two rows fill each other's
+  // waits), then steps 4-5 for both. Each row in flight has its own cost,
+  // bounds, penalties and path costs.
+  struct RowBuffers {
+    std::span<std::uint16_t> agg, p2;
+    std::span<std::int16_t> lo, hi, S, back;
+  };
+  RowBuffers rows[2];
+  for (RowBuffers& r : rows) {
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w) * Dp, "aggregated cost", r.agg));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w) * sp, "path costs", r.S));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w) * sp, "backward path costs", r.back));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w), "lower bounds", r.lo));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w), "upper bounds", r.hi));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w), "jump penalties", r.p2));
+  }
+
+
   PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(nrp + 4), "census rows", census_rows));
   PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census inner", cli));
   PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census outer", clo));
@@ -413,9 +430,9 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right override", ov));
   PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right row 1", t1));
   PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right row 2", t2));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "lower bounds", lo));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "upper bounds", hi));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "jump penalties", p2));
+
+
+
   const std::size_t right_len = static_cast<std::size_t>(kRightChains) * (w + Dp);
   PETRA_TRY(take(arena, right_len, "right winners", rmin));
   PETRA_TRY(take(arena, right_len, "right winner lanes", rk));
@@ -469,18 +486,18 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   const long cost_ceiling = static_cast<long>(p.max_mean_cost) * kWindowPixels;
   const int zfloor = p.edge_zncc_floor_pct * match::kZnccOne / 100;
 
-  for (int t = 0; t < h; ++t) {
+  auto prepare = [&](int t, RowBuffers& rb) -> Status {
     const int y = roi.y + t;
     if (t > 0) {  // slide the window down one row
       std::uint8_t* slot = ring.data() + static_cast<std::size_t>((t - 1) % kWindowRows) * cells;
       raw_row(y + match::kBoxRadiusY, slot);  // replaces the row leaving the window
     }
-    match::box_and_shift_row<kLanes>(colsum.data(), w, Dp, hs.data(), agg.data());
+    match::box_and_shift_row<kLanes>(colsum.data(), w, Dp, hs.data(), rb.agg.data());
 
     // Steps 2-3: edge pairs -> anchors -> bounds (lanes k = d - dmin).
     for (int i = 0; i < w; ++i) {
-      lo[i] = 0;
-      hi[i] = static_cast<std::int16_t>(D - 1);
+      rb.lo[i] = 0;
+      rb.hi[i] = static_cast<std::int16_t>(D - 1);
     }
     if (p.edge_constraint) {
       match::EdgeRowInputs ei;
@@ -507,16 +524,16 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
         const int kp = e.x_left - e.x_right - dmin;
         // All Dp lanes: the padding lanes' cost exceeds every real one, so
         // they win neither the best nor the second best of a real lane.
-        const Winner wl = winner<kLanes>(agg.data() + static_cast<std::size_t>(i) * Dp, Dp);
+        const Winner wl = winner<kLanes>(rb.agg.data() + static_cast<std::size_t>(i) * Dp, Dp);
         if (std::abs(wl.k - kp) > tol || !unique_enough(wl, p.edge_uniqueness_pct)) continue;
         // Right view: lanes k whose left column base + k lies in the ROI.
         const int base = e.x_right - roi.x + dmin;
         const int k_first = std::max(0, -base), k_last = std::min(D - 1, w - 1 - base);
         if (k_first > k_last) continue;
         int kr = k_first;
-        int best = agg[static_cast<std::size_t>(base + k_first) * Dp + k_first];
+        int best = rb.agg[static_cast<std::size_t>(base + k_first) * Dp + k_first];
         for (int k = k_first + 1; k <= k_last; ++k) {
-          const int v = agg[static_cast<std::size_t>(base + k) * Dp + k];
+          const int v = rb.agg[static_cast<std::size_t>(base + k) * Dp + k];
           kr = v < best ? k : kr;
           best = v < best ? v : best;
         }
@@ -539,15 +556,15 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
           if (has_next) klo = std::max(klo, x - pb->x_right + 1 - tol - dmin);
           if (has_prev) khi = std::min(khi, x - pa->x_right - 1 + tol - dmin);
           if (klo <= khi) {
-            lo[i] = static_cast<std::int16_t>(klo);
-            hi[i] = static_cast<std::int16_t>(khi);
+            rb.lo[i] = static_cast<std::int16_t>(klo);
+            rb.hi[i] = static_cast<std::int16_t>(khi);
           }
         }
         if (has_next) {
           const int i = pb->x_left - roi.x;
           const int k = pb->x_left - pb->x_right - dmin;
-          lo[i] = static_cast<std::int16_t>(std::max(0, k - tol));
-          hi[i] = static_cast<std::int16_t>(std::min(D - 1, k + tol));
+          rb.lo[i] = static_cast<std::int16_t>(std::max(0, k - tol));
+          rb.hi[i] = static_cast<std::int16_t>(std::min(D - 1, k + tol));
         }
       }
     }
@@ -556,20 +573,22 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     const std::uint8_t* img_row = in.left.row(y) + roi.x;
     for (int i = 1; i < w; ++i) {
       const int g = std::abs(img_row[i] - img_row[i - 1]);
-      p2[i] = p2_of_step[g];
+      rb.p2[i] = p2_of_step[g];
     }
-    p2[0] = static_cast<std::uint16_t>(p.p2);
-    match::apply_bounds<kLanes>(agg.data(), w, Dp, lo.data(), hi.data(), D - 1);
-    match::ScanlineInputs si{agg.data(), w, Dp, p2.data(), p.p1};
-    match::scanline_dp<kLanes>(si, S.data(), dp_rows.data());
+    rb.p2[0] = static_cast<std::uint16_t>(p.p2);
+    match::apply_bounds<kLanes>(rb.agg.data(), w, Dp, rb.lo.data(), rb.hi.data(), D - 1);
 
+    return ok_status();
+  };
+  auto finish = [&](int t, RowBuffers& rb) {
+    const int y = roi.y + t;
     // Right view winners along the same path costs (reversed index m).
     shadow_row(in.left_shadow, y, roi.x, w, 1, 0, skip.data());
-    right_winners<kLanes>(S.data() + match::kGuardLanes, w, sp, Dp, skip.data(), rmin.data(),
+    right_winners<kLanes>(rb.S.data() + match::kGuardLanes, w, sp, Dp, skip.data(), rmin.data(),
                           rk.data());
 
     // Steps 4-5: select, reject, refine.
-    row_winners<kLanes>(S.data() + match::kGuardLanes, w, sp, Dp, wk.data(), wbest.data(),
+    row_winners<kLanes>(rb.S.data() + match::kGuardLanes, w, sp, Dp, wk.data(), wbest.data(),
                         wsecond.data());
     std::int16_t* o = out.q4.row(t);
     std::uint8_t* conf = confidence.empty() ? nullptr : confidence.row(t);
@@ -580,7 +599,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     long c_range = 0, c_lr = 0, c_uniq = 0, c_cost = 0, c_shadow = 0;
     for (int i = 0; i < w; ++i) {
       const int x = roi.x + i;
-      const std::int16_t* s = S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
+      const std::int16_t* s = rb.S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
       // Lanes outside [lo, hi] carry kForbiddenCost and never win.
       const Winner win{wk[i], wbest[i], wsecond[i]};
       const int k1 = win.k;
@@ -590,7 +609,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
       const bool lr = std::abs(rk[static_cast<std::size_t>(w - 1 - i + k1)] - k1) <=
                       p.lr_tolerance_px;
       const bool unique = unique_enough(win, p.uniqueness_pct);
-      const bool cheap = agg[static_cast<std::size_t>(i) * Dp + k1] <= cost_ceiling;
+      const bool cheap = rb.agg[static_cast<std::size_t>(i) * Dp + k1] <= cost_ceiling;
       const bool lit = !in_range || !shadow_at(in.right_shadow, x - d, y);
       c_range += left & !in_range;
       c_lr += left & in_range & !lr;
@@ -602,7 +621,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
       // neighbours are allowed lanes (the guard lanes make the reads safe).
       const int sa = s[k1 - 1], sb = s[k1], sc = s[k1 + 1];
       const int den = sa + sc - 2 * sb;
-      const bool fit = k1 > lo[i] && k1 < hi[i] && den > 0;
+      const bool fit = k1 > rb.lo[i] && k1 < rb.hi[i] && den > 0;
       const int den_s = fit ? den : 1;
       const int num = 8 * (sa - sc);  // offset (a - c) / (2 den) px, in 1/16 px
       const int off = (num >= 0 ? num + den_s / 2 : num - den_s / 2) / den_s;
@@ -618,6 +637,22 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     st.rejected_uniqueness += c_uniq;
     st.rejected_cost += c_cost;
     st.rejected_shadow_right += c_shadow;
+  };
+  for (int t = 0; t < h; t += 2) {
+    RowBuffers& ra = rows[0];
+    RowBuffers& rb = rows[1];
+    PETRA_TRY(prepare(t, ra));
+    const match::ScanlineInputs sa{ra.agg.data(), w, Dp, ra.p2.data(), p.p1};
+    if (t + 1 < h) {
+      PETRA_TRY(prepare(t + 1, rb));
+      const match::ScanlineInputs sb{rb.agg.data(), w, Dp, rb.p2.data(), p.p1};
+      match::scanline_dp_pair<kLanes>(sa, ra.S.data(), ra.back.data(), sb, rb.S.data(),
+                                      rb.back.data());
+    } else {
+      match::scanline_dp<kLanes>(sa, ra.S.data(), ra.back.data());
+    }
+    finish(t, ra);
+    if (t + 1 < h) finish(t + 1, rb);
   }
 
   if (p.median) PETRA_TRY(median3x3_valid(out.q4, med));

@@ -73,45 +73,80 @@ PETRA_VECTOR_CLONES void apply_bounds(std::uint16_t* cost, int n, int stride_arg
   }
 }
 
+namespace {
+
+// kRows independent scanlines (same n and stride), each with its forward
+// (S = L_fwd) and backward (L_bwd) pass: 2 kRows independent chains advanced
+// in one loop. A step waits for the previous row's minimum and for its
+// stores to reach the shifted loads of prev(k+-1); the other chains' steps
+// fill that latency.
+template <int kLanes, int kRows>
+[[gnu::always_inline]] inline void run_scanlines(const ScanlineInputs* in, std::int16_t* const* S,
+                                                 std::int16_t* const* backward) {
+  const int stride = kLanes > 0 ? kLanes : in[0].stride;
+  const int sp = path_row_stride(stride);
+  const int n = in[0].n;
+  for (int r = 0; r < kRows; ++r) {
+    PETRA_ASSERT(in[r].n == n && in[r].n > 0 && in[r].stride == in[0].stride && in[r].p1 >= 0);
+    PETRA_ASSERT(kLanes == 0 || in[r].stride == kLanes);
+  }
+  auto cost = [&](int r, int x) { return in[r].cost + static_cast<std::ptrdiff_t>(x) * stride; };
+  auto srow = [&](int r, int x) { return S[r] + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes; };
+  auto brow = [&](int r, int x) {
+    return backward[r] + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes;
+  };
+  std::int16_t mf[kRows], mb[kRows];
+  for (int r = 0; r < kRows; ++r) {
+    for (int x = 0; x < n; ++x) {
+      srow(r, x)[-1] = srow(r, x)[stride] = kGuard;
+      brow(r, x)[-1] = brow(r, x)[stride] = kGuard;
+    }
+    mf[r] = first<kLanes>(cost(r, 0), srow(r, 0), stride);
+    mb[r] = first<kLanes>(cost(r, n - 1), brow(r, n - 1), stride);
+  }
+  for (int t = 1; t < n; ++t) {
+    const int xb = n - 1 - t;
+    for (int r = 0; r < kRows; ++r) {
+      PETRA_ASSERT(in[r].p2[t] <= kMaxP2);
+      mf[r] = step<kLanes>(srow(r, t - 1), cost(r, t), srow(r, t), stride, in[r].p1, in[r].p2[t],
+                           mf[r]);
+      mb[r] = step<kLanes>(brow(r, xb + 1), cost(r, xb), brow(r, xb), stride, in[r].p1,
+                           in[r].p2[xb + 1], mb[r]);
+    }
+  }
+  // S = L_fwd + L_bwd.
+  for (int r = 0; r < kRows; ++r)
+    for (int x = 0; x < n; ++x) {
+      std::int16_t* __restrict s = srow(r, x);
+      const std::int16_t* __restrict b = brow(r, x);
+      for (int k = 0; k < stride; ++k) s[k] = static_cast<std::int16_t>(s[k] + b[k]);
+    }
+}
+
+}  // namespace
+
 template <int kLanes>
 PETRA_VECTOR_CLONES void scanline_dp(const ScanlineInputs& in, std::int16_t* S,
                                      std::int16_t* backward) {
-  PETRA_ASSERT(in.n > 0 && in.stride > 0 && in.p1 >= 0);
-  PETRA_ASSERT(kLanes == 0 || in.stride == kLanes);
-  const int stride = kLanes > 0 ? kLanes : in.stride;
-  const int sp = path_row_stride(stride);
-  const int n = in.n;
-  auto cost = [&](int x) { return in.cost + static_cast<std::ptrdiff_t>(x) * stride; };
-  auto srow = [&](int x) { return S + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes; };
-  auto brow = [&](int x) { return backward + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes; };
-  for (int x = 0; x < n; ++x) {
-    srow(x)[-1] = srow(x)[stride] = kGuard;
-    brow(x)[-1] = brow(x)[stride] = kGuard;
-  }
-  // The forward (S = L_fwd) and backward (L_bwd) passes are independent
-  // chains: run in the same loop, each step of one overlaps the latency of
-  // the other (a step waits for the previous row's minimum and for its
-  // stores to reach the shifted loads of prev(k+-1)).
-  std::int16_t mf = first<kLanes>(cost(0), srow(0), stride);
-  std::int16_t mb = first<kLanes>(cost(n - 1), brow(n - 1), stride);
-  for (int t = 1; t < n; ++t) {
-    PETRA_ASSERT(in.p2[t] <= kMaxP2);
-    const int xb = n - 1 - t;
-    mf = step<kLanes>(srow(t - 1), cost(t), srow(t), stride, in.p1, in.p2[t], mf);
-    mb = step<kLanes>(brow(xb + 1), cost(xb), brow(xb), stride, in.p1, in.p2[xb + 1], mb);
-  }
-  // S = L_fwd + L_bwd.
-  for (int x = 0; x < n; ++x) {
-    std::int16_t* __restrict s = srow(x);
-    const std::int16_t* __restrict b = brow(x);
-    for (int k = 0; k < stride; ++k) s[k] = static_cast<std::int16_t>(s[k] + b[k]);
-  }
+  run_scanlines<kLanes, 1>(&in, &S, &backward);
+}
+
+template <int kLanes>
+PETRA_VECTOR_CLONES void scanline_dp_pair(const ScanlineInputs& a, std::int16_t* Sa,
+                                          std::int16_t* backward_a, const ScanlineInputs& b,
+                                          std::int16_t* Sb, std::int16_t* backward_b) {
+  const ScanlineInputs in[2] = {a, b};
+  std::int16_t* const S[2] = {Sa, Sb};
+  std::int16_t* const back[2] = {backward_a, backward_b};
+  run_scanlines<kLanes, 2>(in, S, back);
 }
 
 #define PETRA_INSTANTIATE(n)                                                   \
   template void apply_bounds<n>(std::uint16_t*, int, int, const std::int16_t*, \
                                 const std::int16_t*, int);                     \
-  template void scanline_dp<n>(const ScanlineInputs&, std::int16_t*, std::int16_t*);
+  template void scanline_dp<n>(const ScanlineInputs&, std::int16_t*, std::int16_t*);     \
+  template void scanline_dp_pair<n>(const ScanlineInputs&, std::int16_t*, std::int16_t*, \
+                                    const ScanlineInputs&, std::int16_t*, std::int16_t*);
 PETRA_MATCH_LANE_COUNTS(PETRA_INSTANTIATE)
 #undef PETRA_INSTANTIATE
 

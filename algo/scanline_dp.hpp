@@ -48,4 +48,10 @@ struct ScanlineInputs {
 template <int kLanes>
 void scanline_dp(const ScanlineInputs& in, std::int16_t* S, std::int16_t* backward);
 
+// Two independent scanlines at once (same n and stride), each as
+// scanline_dp: the same results, faster where the DP is latency-bound.
+template <int kLanes>
+void scanline_dp_pair(const ScanlineInputs& a, std::int16_t* Sa, std::int16_t* backward_a,
+                      const ScanlineInputs& b, std::int16_t* Sb, std::int16_t* backward_b);
+
 }  // namespace petra::match
