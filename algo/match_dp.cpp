@@ -59,7 +59,7 @@ struct Layout {
     b += 2 * 2 * kRightChains * z(w + dp);          // right winners
     b += 3 * 2 * z(w);                              // left winners
     b += sizeof(match::EdgePair) * z(w);            // pairs
-    b += 2 * median3x3_scratch(w) + z(w);           // median rows, shadow row
+    b += 2 * median3x3_scratch(w) + 2 * z(w);       // median rows, shadow row, reasons
     b += 32 * kAlignSlack;  // one per allocation below, with room
     return b + match::edge_row_scratch_bytes(w, band);
   }
@@ -142,6 +142,18 @@ Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const M
                        "match_dp: tolerances must be >= 0 and the cost ceiling > 0");
   return ok_status();
 }
+
+// Why a pixel has no disparity (the first check it fails), or kMatched.
+enum Reason : std::uint8_t {
+  kMatched,
+  kShadowLeft,
+  kRange,
+  kLeftRight,
+  kUniqueness,
+  kCost,
+  kShadowRight,
+  kReasons
+};
 
 // Best lane, its value and the best value more than one lane away, over
 // v[0..n). Written as three branch-free reductions the compiler vectorises.
@@ -390,7 +402,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   }
 
   // Row buffers.
-  std::span<std::uint8_t> ring, census_rows, skip, cli, clo, gl, cri, cro, gr, ov, t1, t2, neutral;
+  std::span<std::uint8_t> ring, census_rows, skip, reasons, cli, clo, gl, cri, cro, gr, ov, t1, t2, neutral;
   std::span<std::uint16_t> colsum, hs;
   std::span<std::int16_t> rmin, rk, med, wk, wbest, wsecond;
   std::span<match::EdgePair> pairs;
@@ -442,6 +454,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "second best costs", wsecond));
   PETRA_TRY(take(arena, median3x3_scratch(w), "median rows", med));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "shadow row", skip));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "rejection reasons", reasons));
 
   // Raw cost of image row y into `raw` ([i][k], column i = left x0 - 4 + i).
   const int xl_first = roi.x - kMarginX;
@@ -596,7 +609,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     // branches: which check rejects a pixel is data, and a branch on it
     // mispredicts. The counters keep the order of the checks (a pixel counts
     // for the first one it fails).
-    long c_range = 0, c_lr = 0, c_uniq = 0, c_cost = 0, c_shadow = 0;
+    std::uint8_t* __restrict why = reasons.data();
     for (int i = 0; i < w; ++i) {
       const int x = roi.x + i;
       const std::int16_t* s = rb.S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
@@ -611,12 +624,16 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
       const bool unique = unique_enough(win, p.uniqueness_pct);
       const bool cheap = rb.agg[static_cast<std::size_t>(i) * Dp + k1] <= cost_ceiling;
       const bool lit = !in_range || !shadow_at(in.right_shadow, x - d, y);
-      c_range += left & !in_range;
-      c_lr += left & in_range & !lr;
-      c_uniq += left & in_range & lr & !unique;
-      c_cost += left & in_range & lr & unique & !cheap;
-      c_shadow += left & in_range & lr & unique & cheap & !lit;
-      const bool valid = left & in_range & lr & unique & cheap & lit;
+      // The first check failed, counted per row below (counters updated
+      // here would live in memory and chain every pixel to the previous).
+      why[i] = static_cast<std::uint8_t>(!left       ? kShadowLeft
+                                         : !in_range ? kRange
+                                         : !lr       ? kLeftRight
+                                         : !unique   ? kUniqueness
+                                         : !cheap    ? kCost
+                                         : !lit      ? kShadowRight
+                                                     : kMatched);
+      const bool valid = why[i] == kMatched;
       // Sub-pixel: parabola through S at k1 - 1, k1, k1 + 1 when both
       // neighbours are allowed lanes (the guard lanes make the reads safe).
       const int sa = s[k1 - 1], sb = s[k1], sc = s[k1 + 1];
@@ -632,11 +649,13 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
         conf[i] = valid ? static_cast<std::uint8_t>(clamp_value(margin, 1, 255)) : std::uint8_t{0};
       }
     }
-    st.rejected_range += c_range;
-    st.rejected_lr += c_lr;
-    st.rejected_uniqueness += c_uniq;
-    st.rejected_cost += c_cost;
-    st.rejected_shadow_right += c_shadow;
+    int n_why[kReasons] = {};
+    for (int i = 0; i < w; ++i) ++n_why[why[i]];
+    st.rejected_range += n_why[kRange];
+    st.rejected_lr += n_why[kLeftRight];
+    st.rejected_uniqueness += n_why[kUniqueness];
+    st.rejected_cost += n_why[kCost];
+    st.rejected_shadow_right += n_why[kShadowRight];
   };
   for (int t = 0; t < h; t += 2) {
     RowBuffers& ra = rows[0];
