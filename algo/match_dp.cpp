@@ -152,7 +152,6 @@ enum Reason : std::uint8_t {
   kUniqueness,
   kCost,
   kShadowRight,
-  kReasons
 };
 
 // Best lane, its value and the best value more than one lane away, over
@@ -649,13 +648,21 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
         conf[i] = valid ? static_cast<std::uint8_t>(clamp_value(margin, 1, 255)) : std::uint8_t{0};
       }
     }
-    int n_why[kReasons] = {};
-    for (int i = 0; i < w; ++i) ++n_why[why[i]];
-    st.rejected_range += n_why[kRange];
-    st.rejected_lr += n_why[kLeftRight];
-    st.rejected_uniqueness += n_why[kUniqueness];
-    st.rejected_cost += n_why[kCost];
-    st.rejected_shadow_right += n_why[kShadowRight];
+    // Compares summed in vector lanes (a histogram would chain increments
+    // of the same counter through memory).
+    int n_range = 0, n_lr = 0, n_unique = 0, n_cost = 0, n_shadow = 0;
+    for (int i = 0; i < w; ++i) {
+      n_range += why[i] == kRange;
+      n_lr += why[i] == kLeftRight;
+      n_unique += why[i] == kUniqueness;
+      n_cost += why[i] == kCost;
+      n_shadow += why[i] == kShadowRight;
+    }
+    st.rejected_range += n_range;
+    st.rejected_lr += n_lr;
+    st.rejected_uniqueness += n_unique;
+    st.rejected_cost += n_cost;
+    st.rejected_shadow_right += n_shadow;
   };
   for (int t = 0; t < h; t += 2) {
     RowBuffers& ra = rows[0];
