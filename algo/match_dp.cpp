@@ -23,7 +23,11 @@ using match::kWindowRows;
 
 constexpr std::size_t kAlignSlack = 64;  // per arena allocation
 constexpr int kLaneMultiple = 16;
-constexpr int kRightChains = 4;  // see right_winners
+constexpr int kRightChains = 16;  // see right_winners
+constexpr int kLaneBits = 12;     // lanes < match::kMaxLanes = 2^12
+// "No winner" in rk: all lane bits set, so it loses every tie of a merge.
+constexpr std::int16_t kNoLane = (1 << kLaneBits) - 1;
+static_assert(match::kMaxLanes <= kNoLane + 1, "lane keys");
 constexpr int kMaxAbsDisparity = 2047;  // Q4 in int16
 constexpr int kWindowPixels = (2 * match::kBoxRadiusX + 1) * kWindowRows;
 // A textureless ROI has fewer edge pixels than this (and than 1 in 500).
@@ -56,7 +60,7 @@ struct Layout {
     // bounds, jump penalties.
     b += 2 * (2 * z(w) * z(dp) + 2 * 2 * z(w) * z(match::path_row_stride(dp)) + 3 * 2 * z(w));
     b += 5 * z(nrp + 4) + 4 * z(wc) + 6 * z(nrp);   // census, gray, overrides
-    b += 2 * 2 * kRightChains * z(w + dp);          // right winners
+    b += 2 * 2 * kRightChains * z(w + dp) + 4 * z(w + dp);  // right winners, keys
     b += 3 * 2 * z(w);                              // left winners
     b += sizeof(match::EdgePair) * z(w);            // pairs
     b += 2 * median3x3_scratch(w) + 2 * z(w);       // median rows, shadow row, reasons
@@ -291,23 +295,25 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void reverse_copy(const std::uint8_t* __re
 // smallest path cost over the left pixels i with m = (w - 1 - i) + k, the
 // first (smallest i, so smallest k) on ties. All `lanes` lanes are scanned
 // (padding lanes never win), so no scalar tail. Column i updates the running
-// minima one entry left of column i - 1's: done in one array, every load
-// waits for the previous unaligned stores to drain. So column i goes to
-// chain i % kRightChains (independent chains overlap those waits; 4 measured
-// faster than 2 or 16, whose merge costs more than it saves), and the chains
-// are merged at the end, smaller lane first on ties, which is the same
-// first-i rule. rmin and rk hold kRightChains * (w + lanes) entries; the
-// result is in the first w + lanes - 1.
+// minima one entry left of column i - 1's: in one array, each load would
+// overlap the previous column's stores at a 2-byte offset, which the CPU
+// cannot forward, and wait for them to reach the cache. So column i goes to
+// chain i % kRightChains: a chain's consecutive updates are then 16 entries
+// (32 bytes, a whole vector) apart and its loads match earlier stores
+// exactly. The chains are merged at the end through (cost, lane) keys whose
+// minimum keeps the smaller lane on ties: the same first-i rule. rmin and
+// rk hold kRightChains * (w + lanes) entries, key w + lanes; the lanes of
+// the winners end up in rk[0 .. w + lanes - 1).
 template <int kLanes>
 PETRA_VECTOR_CLONES [[gnu::noinline]] void right_winners(
     const std::int16_t* __restrict S, int w, int row_stride, int lanes_arg,
     const std::uint8_t* __restrict skip, std::int16_t* __restrict rmin,
-    std::int16_t* __restrict rk) {
+    std::int16_t* __restrict rk, std::int32_t* __restrict key) {
   const int lanes = kLanes > 0 ? kLanes : lanes_arg;
   const int len = w + lanes;
   for (int m = 0; m < kRightChains * len; ++m) {
     rmin[m] = 0x7FFF;
-    rk[m] = -1;
+    rk[m] = kNoLane;
   }
   for (int i = 0; i < w; ++i) {
     if (skip[i]) continue;
@@ -321,14 +327,19 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void right_winners(
       rl[k] = better ? static_cast<std::int16_t>(k) : rl[k];
     }
   }
-  for (int c = 1; c < kRightChains; ++c) {
+  // key = cost * 2^12 + lane: costs are below 2^15, lanes below 2^12.
+  for (int m = 0; m < len; ++m) key[m] = 0x7FFFFFFF;
+  for (int c = 0; c < kRightChains; ++c) {
     const std::int16_t* __restrict cm = rmin + static_cast<std::ptrdiff_t>(c) * len;
     const std::int16_t* __restrict cl = rk + static_cast<std::ptrdiff_t>(c) * len;
-    for (int m = 0; m < len - 1; ++m) {
-      const bool better = cm[m] < rmin[m] || (cm[m] == rmin[m] && cl[m] < rk[m]);
-      rmin[m] = better ? cm[m] : rmin[m];
-      rk[m] = better ? cl[m] : rk[m];
+    for (int m = 0; m < len; ++m) {
+      const std::int32_t k = (static_cast<std::int32_t>(cm[m]) << kLaneBits) | cl[m];
+      key[m] = k < key[m] ? k : key[m];
     }
+  }
+  for (int m = 0; m < len; ++m) {
+    const std::int16_t lane = static_cast<std::int16_t>(key[m] & kNoLane);
+    rk[m] = lane == kNoLane ? std::int16_t{-1} : lane;
   }
 }
 
@@ -447,6 +458,8 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   const std::size_t right_len = static_cast<std::size_t>(kRightChains) * (w + Dp);
   PETRA_TRY(take(arena, right_len, "right winners", rmin));
   PETRA_TRY(take(arena, right_len, "right winner lanes", rk));
+  std::span<std::int32_t> right_keys;
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w + Dp), "right winner keys", right_keys));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "edge pairs", pairs));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "winner lanes", wk));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "winner costs", wbest));
@@ -597,7 +610,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     // Right view winners along the same path costs (reversed index m).
     shadow_row(in.left_shadow, y, roi.x, w, 1, 0, skip.data());
     right_winners<kLanes>(rb.S.data() + match::kGuardLanes, w, sp, Dp, skip.data(), rmin.data(),
-                          rk.data());
+                          rk.data(), right_keys.data());
 
     // Steps 4-5: select, reject, refine.
     row_winners<kLanes>(rb.S.data() + match::kGuardLanes, w, sp, Dp, wk.data(), wbest.data(),
