@@ -255,11 +255,65 @@ template <int kLanes>
   return m;
 }
 
+// Signed forms of the two reductions for the per-pixel pass (path costs are
+// int16 >= 0), where unsigned_min_is_native() is false: x86-64's baseline
+// SSE2 has signed 16-bit minimum and maximum but emulates unsigned ones.
+struct LaneRanks {
+  std::int16_t r[match::kMaxLanes];
+  constexpr LaneRanks() : r() {
+    for (int i = 0; i < match::kMaxLanes; ++i) r[i] = static_cast<std::int16_t>(0x7FFF - i);
+  }
+};
+constexpr LaneRanks kLaneRanks{};
+
+// kNearMaskSigned.m[kMaxLanes - k1 + k] is 0x7FFF for |k - k1| <= 1 and
+// -32768 elsewhere: a maximum with it hides the winner's lanes.
+struct NearMaskSigned {
+  std::int16_t m[2 * match::kMaxLanes + 1];
+  constexpr NearMaskSigned() : m() {
+    for (int i = 0; i <= 2 * match::kMaxLanes; ++i)
+      m[i] = static_cast<std::int16_t>(
+          (i >= match::kMaxLanes - 1 && i <= match::kMaxLanes + 1) ? 0x7FFF : -32768);
+  }
+};
+constexpr NearMaskSigned kNearMaskSigned{};
+
+template <int kLanes>
+[[gnu::always_inline]] inline Winner best_lane_signed(const std::int16_t* __restrict v,
+                                                      int n_arg) {
+  const int n = kLanes > 0 ? kLanes : n_arg;
+  std::int16_t m = 0x7FFF;
+  for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
+  // First lane holding the minimum: the largest rank 0x7FFF - k of the hits.
+  const std::int16_t* __restrict rank = kLaneRanks.r;
+  std::int16_t top = 0;
+  for (int k = 0; k < n; ++k) {
+    const std::int16_t c = static_cast<std::int16_t>(rank[k] & -(v[k] == m));
+    top = c > top ? c : top;
+  }
+  return Winner{0x7FFF - top, m, 0};
+}
+
+template <int kLanes>
+[[gnu::always_inline]] inline int second_best_away_signed(const std::int16_t* __restrict v,
+                                                          int n_arg, int k1) {
+  const int n = kLanes > 0 ? kLanes : n_arg;
+  const std::int16_t* __restrict mask = kNearMaskSigned.m + match::kMaxLanes - k1;
+  std::int16_t m = 0x7FFF;
+  for (int k = 0; k < n; ++k) {
+    const std::int16_t c = v[k] < mask[k] ? mask[k] : v[k];
+    m = c < m ? c : m;
+  }
+  return m;
+}
+
 // Winner lane, its value and the best value more than one lane away, for
 // every column of a row of path costs, in one branch-free loop: the
 // reductions of successive columns are independent and overlap, where
 // interleaved with the per-pixel checks each one's latency was exposed.
-template <int kLanes>
+// kUnsigned picks the reduction form (unsigned_min_is_native()); both give
+// the same result.
+template <int kLanes, bool kUnsigned>
 PETRA_VECTOR_CLONES [[gnu::noinline]] void row_winners(const std::int16_t* __restrict S, int w,
                                                        int row_stride, int lanes_arg,
                                                        std::int16_t* __restrict k1,
@@ -267,10 +321,17 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void row_winners(const std::int16_t* __res
                                                        std::int16_t* __restrict second) {
   for (int i = 0; i < w; ++i) {
     const std::int16_t* s = S + static_cast<std::size_t>(i) * row_stride;
-    const Winner win = best_lane_inline<kLanes>(s, lanes_arg);
+    Winner win;
+    if constexpr (kUnsigned) {
+      win = best_lane_inline<kLanes>(s, lanes_arg);
+      win.second = second_best_away_inline<kLanes>(s, lanes_arg, win.k);
+    } else {
+      win = best_lane_signed<kLanes>(s, lanes_arg);
+      win.second = second_best_away_signed<kLanes>(s, lanes_arg, win.k);
+    }
     k1[i] = static_cast<std::int16_t>(win.k);
     best[i] = static_cast<std::int16_t>(win.best);
-    second[i] = static_cast<std::int16_t>(second_best_away_inline<kLanes>(s, lanes_arg, win.k));
+    second[i] = static_cast<std::int16_t>(win.second);
   }
 }
 
@@ -508,6 +569,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   for (int g = 0; g < 256; ++g)
     p2_of_step[g] = static_cast<std::uint16_t>(std::max(p2_floor, p.p2 * 8 / (8 + g)));
   const int tol = p.edge_tolerance_px;
+  const bool unsigned_min = unsigned_min_is_native();
   const long cost_ceiling = static_cast<long>(p.max_mean_cost) * kWindowPixels;
   const int zfloor = p.edge_zncc_floor_pct * match::kZnccOne / 100;
 
@@ -613,8 +675,12 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
                           rk.data(), right_keys.data());
 
     // Steps 4-5: select, reject, refine.
-    row_winners<kLanes>(rb.S.data() + match::kGuardLanes, w, sp, Dp, wk.data(), wbest.data(),
-                        wsecond.data());
+    if (unsigned_min)
+      row_winners<kLanes, true>(rb.S.data() + match::kGuardLanes, w, sp, Dp, wk.data(),
+                                wbest.data(), wsecond.data());
+    else
+      row_winners<kLanes, false>(rb.S.data() + match::kGuardLanes, w, sp, Dp, wk.data(),
+                                 wbest.data(), wsecond.data());
     std::int16_t* o = out.q4.row(t);
     std::uint8_t* conf = confidence.empty() ? nullptr : confidence.row(t);
     // Every check is evaluated for every pixel and combined without
