@@ -21,11 +21,11 @@ constexpr int kTanDen = 32;
 // The row kernels are out of line: inlined into canny() they are not
 // vectorised by GCC 12.
 PETRA_VECTOR_CLONES [[gnu::noinline]] void vertical_binomial(const std::uint16_t* __restrict a,
-                                         const std::uint16_t* __restrict b,
-                                         const std::uint16_t* __restrict c,
-                                         const std::uint16_t* __restrict d,
-                                         const std::uint16_t* __restrict e, int n,
-                                         std::uint8_t* __restrict o) {
+                                                             const std::uint16_t* __restrict b,
+                                                             const std::uint16_t* __restrict c,
+                                                             const std::uint16_t* __restrict d,
+                                                             const std::uint16_t* __restrict e,
+                                                             int n, std::uint8_t* __restrict o) {
   for (int i = 0; i < n; ++i)
     o[i] = static_cast<std::uint8_t>((a[i] + 4 * b[i] + 6 * c[i] + 4 * d[i] + e[i] + 128) >> 8);
 }
@@ -41,10 +41,11 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void horizontal_binomial(const std::uint8_
 
 // Sobel gradients and L1 magnitude of one row from three smoothed rows.
 PETRA_VECTOR_CLONES [[gnu::noinline]] void sobel_row(const std::uint8_t* __restrict up,
-                                 const std::uint8_t* __restrict mid,
-                                 const std::uint8_t* __restrict dn, int n,
-                                 std::int16_t* __restrict ox, std::int16_t* __restrict oy,
-                                 std::uint16_t* __restrict om) {
+                                                     const std::uint8_t* __restrict mid,
+                                                     const std::uint8_t* __restrict dn, int n,
+                                                     std::int16_t* __restrict ox,
+                                                     std::int16_t* __restrict oy,
+                                                     std::uint16_t* __restrict om) {
   for (int i = 0; i < n; ++i) {
     const int vx = (up[i + 2] + 2 * mid[i + 2] + dn[i + 2]) - (up[i] + 2 * mid[i] + dn[i]);
     const int vy = (dn[i] + 2 * dn[i + 1] + dn[i + 2]) - (up[i] + 2 * up[i + 1] + up[i + 2]);
@@ -58,11 +59,10 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void sobel_row(const std::uint8_t* __restr
 // above, at and below, offset so that index i is the pixel's column
 // (i - 1 and i + 1 are valid). Writes 0, or the sector and sign with kWeak
 // or kEdgeBit. Branch-free so the compiler runs it in vector lanes.
-PETRA_VECTOR_CLONES [[gnu::noinline]] void nms_row(const std::int16_t* __restrict gx, const std::int16_t* __restrict gy,
-                               const std::uint16_t* __restrict up,
-                               const std::uint16_t* __restrict mid,
-                               const std::uint16_t* __restrict dn, int w, int low, int high,
-                               std::uint8_t* __restrict out) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] void nms_row(
+    const std::int16_t* __restrict gx, const std::int16_t* __restrict gy,
+    const std::uint16_t* __restrict up, const std::uint16_t* __restrict mid,
+    const std::uint16_t* __restrict dn, int w, int low, int high, std::uint8_t* __restrict out) {
   const std::int16_t lo = static_cast<std::int16_t>(low), hi = static_cast<std::int16_t>(high);
   // Every neighbour is loaded and chosen by masks: a select between two
   // addresses would be a gather, which stops the vectoriser.

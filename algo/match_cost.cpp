@@ -59,8 +59,8 @@ inline std::int16_t min16(std::int16_t a, std::int16_t b) {
 // registers (16 compares), instead of 16 read-modify-write passes over the
 // two planes.
 PETRA_VECTOR_CLONES void census_row(ConstGray8View image, int y, int x0, int n,
-                                    std::uint8_t* __restrict inner,
-                                    std::uint8_t* __restrict outer, std::uint8_t* rows) {
+                                    std::uint8_t* __restrict inner, std::uint8_t* __restrict outer,
+                                    std::uint8_t* rows) {
   const int pw = n + 2 * kCensusRadius;
   for (int r = 0; r < 5; ++r)
     padded_row(image, y - kCensusRadius + r, x0 - kCensusRadius, pw, rows + r * pw);
@@ -75,14 +75,12 @@ PETRA_VECTOR_CLONES void census_row(ConstGray8View image, int y, int x0, int n,
   };
   for (int i = 0; i < n; ++i) {
     const std::uint8_t c = r2[i + 2];
-    inner[i] = static_cast<std::uint8_t>(bit(r1[i + 1], c, 0) | bit(r1[i + 2], c, 1) |
-                                         bit(r1[i + 3], c, 2) | bit(r2[i + 1], c, 3) |
-                                         bit(r2[i + 3], c, 4) | bit(r3[i + 1], c, 5) |
-                                         bit(r3[i + 2], c, 6) | bit(r3[i + 3], c, 7));
-    outer[i] = static_cast<std::uint8_t>(bit(r0[i], c, 0) | bit(r0[i + 2], c, 1) |
-                                         bit(r0[i + 4], c, 2) | bit(r2[i], c, 3) |
-                                         bit(r2[i + 4], c, 4) | bit(r4[i], c, 5) |
-                                         bit(r4[i + 2], c, 6) | bit(r4[i + 4], c, 7));
+    inner[i] = static_cast<std::uint8_t>(
+        bit(r1[i + 1], c, 0) | bit(r1[i + 2], c, 1) | bit(r1[i + 3], c, 2) | bit(r2[i + 1], c, 3) |
+        bit(r2[i + 3], c, 4) | bit(r3[i + 1], c, 5) | bit(r3[i + 2], c, 6) | bit(r3[i + 3], c, 7));
+    outer[i] = static_cast<std::uint8_t>(
+        bit(r0[i], c, 0) | bit(r0[i + 2], c, 1) | bit(r0[i + 4], c, 2) | bit(r2[i], c, 3) |
+        bit(r2[i + 4], c, 4) | bit(r4[i], c, 5) | bit(r4[i + 2], c, 6) | bit(r4[i + 4], c, 7));
   }
 }
 
@@ -101,10 +99,9 @@ template <int kLanes>
     std::uint8_t* __restrict out, std::uint16_t* __restrict sum) {
   for (int k = 0; k < kLanes; ++k) {
     const std::uint8_t ad = static_cast<std::uint8_t>(max8(gl, gr[k]) - min8(gl, gr[k]));
-    const std::uint8_t c =
-        static_cast<std::uint8_t>(popcount16(static_cast<std::uint8_t>(ci ^ cri[k]),
-                                             static_cast<std::uint8_t>(co ^ cro[k])) +
-                                  (min8(ad, 32) >> 2));
+    const std::uint8_t c = static_cast<std::uint8_t>(
+        popcount16(static_cast<std::uint8_t>(ci ^ cri[k]), static_cast<std::uint8_t>(co ^ cro[k])) +
+        (min8(ad, 32) >> 2));
     // Overrides as branch-free selects: padding lanes, then right samples.
     // pad is 0 or kRawPad > kRawMax, so a maximum (one instruction) selects it.
     const std::uint8_t v = max8(ov[k] != 0 ? ov[k] : c, pad[k]);
@@ -148,8 +145,8 @@ template <int kLanes>
       continue;
     }
     const int base = n - 1 - i;
-    raw_cost_column<kLanes>(cil[i], col[i], gll[i], cir + base, cor + base, grr + base,
-                            ovr + base, pad, out, sum);
+    raw_cost_column<kLanes>(cil[i], col[i], gll[i], cir + base, cor + base, grr + base, ovr + base,
+                            pad, out, sum);
   }
 }
 
@@ -177,8 +174,8 @@ PETRA_VECTOR_CLONES void raw_cost_row(const RawRowInputs& in, int k_count, std::
 }
 
 template <int kLanes>
-PETRA_VECTOR_CLONES void box_and_shift_row(const std::uint16_t* colsum, int n, int stride_arg, std::uint16_t* hs,
-                       std::uint16_t* agg) {
+PETRA_VECTOR_CLONES void box_and_shift_row(const std::uint16_t* colsum, int n, int stride_arg,
+                                           std::uint16_t* hs, std::uint16_t* agg) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   const int nh = n + 2 * kShiftRadiusX;
   // Box sums of five columns, each computed directly: a running sum along x

@@ -53,18 +53,18 @@ struct Layout {
   std::size_t rows() const {
     const std::size_t cells = z(wc) * z(dp);
     std::size_t b = 0;
-    b += kWindowRows * cells;                       // raw ring
-    b += 2 * cells;                                 // column sums
-    b += 2 * z(w + 4) * z(dp);                      // box sums
+    b += kWindowRows * cells;   // raw ring
+    b += 2 * cells;             // column sums
+    b += 2 * z(w + 4) * z(dp);  // box sums
     // Per row in flight (two): cost, path costs S, backward path costs,
     // bounds, jump penalties.
     b += 2 * (2 * z(w) * z(dp) + 2 * 2 * z(w) * z(match::path_row_stride(dp)) + 3 * 2 * z(w));
-    b += 5 * z(nrp + 4) + 4 * z(wc) + 6 * z(nrp);   // census, gray, overrides
+    b += 5 * z(nrp + 4) + 4 * z(wc) + 6 * z(nrp);           // census, gray, overrides
     b += 2 * 2 * kRightChains * z(w + dp) + 4 * z(w + dp);  // right winners, keys
-    b += 3 * 2 * z(w);                              // left winners
-    b += sizeof(match::EdgePair) * z(w);            // pairs
-    b += 2 * median3x3_scratch(w) + 2 * z(w);       // median rows, shadow row, reasons
-    b += 32 * kAlignSlack;  // one per allocation below, with room
+    b += 3 * 2 * z(w);                                      // left winners
+    b += sizeof(match::EdgePair) * z(w);                    // pairs
+    b += 2 * median3x3_scratch(w) + 2 * z(w);               // median rows, shadow row, reasons
+    b += 32 * kAlignSlack;                                  // one per allocation below, with room
     return b + match::edge_row_scratch_bytes(w, band);
   }
   std::size_t total() const { return edge_maps() + std::max(canny(), rows()); }
@@ -279,8 +279,7 @@ struct NearMaskSigned {
 constexpr NearMaskSigned kNearMaskSigned{};
 
 template <int kLanes>
-[[gnu::always_inline]] inline Winner best_lane_signed(const std::int16_t* __restrict v,
-                                                      int n_arg) {
+[[gnu::always_inline]] inline Winner best_lane_signed(const std::int16_t* __restrict v, int n_arg) {
   const int n = kLanes > 0 ? kLanes : n_arg;
   std::int16_t m = 0x7FFF;
   for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
@@ -348,7 +347,7 @@ bool unique_enough(const Winner& w, int pct) {
 
 // out[m] = in[n - 1 - m].
 PETRA_VECTOR_CLONES [[gnu::noinline]] void reverse_copy(const std::uint8_t* __restrict in, int n,
-                                    std::uint8_t* __restrict out) {
+                                                        std::uint8_t* __restrict out) {
   for (int m = 0; m < n; ++m) out[m] = in[n - 1 - m];
 }
 
@@ -366,10 +365,12 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void reverse_copy(const std::uint8_t* __re
 // rk hold kRightChains * (w + lanes) entries, key w + lanes; the lanes of
 // the winners end up in rk[0 .. w + lanes - 1).
 template <int kLanes>
-PETRA_VECTOR_CLONES [[gnu::noinline]] void right_winners(
-    const std::int16_t* __restrict S, int w, int row_stride, int lanes_arg,
-    const std::uint8_t* __restrict skip, std::int16_t* __restrict rmin,
-    std::int16_t* __restrict rk, std::int32_t* __restrict key) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] void right_winners(const std::int16_t* __restrict S, int w,
+                                                         int row_stride, int lanes_arg,
+                                                         const std::uint8_t* __restrict skip,
+                                                         std::int16_t* __restrict rmin,
+                                                         std::int16_t* __restrict rk,
+                                                         std::int32_t* __restrict key) {
   const int lanes = kLanes > 0 ? kLanes : lanes_arg;
   const int len = w + lanes;
   for (int m = 0; m < kRightChains * len; ++m) {
@@ -423,9 +424,10 @@ namespace {
 // The whole matcher for one lane count (kLanes = Dp, or 0 for any), so every
 // row kernel runs with a compile-time lane count.
 template <int kLanes>
-PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpParams& p,
-                                Arena& arena, DisparityMap& out,
-                                ImageView<std::uint8_t> confidence) {
+PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi,
+                                                    const MatchDpParams& p, Arena& arena,
+                                                    DisparityMap& out,
+                                                    ImageView<std::uint8_t> confidence) {
   const int W = in.left.width();
   const int H = in.left.height();
   const Rect band = right_search_area(roi, p.disp_min, p.disp_max, W);
@@ -444,8 +446,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   st.roi_pixels = roi.area();
   if (in.left_shadow != nullptr)
     for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        st.shadow_left += shadow_at(in.left_shadow, roi.x + x, roi.y + y);
+      for (int x = 0; x < w; ++x) st.shadow_left += shadow_at(in.left_shadow, roi.x + x, roi.y + y);
   if (st.shadow_left == st.roi_pixels)
     return Error::make(Errc::degenerate, "match_dp: all %ld pixels of the ROI are shadow",
                        st.roi_pixels);
@@ -473,7 +474,8 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   }
 
   // Row buffers.
-  std::span<std::uint8_t> ring, census_rows, skip, reasons, cli, clo, gl, cri, cro, gr, ov, t1, t2, neutral;
+  std::span<std::uint8_t> ring, census_rows, skip, reasons, cli, clo, gl, cri, cro, gr, ov, t1, t2,
+      neutral;
   std::span<std::uint16_t> colsum, hs;
   std::span<std::int16_t> rmin, rk, med, wk, wbest, wsecond;
   std::span<match::EdgePair> pairs;
@@ -501,7 +503,6 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     PETRA_TRY(take(arena, static_cast<std::size_t>(w), "jump penalties", r.p2));
   }
 
-
   PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(nrp + 4), "census rows", census_rows));
   PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census inner", cli));
   PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census outer", clo));
@@ -513,8 +514,6 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right override", ov));
   PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right row 1", t1));
   PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right row 2", t2));
-
-
 
   const std::size_t right_len = static_cast<std::size_t>(kRightChains) * (w + Dp);
   PETRA_TRY(take(arena, right_len, "right winners", rmin));
@@ -697,8 +696,8 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
       const int d = dmin + k1;
       const bool left = skip[i] == 0;
       const bool in_range = x - d >= 0 && x - d < W;
-      const bool lr = std::abs(rk[static_cast<std::size_t>(w - 1 - i + k1)] - k1) <=
-                      p.lr_tolerance_px;
+      const bool lr =
+          std::abs(rk[static_cast<std::size_t>(w - 1 - i + k1)] - k1) <= p.lr_tolerance_px;
       const bool unique = unique_enough(win, p.uniqueness_pct);
       const bool cheap = rb.agg[static_cast<std::size_t>(i) * Dp + k1] <= cost_ceiling;
       const bool lit = !in_range || !shadow_at(in.right_shadow, x - d, y);

@@ -61,8 +61,8 @@ inline std::int16_t first(const std::uint16_t* __restrict c, std::int16_t* __res
 }  // namespace
 
 template <int kLanes>
-PETRA_VECTOR_CLONES void apply_bounds(std::uint16_t* cost, int n, int stride_arg, const std::int16_t* lo,
-                  const std::int16_t* hi, int full_hi) {
+PETRA_VECTOR_CLONES void apply_bounds(std::uint16_t* cost, int n, int stride_arg,
+                                      const std::int16_t* lo, const std::int16_t* hi, int full_hi) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   for (int x = 0; x < n; ++x) {
     const int l = lo[x], h = hi[x];
@@ -91,7 +91,9 @@ template <int kLanes, int kRows>
     PETRA_ASSERT(kLanes == 0 || in[r].stride == kLanes);
   }
   auto cost = [&](int r, int x) { return in[r].cost + static_cast<std::ptrdiff_t>(x) * stride; };
-  auto srow = [&](int r, int x) { return S[r] + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes; };
+  auto srow = [&](int r, int x) {
+    return S[r] + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes;
+  };
   auto brow = [&](int r, int x) {
     return backward[r] + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes;
   };
@@ -141,9 +143,9 @@ PETRA_VECTOR_CLONES void scanline_dp_pair(const ScanlineInputs& a, std::int16_t*
   run_scanlines<kLanes, 2>(in, S, back);
 }
 
-#define PETRA_INSTANTIATE(n)                                                   \
-  template void apply_bounds<n>(std::uint16_t*, int, int, const std::int16_t*, \
-                                const std::int16_t*, int);                     \
+#define PETRA_INSTANTIATE(n)                                                             \
+  template void apply_bounds<n>(std::uint16_t*, int, int, const std::int16_t*,           \
+                                const std::int16_t*, int);                               \
   template void scanline_dp<n>(const ScanlineInputs&, std::int16_t*, std::int16_t*);     \
   template void scanline_dp_pair<n>(const ScanlineInputs&, std::int16_t*, std::int16_t*, \
                                     const ScanlineInputs&, std::int16_t*, std::int16_t*);
