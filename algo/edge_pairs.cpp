@@ -81,7 +81,7 @@ std::size_t edge_row_scratch_bytes(int left_n, int right_n) {
   const std::size_t m = static_cast<std::size_t>(std::max(left_n, 0));
   const std::size_t n = static_cast<std::size_t>(std::max(right_n, 0));
   return (m + 1) * (n + 1) + (m + n) * (sizeof(Window) + sizeof(std::int16_t)) +
-         2 * (n + 1) * sizeof(std::int32_t) + 6 * kAlignSlack;
+         3 * (n + 1) * sizeof(std::int32_t) + 7 * kAlignSlack;
 }
 
 Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<EdgePair> pairs) {
@@ -119,6 +119,9 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
   if (!f) return f.error();
   std::int32_t* prev = f->data();
   std::int32_t* cur = f->data() + cols;
+  auto zs = arena.allocate<std::int32_t>(cols, "edge pair scores");
+  if (!zs) return zs.error();
+  std::int32_t* score = zs->data();
   std::fill(prev, prev + cols, 0);
 
   // F(i, j): best score pairing the first i left and first j right edges in
@@ -141,6 +144,19 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
       cur[j] = prev[j];
       brow[j] = kFromUp;
     }
+    // Scores of the run first: each ZNCC (a division) is independent of the
+    // others, where inside the recurrence each waited for the previous cell.
+    // A pair needs the same gradient sign and ZNCC >= the floor; it scores
+    // ZNCC - floor + 1 (+1: a pair at the floor still counts), else -1.
+    for (int j = j0; j < j1; ++j) {
+      const int xr = (*rx)[j - 1];
+      int z = -1;
+      if ((in.right_edges[xr - in.right_x0] & kEdgeGxNegative) == gl) {
+        const int c = zncc((*lw)[i - 1], (*rw)[j - 1]);
+        if (c >= in.zncc_floor_q10) z = c - in.zncc_floor_q10 + 1;
+      }
+      score[j] = z;
+    }
     for (int j = j0; j < j1; ++j) {
       std::int32_t best = prev[j];
       std::uint8_t from = kFromUp;
@@ -148,13 +164,9 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
         best = cur[j - 1];
         from = kFromLeft;
       }
-      const int xr = (*rx)[j - 1];
-      if ((in.right_edges[xr - in.right_x0] & kEdgeGxNegative) == gl) {
-        const int z = zncc((*lw)[i - 1], (*rw)[j - 1]);
-        if (z >= in.zncc_floor_q10 && prev[j - 1] + (z - in.zncc_floor_q10) + 1 > best) {
-          best = prev[j - 1] + (z - in.zncc_floor_q10) + 1;  // +1: a pair at the floor still counts
-          from = kMatch;
-        }
+      if (score[j] >= 0 && prev[j - 1] + score[j] > best) {
+        best = prev[j - 1] + score[j];
+        from = kMatch;
       }
       cur[j] = best;
       brow[j] = from;

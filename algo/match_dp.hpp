@@ -39,7 +39,7 @@
 //     two rows in flight: cost, path costs S and backward, bounds, penalties
 //                                2 (2 w Dp + 4 w (Dp + 16) + 6 w)
 //     right-view winners         64 (w + Dp) + 4 (w + Dp)   (16 chains, keys)
-//     edge DP table (per row)    (w + 1)(B + 1) + 58 (w + B) + 8 B
+//     edge DP table (per row)    (w + 1)(B + 1) + 58 (w + B) + 12 B
 //     row vectors                about 14 (wc + Dp) + 30 w
 // Flight budget (320 x 320 px, 128 disparities): 1 841 243 bytes (1.76 MiB),
 // the peak being Canny of the right search area (the row buffers: 1.32 MB);
