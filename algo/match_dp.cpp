@@ -178,15 +178,17 @@ constexpr LaneNumbers kLaneNumbers{};
 
 // The reductions run on the values as uint16 (costs and path costs are never
 // negative): an unsigned 16-bit minimum over a vector is one instruction
-// (SSE4.1 phminposuw) where the signed one is a chain of shuffles.
+// (phminposuw in the x86-64-v3 copy, uminv on NEON) where the signed one is
+// a chain of shuffles. The SSE2 copy has no unsigned minimum: see the signed
+// forms below.
 template <class T>
 const std::uint16_t* as_unsigned(const T* v) {
   static_assert(sizeof(T) == 2, "16-bit lanes");
   return reinterpret_cast<const std::uint16_t*>(v);
 }
 
-// Best lane and its value (the second best is computed only for pixels that
-// pass the cheaper checks: it is another pass over the lanes).
+// Best lane and its value (the second best is another pass over the lanes:
+// second_best, second_best_away_inline).
 template <int kLanes, class T>
 [[gnu::always_inline]] inline Winner best_lane_inline(const T* v_in, int n_arg) {
   const int n = kLanes > 0 ? kLanes : n_arg;
