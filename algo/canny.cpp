@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "algo/vector_clones.hpp"
+
 namespace petra {
 
 namespace {
@@ -18,22 +20,32 @@ constexpr int kTanDen = 32;
 
 // The row kernels are out of line: inlined into canny() they are not
 // vectorised by GCC 12.
-[[gnu::noinline]] void vertical_binomial(const std::uint16_t* __restrict a,
-                                         const std::uint16_t* __restrict b,
-                                         const std::uint16_t* __restrict c,
-                                         const std::uint16_t* __restrict d,
-                                         const std::uint16_t* __restrict e, int n,
-                                         std::uint8_t* __restrict o) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] void vertical_binomial(const std::uint16_t* __restrict a,
+                                                             const std::uint16_t* __restrict b,
+                                                             const std::uint16_t* __restrict c,
+                                                             const std::uint16_t* __restrict d,
+                                                             const std::uint16_t* __restrict e,
+                                                             int n, std::uint8_t* __restrict o) {
   for (int i = 0; i < n; ++i)
     o[i] = static_cast<std::uint8_t>((a[i] + 4 * b[i] + 6 * c[i] + 4 * d[i] + e[i] + 128) >> 8);
 }
 
+// Horizontal [1 4 6 4 1] of one padded row: out[i] from s[i .. i + 4].
+PETRA_VECTOR_CLONES [[gnu::noinline]] void horizontal_binomial(const std::uint8_t* __restrict s,
+                                                               int n,
+                                                               std::uint16_t* __restrict out) {
+  for (int i = 0; i < n; ++i)
+    out[i] =
+        static_cast<std::uint16_t>(s[i] + 4 * s[i + 1] + 6 * s[i + 2] + 4 * s[i + 3] + s[i + 4]);
+}
+
 // Sobel gradients and L1 magnitude of one row from three smoothed rows.
-[[gnu::noinline]] void sobel_row(const std::uint8_t* __restrict up,
-                                 const std::uint8_t* __restrict mid,
-                                 const std::uint8_t* __restrict dn, int n,
-                                 std::int16_t* __restrict ox, std::int16_t* __restrict oy,
-                                 std::uint16_t* __restrict om) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] void sobel_row(const std::uint8_t* __restrict up,
+                                                     const std::uint8_t* __restrict mid,
+                                                     const std::uint8_t* __restrict dn, int n,
+                                                     std::int16_t* __restrict ox,
+                                                     std::int16_t* __restrict oy,
+                                                     std::uint16_t* __restrict om) {
   for (int i = 0; i < n; ++i) {
     const int vx = (up[i + 2] + 2 * mid[i + 2] + dn[i + 2]) - (up[i] + 2 * mid[i] + dn[i]);
     const int vy = (dn[i] + 2 * dn[i + 1] + dn[i + 2]) - (up[i] + 2 * up[i + 1] + up[i + 2]);
@@ -47,11 +59,10 @@ constexpr int kTanDen = 32;
 // above, at and below, offset so that index i is the pixel's column
 // (i - 1 and i + 1 are valid). Writes 0, or the sector and sign with kWeak
 // or kEdgeBit. Branch-free so the compiler runs it in vector lanes.
-[[gnu::noinline]] void nms_row(const std::int16_t* __restrict gx, const std::int16_t* __restrict gy,
-                               const std::uint16_t* __restrict up,
-                               const std::uint16_t* __restrict mid,
-                               const std::uint16_t* __restrict dn, int w, int low, int high,
-                               std::uint8_t* __restrict out) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] void nms_row(
+    const std::int16_t* __restrict gx, const std::int16_t* __restrict gy,
+    const std::uint16_t* __restrict up, const std::uint16_t* __restrict mid,
+    const std::uint16_t* __restrict dn, int w, int low, int high, std::uint8_t* __restrict out) {
   const std::int16_t lo = static_cast<std::int16_t>(low), hi = static_cast<std::int16_t>(high);
   // Every neighbour is loaded and chosen by masks: a select between two
   // addresses would be a gather, which stops the vectoriser.
@@ -148,9 +159,7 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
   auto hfilter = [&](int y_img, std::uint16_t* out) {
     std::uint8_t* s = src_row->data();
     padded_row(image, y_img, area.x - 4, w + 8, s);
-    for (int i = 0; i < sw; ++i)  // out[i] is column area.x - 2 + i
-      out[i] =
-          static_cast<std::uint16_t>(s[i] + 4 * s[i + 1] + 6 * s[i + 2] + 4 * s[i + 3] + s[i + 4]);
+    horizontal_binomial(s, sw, out);  // out[i] is column area.x - 2 + i
   };
   std::uint16_t* ring = hring->data();
   const int y_first = area.y - 4;  // first source row needed
@@ -180,12 +189,14 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
     std::uint8_t* out = edges.row(j);
     nms_row(gx.row(j + 1) + 1, gy.row(j + 1) + 1, mg.row(j) + 1, mg.row(j + 1) + 1,
             mg.row(j + 2) + 1, w, params.low, params.high, out);
-    for (int i = 0; i < w; ++i)
-      if (out[i] & kEdgeBit) {
-        (*stack)[top++] = static_cast<std::uint32_t>(j * w + i);
-        ++stats.strong_pixels;
-      }
+    // Branch-free push (the stack holds w h entries, top <= j w + i).
+    for (int i = 0; i < w; ++i) {
+      (*stack)[top] = static_cast<std::uint32_t>(j * w + i);
+      top += (out[i] & kEdgeBit) != 0;
+    }
   }
+
+  stats.strong_pixels = static_cast<long>(top);
 
   // 4. Hysteresis: grow strong edges into 8-connected weak pixels. A pixel is
   // pushed only when it becomes an edge, so the stack never exceeds w*h.
@@ -210,7 +221,7 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
   for (int j = 0; j < h; ++j) {
     std::uint8_t* row = edges.row(j);
     for (int i = 0; i < w; ++i) {
-      if (row[i] & kWeak) row[i] = 0;
+      row[i] = (row[i] & kWeak) != 0 ? std::uint8_t{0} : row[i];
       stats.edge_pixels += is_edge(row[i]);
     }
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "algo/disparity.hpp"
+#include "algo/vector_clones.hpp"
 
 namespace petra {
 
@@ -31,8 +32,10 @@ inline std::int16_t pad(std::int16_t x, int& parity, int& valid) {
   return out;
 }
 
-void median_row(const std::int16_t* __restrict a, const std::int16_t* __restrict b,
-                const std::int16_t* __restrict c, std::int16_t* __restrict out, int w) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] void median_row(const std::int16_t* __restrict a,
+                                                      const std::int16_t* __restrict b,
+                                                      const std::int16_t* __restrict c,
+                                                      std::int16_t* __restrict out, int w) {
   for (int i = 0; i < w; ++i) {
     int parity = 0, valid = 0;
     std::int16_t v0 = pad(a[i], parity, valid), v1 = pad(a[i + 1], parity, valid);

@@ -24,36 +24,46 @@ struct Window {
 };
 
 void load_window(ConstGray8View img, int x, int y, Window& w) {
-  long s = 0, ss = 0;
   int n = 0;
-  for (int dy = -kZnccRadius; dy <= kZnccRadius; ++dy) {
-    const std::uint8_t* row = img.row(std::clamp(y + dy, 0, img.height() - 1));
-    for (int dx = -kZnccRadius; dx <= kZnccRadius; ++dx) {
-      const std::uint8_t p = row[std::clamp(x + dx, 0, img.width() - 1)];
-      w.px[n++] = p;
-      s += p;
-      ss += p * p;
+  if (x >= kZnccRadius && x < img.width() - kZnccRadius) {  // no column clamping
+    for (int dy = -kZnccRadius; dy <= kZnccRadius; ++dy) {
+      const std::uint8_t* row = img.row(std::clamp(y + dy, 0, img.height() - 1)) + x;
+      for (int dx = -kZnccRadius; dx <= kZnccRadius; ++dx) w.px[n++] = row[dx];
+    }
+  } else {
+    for (int dy = -kZnccRadius; dy <= kZnccRadius; ++dy) {
+      const std::uint8_t* row = img.row(std::clamp(y + dy, 0, img.height() - 1));
+      for (int dx = -kZnccRadius; dx <= kZnccRadius; ++dx)
+        w.px[n++] = row[std::clamp(x + dx, 0, img.width() - 1)];
     }
   }
+  int s = 0, ss = 0;  // at most 25 * 255^2
+  for (int i = 0; i < kN; ++i) {
+    s += w.px[i];
+    ss += w.px[i] * w.px[i];
+  }
   w.sum = s;
-  w.var = kN * ss - s * s;
+  w.var = kN * static_cast<long>(ss) - static_cast<long>(s) * s;
   w.sd = std::sqrt(static_cast<double>(w.var));
 }
 
 int zncc(const Window& a, const Window& b) {
   if (a.var < kMinVariance || b.var < kMinVariance) return 0;
-  long cross = 0;
+  int cross = 0;  // at most 25 * 255^2: an int, which vectorises as 16-bit products
   for (int i = 0; i < kN; ++i) cross += a.px[i] * b.px[i];
-  const long num = kN * cross - a.sum * b.sum;
+  const long num = kN * static_cast<long>(cross) - a.sum * b.sum;
   // var products stay below 2^50: the product of the roots is exact enough.
-  const long den = std::lround(a.sd * b.sd);
+  // Rounded inline: for 1 <= v < 2^52, v + 0.5 is exact and truncation
+  // gives lround(v) (a library call per pair otherwise).
+  const double v = a.sd * b.sd;
+  const long den = static_cast<long>(v + 0.5);
   if (den <= 0) return 0;
   return static_cast<int>(num * kZnccOne / den);
 }
 
 // A usable edge has a position along the row: not a horizontal edge.
-bool usable(std::uint8_t code) {
-  return is_edge(code) && edge_sector(code) != kSectorVertical;
+int usable(std::uint8_t code) {  // & not &&: no branch in the list compaction
+  return static_cast<int>(is_edge(code)) & static_cast<int>(edge_sector(code) != kSectorVertical);
 }
 
 enum : std::uint8_t { kFromUp = 0, kFromLeft = 1, kMatch = 2 };
@@ -71,7 +81,7 @@ std::size_t edge_row_scratch_bytes(int left_n, int right_n) {
   const std::size_t m = static_cast<std::size_t>(std::max(left_n, 0));
   const std::size_t n = static_cast<std::size_t>(std::max(right_n, 0));
   return (m + 1) * (n + 1) + (m + n) * (sizeof(Window) + sizeof(std::int16_t)) +
-         2 * (n + 1) * sizeof(std::int32_t) + 6 * kAlignSlack;
+         3 * (n + 1) * sizeof(std::int32_t) + 7 * kAlignSlack;
 }
 
 Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<EdgePair> pairs) {
@@ -81,10 +91,17 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
   auto rx = arena.allocate<std::int16_t>(static_cast<std::size_t>(in.right_n), "edge list right");
   if (!rx) return rx.error();
   int m = 0, n = 0;
-  for (int i = 0; i < in.left_n; ++i)
-    if (usable(in.left_edges[i])) (*lx)[m++] = static_cast<std::int16_t>(in.left_x0 + i);
-  for (int j = 0; j < in.right_n; ++j)
-    if (usable(in.right_edges[j])) (*rx)[n++] = static_cast<std::int16_t>(in.right_x0 + j);
+  // Branch-free compaction: whether a pixel is an edge is data, and a branch
+  // on it mispredicts. The lists hold left_n / right_n entries, so the
+  // unconditional store stays inside them.
+  for (int i = 0; i < in.left_n; ++i) {
+    (*lx)[static_cast<std::size_t>(m)] = static_cast<std::int16_t>(in.left_x0 + i);
+    m += usable(in.left_edges[i]);
+  }
+  for (int j = 0; j < in.right_n; ++j) {
+    (*rx)[static_cast<std::size_t>(n)] = static_cast<std::int16_t>(in.right_x0 + j);
+    n += usable(in.right_edges[j]);
+  }
   if (m == 0 || n == 0) return 0;
 
   auto lw = arena.allocate<Window>(static_cast<std::size_t>(m), "edge windows left");
@@ -102,34 +119,65 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
   if (!f) return f.error();
   std::int32_t* prev = f->data();
   std::int32_t* cur = f->data() + cols;
+  auto zs = arena.allocate<std::int32_t>(cols, "edge pair scores");
+  if (!zs) return zs.error();
+  std::int32_t* score = zs->data();
   std::fill(prev, prev + cols, 0);
 
   // F(i, j): best score pairing the first i left and first j right edges in
   // order. O(m n) per row; only pairs within the disparity range are scored.
+  // Right edges are sorted by x, so those within the disparity range of a
+  // left edge are one run [j0, j1) of the list, moving right with i. Outside
+  // it a cell only carries the best of its two predecessors.
+  int j0 = 1, j1 = 1;  // 1-based, [j0, j1)
   for (int i = 1; i <= m; ++i) {
     const int xl = (*lx)[i - 1];
     const std::uint8_t gl = in.left_edges[xl - in.left_x0] & kEdgeGxNegative;
+    while (j0 <= n && xl - (*rx)[j0 - 1] > in.disp_max) ++j0;
+    j1 = std::max(j1, j0);
+    while (j1 <= n && xl - (*rx)[j1 - 1] >= in.disp_min) ++j1;
     cur[0] = 0;
     std::uint8_t* brow = back->data() + static_cast<std::size_t>(i) * cols;
-    for (int j = 1; j <= n; ++j) {
+    // Before the run: F(i, j) = F(i - 1, j), since F(i, j - 1) = F(i - 1, j - 1)
+    // <= F(i - 1, j) (F never decreases along j), and ties go up.
+    for (int j = 1; j < j0; ++j) {
+      cur[j] = prev[j];
+      brow[j] = kFromUp;
+    }
+    // Scores of the run first: each ZNCC (a division) is independent of the
+    // others, where inside the recurrence each waited for the previous cell.
+    // A pair needs the same gradient sign and ZNCC >= the floor; it scores
+    // ZNCC - floor + 1 (+1: a pair at the floor still counts), else -1.
+    for (int j = j0; j < j1; ++j) {
+      const int xr = (*rx)[j - 1];
+      int z = -1;
+      if ((in.right_edges[xr - in.right_x0] & kEdgeGxNegative) == gl) {
+        const int c = zncc((*lw)[i - 1], (*rw)[j - 1]);
+        if (c >= in.zncc_floor_q10) z = c - in.zncc_floor_q10 + 1;
+      }
+      score[j] = z;
+    }
+    for (int j = j0; j < j1; ++j) {
       std::int32_t best = prev[j];
       std::uint8_t from = kFromUp;
       if (cur[j - 1] > best) {
         best = cur[j - 1];
         from = kFromLeft;
       }
-      const int xr = (*rx)[j - 1];
-      const int d = xl - xr;
-      if (d >= in.disp_min && d <= in.disp_max &&
-          (in.right_edges[xr - in.right_x0] & kEdgeGxNegative) == gl) {
-        const int z = zncc((*lw)[i - 1], (*rw)[j - 1]);
-        if (z >= in.zncc_floor_q10 && prev[j - 1] + (z - in.zncc_floor_q10) + 1 > best) {
-          best = prev[j - 1] + (z - in.zncc_floor_q10) + 1;  // +1: a pair at the floor still counts
-          from = kMatch;
-        }
+      if (score[j] >= 0 && prev[j - 1] + score[j] > best) {
+        best = prev[j - 1] + score[j];
+        from = kMatch;
       }
       cur[j] = best;
       brow[j] = from;
+    }
+    // After the run: the better of the two predecessors, as a running value.
+    std::int32_t run = cur[j1 - 1];
+    for (int j = j1; j <= n; ++j) {
+      const bool left = run > prev[j];
+      run = left ? run : prev[j];
+      cur[j] = run;
+      brow[j] = left ? kFromLeft : kFromUp;
     }
     std::swap(prev, cur);
   }

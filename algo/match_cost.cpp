@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "algo/core/assert.hpp"
+#include "algo/vector_clones.hpp"
 
 namespace petra::match {
 
@@ -54,20 +55,32 @@ inline std::int16_t min16(std::int16_t a, std::int16_t b) {
 
 }  // namespace
 
-void census_row(ConstGray8View image, int y, int x0, int n, std::uint8_t* __restrict inner,
-                std::uint8_t* __restrict outer, std::uint8_t* rows) {
+// One pass over the row: both census bytes of a pixel are built in
+// registers (16 compares), instead of 16 read-modify-write passes over the
+// two planes.
+PETRA_VECTOR_CLONES void census_row(ConstGray8View image, int y, int x0, int n,
+                                    std::uint8_t* __restrict inner, std::uint8_t* __restrict outer,
+                                    std::uint8_t* rows) {
   const int pw = n + 2 * kCensusRadius;
   for (int r = 0; r < 5; ++r)
     padded_row(image, y - kCensusRadius + r, x0 - kCensusRadius, pw, rows + r * pw);
-  const std::uint8_t* __restrict centre = rows + 2 * pw + kCensusRadius;
-  for (int i = 0; i < n; ++i) inner[i] = outer[i] = 0;
-  for (int b = 0; b < 16; ++b) {
-    const std::uint8_t* __restrict nb =
-        rows + (2 + kCensusOffsets[b][1]) * pw + kCensusRadius + kCensusOffsets[b][0];
-    std::uint8_t* __restrict plane = b < 8 ? inner : outer;
-    const std::uint8_t bit = static_cast<std::uint8_t>(1u << (b & 7));
-    for (int i = 0; i < n; ++i)
-      plane[i] = static_cast<std::uint8_t>(plane[i] | (nb[i] < centre[i] ? bit : 0));
+  const std::uint8_t* __restrict r0 = rows;
+  const std::uint8_t* __restrict r1 = rows + pw;
+  const std::uint8_t* __restrict r2 = rows + 2 * pw;
+  const std::uint8_t* __restrict r3 = rows + 3 * pw;
+  const std::uint8_t* __restrict r4 = rows + 4 * pw;
+  // Bit b is set when neighbour kCensusOffsets[b] is darker than the centre.
+  auto bit = [](std::uint8_t v, std::uint8_t c, int b) {
+    return static_cast<std::uint8_t>(v < c ? (1u << b) : 0u);
+  };
+  for (int i = 0; i < n; ++i) {
+    const std::uint8_t c = r2[i + 2];
+    inner[i] = static_cast<std::uint8_t>(
+        bit(r1[i + 1], c, 0) | bit(r1[i + 2], c, 1) | bit(r1[i + 3], c, 2) | bit(r2[i + 1], c, 3) |
+        bit(r2[i + 3], c, 4) | bit(r3[i + 1], c, 5) | bit(r3[i + 2], c, 6) | bit(r3[i + 3], c, 7));
+    outer[i] = static_cast<std::uint8_t>(
+        bit(r0[i], c, 0) | bit(r0[i + 2], c, 1) | bit(r0[i + 4], c, 2) | bit(r2[i], c, 3) |
+        bit(r2[i + 4], c, 4) | bit(r4[i], c, 5) | bit(r4[i + 2], c, 6) | bit(r4[i + 4], c, 7));
   }
 }
 
@@ -75,64 +88,104 @@ void gray_row(ConstGray8View image, int y, int x0, int n, std::uint8_t* gray) {
   padded_row(image, y, x0, n, gray);
 }
 
+// One column of raw_cost_row: every pointer a restrict parameter, so the
+// compiler neither re-reads the inputs after each byte store (a byte store
+// may alias anything) nor emits run-time overlap checks per column.
 template <int kLanes>
-void raw_cost_row(const RawRowInputs& in, int k_count, std::uint8_t* raw, std::uint16_t* colsum,
-                  int stride_arg) {
+[[gnu::always_inline]] inline void raw_cost_column(
+    std::uint8_t ci, std::uint8_t co, std::uint8_t gl, const std::uint8_t* __restrict cri,
+    const std::uint8_t* __restrict cro, const std::uint8_t* __restrict gr,
+    const std::uint8_t* __restrict ov, const std::uint8_t* __restrict pad,
+    std::uint8_t* __restrict out, std::uint16_t* __restrict sum) {
+  for (int k = 0; k < kLanes; ++k) {
+    const std::uint8_t ad = static_cast<std::uint8_t>(max8(gl, gr[k]) - min8(gl, gr[k]));
+    const std::uint8_t c = static_cast<std::uint8_t>(
+        popcount16(static_cast<std::uint8_t>(ci ^ cri[k]), static_cast<std::uint8_t>(co ^ cro[k])) +
+        (min8(ad, 32) >> 2));
+    // Overrides as branch-free selects: padding lanes, then right samples.
+    // pad is 0 or kRawPad > kRawMax, so a maximum (one instruction) selects it.
+    const std::uint8_t v = max8(ov[k] != 0 ? ov[k] : c, pad[k]);
+    sum[k] = static_cast<std::uint16_t>(sum[k] + v - out[k]);
+    out[k] = v;
+  }
+}
+
+template <int kLanes>
+[[gnu::always_inline]] inline void neutral_column(const std::uint8_t* __restrict pad,
+                                                  std::uint8_t* __restrict out,
+                                                  std::uint16_t* __restrict sum) {
+  for (int k = 0; k < kLanes; ++k) {
+    const std::uint8_t v = pad[k] != 0 ? pad[k] : std::uint8_t{kRawNeutral};
+    sum[k] = static_cast<std::uint16_t>(sum[k] + v - out[k]);
+    out[k] = v;
+  }
+}
+
+template <int kLanes>
+[[gnu::always_inline]] inline void raw_cost_columns(const RawRowInputs& in, int stride,
+                                                    const std::uint8_t* pad, std::uint8_t* raw,
+                                                    std::uint16_t* colsum) {
+  // Copies of the inputs: the stores below are bytes, which may alias `in`.
+  const int n = in.n_left;
+  const std::uint8_t* const cil = in.census_inner_left;
+  const std::uint8_t* const col = in.census_outer_left;
+  const std::uint8_t* const gll = in.gray_left;
+  const std::uint8_t* const cir = in.census_inner_right_rev;
+  const std::uint8_t* const cor = in.census_outer_right_rev;
+  const std::uint8_t* const grr = in.gray_right_rev;
+  const std::uint8_t* const ovr = in.override_rev;
+  const std::uint8_t* const neu = in.neutral_left;
+  for (int i = 0; i < n; ++i) {
+    std::uint8_t* out = raw + static_cast<std::ptrdiff_t>(i) * stride;
+    std::uint16_t* sum = colsum + static_cast<std::ptrdiff_t>(i) * stride;
+    // All `stride` lanes in one vectorised loop (no scalar tail); the lanes
+    // beyond k_count keep kRawPad.
+    if (neu[i]) {
+      neutral_column<kLanes>(pad, out, sum);
+      continue;
+    }
+    const int base = n - 1 - i;
+    raw_cost_column<kLanes>(cil[i], col[i], gll[i], cir + base, cor + base, grr + base, ovr + base,
+                            pad, out, sum);
+  }
+}
+
+template <int kLanes>
+PETRA_VECTOR_CLONES void raw_cost_row(const RawRowInputs& in, int k_count, std::uint8_t* raw,
+                                      std::uint16_t* colsum, int stride_arg) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   PETRA_ASSERT(k_count <= stride && stride <= kMaxLanes);
   std::uint8_t pad[kMaxLanes];  // kRawPad on the lanes beyond the range
   for (int k = 0; k < stride; ++k) pad[k] = k < k_count ? 0 : kRawPad;
-  for (int i = 0; i < in.n_left; ++i) {
-    std::uint8_t* __restrict out = raw + static_cast<std::ptrdiff_t>(i) * stride;
-    std::uint16_t* __restrict sum = colsum + static_cast<std::ptrdiff_t>(i) * stride;
-    // All `stride` lanes in one vectorised loop (no scalar tail); the lanes
-    // beyond k_count keep kRawPad.
-    if (in.neutral_left[i]) {
-      for (int k = 0; k < stride; ++k) {
-        const std::uint8_t v = pad[k] != 0 ? pad[k] : std::uint8_t{kRawNeutral};
-        sum[k] = static_cast<std::uint16_t>(sum[k] + v - out[k]);
-        out[k] = v;
-      }
-      continue;
-    }
-    const int base = in.n_left - 1 - i;
-    const std::uint8_t ci = in.census_inner_left[i];
-    const std::uint8_t co = in.census_outer_left[i];
-    const std::uint8_t gl = in.gray_left[i];
-    const std::uint8_t* __restrict cri = in.census_inner_right_rev + base;
-    const std::uint8_t* __restrict cro = in.census_outer_right_rev + base;
-    const std::uint8_t* __restrict gr = in.gray_right_rev + base;
-    const std::uint8_t* __restrict ov = in.override_rev + base;
-    for (int k = 0; k < stride; ++k) {
-      const std::uint8_t ad = static_cast<std::uint8_t>(max8(gl, gr[k]) - min8(gl, gr[k]));
-      const std::uint8_t c =
-          static_cast<std::uint8_t>(popcount16(static_cast<std::uint8_t>(ci ^ cri[k]),
-                                               static_cast<std::uint8_t>(co ^ cro[k])) +
-                                    (min8(ad, 32) >> 2));
-      // Overrides as branch-free selects: padding lanes, then right samples.
-      // pad is 0 or kRawPad > kRawMax, so a maximum (one instruction) selects it.
-      const std::uint8_t v = max8(ov[k] != 0 ? ov[k] : c, pad[k]);
-      sum[k] = static_cast<std::uint16_t>(sum[k] + v - out[k]);
-      out[k] = v;
+  if constexpr (kLanes > 0) {
+    raw_cost_columns<kLanes>(in, stride, pad, raw, colsum);
+  } else {
+    // Generic lane count: 16 lanes at a time (stride is a multiple of 16).
+    PETRA_ASSERT(stride % 16 == 0);
+    for (int k0 = 0; k0 < stride; k0 += 16) {
+      RawRowInputs part = in;
+      part.census_inner_right_rev += k0;
+      part.census_outer_right_rev += k0;
+      part.gray_right_rev += k0;
+      part.override_rev += k0;
+      raw_cost_columns<16>(part, stride, pad + k0, raw + k0, colsum + k0);
     }
   }
 }
 
 template <int kLanes>
-void box_and_shift_row(const std::uint16_t* colsum, int n, int stride_arg, std::uint16_t* hs,
-                       std::uint16_t* agg) {
+PETRA_VECTOR_CLONES void box_and_shift_row(const std::uint16_t* colsum, int n, int stride_arg,
+                                           std::uint16_t* hs, std::uint16_t* agg) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   const int nh = n + 2 * kShiftRadiusX;
-  // Box sums by a running sum along x, vectorised over k.
-  for (int k = 0; k < stride; ++k)
-    hs[k] = static_cast<std::uint16_t>(colsum[k] + colsum[stride + k] + colsum[2 * stride + k] +
-                                       colsum[3 * stride + k] + colsum[4 * stride + k]);
-  for (int j = 1; j < nh; ++j) {
-    const std::uint16_t* __restrict prev = hs + static_cast<std::ptrdiff_t>(j - 1) * stride;
-    const std::uint16_t* __restrict add = colsum + static_cast<std::ptrdiff_t>(j + 4) * stride;
-    const std::uint16_t* __restrict sub = colsum + static_cast<std::ptrdiff_t>(j - 1) * stride;
+  // Box sums of five columns, each computed directly: a running sum along x
+  // would chain every column to the previous one's store.
+  for (int j = 0; j < nh; ++j) {
+    const std::uint16_t* __restrict c0 = colsum + static_cast<std::ptrdiff_t>(j) * stride;
     std::uint16_t* __restrict cur = hs + static_cast<std::ptrdiff_t>(j) * stride;
-    for (int k = 0; k < stride; ++k) cur[k] = static_cast<std::uint16_t>(prev[k] + add[k] - sub[k]);
+    for (int k = 0; k < stride; ++k)
+      cur[k] = static_cast<std::uint16_t>(c0[k] + c0[stride + k] + c0[2 * stride + k] +
+                                          c0[3 * stride + k] + c0[4 * stride + k]);
   }
   // Minimum over five box positions: min(min(h0,h1), min(h2,h3), h4). The
   // sums stay below 2^15 (kAggregatedMax, padding 45 kRawPad), so they are

@@ -10,6 +10,7 @@
 #include "algo/edge_pairs.hpp"
 #include "algo/match_cost.hpp"
 #include "algo/scanline_dp.hpp"
+#include "algo/vector_clones.hpp"
 
 namespace petra {
 
@@ -22,6 +23,11 @@ using match::kWindowRows;
 
 constexpr std::size_t kAlignSlack = 64;  // per arena allocation
 constexpr int kLaneMultiple = 16;
+constexpr int kRightChains = 16;  // see right_winners
+constexpr int kLaneBits = 12;     // lanes < match::kMaxLanes = 2^12
+// "No winner" in rk: all lane bits set, so it loses every tie of a merge.
+constexpr std::int16_t kNoLane = (1 << kLaneBits) - 1;
+static_assert(match::kMaxLanes <= kNoLane + 1, "lane keys");
 constexpr int kMaxAbsDisparity = 2047;  // Q4 in int16
 constexpr int kWindowPixels = (2 * match::kBoxRadiusX + 1) * kWindowRows;
 // A textureless ROI has fewer edge pixels than this (and than 1 in 500).
@@ -47,17 +53,18 @@ struct Layout {
   std::size_t rows() const {
     const std::size_t cells = z(wc) * z(dp);
     std::size_t b = 0;
-    b += kWindowRows * cells;                       // raw ring
-    b += 2 * cells;                                 // column sums
-    b += 2 * z(w + 4) * z(dp) + 2 * z(w) * z(dp);   // box sums, cost
-    b += 2 * z(w) * z(match::path_row_stride(dp));  // path costs S
-    b += 2 * 2 * z(dp + 2);                         // DP rows
-    b += 5 * z(nrp + 4) + 4 * z(wc) + 6 * z(nrp);   // census, gray, overrides
-    b += 2 * 2 * z(w) + 2 * z(w);                   // bounds, p2
-    b += 2 * 2 * z(w + dp);                         // right winners
-    b += sizeof(match::EdgePair) * z(w);            // pairs
-    b += 2 * median3x3_scratch(w) + z(w);           // median rows, shadow row
-    b += 24 * kAlignSlack;
+    b += kWindowRows * cells;   // raw ring
+    b += 2 * cells;             // column sums
+    b += 2 * z(w + 4) * z(dp);  // box sums
+    // Per row in flight (two): cost, path costs S, backward path costs,
+    // bounds, jump penalties.
+    b += 2 * (2 * z(w) * z(dp) + 2 * 2 * z(w) * z(match::path_row_stride(dp)) + 3 * 2 * z(w));
+    b += 5 * z(nrp + 4) + 4 * z(wc) + 6 * z(nrp);           // census, gray, overrides
+    b += 2 * 2 * kRightChains * z(w + dp) + 4 * z(w + dp);  // right winners, keys
+    b += 3 * 2 * z(w);                                      // left winners
+    b += sizeof(match::EdgePair) * z(w);                    // pairs
+    b += 2 * median3x3_scratch(w) + 2 * z(w);               // median rows, shadow row, reasons
+    b += 32 * kAlignSlack;                                  // one per allocation below, with room
     return b + match::edge_row_scratch_bytes(w, band);
   }
   std::size_t total() const { return edge_maps() + std::max(canny(), rows()); }
@@ -73,6 +80,23 @@ Status take(Arena& arena, std::size_t n, const char* what, std::span<T>& out) {
 
 bool shadow_at(const ShadowMask* m, int x, int y) {
   return m != nullptr && m->is_shadow(x, y);
+}
+
+// std::clamp by value: the reference version made GCC keep the bounds in
+// memory in the per-pixel loop.
+constexpr int clamp_value(int v, int lo, int hi) {
+  return v < lo ? lo : (v > hi ? hi : v);
+}
+
+// out[i] = `yes` where column x0 + i of row y is shadow, else `no`: one
+// pass over the mask row instead of a bounds test per pixel.
+void shadow_row(const ShadowMask* m, int y, int x0, int n, std::uint8_t yes, std::uint8_t no,
+                std::uint8_t* out) {
+  std::fill(out, out + n, no);
+  if (m == nullptr || y < m->area.y || y >= m->area.y + m->area.h) return;
+  const int a = std::max(x0, m->area.x), b = std::min(x0 + n, m->area.x + m->area.w);
+  const std::uint8_t* row = m->mask.row(y - m->area.y) - m->area.x;
+  for (int x = a; x < b; ++x) out[x - x0] = row[x] != 0 ? yes : no;
 }
 
 Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const MatchBudget& budget,
@@ -123,6 +147,17 @@ Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const M
   return ok_status();
 }
 
+// Why a pixel has no disparity (the first check it fails), or kMatched.
+enum Reason : std::uint8_t {
+  kMatched,
+  kShadowLeft,
+  kRange,
+  kLeftRight,
+  kUniqueness,
+  kCost,
+  kShadowRight,
+};
+
 // Best lane, its value and the best value more than one lane away, over
 // v[0..n). Written as three branch-free reductions the compiler vectorises.
 struct Winner {
@@ -134,12 +169,97 @@ struct Winner {
 // Lane numbers as data: the reductions below compare them with loaded
 // values instead of an induction variable, which keeps them vectorised.
 struct LaneNumbers {
-  std::int16_t k[match::kMaxLanes];
+  std::uint16_t k[match::kMaxLanes];
   constexpr LaneNumbers() : k() {
-    for (int i = 0; i < match::kMaxLanes; ++i) k[i] = static_cast<std::int16_t>(i);
+    for (int i = 0; i < match::kMaxLanes; ++i) k[i] = static_cast<std::uint16_t>(i);
   }
 };
 constexpr LaneNumbers kLaneNumbers{};
+
+// The reductions run on the values as uint16 (costs and path costs are never
+// negative): an unsigned 16-bit minimum over a vector is one instruction
+// (phminposuw in the x86-64-v3 copy, uminv on NEON) where the signed one is
+// a chain of shuffles. The SSE2 copy has no unsigned minimum: see the signed
+// forms below.
+template <class T>
+const std::uint16_t* as_unsigned(const T* v) {
+  static_assert(sizeof(T) == 2, "16-bit lanes");
+  return reinterpret_cast<const std::uint16_t*>(v);
+}
+
+// Best lane and its value (the second best is another pass over the lanes:
+// second_best, second_best_away_inline).
+template <int kLanes, class T>
+[[gnu::always_inline]] inline Winner best_lane_inline(const T* v_in, int n_arg) {
+  const int n = kLanes > 0 ? kLanes : n_arg;
+  const std::uint16_t* __restrict v = as_unsigned(v_in);
+  std::uint16_t m = 0xFFFF;
+  for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
+  // First lane holding the minimum: the smallest of lane-or-0xFFFF over the
+  // hits (a compare, an or-not and a minimum).
+  const std::uint16_t* __restrict lane = kLaneNumbers.k;
+  std::uint16_t first = 0xFFFF;
+  for (int k = 0; k < n; ++k) {
+    const std::uint16_t miss = static_cast<std::uint16_t>(~-(v[k] == m));
+    const std::uint16_t c = static_cast<std::uint16_t>(lane[k] | miss);
+    first = c < first ? c : first;
+  }
+  return Winner{first, m, 0};
+}
+
+template <int kLanes, class T>
+PETRA_VECTOR_CLONES [[gnu::noinline]] Winner best_lane(const T* v, int n) {
+  return best_lane_inline<kLanes>(v, n);
+}
+
+// Fills w.second: the best value more than one lane away from w.k.
+template <int kLanes, class T>
+PETRA_VECTOR_CLONES [[gnu::noinline]] void second_best(const T* v_in, int n_arg, Winner& w) {
+  const int n = kLanes > 0 ? kLanes : n_arg;
+  const std::uint16_t* __restrict v = as_unsigned(v_in);
+  const std::uint16_t* __restrict lane = kLaneNumbers.k;
+  const std::uint16_t lo = static_cast<std::uint16_t>(std::max(w.k - 1, 0)),
+                      hi = static_cast<std::uint16_t>(w.k + 1);
+  std::uint16_t m2 = static_cast<std::uint16_t>(std::numeric_limits<T>::max());
+  for (int k = 0; k < n; ++k) {
+    const std::uint16_t near = static_cast<std::uint16_t>(-((lane[k] >= lo) & (lane[k] <= hi)));
+    const std::uint16_t c = static_cast<std::uint16_t>(v[k] | near);
+    m2 = c < m2 ? c : m2;
+  }
+  w.second = m2;
+}
+
+// kNearMask.m[kMaxLanes - k1 + k] is 0xFFFF for |k - k1| <= 1 and 0
+// elsewhere: an or with it hides the winner's lanes without a store into
+// the row (stores followed by vector loads of the same row stall).
+struct NearMask {
+  std::uint16_t m[2 * match::kMaxLanes + 1];
+  constexpr NearMask() : m() {
+    for (int i = 0; i <= 2 * match::kMaxLanes; ++i)
+      m[i] = static_cast<std::uint16_t>(
+          (i >= match::kMaxLanes - 1 && i <= match::kMaxLanes + 1) ? 0xFFFF : 0);
+  }
+};
+constexpr NearMask kNearMask{};
+
+// The best value more than one lane away from lane k1.
+template <int kLanes>
+[[gnu::always_inline]] inline int second_best_away_inline(const std::int16_t* v_in, int n_arg,
+                                                          int k1) {
+  const int n = kLanes > 0 ? kLanes : n_arg;
+  const std::uint16_t* __restrict v = as_unsigned(v_in);
+  const std::uint16_t* __restrict mask = kNearMask.m + match::kMaxLanes - k1;
+  std::uint16_t m = 0x7FFF;
+  for (int k = 0; k < n; ++k) {
+    const std::uint16_t c = static_cast<std::uint16_t>(v[k] | mask[k]);
+    m = c < m ? c : m;
+  }
+  return m;
+}
+
+// Signed forms of the two reductions for the per-pixel pass (path costs are
+// int16 >= 0), where unsigned_min_is_native() is false: x86-64's baseline
+// SSE2 has signed 16-bit minimum and maximum but emulates unsigned ones.
 struct LaneRanks {
   std::int16_t r[match::kMaxLanes];
   constexpr LaneRanks() : r() {
@@ -148,68 +268,72 @@ struct LaneRanks {
 };
 constexpr LaneRanks kLaneRanks{};
 
-// Best lane and its value (the second best is computed only for pixels that
-// pass the cheaper checks: it is another pass over the lanes).
-template <int kLanes, class T>
-[[gnu::noinline]] Winner best_lane(const T* __restrict v, int n_arg) {
-  const int n = kLanes > 0 ? kLanes : n_arg;
-  constexpr T kTop = std::numeric_limits<T>::max();
-  T m = kTop;
-  for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
-  // First lane holding the minimum: the largest rank 0x7FFF - k among the
-  // hits (a mask and a maximum, where a minimum over lane-or-0x7FFF needs two
-  // more operations for the select).
-  const std::int16_t* __restrict rank = kLaneRanks.r;
-  std::int16_t top_rank = 0;
-  for (int k = 0; k < n; ++k) {
-    const std::int16_t hit = static_cast<std::int16_t>(-(v[k] == m));
-    const std::int16_t c = static_cast<std::int16_t>(rank[k] & hit);
-    top_rank = c > top_rank ? c : top_rank;
-  }
-  return Winner{0x7FFF - top_rank, m, 0};
-}
-
-// Fills w.second: the best value more than one lane away from w.k.
-template <int kLanes, class T>
-[[gnu::noinline]] void second_best(const T* __restrict v, int n_arg, Winner& w) {
-  const int n = kLanes > 0 ? kLanes : n_arg;
-  constexpr T kTop = std::numeric_limits<T>::max();
-  const std::int16_t* __restrict lane = kLaneNumbers.k;
-  const std::int16_t lo = static_cast<std::int16_t>(w.k - 1),
-                     hi = static_cast<std::int16_t>(w.k + 1);
-  T m2 = kTop;
-  for (int k = 0; k < n; ++k) {
-    const T near = static_cast<T>(-((lane[k] >= lo) & (lane[k] <= hi)));
-    const T c = static_cast<T>((v[k] & ~near) | (kTop & near));
-    m2 = c < m2 ? c : m2;
-  }
-  w.second = m2;
-}
-
-// kNearMask.m[kMaxLanes - k1 + k] is 0x7FFF for |k - k1| <= 1 and -32768
-// elsewhere: a maximum with it hides the winner's lanes without a store
-// into the row (stores followed by vector loads of the same row stall).
-struct NearMask {
+// kNearMaskSigned.m[kMaxLanes - k1 + k] is 0x7FFF for |k - k1| <= 1 and
+// -32768 elsewhere: a maximum with it hides the winner's lanes.
+struct NearMaskSigned {
   std::int16_t m[2 * match::kMaxLanes + 1];
-  constexpr NearMask() : m() {
+  constexpr NearMaskSigned() : m() {
     for (int i = 0; i <= 2 * match::kMaxLanes; ++i)
       m[i] = static_cast<std::int16_t>(
           (i >= match::kMaxLanes - 1 && i <= match::kMaxLanes + 1) ? 0x7FFF : -32768);
   }
 };
-constexpr NearMask kNearMask{};
+constexpr NearMaskSigned kNearMaskSigned{};
 
-// The best value more than one lane away from lane k1.
 template <int kLanes>
-[[gnu::noinline]] int second_best_away(const std::int16_t* __restrict v, int n_arg, int k1) {
+[[gnu::always_inline]] inline Winner best_lane_signed(const std::int16_t* __restrict v, int n_arg) {
   const int n = kLanes > 0 ? kLanes : n_arg;
-  const std::int16_t* __restrict mask = kNearMask.m + match::kMaxLanes - k1;
+  std::int16_t m = 0x7FFF;
+  for (int k = 0; k < n; ++k) m = v[k] < m ? v[k] : m;
+  // First lane holding the minimum: the largest rank 0x7FFF - k of the hits.
+  const std::int16_t* __restrict rank = kLaneRanks.r;
+  std::int16_t top = 0;
+  for (int k = 0; k < n; ++k) {
+    const std::int16_t c = static_cast<std::int16_t>(rank[k] & -(v[k] == m));
+    top = c > top ? c : top;
+  }
+  return Winner{0x7FFF - top, m, 0};
+}
+
+template <int kLanes>
+[[gnu::always_inline]] inline int second_best_away_signed(const std::int16_t* __restrict v,
+                                                          int n_arg, int k1) {
+  const int n = kLanes > 0 ? kLanes : n_arg;
+  const std::int16_t* __restrict mask = kNearMaskSigned.m + match::kMaxLanes - k1;
   std::int16_t m = 0x7FFF;
   for (int k = 0; k < n; ++k) {
     const std::int16_t c = v[k] < mask[k] ? mask[k] : v[k];
     m = c < m ? c : m;
   }
   return m;
+}
+
+// Winner lane, its value and the best value more than one lane away, for
+// every column of a row of path costs, in one branch-free loop: the
+// reductions of successive columns are independent and overlap, where
+// interleaved with the per-pixel checks each one's latency was exposed.
+// kUnsigned picks the reduction form (unsigned_min_is_native()); both give
+// the same result.
+template <int kLanes, bool kUnsigned>
+PETRA_VECTOR_CLONES [[gnu::noinline]] void row_winners(const std::int16_t* __restrict S, int w,
+                                                       int row_stride, int lanes_arg,
+                                                       std::int16_t* __restrict k1,
+                                                       std::int16_t* __restrict best,
+                                                       std::int16_t* __restrict second) {
+  for (int i = 0; i < w; ++i) {
+    const std::int16_t* s = S + static_cast<std::size_t>(i) * row_stride;
+    Winner win;
+    if constexpr (kUnsigned) {
+      win = best_lane_inline<kLanes>(s, lanes_arg);
+      win.second = second_best_away_inline<kLanes>(s, lanes_arg, win.k);
+    } else {
+      win = best_lane_signed<kLanes>(s, lanes_arg);
+      win.second = second_best_away_signed<kLanes>(s, lanes_arg, win.k);
+    }
+    k1[i] = static_cast<std::int16_t>(win.k);
+    best[i] = static_cast<std::int16_t>(win.best);
+    second[i] = static_cast<std::int16_t>(win.second);
+  }
 }
 
 template <int kLanes, class T>
@@ -224,34 +348,62 @@ bool unique_enough(const Winner& w, int pct) {
 }
 
 // out[m] = in[n - 1 - m].
-[[gnu::noinline]] void reverse_copy(const std::uint8_t* __restrict in, int n,
-                                    std::uint8_t* __restrict out) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] void reverse_copy(const std::uint8_t* __restrict in, int n,
+                                                        std::uint8_t* __restrict out) {
   for (int m = 0; m < n; ++m) out[m] = in[n - 1 - m];
 }
 
 // Right-view winners: for right pixel (reversed index m), the lane k of the
-// smallest path cost over the left pixels i with m = (w - 1 - i) + k. All
-// `lanes` lanes are scanned (padding lanes never win), so no scalar tail;
-// rmin and rk hold w + lanes - 1 entries.
+// smallest path cost over the left pixels i with m = (w - 1 - i) + k, the
+// first (smallest i, so smallest k) on ties. All `lanes` lanes are scanned
+// (padding lanes never win), so no scalar tail. Column i updates the running
+// minima one entry left of column i - 1's: in one array, each load would
+// overlap the previous column's stores at a 2-byte offset, which the CPU
+// cannot forward, and wait for them to reach the cache. So column i goes to
+// chain i % kRightChains: a chain's consecutive updates are then 16 entries
+// (32 bytes, a whole vector) apart and its loads match earlier stores
+// exactly. The chains are merged at the end through (cost, lane) keys whose
+// minimum keeps the smaller lane on ties: the same first-i rule. rmin and
+// rk hold kRightChains * (w + lanes) entries, key w + lanes; the lanes of
+// the winners end up in rk[0 .. w + lanes - 1).
 template <int kLanes>
-[[gnu::noinline]] void right_winners(const std::int16_t* __restrict S, int w, int row_stride,
-                                     int lanes_arg, const std::uint8_t* __restrict skip,
-                                     std::int16_t* __restrict rmin, std::int16_t* __restrict rk) {
+PETRA_VECTOR_CLONES [[gnu::noinline]] void right_winners(const std::int16_t* __restrict S, int w,
+                                                         int row_stride, int lanes_arg,
+                                                         const std::uint8_t* __restrict skip,
+                                                         std::int16_t* __restrict rmin,
+                                                         std::int16_t* __restrict rk,
+                                                         std::int32_t* __restrict key) {
   const int lanes = kLanes > 0 ? kLanes : lanes_arg;
-  for (int m = 0; m < w + lanes - 1; ++m) {
+  const int len = w + lanes;
+  for (int m = 0; m < kRightChains * len; ++m) {
     rmin[m] = 0x7FFF;
-    rk[m] = -1;
+    rk[m] = kNoLane;
   }
   for (int i = 0; i < w; ++i) {
     if (skip[i]) continue;
+    const std::ptrdiff_t chain = static_cast<std::ptrdiff_t>(i % kRightChains) * len;
     const std::int16_t* __restrict s = S + static_cast<std::size_t>(i) * row_stride;
-    std::int16_t* __restrict rm = rmin + (w - 1 - i);
-    std::int16_t* __restrict rl = rk + (w - 1 - i);
+    std::int16_t* __restrict rm = rmin + chain + (w - 1 - i);
+    std::int16_t* __restrict rl = rk + chain + (w - 1 - i);
     for (int k = 0; k < lanes; ++k) {
       const bool better = s[k] < rm[k];
       rm[k] = better ? s[k] : rm[k];
       rl[k] = better ? static_cast<std::int16_t>(k) : rl[k];
     }
+  }
+  // key = cost * 2^12 + lane: costs are below 2^15, lanes below 2^12.
+  for (int m = 0; m < len; ++m) key[m] = 0x7FFFFFFF;
+  for (int c = 0; c < kRightChains; ++c) {
+    const std::int16_t* __restrict cm = rmin + static_cast<std::ptrdiff_t>(c) * len;
+    const std::int16_t* __restrict cl = rk + static_cast<std::ptrdiff_t>(c) * len;
+    for (int m = 0; m < len; ++m) {
+      const std::int32_t k = (static_cast<std::int32_t>(cm[m]) << kLaneBits) | cl[m];
+      key[m] = k < key[m] ? k : key[m];
+    }
+  }
+  for (int m = 0; m < len; ++m) {
+    const std::int16_t lane = static_cast<std::int16_t>(key[m] & kNoLane);
+    rk[m] = lane == kNoLane ? std::int16_t{-1} : lane;
   }
 }
 
@@ -274,9 +426,10 @@ namespace {
 // The whole matcher for one lane count (kLanes = Dp, or 0 for any), so every
 // row kernel runs with a compile-time lane count.
 template <int kLanes>
-Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpParams& p,
-                                Arena& arena, DisparityMap& out,
-                                ImageView<std::uint8_t> confidence) {
+PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi,
+                                                    const MatchDpParams& p, Arena& arena,
+                                                    DisparityMap& out,
+                                                    ImageView<std::uint8_t> confidence) {
   const int W = in.left.width();
   const int H = in.left.height();
   const Rect band = right_search_area(roi, p.disp_min, p.disp_max, W);
@@ -293,8 +446,9 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
   const std::size_t used_at_entry = arena.used();
   MatchDpStats st;
   st.roi_pixels = roi.area();
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) st.shadow_left += shadow_at(in.left_shadow, roi.x + x, roi.y + y);
+  if (in.left_shadow != nullptr)
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) st.shadow_left += shadow_at(in.left_shadow, roi.x + x, roi.y + y);
   if (st.shadow_left == st.roi_pixels)
     return Error::make(Errc::degenerate, "match_dp: all %ld pixels of the ROI are shadow",
                        st.roi_pixels);
@@ -322,18 +476,35 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
   }
 
   // Row buffers.
-  std::span<std::uint8_t> ring, census_rows, skip, cli, clo, gl, cri, cro, gr, ov, t1, t2, neutral;
-  std::span<std::uint16_t> colsum, hs, agg, p2;
-  std::span<std::int16_t> S, dp_rows, lo, hi, rmin, rk, med;
+  std::span<std::uint8_t> ring, census_rows, skip, reasons, cli, clo, gl, cri, cro, gr, ov, t1, t2,
+      neutral;
+  std::span<std::uint16_t> colsum, hs;
+  std::span<std::int16_t> rmin, rk, med, wk, wbest, wsecond;
   std::span<match::EdgePair> pairs;
   const std::size_t cells = static_cast<std::size_t>(wc) * Dp;
   PETRA_TRY(take(arena, kWindowRows * cells, "raw cost ring", ring));
   PETRA_TRY(take(arena, cells, "column sums", colsum));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w + 4) * Dp, "box sums", hs));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w) * Dp, "aggregated cost", agg));
+
   const int sp = match::path_row_stride(Dp);
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w) * sp, "path costs", S));
-  PETRA_TRY(take(arena, 2 * static_cast<std::size_t>(Dp + 2), "DP rows", dp_rows));
+  // Rows go through in pairs: steps 1-3 for two rows, then both DPs at once
+  // (scanline_dp_pair: the DP is latency-bound, two rows fill each other's
+  // waits), then steps 4-5 for both. Each row in flight has its own cost,
+  // bounds, penalties and path costs.
+  struct RowBuffers {
+    std::span<std::uint16_t> agg, p2;
+    std::span<std::int16_t> lo, hi, S, back;
+  };
+  RowBuffers rows[2];
+  for (RowBuffers& r : rows) {
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w) * Dp, "aggregated cost", r.agg));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w) * sp, "path costs", r.S));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w) * sp, "backward path costs", r.back));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w), "lower bounds", r.lo));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w), "upper bounds", r.hi));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w), "jump penalties", r.p2));
+  }
+
   PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(nrp + 4), "census rows", census_rows));
   PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census inner", cli));
   PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census outer", clo));
@@ -345,14 +516,19 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
   PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right override", ov));
   PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right row 1", t1));
   PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right row 2", t2));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "lower bounds", lo));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "upper bounds", hi));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "jump penalties", p2));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w + Dp), "right winners", rmin));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w + Dp), "right winner lanes", rk));
+
+  const std::size_t right_len = static_cast<std::size_t>(kRightChains) * (w + Dp);
+  PETRA_TRY(take(arena, right_len, "right winners", rmin));
+  PETRA_TRY(take(arena, right_len, "right winner lanes", rk));
+  std::span<std::int32_t> right_keys;
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w + Dp), "right winner keys", right_keys));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "edge pairs", pairs));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "winner lanes", wk));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "winner costs", wbest));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "second best costs", wsecond));
   PETRA_TRY(take(arena, median3x3_scratch(w), "median rows", med));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "shadow row", skip));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "rejection reasons", reasons));
 
   // Raw cost of image row y into `raw` ([i][k], column i = left x0 - 4 + i).
   const int xl_first = roi.x - kMarginX;
@@ -367,17 +543,18 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
     match::gray_row(in.right, y, xr_hi - nrp + 1, nrp, t1.data());
     reverse_copy(t1.data(), nrp, gr.data());
     const int yc = std::clamp(y, 0, H - 1);
-    for (int m = 0; m < nrp; ++m) {
-      const int x = xr_hi - m;
-      ov[m] = static_cast<std::uint8_t>((m >= nr || x < 0 || x >= W)        ? kRawMax
-                                        : shadow_at(in.right_shadow, x, yc) ? kRawNeutral
-                                                                            : 0);
-    }
+    // Right samples: kRawMax outside the image or the range, kRawNeutral in
+    // shadow (reversed index m is column xr_hi - m).
+    shadow_row(in.right_shadow, yc, xr_hi - nrp + 1, nrp, kRawNeutral, 0, t1.data());
+    reverse_copy(t1.data(), nrp, ov.data());
+    const int m_lo = std::max(0, xr_hi - W + 1), m_hi = std::min(nr - 1, xr_hi);  // inside
+    std::fill(ov.data(), ov.data() + std::clamp(m_lo, 0, nrp), std::uint8_t{kRawMax});
+    std::fill(ov.data() + std::clamp(m_hi + 1, 0, nrp), ov.data() + nrp, std::uint8_t{kRawMax});
     // Left pixels outside the image or in shadow carry no information.
-    for (int i = 0; i < wc; ++i) {
-      const int x = xl_first + i;
-      neutral[i] = (x < 0 || x >= W || shadow_at(in.left_shadow, x, yc)) ? 1 : 0;
-    }
+    shadow_row(in.left_shadow, yc, xl_first, wc, 1, 0, neutral.data());
+    std::fill(neutral.data(), neutral.data() + std::clamp(-xl_first, 0, wc), std::uint8_t{1});
+    std::fill(neutral.data() + std::clamp(W - xl_first, 0, wc), neutral.data() + wc,
+              std::uint8_t{1});
     match::RawRowInputs ri{cli.data(), clo.data(), gl.data(),     wc, cri.data(), cro.data(),
                            gr.data(),  ov.data(),  neutral.data()};
     match::raw_cost_row<kLanes>(ri, D, raw, colsum.data(), Dp);
@@ -393,21 +570,22 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
   for (int g = 0; g < 256; ++g)
     p2_of_step[g] = static_cast<std::uint16_t>(std::max(p2_floor, p.p2 * 8 / (8 + g)));
   const int tol = p.edge_tolerance_px;
+  const bool unsigned_min = unsigned_min_is_native();
   const long cost_ceiling = static_cast<long>(p.max_mean_cost) * kWindowPixels;
   const int zfloor = p.edge_zncc_floor_pct * match::kZnccOne / 100;
 
-  for (int t = 0; t < h; ++t) {
+  auto prepare = [&](int t, RowBuffers& rb) -> Status {
     const int y = roi.y + t;
     if (t > 0) {  // slide the window down one row
       std::uint8_t* slot = ring.data() + static_cast<std::size_t>((t - 1) % kWindowRows) * cells;
       raw_row(y + match::kBoxRadiusY, slot);  // replaces the row leaving the window
     }
-    match::box_and_shift_row<kLanes>(colsum.data(), w, Dp, hs.data(), agg.data());
+    match::box_and_shift_row<kLanes>(colsum.data(), w, Dp, hs.data(), rb.agg.data());
 
     // Steps 2-3: edge pairs -> anchors -> bounds (lanes k = d - dmin).
     for (int i = 0; i < w; ++i) {
-      lo[i] = 0;
-      hi[i] = static_cast<std::int16_t>(D - 1);
+      rb.lo[i] = 0;
+      rb.hi[i] = static_cast<std::int16_t>(D - 1);
     }
     if (p.edge_constraint) {
       match::EdgeRowInputs ei;
@@ -432,19 +610,22 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
         const match::EdgePair e = pairs[static_cast<std::size_t>(a)];
         const int i = e.x_left - roi.x;
         const int kp = e.x_left - e.x_right - dmin;
-        const Winner wl = winner<0>(agg.data() + static_cast<std::size_t>(i) * Dp, D);
+        // All Dp lanes: the padding lanes' cost exceeds every real one, so
+        // they win neither the best nor the second best of a real lane.
+        const Winner wl = winner<kLanes>(rb.agg.data() + static_cast<std::size_t>(i) * Dp, Dp);
         if (std::abs(wl.k - kp) > tol || !unique_enough(wl, p.edge_uniqueness_pct)) continue;
-        int kr = -1, best = 0;
-        for (int k = 0; k < D; ++k) {
-          const int ii = e.x_right - roi.x + dmin + k;
-          if (ii < 0 || ii >= w) continue;
-          const int v = agg[static_cast<std::size_t>(ii) * Dp + k];
-          if (kr < 0 || v < best) {
-            best = v;
-            kr = k;
-          }
+        // Right view: lanes k whose left column base + k lies in the ROI.
+        const int base = e.x_right - roi.x + dmin;
+        const int k_first = std::max(0, -base), k_last = std::min(D - 1, w - 1 - base);
+        if (k_first > k_last) continue;
+        int kr = k_first;
+        int best = rb.agg[static_cast<std::size_t>(base + k_first) * Dp + k_first];
+        for (int k = k_first + 1; k <= k_last; ++k) {
+          const int v = rb.agg[static_cast<std::size_t>(base + k) * Dp + k];
+          kr = v < best ? k : kr;
+          best = v < best ? v : best;
         }
-        if (kr < 0 || std::abs(kr - kp) > tol) continue;
+        if (std::abs(kr - kp) > tol) continue;
         pairs[static_cast<std::size_t>(n_anchor++)] = e;
       }
       st.anchors += n_anchor;
@@ -463,15 +644,15 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
           if (has_next) klo = std::max(klo, x - pb->x_right + 1 - tol - dmin);
           if (has_prev) khi = std::min(khi, x - pa->x_right - 1 + tol - dmin);
           if (klo <= khi) {
-            lo[i] = static_cast<std::int16_t>(klo);
-            hi[i] = static_cast<std::int16_t>(khi);
+            rb.lo[i] = static_cast<std::int16_t>(klo);
+            rb.hi[i] = static_cast<std::int16_t>(khi);
           }
         }
         if (has_next) {
           const int i = pb->x_left - roi.x;
           const int k = pb->x_left - pb->x_right - dmin;
-          lo[i] = static_cast<std::int16_t>(std::max(0, k - tol));
-          hi[i] = static_cast<std::int16_t>(std::min(D - 1, k + tol));
+          rb.lo[i] = static_cast<std::int16_t>(std::max(0, k - tol));
+          rb.hi[i] = static_cast<std::int16_t>(std::min(D - 1, k + tol));
         }
       }
     }
@@ -480,69 +661,104 @@ Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi, const MatchDpPa
     const std::uint8_t* img_row = in.left.row(y) + roi.x;
     for (int i = 1; i < w; ++i) {
       const int g = std::abs(img_row[i] - img_row[i - 1]);
-      p2[i] = p2_of_step[g];
+      rb.p2[i] = p2_of_step[g];
     }
-    p2[0] = static_cast<std::uint16_t>(p.p2);
-    match::apply_bounds<kLanes>(agg.data(), w, Dp, lo.data(), hi.data(), D - 1);
-    match::ScanlineInputs si{agg.data(), w, Dp, p2.data(), p.p1};
-    match::scanline_dp<kLanes>(si, S.data(), dp_rows.data());
+    rb.p2[0] = static_cast<std::uint16_t>(p.p2);
+    match::apply_bounds<kLanes>(rb.agg.data(), w, Dp, rb.lo.data(), rb.hi.data(), D - 1);
 
+    return ok_status();
+  };
+  auto finish = [&](int t, RowBuffers& rb) {
+    const int y = roi.y + t;
     // Right view winners along the same path costs (reversed index m).
-    for (int i = 0; i < w; ++i) skip[i] = shadow_at(in.left_shadow, roi.x + i, y);
-    right_winners<kLanes>(S.data() + match::kGuardLanes, w, sp, Dp, skip.data(), rmin.data(),
-                          rk.data());
+    shadow_row(in.left_shadow, y, roi.x, w, 1, 0, skip.data());
+    right_winners<kLanes>(rb.S.data() + match::kGuardLanes, w, sp, Dp, skip.data(), rmin.data(),
+                          rk.data(), right_keys.data());
 
     // Steps 4-5: select, reject, refine.
+    if (unsigned_min)
+      row_winners<kLanes, true>(rb.S.data() + match::kGuardLanes, w, sp, Dp, wk.data(),
+                                wbest.data(), wsecond.data());
+    else
+      row_winners<kLanes, false>(rb.S.data() + match::kGuardLanes, w, sp, Dp, wk.data(),
+                                 wbest.data(), wsecond.data());
     std::int16_t* o = out.q4.row(t);
     std::uint8_t* conf = confidence.empty() ? nullptr : confidence.row(t);
+    // Every check is evaluated for every pixel and combined without
+    // branches: which check rejects a pixel is data, and a branch on it
+    // mispredicts. The counters keep the order of the checks (a pixel counts
+    // for the first one it fails).
+    std::uint8_t* __restrict why = reasons.data();
     for (int i = 0; i < w; ++i) {
       const int x = roi.x + i;
-      o[i] = kInvalidDisparity;
-      if (conf) conf[i] = 0;
-      if (shadow_at(in.left_shadow, x, y)) continue;
-      const std::int16_t* s = S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
-      const int klo = lo[i], khi = hi[i];
-      // Lanes outside [klo, khi] carry kForbiddenCost and never win.
-      Winner win = best_lane<kLanes>(s, Dp);
+      const std::int16_t* s = rb.S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
+      // Lanes outside [lo, hi] carry kForbiddenCost and never win.
+      const Winner win{wk[i], wbest[i], wsecond[i]};
       const int k1 = win.k;
       const int d = dmin + k1;
-      if (x - d < 0 || x - d >= W) {
-        ++st.rejected_range;
-        continue;
-      }
-      if (std::abs(rk[static_cast<std::size_t>(w - 1 - i + k1)] - k1) > p.lr_tolerance_px) {
-        ++st.rejected_lr;
-        continue;
-      }
-      win.second = second_best_away<kLanes>(s, Dp, k1);
-      if (!unique_enough(win, p.uniqueness_pct)) {
-        ++st.rejected_uniqueness;
-        continue;
-      }
-      if (agg[static_cast<std::size_t>(i) * Dp + k1] > cost_ceiling) {
-        ++st.rejected_cost;
-        continue;
-      }
-      if (shadow_at(in.right_shadow, x - d, y)) {
-        ++st.rejected_shadow_right;
-        continue;
-      }
-      int q = d * kDisparityScale;
-      if (k1 > klo && k1 < khi) {
-        const int a = s[k1 - 1], b = s[k1], c = s[k1 + 1];
-        const int den = a + c - 2 * b;
-        if (den > 0) {
-          const int num = 8 * (a - c);  // offset (a - c) / (2 den) px, in 1/16 px
-          const int off = (num >= 0 ? num + den / 2 : num - den / 2) / den;
-          q += std::clamp(off, -8, 8);
-        }
-      }
-      o[i] = static_cast<std::int16_t>(q);
+      const bool left = skip[i] == 0;
+      const bool in_range = x - d >= 0 && x - d < W;
+      const bool lr =
+          std::abs(rk[static_cast<std::size_t>(w - 1 - i + k1)] - k1) <= p.lr_tolerance_px;
+      const bool unique = unique_enough(win, p.uniqueness_pct);
+      const bool cheap = rb.agg[static_cast<std::size_t>(i) * Dp + k1] <= cost_ceiling;
+      const bool lit = !in_range || !shadow_at(in.right_shadow, x - d, y);
+      // The first check failed, counted per row below (counters updated
+      // here would live in memory and chain every pixel to the previous).
+      why[i] = static_cast<std::uint8_t>(!left       ? kShadowLeft
+                                         : !in_range ? kRange
+                                         : !lr       ? kLeftRight
+                                         : !unique   ? kUniqueness
+                                         : !cheap    ? kCost
+                                         : !lit      ? kShadowRight
+                                                     : kMatched);
+      const bool valid = why[i] == kMatched;
+      // Sub-pixel: parabola through S at k1 - 1, k1, k1 + 1 when both
+      // neighbours are allowed lanes (the guard lanes make the reads safe).
+      const int sa = s[k1 - 1], sb = s[k1], sc = s[k1 + 1];
+      const int den = sa + sc - 2 * sb;
+      const bool fit = k1 > rb.lo[i] && k1 < rb.hi[i] && den > 0;
+      const int den_s = fit ? den : 1;
+      const int num = 8 * (sa - sc);  // offset (a - c) / (2 den) px, in 1/16 px
+      const int off = (num >= 0 ? num + den_s / 2 : num - den_s / 2) / den_s;
+      const int q = d * kDisparityScale + (fit ? clamp_value(off, -8, 8) : 0);
+      o[i] = valid ? static_cast<std::int16_t>(q) : kInvalidDisparity;
       if (conf) {
         const int margin = 255 * (win.second - win.best) / std::max(win.second, 1);
-        conf[i] = static_cast<std::uint8_t>(std::clamp(margin, 1, 255));
+        conf[i] = valid ? static_cast<std::uint8_t>(clamp_value(margin, 1, 255)) : std::uint8_t{0};
       }
     }
+    // Compares summed in vector lanes (a histogram would chain increments
+    // of the same counter through memory).
+    int n_range = 0, n_lr = 0, n_unique = 0, n_cost = 0, n_shadow = 0;
+    for (int i = 0; i < w; ++i) {
+      n_range += why[i] == kRange;
+      n_lr += why[i] == kLeftRight;
+      n_unique += why[i] == kUniqueness;
+      n_cost += why[i] == kCost;
+      n_shadow += why[i] == kShadowRight;
+    }
+    st.rejected_range += n_range;
+    st.rejected_lr += n_lr;
+    st.rejected_uniqueness += n_unique;
+    st.rejected_cost += n_cost;
+    st.rejected_shadow_right += n_shadow;
+  };
+  for (int t = 0; t < h; t += 2) {
+    RowBuffers& ra = rows[0];
+    RowBuffers& rb = rows[1];
+    PETRA_TRY(prepare(t, ra));
+    const match::ScanlineInputs sa{ra.agg.data(), w, Dp, ra.p2.data(), p.p1};
+    if (t + 1 < h) {
+      PETRA_TRY(prepare(t + 1, rb));
+      const match::ScanlineInputs sb{rb.agg.data(), w, Dp, rb.p2.data(), p.p1};
+      match::scanline_dp_pair<kLanes>(sa, ra.S.data(), ra.back.data(), sb, rb.S.data(),
+                                      rb.back.data());
+    } else {
+      match::scanline_dp<kLanes>(sa, ra.S.data(), ra.back.data());
+    }
+    finish(t, ra);
+    if (t + 1 < h) finish(t + 1, rb);
   }
 
   if (p.median) PETRA_TRY(median3x3_valid(out.q4, med));

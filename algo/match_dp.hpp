@@ -35,13 +35,17 @@
 //   then Canny (transient)       about 11 B h           (one view at a time)
 //   or the row buffers:
 //     raw cost window (9 rows)   9 wc Dp
-//     column sums, box, cost     2 wc Dp + 2 (w + 4) Dp + 2 w Dp
-//     path costs S               2 w (Dp + 16)
-//     edge DP table (per row)    (w + 1)(B + 1) + 50 (w + B) + 8 B
-//     row vectors                about 14 (wc + Dp) + 20 w
+//     column sums, box sums      2 wc Dp + 2 (w + 4) Dp
+//     two rows in flight: cost, path costs S and backward, bounds, penalties
+//                                2 (2 w Dp + 4 w (Dp + 16) + 6 w)
+//     right-view winners         64 (w + Dp) + 4 (w + Dp)   (16 chains, keys)
+//     edge DP table (per row)    (w + 1)(B + 1) + 58 (w + B) + 12 B
+//     row vectors                about 14 (wc + Dp) + 30 w
 // Flight budget (320 x 320 px, 128 disparities): 1 841 243 bytes (1.76 MiB),
-// the peak being Canny of the right search area; 160 x 160 px with 42
-// disparities: 422 221 bytes. docs/matching.md has the table.
+// the peak being Canny of the right search area (the row buffers: 1.32 MB);
+// 160 x 160 px with 42 disparities: 422 221 bytes. docs/matching.md has the
+// table. Lane kernels also have an x86-64-v3 copy chosen at load
+// (algo/vector_clones.hpp); outputs are the same bit for bit.
 #pragma once
 
 #include <cstddef>

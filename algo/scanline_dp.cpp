@@ -4,6 +4,7 @@
 
 #include "algo/core/assert.hpp"
 #include "algo/match_cost.hpp"
+#include "algo/vector_clones.hpp"
 
 namespace petra::match {
 
@@ -23,25 +24,26 @@ inline std::int16_t min16(std::int16_t a, std::int16_t b) {
 
 // One step of the recursion, returning min_k of the new row:
 //   cur = C + min(prev, prev(k+-1) + P1, mn + P2) - mn,  mn = min_k prev.
-// With kAccumulate (the backward pass), the new row is also added into
-// acc, in the same loop while it is in registers.
-template <int kLanes, bool kAccumulate = false>
+template <int kLanes>
 inline std::int16_t step(const std::int16_t* __restrict prev, const std::uint16_t* __restrict c,
                          std::int16_t* __restrict cur, int stride_arg, int p1, int p2,
-                         std::int16_t mn, std::int16_t* __restrict acc = nullptr) {
+                         std::int16_t mn) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   const std::int16_t jump = static_cast<std::int16_t>(mn + p2);
   const std::int16_t pen1 = static_cast<std::int16_t>(p1);
-  std::int16_t m = kGuard;
+  // v >= 0 (best >= mn), so its minimum is taken as uint16: one instruction
+  // per vector (SSE4.1 phminposuw) where the signed one is a shuffle chain,
+  // and this minimum is on the critical path from one step to the next.
+  std::uint16_t m = kGuard;
   for (int k = 0; k < stride; ++k) {
     const std::int16_t near = static_cast<std::int16_t>(min16(prev[k - 1], prev[k + 1]) + pen1);
     const std::int16_t best = min16(min16(prev[k], near), jump);
     const std::int16_t v = static_cast<std::int16_t>(c[k] + best - mn);
     cur[k] = v;
-    if constexpr (kAccumulate) acc[k] = static_cast<std::int16_t>(acc[k] + v);
-    m = min16(m, v);
+    const std::uint16_t u = static_cast<std::uint16_t>(v);
+    m = u < m ? u : m;
   }
-  return m;
+  return static_cast<std::int16_t>(m);
 }
 
 template <int kLanes>
@@ -59,8 +61,8 @@ inline std::int16_t first(const std::uint16_t* __restrict c, std::int16_t* __res
 }  // namespace
 
 template <int kLanes>
-void apply_bounds(std::uint16_t* cost, int n, int stride_arg, const std::int16_t* lo,
-                  const std::int16_t* hi, int full_hi) {
+PETRA_VECTOR_CLONES void apply_bounds(std::uint16_t* cost, int n, int stride_arg,
+                                      const std::int16_t* lo, const std::int16_t* hi, int full_hi) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
   for (int x = 0; x < n; ++x) {
     const int l = lo[x], h = hi[x];
@@ -71,39 +73,82 @@ void apply_bounds(std::uint16_t* cost, int n, int stride_arg, const std::int16_t
   }
 }
 
-template <int kLanes>
-void scanline_dp(const ScanlineInputs& in, std::int16_t* S, std::int16_t* rows) {
-  PETRA_ASSERT(in.n > 0 && in.stride > 0 && in.p1 >= 0);
-  PETRA_ASSERT(kLanes == 0 || in.stride == kLanes);
-  const int stride = kLanes > 0 ? kLanes : in.stride;
-  const int sp = path_row_stride(stride);
-  auto cost = [&](int x) { return in.cost + static_cast<std::ptrdiff_t>(x) * stride; };
-  auto srow = [&](int x) { return S + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes; };
+namespace {
 
-  // Forward pass, straight into S: S = L_fwd.
-  for (int x = 0; x < in.n; ++x) srow(x)[-1] = srow(x)[stride] = kGuard;
-  std::int16_t mn = first<kLanes>(cost(0), srow(0), stride);
-  for (int x = 1; x < in.n; ++x) {
-    PETRA_ASSERT(in.p2[x] <= kMaxP2);
-    mn = step<kLanes>(srow(x - 1), cost(x), srow(x), stride, in.p1, in.p2[x], mn);
+// kRows independent scanlines (same n and stride), each with its forward
+// (S = L_fwd) and backward (L_bwd) pass: 2 kRows independent chains advanced
+// in one loop. A step waits for the previous row's minimum and for its
+// stores to reach the shifted loads of prev(k+-1); the other chains' steps
+// fill that latency.
+template <int kLanes, int kRows>
+[[gnu::always_inline]] inline void run_scanlines(const ScanlineInputs* in, std::int16_t* const* S,
+                                                 std::int16_t* const* backward) {
+  const int stride = kLanes > 0 ? kLanes : in[0].stride;
+  const int sp = path_row_stride(stride);
+  const int n = in[0].n;
+  for (int r = 0; r < kRows; ++r) {
+    PETRA_ASSERT(in[r].n == n && in[r].n > 0 && in[r].stride == in[0].stride && in[r].p1 >= 0);
+    PETRA_ASSERT(kLanes == 0 || in[r].stride == kLanes);
   }
-  // Backward pass in two scratch rows, added in place: S = L_fwd + L_bwd.
-  std::int16_t* a = rows + 1;
-  std::int16_t* b = rows + stride + 3;
-  a[-1] = a[stride] = b[-1] = b[stride] = kGuard;
-  mn = first<kLanes>(cost(in.n - 1), a, stride);
-  std::int16_t* s_last = srow(in.n - 1);
-  for (int k = 0; k < stride; ++k) s_last[k] = static_cast<std::int16_t>(s_last[k] + a[k]);
-  for (int x = in.n - 2; x >= 0; --x) {
-    mn = step<kLanes, true>(a, cost(x), b, stride, in.p1, in.p2[x + 1], mn, srow(x));
-    std::swap(a, b);
+  auto cost = [&](int r, int x) { return in[r].cost + static_cast<std::ptrdiff_t>(x) * stride; };
+  auto srow = [&](int r, int x) {
+    return S[r] + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes;
+  };
+  auto brow = [&](int r, int x) {
+    return backward[r] + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes;
+  };
+  std::int16_t mf[kRows], mb[kRows];
+  for (int r = 0; r < kRows; ++r) {
+    for (int x = 0; x < n; ++x) {
+      srow(r, x)[-1] = srow(r, x)[stride] = kGuard;
+      brow(r, x)[-1] = brow(r, x)[stride] = kGuard;
+    }
+    mf[r] = first<kLanes>(cost(r, 0), srow(r, 0), stride);
+    mb[r] = first<kLanes>(cost(r, n - 1), brow(r, n - 1), stride);
   }
+  for (int t = 1; t < n; ++t) {
+    const int xb = n - 1 - t;
+    for (int r = 0; r < kRows; ++r) {
+      PETRA_ASSERT(in[r].p2[t] <= kMaxP2);
+      mf[r] = step<kLanes>(srow(r, t - 1), cost(r, t), srow(r, t), stride, in[r].p1, in[r].p2[t],
+                           mf[r]);
+      mb[r] = step<kLanes>(brow(r, xb + 1), cost(r, xb), brow(r, xb), stride, in[r].p1,
+                           in[r].p2[xb + 1], mb[r]);
+    }
+  }
+  // S = L_fwd + L_bwd.
+  for (int r = 0; r < kRows; ++r)
+    for (int x = 0; x < n; ++x) {
+      std::int16_t* __restrict s = srow(r, x);
+      const std::int16_t* __restrict b = brow(r, x);
+      for (int k = 0; k < stride; ++k) s[k] = static_cast<std::int16_t>(s[k] + b[k]);
+    }
 }
 
-#define PETRA_INSTANTIATE(n)                                                   \
-  template void apply_bounds<n>(std::uint16_t*, int, int, const std::int16_t*, \
-                                const std::int16_t*, int);                     \
-  template void scanline_dp<n>(const ScanlineInputs&, std::int16_t*, std::int16_t*);
+}  // namespace
+
+template <int kLanes>
+PETRA_VECTOR_CLONES void scanline_dp(const ScanlineInputs& in, std::int16_t* S,
+                                     std::int16_t* backward) {
+  run_scanlines<kLanes, 1>(&in, &S, &backward);
+}
+
+template <int kLanes>
+PETRA_VECTOR_CLONES void scanline_dp_pair(const ScanlineInputs& a, std::int16_t* Sa,
+                                          std::int16_t* backward_a, const ScanlineInputs& b,
+                                          std::int16_t* Sb, std::int16_t* backward_b) {
+  const ScanlineInputs in[2] = {a, b};
+  std::int16_t* const S[2] = {Sa, Sb};
+  std::int16_t* const back[2] = {backward_a, backward_b};
+  run_scanlines<kLanes, 2>(in, S, back);
+}
+
+#define PETRA_INSTANTIATE(n)                                                             \
+  template void apply_bounds<n>(std::uint16_t*, int, int, const std::int16_t*,           \
+                                const std::int16_t*, int);                               \
+  template void scanline_dp<n>(const ScanlineInputs&, std::int16_t*, std::int16_t*);     \
+  template void scanline_dp_pair<n>(const ScanlineInputs&, std::int16_t*, std::int16_t*, \
+                                    const ScanlineInputs&, std::int16_t*, std::int16_t*);
 PETRA_MATCH_LANE_COUNTS(PETRA_INSTANTIATE)
 #undef PETRA_INSTANTIATE
 

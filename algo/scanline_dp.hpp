@@ -42,9 +42,16 @@ struct ScanlineInputs {
 
 // S = forward + backward path costs: n rows of path_row_stride(stride)
 // int16, lanes of column x at S + x * path_row_stride + kGuardLanes (the
-// forward pass writes there directly; the guards are set here). `rows` is
-// scratch of 2 * (stride + 2) int16.
+// forward pass writes there directly; the guards are set here). `backward`
+// is scratch of the same size (n rows of path_row_stride(stride) int16): the
+// backward pass keeps every row so the two passes run interleaved.
 template <int kLanes>
-void scanline_dp(const ScanlineInputs& in, std::int16_t* S, std::int16_t* rows);
+void scanline_dp(const ScanlineInputs& in, std::int16_t* S, std::int16_t* backward);
+
+// Two independent scanlines at once (same n and stride), each as
+// scanline_dp: the same results, faster where the DP is latency-bound.
+template <int kLanes>
+void scanline_dp_pair(const ScanlineInputs& a, std::int16_t* Sa, std::int16_t* backward_a,
+                      const ScanlineInputs& b, std::int16_t* Sb, std::int16_t* backward_b);
 
 }  // namespace petra::match

@@ -22,7 +22,7 @@ struct Row {
         lo(n_, 0),
         hi(n_, kLanes - 1),
         S(static_cast<std::size_t>(n_) * kSp),
-        scratch(2 * (kLanes + 2)) {}
+        scratch(static_cast<std::size_t>(n_) * kSp) {}
   int best(int x) const {
     const std::int16_t* s = S.data() + static_cast<std::size_t>(x) * kSp + kGuardLanes;
     int k = 0;
