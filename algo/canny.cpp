@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "algo/padded_row.hpp"
 #include "algo/vector_clones.hpp"
 
 namespace petra {
@@ -97,18 +98,6 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void nms_row(
 
 std::size_t sz(int w, int h) {
   return static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-}
-
-// Copies source row `y` (clamped) over columns [x0, x0 + n) with border
-// replication, so the filters below need no bounds checks.
-void padded_row(ConstGray8View img, int y, int x0, int n, std::uint8_t* out) {
-  const std::uint8_t* s = img.row(std::clamp(y, 0, img.height() - 1));
-  const int last = img.width() - 1;
-  if (x0 >= 0 && x0 + n - 1 <= last) {
-    std::copy(s + x0, s + x0 + n, out);
-    return;
-  }
-  for (int i = 0; i < n; ++i) out[i] = s[std::clamp(x0 + i, 0, last)];
 }
 
 }  // namespace

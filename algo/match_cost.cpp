@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "algo/core/assert.hpp"
+#include "algo/padded_row.hpp"
 #include "algo/vector_clones.hpp"
 
 namespace petra::match {
@@ -17,17 +18,6 @@ constexpr int kCensusOffsets[16][2] = {
     {-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1},
     {-2, -2}, {0, -2}, {2, -2}, {-2, 0}, {2, 0}, {-2, 2}, {0, 2}, {2, 2},
 };
-
-void padded_row(ConstGray8View img, int y, int x0, int n, std::uint8_t* out) {
-  const std::uint8_t* s = img.row(std::clamp(y, 0, img.height() - 1));
-  const int last = img.width() - 1;
-  // Fast path for the interior; replication only where the span leaves the image.
-  if (x0 >= 0 && x0 + n - 1 <= last) {
-    std::copy(s + x0, s + x0 + n, out);
-    return;
-  }
-  for (int i = 0; i < n; ++i) out[i] = s[std::clamp(x0 + i, 0, last)];
-}
 
 // Bit count of the two census bytes, popcount(a) + popcount(b), by halving
 // steps (no multiply, no table) so the compiler keeps it in byte lanes on
