@@ -29,6 +29,7 @@ struct Scratch {
   std::span<double> area;
   std::span<std::uint8_t> cls, support, depth;
   std::span<std::int32_t> queue, patch;
+  std::span<double> residual;  // |distance| of the fitted triangles, for the robust scale
 };
 
 Result<Scratch> allocate(Arena& arena, std::size_t n) {
@@ -66,6 +67,9 @@ Result<Scratch> allocate(Arena& arena, std::size_t n) {
   s.cls = *cls;
   s.support = *support;
   s.queue = *queue;
+  auto residual = arena.allocate<double>(n, "grind planes residuals");
+  if (!residual) return residual.error();
+  s.residual = *residual;
   return s;
 }
 
@@ -257,7 +261,8 @@ Status validate(const GrindParams& p) {
 std::size_t grind_planes_scratch_bytes(std::size_t n) {
   return 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<double>(n) + 3 * bytes_for<std::uint8_t>(n) +
          2 * bytes_for<std::int32_t>(n) + bytes_for<Eigen::Vector3d>(kCMeansSamples) +
-         bytes_for<std::uint8_t>(kCMeansSamples) + bytes_for<double>(kCMeansSamples);
+         bytes_for<std::uint8_t>(kCMeansSamples) + bytes_for<double>(kCMeansSamples) +
+         bytes_for<double>(n);
 }
 
 Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
@@ -402,12 +407,13 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
   bool alive[kMaxClasses] = {};
   const double cos_inlier = std::cos(params.inlier_angle_deg * M_PI / 180.0);
   const double cos_merge = std::cos(params.merge_angle_deg * M_PI / 180.0);
+  const double cos_grow = std::cos(params.grow_angle_deg * M_PI / 180.0);
   auto fit_class = [&](int k) {
     GrindPlane& plane = candidates[k];
     plane = GrindPlane{};
     for (std::size_t i = 0; i < n; ++i)
       if (triangle_plane[i] == k) triangle_plane[i] = kNone;
-    const std::size_t pm = largest_patch(tris, s, static_cast<std::uint8_t>(k));
+    std::size_t pm = largest_patch(tris, s, static_cast<std::uint8_t>(k));
     auto vertex = [&](std::size_t j) -> const Eigen::Vector3d& {
       return xyz[static_cast<std::size_t>(tris[static_cast<std::size_t>(s.patch[j / 3])].v[j % 3])];
     };
@@ -432,6 +438,46 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
         if (!agrees) s.support[i] = 3;  // dropped
       }
     }
+    // Regrow: a steep face's matched disparity is a staircase, whose treads
+    // and risers cluster into different normal classes, so the class patch
+    // holds the treads only and its plane leans towards them. The face is
+    // taken back by position: edge neighbours of the patch that lie within
+    // the distance band of its plane and within grow_angle_deg of its normal
+    // join it (from any class), and the plane is refitted on the whole set.
+    std::size_t pn = pm;
+    for (int round = 0; have && round < params.grow_rounds; ++round) {
+      const double band = std::max(3.0 * fit.rms, params.min_trim_band_mm);
+      Eigen::Vector3d up = fit.plane.normal;
+      if (up.dot(camera - fit.centroid) < 0) up = -up;
+      std::size_t head = 0, tail = 0;
+      for (std::size_t j = 0; j < pn; ++j)
+        if (s.support[tri_of(j)] == 1) s.queue[tail++] = s.patch[j];
+      while (head < tail) {
+        const std::size_t t = static_cast<std::size_t>(s.queue[head++]);
+        for (int e = 0; e < 3; ++e) {
+          const std::int32_t nb = tris[t].n[e];
+          if (nb < 0) continue;
+          const std::size_t u = static_cast<std::size_t>(nb);
+          if (s.support[u] == 1 || s.support[u] == 4) continue;
+          const bool joins = s.normal[u].dot(up) >= cos_grow &&
+                             std::abs(fit.plane.distance(s.centroid[u])) <= band;
+          if (!joins) {
+            if (s.support[u] == 0) s.support[u] = 4;  // looked at, outside (reset below)
+            continue;
+          }
+          if (s.support[u] == 0 || s.support[u] == 4) s.patch[pn++] = nb;
+          s.support[u] = 1;
+          s.queue[tail++] = nb;
+        }
+      }
+      for (std::size_t i = 0; i < n; ++i)
+        if (s.support[i] == 4) s.support[i] = 0;
+      auto f = fit_plane_tls_by<double>(
+          3 * pn, vertex, [&](std::size_t j) { return s.support[tri_of(j / 3)] == 1; });
+      if (!f) break;
+      fit = *f;
+    }
+    pm = pn;
     // The final plane from the patch's core: the matcher's window rounds
     // depth over a few pixels at every crease, so the rings of triangles
     // along the patch's border bend towards the neighbouring faces.
@@ -446,6 +492,31 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
       auto f = fit_plane_tls_by<double>(3 * pm, vertex,
                                         [&](std::size_t j) { return in_fit(tri_of(j / 3)); });
       if (f) fit = *f;
+      // Robust refit (IRLS, Tukey biweight on the triangle centroids'
+      // distances, scale 1.4826 MAD): blobs of mismatched disparity inside
+      // the face pull a least-squares plane; they get weight 0.
+      for (int it = 0; f && it < params.robust_iterations; ++it) {
+        std::size_t r = 0;
+        for (std::size_t j = 0; j < pm; ++j) {
+          const std::size_t i = tri_of(j);
+          if (in_fit(i)) s.residual[r++] = std::abs(fit.plane.distance(s.centroid[i]));
+        }
+        if (r < 10) break;
+        const auto mid = s.residual.begin() + static_cast<std::ptrdiff_t>(r / 2);
+        std::nth_element(s.residual.begin(), mid,
+                         s.residual.begin() + static_cast<std::ptrdiff_t>(r));
+        const double sigma = std::max(1.4826 * *mid, 0.02);
+        const double cut = params.tukey_c * sigma;
+        const PlaneFitT<double> prev = fit;
+        auto w = fit_plane_wtls_by<double>(3 * pm, vertex, [&](std::size_t j) {
+          const std::size_t i = tri_of(j / 3);
+          if (!in_fit(i)) return 0.0;
+          const double u = prev.plane.distance(s.centroid[i]) / cut;
+          return std::abs(u) < 1 ? (1 - u * u) * (1 - u * u) : 0.0;
+        });
+        if (!w) break;
+        fit = *w;
+      }
       if (fit.plane.normal.dot(camera - fit.centroid) < 0) {
         fit.plane.normal = -fit.plane.normal;
         fit.plane.d = -fit.plane.d;

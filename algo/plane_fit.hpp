@@ -97,6 +97,70 @@ Result<PlaneFitT<S>> fit_plane_tls_by(std::size_t count_all, Get&& point, Use&& 
   return fit;
 }
 
+// Weighted total least squares: point(k) counts with weight(k) >= 0 (0:
+// unused). The plane through the weighted centroid along the smallest
+// eigenvector of the weighted scatter; rms is the weighted RMS distance. For
+// the robust refits of the grind planes (IRLS with a Tukey weight).
+template <class S, class Get, class Weight>
+Result<PlaneFitT<S>> fit_plane_wtls_by(std::size_t count_all, Get&& point, Weight&& weight) {
+  using std::sqrt;
+  PlaneFitT<S> fit;
+  Vec3T<S> sum = Vec3T<S>::Zero();
+  Vec3T<S> lo = Vec3T<S>::Zero(), hi = Vec3T<S>::Zero();
+  S wsum{};
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < count_all; ++i) {
+    const S w = weight(i);
+    if (!(w > S(0))) continue;
+    const Vec3T<S>& p = point(i);
+    if (n == 0) lo = hi = p;
+    for (int k = 0; k < 3; ++k) {
+      lo(k) = p(k) < lo(k) ? p(k) : lo(k);
+      hi(k) = p(k) > hi(k) ? p(k) : hi(k);
+    }
+    sum += w * p;
+    wsum += w;
+    ++n;
+  }
+  if (n < 3) return Error::make(Errc::degenerate, "plane fit: %zu points, need at least 3", n);
+  const Vec3T<S> c = sum / wsum;
+  const Vec3T<S> extent = hi - lo;
+  S scale = extent(0) > extent(1) ? extent(0) : extent(1);
+  scale = (extent(2) > scale ? extent(2) : scale) / S(2);
+  if (!(scale > S(0)))
+    return Error::make(Errc::degenerate, "plane fit: all %zu points coincide", n);
+  const S inv_scale = S(1) / scale;
+  Mat3T<S> cov = Mat3T<S>::Zero();
+  for (std::size_t i = 0; i < count_all; ++i) {
+    const S w = weight(i);
+    if (!(w > S(0))) continue;
+    const Vec3T<S> q = (point(i) - c) * inv_scale;
+    cov(0, 0) += w * q(0) * q(0);
+    cov(1, 0) += w * q(1) * q(0);
+    cov(2, 0) += w * q(2) * q(0);
+    cov(1, 1) += w * q(1) * q(1);
+    cov(2, 1) += w * q(2) * q(1);
+    cov(2, 2) += w * q(2) * q(2);
+  }
+  cov(0, 1) = cov(1, 0);
+  cov(0, 2) = cov(2, 0);
+  cov(1, 2) = cov(2, 1);
+  const SymEigen3<S> eig = sym_eigen3<S>(cov);
+  const S lmax = eig.values(2);
+  fit.middle_eigen_ratio = lmax > S(0) ? eig.values(1) / lmax : S(0);
+  if (!(fit.middle_eigen_ratio > S(kCollinearEigenRatio)))
+    return Error::make(Errc::degenerate, "plane fit: %zu points are collinear", n);
+  Vec3T<S> normal = eig.vectors.col(0);
+  normal /= sqrt(normal.squaredNorm());
+  fit.plane.normal = normal;
+  fit.plane.d = -normal.dot(c);
+  fit.centroid = c;
+  const S lmin = eig.values(0) > S(0) ? eig.values(0) : S(0);
+  fit.rms = scale * sqrt(lmin / wsum);
+  fit.count = n;
+  return fit;
+}
+
 template <class S, class Use>
 Result<PlaneFitT<S>> fit_plane_tls(std::span<const Vec3T<S>> points, Use&& use) {
   return fit_plane_tls_by<S>(
