@@ -528,6 +528,9 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     for (std::size_t j = 0; j < pm; ++j) {
       const std::size_t i = tri_of(j);
       if (s.support[i] != 1) continue;
+      // A triangle regrown into two faces' patches (at a crease) is counted
+      // by the first only.
+      if (triangle_plane[i] != kNone && triangle_plane[i] != k) continue;
       area += s.area[i];
       ++count;
       triangle_plane[i] = static_cast<std::uint8_t>(k);
@@ -596,13 +599,14 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
   // 5. Rank: accepted by area (largest first; beyond c they are surplus),
   // then the rejected ones.
   int order[kMaxClasses];
+  bool qualified[kMaxClasses] = {};  // ranked in pass 0 (accepted or surplus): not again
+  for (int k = 0; k < ac->c; ++k) qualified[k] = candidates[k].verdict == PlaneVerdict::accepted;
   int ranked = 0;
   for (int pass = 0; pass < 2; ++pass) {
     const int pass_start = ranked;
     for (int k = 0; k < ac->c; ++k) {
       if (!alive[k]) continue;
-      const bool acc = candidates[k].verdict == PlaneVerdict::accepted;
-      if ((pass == 0) != acc) continue;
+      if ((pass == 0) != qualified[k]) continue;
       int pos = ranked++;
       order[pos] = k;
       while (pos > pass_start && candidates[order[pos - 1]].area_mm2 < candidates[k].area_mm2) {
