@@ -488,9 +488,15 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     auto in_fit = [&](std::size_t i) {
       return s.support[i] == 1 && (!use_core || s.depth[i] == 0);
     };
+    // The final fits: total least squares, or least squares along the
+    // viewing ray to the patch (fit_along_ray: the stereo error model).
+    const Eigen::Vector3d ray = (fit.centroid - camera).normalized();
+    auto refit = [&](auto&& weight) -> Result<PlaneFitT<double>> {
+      if (params.fit_along_ray) return fit_plane_along_by<double>(3 * pm, vertex, weight, ray);
+      return fit_plane_wtls_by<double>(3 * pm, vertex, weight);
+    };
     if (have) {
-      auto f = fit_plane_tls_by<double>(3 * pm, vertex,
-                                        [&](std::size_t j) { return in_fit(tri_of(j / 3)); });
+      auto f = refit([&](std::size_t j) { return in_fit(tri_of(j / 3)) ? 1.0 : 0.0; });
       if (f) fit = *f;
       // Robust refit (IRLS, Tukey biweight on the triangle centroids'
       // distances, scale 1.4826 MAD): blobs of mismatched disparity inside
@@ -508,7 +514,7 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
         const double sigma = std::max(1.4826 * *mid, 0.02);
         const double cut = params.tukey_c * sigma;
         const PlaneFitT<double> prev = fit;
-        auto w = fit_plane_wtls_by<double>(3 * pm, vertex, [&](std::size_t j) {
+        auto w = refit([&](std::size_t j) {
           const std::size_t i = tri_of(j / 3);
           if (!in_fit(i)) return 0.0;
           const double u = prev.plane.distance(s.centroid[i]) / cut;

@@ -67,9 +67,10 @@ struct GrindParams {
   double max_rms_mm = 1.5;            // flatness limit
   double inlier_angle_deg = 12.0;     // a triangle supports a plane within this angle
   double min_trim_band_mm = 0.3;      // floor of the 3-RMS distance band
-  int edge_rings = 4;                 // border rings left out of the final fit
+  int edge_rings = 3;                 // border rings left out of the final fit
   int grow_rounds = 2;                // regrowth of a patch by position (0: off)
   double grow_angle_deg = 25.0;       // a neighbour joins within this angle ...
+  bool fit_along_ray = true;          // final fit: least squares along the viewing ray
   int robust_iterations = 4;          // IRLS (Tukey) refits of the final plane
   double tukey_c = 4.685;             // Tukey cut-off in robust sigmas (1.4826 MAD)
   double merge_angle_deg = 8.0;       // two classes' planes this close in direction ...

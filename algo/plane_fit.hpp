@@ -161,6 +161,73 @@ Result<PlaneFitT<S>> fit_plane_wtls_by(std::size_t count_all, Get&& point, Weigh
   return fit;
 }
 
+// Weighted least squares along a direction: the plane minimising the
+// squared offsets of the points along `dir` (unit), not across the plane.
+// Stereo measures depth along the viewing ray (disparity) and the pixel
+// position almost exactly, so for a face seen obliquely this is the error
+// model; total least squares also counts the in-plane share of the depth
+// error and tilts the normal away from the ray. In a frame (e1, e2, dir):
+// dir-offset = a x + b y, normal along dir - a e1 - b e2.
+template <class S, class Get, class Weight>
+Result<PlaneFitT<S>> fit_plane_along_by(std::size_t count_all, Get&& point, Weight&& weight,
+                                        const Vec3T<S>& dir) {
+  using std::abs;
+  using std::sqrt;
+  PlaneFitT<S> fit;
+  Vec3T<S> sum = Vec3T<S>::Zero();
+  S wsum{};
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < count_all; ++i) {
+    const S w = weight(i);
+    if (!(w > S(0))) continue;
+    sum += w * point(i);
+    wsum += w;
+    ++n;
+  }
+  if (n < 3) return Error::make(Errc::degenerate, "plane fit: %zu points, need at least 3", n);
+  const Vec3T<S> c = sum / wsum;
+  // Any unit vector not along dir gives the in-plane basis.
+  const Vec3T<S> helper =
+      abs(dir(2)) < S(0.9) ? Vec3T<S>(S(0), S(0), S(1)) : Vec3T<S>(S(1), S(0), S(0));
+  Vec3T<S> e1 = helper.cross(dir);
+  e1 /= sqrt(e1.squaredNorm());
+  const Vec3T<S> e2 = dir.cross(e1);
+  S sxx{}, sxy{}, syy{}, sxz{}, syz{};
+  for (std::size_t i = 0; i < count_all; ++i) {
+    const S w = weight(i);
+    if (!(w > S(0))) continue;
+    const Vec3T<S> q = point(i) - c;
+    const S x = q.dot(e1), y = q.dot(e2), z = q.dot(dir);
+    sxx += w * x * x;
+    sxy += w * x * y;
+    syy += w * y * y;
+    sxz += w * x * z;
+    syz += w * y * z;
+  }
+  const S det = sxx * syy - sxy * sxy;
+  // The points' footprint across dir must span two directions.
+  if (!(det > S(kCollinearEigenRatio) * (sxx + syy) * (sxx + syy)))
+    return Error::make(Errc::degenerate, "plane fit: %zu points are collinear across the ray", n);
+  const S a = (sxz * syy - syz * sxy) / det;
+  const S b = (syz * sxx - sxz * sxy) / det;
+  Vec3T<S> normal = dir - a * e1 - b * e2;
+  normal /= sqrt(normal.squaredNorm());
+  fit.plane.normal = normal;
+  fit.plane.d = -normal.dot(c);
+  fit.centroid = c;
+  S ss{};
+  for (std::size_t i = 0; i < count_all; ++i) {
+    const S w = weight(i);
+    if (!(w > S(0))) continue;
+    const S r = normal.dot(point(i) - c);
+    ss += w * r * r;
+  }
+  fit.rms = sqrt(ss / wsum);
+  fit.middle_eigen_ratio = S(1);
+  fit.count = n;
+  return fit;
+}
+
 template <class S, class Use>
 Result<PlaneFitT<S>> fit_plane_tls(std::span<const Vec3T<S>> points, Use&& use) {
   return fit_plane_tls_by<S>(
