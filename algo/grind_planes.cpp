@@ -253,6 +253,18 @@ Status validate(const GrindParams& p) {
   if (p.edge_rings < 0 || p.edge_rings > 50)
     return Error::make(Errc::invalid_argument, "grind planes: edge_rings %d not in 0..50",
                        p.edge_rings);
+  if (p.grow_rounds < 0 || p.grow_rounds > 10 ||
+      !(p.grow_angle_deg > 0.0 && p.grow_angle_deg < 90.0))
+    return Error::make(Errc::invalid_argument,
+                       "grind planes: grow_rounds %d not in 0..10 or grow_angle_deg %.3g not in "
+                       "(0, 90)",
+                       p.grow_rounds, p.grow_angle_deg);
+  if (p.robust_iterations < 0 || p.robust_iterations > 20 ||
+      !(p.tukey_c >= 1.0 && p.tukey_c <= 20.0))
+    return Error::make(Errc::invalid_argument,
+                       "grind planes: robust_iterations %d not in 0..20 or tukey_c %.3g not in "
+                       "[1, 20]",
+                       p.robust_iterations, p.tukey_c);
   if (!(p.min_trim_band_mm > 0.0))
     return Error::make(Errc::invalid_argument, "grind planes: min_trim_band_mm must be > 0");
   return validate(p.cmeans);

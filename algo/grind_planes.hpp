@@ -25,11 +25,23 @@
 //   4. per class (Petra adds): its largest edge-connected patch, a trimmed
 //      total-least-squares plane through that patch's vertices (triangles more
 //      than inlier_angle_deg off the plane normal or farther than 3 RMS are
-//      dropped, twice), then refitted on the patch's core (edge_rings rings of
-//      triangles along its border left out: the matcher rounds every crease);
+//      dropped, twice); then the patch is regrown by position (grow_rounds
+//      times: edge neighbours of any class within the 3-RMS band of the plane
+//      and within grow_angle_deg of its normal join, and the plane is
+//      refitted), because a matcher's error on a steep face (a staircase or a
+//      bend) splits the face's normals into classes and one class's patch
+//      leans; then the final plane from the patch's core (edge_rings rings of
+//      triangles along its border left out: the matcher rounds every crease),
+//      fitted by least squares along the viewing ray to the patch
+//      (fit_along_ray: stereo measures depth, so that is where the error is;
+//      total least squares tilts an oblique face away from the ray) and
+//      refitted robust_iterations times with a Tukey weight on the triangles'
+//      distances (scale 1.4826 MAD, cut-off tukey_c): blobs of mismatched
+//      disparity get weight 0;
 //      normal out of the rock, centroid (area-weighted mean of the core
 //      triangles' centroids, on the plane), supporting area (whole patch),
-//      RMS flatness and triangle count;
+//      RMS flatness and triangle count (a triangle regrown into two patches
+//      at a crease counts for the first);
 //      Classes whose planes agree within merge_angle_deg and whose centroids
 //      lie within merge_distance_mm of each other's plane are merged (one face
 //      split by the extra classes);

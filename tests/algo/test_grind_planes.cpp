@@ -308,6 +308,16 @@ TEST(GrindPlanes, BadInputIsNamed) {
   GrindParams p;
   p.max_rms_mm = -1;
   EXPECT_EQ(run(m, 2, p, labels).code(), Errc::invalid_argument);
+  p = {};
+  p.grow_angle_deg = 90;
+  r = run(m, 2, p, labels);
+  EXPECT_EQ(r.code(), Errc::invalid_argument);
+  EXPECT_NE(std::string(r.error().message).find("grow_angle_deg"), std::string::npos);
+  p = {};
+  p.tukey_c = 0.5;
+  r = run(m, 2, p, labels);
+  EXPECT_EQ(r.code(), Errc::invalid_argument);
+  EXPECT_NE(std::string(r.error().message).find("tukey_c"), std::string::npos);
 }
 
 TEST(GrindPlanes, NoHeap) {
