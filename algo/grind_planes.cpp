@@ -29,7 +29,6 @@ struct Scratch {
   std::span<double> area;
   std::span<std::uint8_t> cls, support, depth;
   std::span<std::int32_t> queue, patch;
-  std::span<double> residual;  // |distance| of the fitted triangles, for the robust scale
 };
 
 Result<Scratch> allocate(Arena& arena, std::size_t n) {
@@ -67,9 +66,6 @@ Result<Scratch> allocate(Arena& arena, std::size_t n) {
   s.cls = *cls;
   s.support = *support;
   s.queue = *queue;
-  auto residual = arena.allocate<double>(n, "grind planes residuals");
-  if (!residual) return residual.error();
-  s.residual = *residual;
   return s;
 }
 
@@ -259,12 +255,6 @@ Status validate(const GrindParams& p) {
                        "grind planes: grow_rounds %d not in 0..10 or grow_angle_deg %.3g not in "
                        "(0, 90)",
                        p.grow_rounds, p.grow_angle_deg);
-  if (p.robust_iterations < 0 || p.robust_iterations > 20 ||
-      !(p.tukey_c >= 1.0 && p.tukey_c <= 20.0))
-    return Error::make(Errc::invalid_argument,
-                       "grind planes: robust_iterations %d not in 0..20 or tukey_c %.3g not in "
-                       "[1, 20]",
-                       p.robust_iterations, p.tukey_c);
   if (!(p.min_trim_band_mm > 0.0))
     return Error::make(Errc::invalid_argument, "grind planes: min_trim_band_mm must be > 0");
   return validate(p.cmeans);
@@ -273,8 +263,7 @@ Status validate(const GrindParams& p) {
 std::size_t grind_planes_scratch_bytes(std::size_t n) {
   return 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<double>(n) + 3 * bytes_for<std::uint8_t>(n) +
          2 * bytes_for<std::int32_t>(n) + bytes_for<Eigen::Vector3d>(kCMeansSamples) +
-         bytes_for<std::uint8_t>(kCMeansSamples) + bytes_for<double>(kCMeansSamples) +
-         bytes_for<double>(n);
+         bytes_for<std::uint8_t>(kCMeansSamples) + bytes_for<double>(kCMeansSamples);
 }
 
 Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
@@ -461,6 +450,9 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
       const double band = std::max(3.0 * fit.rms, params.min_trim_band_mm);
       Eigen::Vector3d up = fit.plane.normal;
       if (up.dot(camera - fit.centroid) < 0) up = -up;
+      // Marks: 1 in the patch, 3 trimmed (listed in s.patch), 4 + round
+      // looked at and left out this round (largest_patch clears them all).
+      const std::uint8_t looked = static_cast<std::uint8_t>(4 + round);
       std::size_t head = 0, tail = 0;
       for (std::size_t j = 0; j < pn; ++j)
         if (s.support[tri_of(j)] == 1) s.queue[tail++] = s.patch[j];
@@ -470,20 +462,18 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
           const std::int32_t nb = tris[t].n[e];
           if (nb < 0) continue;
           const std::size_t u = static_cast<std::size_t>(nb);
-          if (s.support[u] == 1 || s.support[u] == 4) continue;
+          if (s.support[u] == 1 || s.support[u] == looked) continue;
           const bool joins = s.normal[u].dot(up) >= cos_grow &&
                              std::abs(fit.plane.distance(s.centroid[u])) <= band;
           if (!joins) {
-            if (s.support[u] == 0) s.support[u] = 4;  // looked at, outside (reset below)
+            if (s.support[u] != 3) s.support[u] = looked;
             continue;
           }
-          if (s.support[u] == 0 || s.support[u] == 4) s.patch[pn++] = nb;
+          if (s.support[u] != 3) s.patch[pn++] = nb;  // not listed yet
           s.support[u] = 1;
           s.queue[tail++] = nb;
         }
       }
-      for (std::size_t i = 0; i < n; ++i)
-        if (s.support[i] == 4) s.support[i] = 0;
       auto f = fit_plane_tls_by<double>(
           3 * pn, vertex, [&](std::size_t j) { return s.support[tri_of(j / 3)] == 1; });
       if (!f) break;
@@ -500,41 +490,14 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     auto in_fit = [&](std::size_t i) {
       return s.support[i] == 1 && (!use_core || s.depth[i] == 0);
     };
-    // The final fits: total least squares, or least squares along the
-    // viewing ray to the patch (fit_along_ray: the stereo error model).
-    const Eigen::Vector3d ray = (fit.centroid - camera).normalized();
-    auto refit = [&](auto&& weight) -> Result<PlaneFitT<double>> {
-      if (params.fit_along_ray) return fit_plane_along_by<double>(3 * pm, vertex, weight, ray);
-      return fit_plane_wtls_by<double>(3 * pm, vertex, weight);
-    };
+    // The final fit: least squares along the viewing ray to the patch (the
+    // stereo error model, fit_along_ray), or total least squares.
     if (have) {
-      auto f = refit([&](std::size_t j) { return in_fit(tri_of(j / 3)) ? 1.0 : 0.0; });
+      const Eigen::Vector3d ray = (fit.centroid - camera).normalized();
+      auto use = [&](std::size_t j) { return in_fit(tri_of(j / 3)) ? 1.0 : 0.0; };
+      auto f = params.fit_along_ray ? fit_plane_along_by<double>(3 * pm, vertex, use, ray)
+                                    : fit_plane_wtls_by<double>(3 * pm, vertex, use);
       if (f) fit = *f;
-      // Robust refit (IRLS, Tukey biweight on the triangle centroids'
-      // distances, scale 1.4826 MAD): blobs of mismatched disparity inside
-      // the face pull a least-squares plane; they get weight 0.
-      for (int it = 0; f && it < params.robust_iterations; ++it) {
-        std::size_t r = 0;
-        for (std::size_t j = 0; j < pm; ++j) {
-          const std::size_t i = tri_of(j);
-          if (in_fit(i)) s.residual[r++] = std::abs(fit.plane.distance(s.centroid[i]));
-        }
-        if (r < 10) break;
-        const auto mid = s.residual.begin() + static_cast<std::ptrdiff_t>(r / 2);
-        std::nth_element(s.residual.begin(), mid,
-                         s.residual.begin() + static_cast<std::ptrdiff_t>(r));
-        const double sigma = std::max(1.4826 * *mid, 0.02);
-        const double cut = params.tukey_c * sigma;
-        const PlaneFitT<double> prev = fit;
-        auto w = refit([&](std::size_t j) {
-          const std::size_t i = tri_of(j / 3);
-          if (!in_fit(i)) return 0.0;
-          const double u = prev.plane.distance(s.centroid[i]) / cut;
-          return std::abs(u) < 1 ? (1 - u * u) * (1 - u * u) : 0.0;
-        });
-        if (!w) break;
-        fit = *w;
-      }
       if (fit.plane.normal.dot(camera - fit.centroid) < 0) {
         fit.plane.normal = -fit.plane.normal;
         fit.plane.d = -fit.plane.d;

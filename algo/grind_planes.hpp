@@ -34,10 +34,7 @@
 //      triangles along its border left out: the matcher rounds every crease),
 //      fitted by least squares along the viewing ray to the patch
 //      (fit_along_ray: stereo measures depth, so that is where the error is;
-//      total least squares tilts an oblique face away from the ray) and
-//      refitted robust_iterations times with a Tukey weight on the triangles'
-//      distances (scale 1.4826 MAD, cut-off tukey_c): blobs of mismatched
-//      disparity get weight 0;
+//      total least squares tilts an oblique face away from the ray);
 //      normal out of the rock, centroid (area-weighted mean of the core
 //      triangles' centroids, on the plane), supporting area (whole patch),
 //      RMS flatness and triangle count (a triangle regrown into two patches
@@ -83,8 +80,6 @@ struct GrindParams {
   int grow_rounds = 2;                // regrowth of a patch by position (0: off)
   double grow_angle_deg = 25.0;       // a neighbour joins within this angle ...
   bool fit_along_ray = true;          // final fit: least squares along the viewing ray
-  int robust_iterations = 4;          // IRLS (Tukey) refits of the final plane
-  double tukey_c = 4.685;             // Tukey cut-off in robust sigmas (1.4826 MAD)
   double merge_angle_deg = 8.0;       // two classes' planes this close in direction ...
   double merge_distance_mm = 3.0;     // ... and each centroid this near the other plane: merged
   CMeansParams cmeans;

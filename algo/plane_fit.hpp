@@ -99,8 +99,7 @@ Result<PlaneFitT<S>> fit_plane_tls_by(std::size_t count_all, Get&& point, Use&& 
 
 // Weighted total least squares: point(k) counts with weight(k) >= 0 (0:
 // unused). The plane through the weighted centroid along the smallest
-// eigenvector of the weighted scatter; rms is the weighted RMS distance. For
-// the robust refits of the grind planes (IRLS with a Tukey weight).
+// eigenvector of the weighted scatter; rms is the weighted RMS distance.
 template <class S, class Get, class Weight>
 Result<PlaneFitT<S>> fit_plane_wtls_by(std::size_t count_all, Get&& point, Weight&& weight) {
   using std::sqrt;
