@@ -174,17 +174,32 @@ Result<PlaneFitT<S>> fit_plane_along_by(std::size_t count_all, Get&& point, Weig
   using std::sqrt;
   PlaneFitT<S> fit;
   Vec3T<S> sum = Vec3T<S>::Zero();
+  Vec3T<S> lo = Vec3T<S>::Zero(), hi = Vec3T<S>::Zero();
   S wsum{};
   std::size_t n = 0;
   for (std::size_t i = 0; i < count_all; ++i) {
     const S w = weight(i);
     if (!(w > S(0))) continue;
-    sum += w * point(i);
+    const Vec3T<S>& p = point(i);
+    if (n == 0) lo = hi = p;
+    for (int k = 0; k < 3; ++k) {
+      lo(k) = p(k) < lo(k) ? p(k) : lo(k);
+      hi(k) = p(k) > hi(k) ? p(k) : hi(k);
+    }
+    sum += w * p;
     wsum += w;
     ++n;
   }
   if (n < 3) return Error::make(Errc::degenerate, "plane fit: %zu points, need at least 3", n);
   const Vec3T<S> c = sum / wsum;
+  // Centred coordinates over half the largest extent and moments over the
+  // total weight: every term stays O(1), so a Q format cannot overflow.
+  const Vec3T<S> extent = hi - lo;
+  S scale = extent(0) > extent(1) ? extent(0) : extent(1);
+  scale = (extent(2) > scale ? extent(2) : scale) / S(2);
+  if (!(scale > S(0)))
+    return Error::make(Errc::degenerate, "plane fit: all %zu points coincide", n);
+  const S inv_scale = S(1) / scale;
   // Any unit vector not along dir gives the in-plane basis.
   const Vec3T<S> helper =
       abs(dir(2)) < S(0.9) ? Vec3T<S>(S(0), S(0), S(1)) : Vec3T<S>(S(1), S(0), S(0));
@@ -195,7 +210,7 @@ Result<PlaneFitT<S>> fit_plane_along_by(std::size_t count_all, Get&& point, Weig
   for (std::size_t i = 0; i < count_all; ++i) {
     const S w = weight(i);
     if (!(w > S(0))) continue;
-    const Vec3T<S> q = point(i) - c;
+    const Vec3T<S> q = (point(i) - c) * inv_scale;
     const S x = q.dot(e1), y = q.dot(e2), z = q.dot(dir);
     sxx += w * x * x;
     sxy += w * x * y;
@@ -203,6 +218,11 @@ Result<PlaneFitT<S>> fit_plane_along_by(std::size_t count_all, Get&& point, Weig
     sxz += w * x * z;
     syz += w * y * z;
   }
+  sxx /= wsum;
+  sxy /= wsum;
+  syy /= wsum;
+  sxz /= wsum;
+  syz /= wsum;
   const S det = sxx * syy - sxy * sxy;
   // The points' footprint across dir must span two directions.
   if (!(det > S(kCollinearEigenRatio) * (sxx + syy) * (sxx + syy)))
@@ -218,10 +238,10 @@ Result<PlaneFitT<S>> fit_plane_along_by(std::size_t count_all, Get&& point, Weig
   for (std::size_t i = 0; i < count_all; ++i) {
     const S w = weight(i);
     if (!(w > S(0))) continue;
-    const S r = normal.dot(point(i) - c);
+    const S r = normal.dot((point(i) - c) * inv_scale);
     ss += w * r * r;
   }
-  fit.rms = sqrt(ss / wsum);
+  fit.rms = scale * sqrt(ss / wsum);
   fit.middle_eigen_ratio = S(1);
   fit.count = n;
   return fit;

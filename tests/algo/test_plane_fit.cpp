@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "algo/fixed_point.hpp"
+
 namespace petra {
 namespace {
 
@@ -128,6 +130,44 @@ TEST(PlaneFit, AlongTheRayNeedsAFootprint) {
       [](std::size_t) { return 1.0; }, V(0, 0, 1));
   ASSERT_FALSE(f.ok());
   EXPECT_NE(std::string(f.error().message).find("collinear"), std::string::npos);
+}
+
+// Written over the scalar type like the TLS fit: Q31.32 gives the double
+// plane for the weighted and the along-the-ray fits.
+TEST(PlaneFit, WeightedAndAlongTheRayFitsRunInFixedPoint) {
+  using Q = Q31_32;
+  using VQ = Vec3T<Q>;
+  std::mt19937 rng(9);
+  std::normal_distribution<double> depth(0.0, 1.0);
+  std::uniform_real_distribution<double> u(-20, 20);
+  const V n = V(0.5, -0.2, -0.8).normalized(), e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+  std::vector<V> pts;
+  std::vector<VQ> qpts;
+  for (int i = 0; i < 2000; ++i) {
+    const V p = V(10, -5, 700) + u(rng) * e1 + u(rng) * e2;
+    pts.push_back(p + depth(rng) * p.normalized());
+    qpts.push_back(VQ(Q(pts.back().x()), Q(pts.back().y()), Q(pts.back().z())));
+  }
+  const V ray = V(10, -5, 700).normalized();
+  const VQ qray(Q(ray.x()), Q(ray.y()), Q(ray.z()));
+  auto w = [](std::size_t i) { return i % 5 != 0 ? 1.0 : 0.0; };
+  auto wq = [](std::size_t i) { return i % 5 != 0 ? Q(1.0) : Q(0.0); };
+  auto get = [&](std::size_t i) -> const V& { return pts[i]; };
+  auto getq = [&](std::size_t i) -> const VQ& { return qpts[i]; };
+  auto td = fit_plane_wtls_by<double>(pts.size(), get, w);
+  auto tq = fit_plane_wtls_by<Q>(qpts.size(), getq, wq);
+  auto rd = fit_plane_along_by<double>(pts.size(), get, w, ray);
+  auto rq = fit_plane_along_by<Q>(qpts.size(), getq, wq, qray);
+  ASSERT_TRUE(td.ok() && tq.ok() && rd.ok() && rq.ok());
+  auto to_v = [](const VQ& q) {
+    return V(q.x().to_double(), q.y().to_double(), q.z().to_double());
+  };
+  auto deg = [](const V& a, const V& b) {
+    return std::atan2(a.cross(b).norm(), std::abs(a.dot(b))) * 180 / M_PI;
+  };
+  EXPECT_LT(deg(td->plane.normal, to_v(tq->plane.normal)), 1e-4);
+  EXPECT_LT(deg(rd->plane.normal, to_v(rq->plane.normal)), 1e-4);
+  EXPECT_NEAR(rd->rms, rq->rms.to_double(), 1e-4);
 }
 
 }  // namespace
