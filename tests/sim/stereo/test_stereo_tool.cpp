@@ -9,6 +9,8 @@
 #include <cstring>
 #include <string>
 
+#include <unistd.h>
+
 #include "algo/calib_json.hpp"
 #include "sim/eval/middlebury.hpp"
 #include "sim/io/image_io.hpp"
@@ -19,18 +21,30 @@ namespace {
 const std::string kData = eval::default_data_root(PETRA_SOURCE_DIR) + "/middlebury/";
 const std::string kTmp = ::testing::TempDir();
 
+// ctest runs each test as its own process, in parallel: each writes its own file.
+std::string test_out(const char* suffix) {
+  return kTmp + "petra_stereo_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() +
+         "_" + std::to_string(::getpid()) + suffix;
+}
+
+struct RemoveAtEnd {
+  std::string path;
+  ~RemoveAtEnd() { std::remove(path.c_str()); }
+};
+
 StereoToolOptions tsukuba() {
   StereoToolOptions o;
   o.left = kData + "tsukuba/scene1.row3.col3.ppm";
   o.right = kData + "tsukuba/scene1.row3.col4.ppm";
   o.disp_min = 0;
   o.disp_max = 15;
-  o.out = kTmp + "petra_stereo_test.pfm";
+  o.out = test_out(".pfm");
   return o;
 }
 
 TEST(StereoTool, WritesAFullSizePfmWithInfOutsideTheRoi) {
   StereoToolOptions o = tsukuba();
+  const RemoveAtEnd cleanup{o.out};
   o.roi = "100,80,120,90";
   auto r = run_stereo_tool(o);
   ASSERT_TRUE(r.ok()) << r.error().message;
@@ -57,6 +71,7 @@ TEST(StereoTool, WritesAFullSizePfmWithInfOutsideTheRoi) {
 
 TEST(StereoTool, FillLeavesNoHoleInsideTheRoi) {
   StereoToolOptions o = tsukuba();
+  const RemoveAtEnd cleanup{o.out};
   o.roi = "100,80,120,90";
   o.fill = true;
   ASSERT_TRUE(run_stereo_tool(o).ok());
@@ -69,6 +84,7 @@ TEST(StereoTool, FillLeavesNoHoleInsideTheRoi) {
 
 TEST(StereoTool, ShadowFractionRemovesTheDarkestPixels) {
   StereoToolOptions o = tsukuba();
+  const RemoveAtEnd cleanup{o.out};
   o.roi = "100,80,120,90";
   o.shadow_fraction = 0.25;
   auto r = run_stereo_tool(o);
@@ -97,6 +113,7 @@ TEST(StereoTool, CalibRectifiesFirstAndMapsTheRoi) {
   const std::string calib = kTmp + "petra_stereo_calib.json";
   ASSERT_TRUE(io::write_text_file(calib, std::string_view(text, *n)).ok());
   StereoToolOptions plain = tsukuba();
+  const RemoveAtEnd cleanup{plain.out};
   plain.roi = "60,60,100,80";
   ASSERT_TRUE(run_stereo_tool(plain).ok());
   auto a = io::read_pfm(plain.out);
