@@ -5,7 +5,8 @@
 // divided by a scale (half the largest extent), so sums stay O(count)
 // whatever the units: that keeps a Q format from overflowing and costs
 // double nothing.
-// Inputs: points (mm) and a selector `use(i) -> bool`; no heap, two passes.
+// Inputs: points (mm) and a selector `use(i) -> bool` or weights `weight(i) >= 0`;
+// no heap, two passes.
 #pragma once
 
 #include <cstddef>
@@ -37,76 +38,23 @@ struct PlaneFitT {
 // collinear (their plane is undefined).
 inline constexpr double kCollinearEigenRatio = 1e-6;
 
-// Points given by an accessor: point(k) for k < count, used when use(k).
-template <class S, class Get, class Use>
-Result<PlaneFitT<S>> fit_plane_tls_by(std::size_t count_all, Get&& point, Use&& use) {
-  using std::abs;
-  using std::sqrt;
-  PlaneFitT<S> fit;
-  Vec3T<S> sum = Vec3T<S>::Zero();
-  Vec3T<S> lo = Vec3T<S>::Zero(), hi = Vec3T<S>::Zero();
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < count_all; ++i)
-    if (use(i)) {
-      const Vec3T<S>& p = point(i);
-      if (n == 0) lo = hi = p;
-      for (int k = 0; k < 3; ++k) {
-        lo(k) = p(k) < lo(k) ? p(k) : lo(k);
-        hi(k) = p(k) > hi(k) ? p(k) : hi(k);
-      }
-      sum += p;
-      ++n;
-    }
-  if (n < 3) return Error::make(Errc::degenerate, "plane fit: %zu points, need at least 3", n);
-  const S count = from_count<S>(n);
-  const Vec3T<S> c = sum / count;
-  // Scale: half the largest extent, so every |q| <= 2 (centroid inside the box).
-  const Vec3T<S> extent = hi - lo;
-  S scale = extent(0) > extent(1) ? extent(0) : extent(1);
-  scale = (extent(2) > scale ? extent(2) : scale) / S(2);
-  if (!(scale > S(0)))
-    return Error::make(Errc::degenerate, "plane fit: all %zu points coincide", n);
-  const S inv_scale = S(1) / scale;
-  Mat3T<S> cov = Mat3T<S>::Zero();
-  for (std::size_t i = 0; i < count_all; ++i)
-    if (use(i)) {
-      const Vec3T<S> q = (point(i) - c) * inv_scale;
-      cov(0, 0) += q(0) * q(0);
-      cov(1, 0) += q(1) * q(0);
-      cov(2, 0) += q(2) * q(0);
-      cov(1, 1) += q(1) * q(1);
-      cov(2, 1) += q(2) * q(1);
-      cov(2, 2) += q(2) * q(2);
-    }
-  cov(0, 1) = cov(1, 0);
-  cov(0, 2) = cov(2, 0);
-  cov(1, 2) = cov(2, 1);
-  const SymEigen3<S> eig = sym_eigen3<S>(cov);
-  const S lmax = eig.values(2);
-  fit.middle_eigen_ratio = lmax > S(0) ? eig.values(1) / lmax : S(0);
-  if (!(fit.middle_eigen_ratio > S(kCollinearEigenRatio)))
-    return Error::make(Errc::degenerate, "plane fit: %zu points are collinear", n);
-  Vec3T<S> normal = eig.vectors.col(0);
-  normal /= sqrt(normal.squaredNorm());
-  fit.plane.normal = normal;
-  fit.plane.d = -normal.dot(c);
-  fit.centroid = c;
-  const S lmin = eig.values(0) > S(0) ? eig.values(0) : S(0);
-  fit.rms = scale * sqrt(lmin / count);
-  fit.count = n;
-  return fit;
-}
+namespace plane_fit_detail {
 
-// Weighted total least squares: point(k) counts with weight(k) >= 0 (0:
-// unused). The plane through the weighted centroid along the smallest
-// eigenvector of the weighted scatter; rms is the weighted RMS distance.
+// The weighted centroid of the used points (weight > 0) and the scale the
+// moments are divided by (half the largest extent of their bounding box).
+template <class S>
+struct Spread {
+  Vec3T<S> centroid;
+  S scale{};
+  S weight{};  // total weight
+  std::size_t count = 0;
+};
+
 template <class S, class Get, class Weight>
-Result<PlaneFitT<S>> fit_plane_wtls_by(std::size_t count_all, Get&& point, Weight&& weight) {
-  using std::sqrt;
-  PlaneFitT<S> fit;
+Result<Spread<S>> weighted_spread(std::size_t count_all, Get& point, Weight& weight) {
+  Spread<S> out;
   Vec3T<S> sum = Vec3T<S>::Zero();
   Vec3T<S> lo = Vec3T<S>::Zero(), hi = Vec3T<S>::Zero();
-  S wsum{};
   std::size_t n = 0;
   for (std::size_t i = 0; i < count_all; ++i) {
     const S w = weight(i);
@@ -118,17 +66,32 @@ Result<PlaneFitT<S>> fit_plane_wtls_by(std::size_t count_all, Get&& point, Weigh
       hi(k) = p(k) > hi(k) ? p(k) : hi(k);
     }
     sum += w * p;
-    wsum += w;
+    out.weight += w;
     ++n;
   }
   if (n < 3) return Error::make(Errc::degenerate, "plane fit: %zu points, need at least 3", n);
-  const Vec3T<S> c = sum / wsum;
+  out.centroid = sum / out.weight;
   const Vec3T<S> extent = hi - lo;
   S scale = extent(0) > extent(1) ? extent(0) : extent(1);
-  scale = (extent(2) > scale ? extent(2) : scale) / S(2);
-  if (!(scale > S(0)))
+  out.scale = (extent(2) > scale ? extent(2) : scale) / S(2);
+  if (!(out.scale > S(0)))
     return Error::make(Errc::degenerate, "plane fit: all %zu points coincide", n);
-  const S inv_scale = S(1) / scale;
+  out.count = n;
+  return out;
+}
+
+}  // namespace plane_fit_detail
+
+// Weighted total least squares: point(k) counts with weight(k) >= 0 (0:
+// unused). The plane through the weighted centroid along the smallest
+// eigenvector of the weighted scatter; rms is the weighted RMS distance.
+template <class S, class Get, class Weight>
+Result<PlaneFitT<S>> fit_plane_wtls_by(std::size_t count_all, Get&& point, Weight&& weight) {
+  using std::sqrt;
+  const auto spread = plane_fit_detail::weighted_spread<S>(count_all, point, weight);
+  if (!spread) return spread.error();
+  const Vec3T<S> c = spread->centroid;
+  const S inv_scale = S(1) / spread->scale;
   Mat3T<S> cov = Mat3T<S>::Zero();
   for (std::size_t i = 0; i < count_all; ++i) {
     const S w = weight(i);
@@ -144,20 +107,29 @@ Result<PlaneFitT<S>> fit_plane_wtls_by(std::size_t count_all, Get&& point, Weigh
   cov(0, 1) = cov(1, 0);
   cov(0, 2) = cov(2, 0);
   cov(1, 2) = cov(2, 1);
+  PlaneFitT<S> fit;
   const SymEigen3<S> eig = sym_eigen3<S>(cov);
   const S lmax = eig.values(2);
   fit.middle_eigen_ratio = lmax > S(0) ? eig.values(1) / lmax : S(0);
   if (!(fit.middle_eigen_ratio > S(kCollinearEigenRatio)))
-    return Error::make(Errc::degenerate, "plane fit: %zu points are collinear", n);
+    return Error::make(Errc::degenerate, "plane fit: %zu points are collinear", spread->count);
   Vec3T<S> normal = eig.vectors.col(0);
   normal /= sqrt(normal.squaredNorm());
   fit.plane.normal = normal;
   fit.plane.d = -normal.dot(c);
   fit.centroid = c;
   const S lmin = eig.values(0) > S(0) ? eig.values(0) : S(0);
-  fit.rms = scale * sqrt(lmin / wsum);
-  fit.count = n;
+  fit.rms = spread->scale * sqrt(lmin / spread->weight);
+  fit.count = spread->count;
   return fit;
+}
+
+// Points given by an accessor: point(k) for k < count, used when use(k).
+// The weighted fit with weights 0 and 1 (exact in every scalar type).
+template <class S, class Get, class Use>
+Result<PlaneFitT<S>> fit_plane_tls_by(std::size_t count_all, Get&& point, Use&& use) {
+  return fit_plane_wtls_by<S>(count_all, point,
+                              [&](std::size_t i) { return use(i) ? S(1) : S(0); });
 }
 
 // Weighted least squares along a direction: the plane minimising the
@@ -172,34 +144,15 @@ Result<PlaneFitT<S>> fit_plane_along_by(std::size_t count_all, Get&& point, Weig
                                         const Vec3T<S>& dir) {
   using std::abs;
   using std::sqrt;
-  PlaneFitT<S> fit;
-  Vec3T<S> sum = Vec3T<S>::Zero();
-  Vec3T<S> lo = Vec3T<S>::Zero(), hi = Vec3T<S>::Zero();
-  S wsum{};
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < count_all; ++i) {
-    const S w = weight(i);
-    if (!(w > S(0))) continue;
-    const Vec3T<S>& p = point(i);
-    if (n == 0) lo = hi = p;
-    for (int k = 0; k < 3; ++k) {
-      lo(k) = p(k) < lo(k) ? p(k) : lo(k);
-      hi(k) = p(k) > hi(k) ? p(k) : hi(k);
-    }
-    sum += w * p;
-    wsum += w;
-    ++n;
-  }
-  if (n < 3) return Error::make(Errc::degenerate, "plane fit: %zu points, need at least 3", n);
-  const Vec3T<S> c = sum / wsum;
   // Centred coordinates over half the largest extent and moments over the
   // total weight: every term stays O(1), so a Q format cannot overflow.
-  const Vec3T<S> extent = hi - lo;
-  S scale = extent(0) > extent(1) ? extent(0) : extent(1);
-  scale = (extent(2) > scale ? extent(2) : scale) / S(2);
-  if (!(scale > S(0)))
-    return Error::make(Errc::degenerate, "plane fit: all %zu points coincide", n);
+  const auto spread = plane_fit_detail::weighted_spread<S>(count_all, point, weight);
+  if (!spread) return spread.error();
+  const Vec3T<S> c = spread->centroid;
+  const S scale = spread->scale, wsum = spread->weight;
+  const std::size_t n = spread->count;
   const S inv_scale = S(1) / scale;
+  PlaneFitT<S> fit;
   // Any unit vector not along dir gives the in-plane basis.
   const Vec3T<S> helper =
       abs(dir(2)) < S(0.9) ? Vec3T<S>(S(0), S(0), S(1)) : Vec3T<S>(S(1), S(0), S(0));
