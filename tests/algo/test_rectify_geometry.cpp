@@ -5,33 +5,13 @@
 #include <Eigen/Geometry>
 #include <random>
 
+#include "tests/support/test_rig.hpp"
+
 namespace petra {
 namespace {
 
-// A Bumblebee2-like rig: 150 mm baseline, small misalignments, distortion,
-// looking down at the ground.
 StereoRig test_rig(std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  StereoRig rig;
-  for (int k = 0; k < 2; ++k) {
-    TsaiCamera& c = k == 0 ? rig.left : rig.right;
-    c.width = 1024;
-    c.height = 768;
-    c.f_mm = 3.8 + 0.02 * u(rng);
-    c.dx_mm = c.dy_mm = 0.00465;
-    c.sx = 1.0 + 0.002 * u(rng);
-    c.cx_px = 512 + 5 * u(rng);
-    c.cy_px = 384 + 5 * u(rng);
-    c.kappa1 = -0.003 + 0.001 * u(rng);
-    const Eigen::Matrix3d tilt(Eigen::AngleAxisd(0.5 + 0.01 * u(rng), Eigen::Vector3d::UnitX()) *
-                               Eigen::AngleAxisd(0.01 * u(rng), Eigen::Vector3d::UnitY()) *
-                               Eigen::AngleAxisd(0.01 * u(rng), Eigen::Vector3d::UnitZ()));
-    c.R = tilt;
-    const Eigen::Vector3d centre(k == 0 ? 0.0 : 150.0 + u(rng), 2 * u(rng), 2 * u(rng));
-    c.T_mm = -(c.R * centre);
-  }
-  return rig;
+  return test::bumblebee_rig(seed);
 }
 
 TEST(RectifyGeometry, CorrespondencesShareARowAndGiveTheirDepth) {

@@ -7,17 +7,12 @@
 #include <vector>
 
 #include "tests/support/heap_counter.hpp"
+#include "tests/support/owned_gray_image.hpp"
 
 namespace petra {
 namespace {
 
-struct Image {
-  int w, h;
-  std::vector<std::uint8_t> px;
-  Image(int w_, int h_, std::uint8_t v = 0)
-      : w(w_), h(h_), px(static_cast<std::size_t>(w_) * h_, v) {}
-  Gray8View view() { return {px.data(), w, h}; }
-};
+using Image = test::OwnedGray8;
 
 // Pixel values 0..99, each once, in a 10x10 ROI inside a brighter image.
 Image ramp() {

@@ -11,20 +11,27 @@
 
 namespace petra::test {
 
+// 1024x768 Bumblebee2-like optics, seeded scatter of focal length, aspect,
+// principal point and radial distortion around their nominal values.
+inline void set_bumblebee_optics(TsaiCamera& c, std::mt19937_64& rng, double kappa1) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  c.width = 1024;
+  c.height = 768;
+  c.f_mm = 3.8 + 0.02 * u(rng);
+  c.dx_mm = c.dy_mm = 0.00465;
+  c.sx = 1.0 + 0.002 * u(rng);
+  c.cx_px = 512 + 5 * u(rng);
+  c.cy_px = 384 + 5 * u(rng);
+  c.kappa1 = kappa1 + 0.001 * u(rng);
+}
+
 inline StereoRig bumblebee_rig(std::uint64_t seed, double kappa1 = -0.003) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   StereoRig rig;
   for (int k = 0; k < 2; ++k) {
     TsaiCamera& c = k == 0 ? rig.left : rig.right;
-    c.width = 1024;
-    c.height = 768;
-    c.f_mm = 3.8 + 0.02 * u(rng);
-    c.dx_mm = c.dy_mm = 0.00465;
-    c.sx = 1.0 + 0.002 * u(rng);
-    c.cx_px = 512 + 5 * u(rng);
-    c.cy_px = 384 + 5 * u(rng);
-    c.kappa1 = kappa1 + 0.001 * u(rng);
+    set_bumblebee_optics(c, rng, kappa1);
     c.R = Eigen::Matrix3d(Eigen::AngleAxisd(0.5 + 0.01 * u(rng), Eigen::Vector3d::UnitX()) *
                           Eigen::AngleAxisd(0.01 * u(rng), Eigen::Vector3d::UnitY()) *
                           Eigen::AngleAxisd(0.01 * u(rng), Eigen::Vector3d::UnitZ()));
@@ -55,14 +62,7 @@ inline StereoRig looking_rig(std::uint64_t seed, const Eigen::Vector3d& eye = {0
   StereoRig rig;
   for (int k = 0; k < 2; ++k) {
     TsaiCamera& c = k == 0 ? rig.left : rig.right;
-    c.width = 1024;
-    c.height = 768;
-    c.f_mm = 3.8 + 0.02 * u(rng);
-    c.dx_mm = c.dy_mm = 0.00465;
-    c.sx = 1.0 + 0.002 * u(rng);
-    c.cx_px = 512 + 5 * u(rng);
-    c.cy_px = 384 + 5 * u(rng);
-    c.kappa1 = -0.003 + 0.001 * u(rng);
+    set_bumblebee_optics(c, rng, -0.003);
     c.R = Eigen::Matrix3d(Eigen::AngleAxisd(0.005 * u(rng), Eigen::Vector3d::UnitX()) *
                           Eigen::AngleAxisd(0.005 * u(rng), Eigen::Vector3d::UnitY()) *
                           Eigen::AngleAxisd(0.005 * u(rng), Eigen::Vector3d::UnitZ())) *

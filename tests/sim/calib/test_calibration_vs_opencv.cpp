@@ -11,6 +11,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "tests/support/opencv_chessboard.hpp"
+
 #include "sim/calib/board_images.hpp"
 #include "sim/calib/stereo_calibration.hpp"
 
@@ -18,23 +20,14 @@ namespace petra::calib {
 namespace {
 
 std::string data_dir() {
-  return std::string(PETRA_SOURCE_DIR) + "/../shared/data/chessboard-opencv/";
+  return test::chessboard_data_dir();
 }
 
 struct OpenCvFigures {
   double left_rms = 0, right_rms = 0, stereo_rms = 0, baseline = 0;
 };
 
-std::vector<cv::Point2f> opencv_corners(const std::string& path, int half_window) {
-  const cv::Mat img = cv::imread(path, cv::IMREAD_GRAYSCALE);
-  std::vector<cv::Point2f> c;
-  if (!cv::findChessboardCorners(img, cv::Size(9, 6), c,
-                                 cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE))
-    return {};
-  cv::cornerSubPix(img, c, cv::Size(half_window, half_window), cv::Size(-1, -1),
-                   cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 30, 0.01));
-  return c;
-}
+using test::opencv_corners;
 
 OpenCvFigures opencv_calibration(const std::vector<StereoPairCorners>& pairs, int half_window) {
   std::vector<cv::Point3f> board;

@@ -12,6 +12,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "tests/support/opencv_chessboard.hpp"
+
 #include "sim/calib/chessboard_corners.hpp"
 #include "sim/io/image_io.hpp"
 
@@ -22,19 +24,10 @@ const char* const kPairs[] = {"01", "02", "03", "04", "05", "06", "07",
                               "08", "09", "11", "12", "13", "14"};
 
 std::string data_dir() {
-  return std::string(PETRA_SOURCE_DIR) + "/../shared/data/chessboard-opencv/";
+  return test::chessboard_data_dir();
 }
 
-std::vector<cv::Point2f> opencv_corners(const std::string& path, int half_window) {
-  const cv::Mat img = cv::imread(path, cv::IMREAD_GRAYSCALE);
-  std::vector<cv::Point2f> c;
-  if (!cv::findChessboardCorners(img, cv::Size(9, 6), c,
-                                 cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE))
-    return {};
-  cv::cornerSubPix(img, c, cv::Size(half_window, half_window), cv::Size(-1, -1),
-                   cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 30, 0.01));
-  return c;
-}
+using test::opencv_corners;
 
 TEST(ChessboardVsOpenCv, CornersWithinATenthOfAPixelOfOpenCv) {
   double sum = 0, worst = 0;
