@@ -95,7 +95,7 @@ enum class GraphCutStart : std::uint8_t { occluded, block_matching, dp };
 struct GraphCutParams {
   int disp_min = 0;
   int disp_max = 15;
-  int max_cycles = 2;        // 1..kGraphCutMaxCycles (docs/graphcut.md: why 2)
+  int max_cycles = 1;        // full cycles, 1..kGraphCutMaxCycles (docs/graphcut.md: why 1)
   bool random_order = true;  // a new seeded permutation of the disparities each cycle
   std::uint32_t seed = 1;
   std::int32_t occlusion_k = kGraphCutAuto;  // K > 0, cost units

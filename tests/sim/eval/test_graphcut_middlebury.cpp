@@ -97,7 +97,9 @@ TEST(GraphCutMiddlebury, Bad1WithinTargetsOrGuards) {
     EXPECT_LE(o.score.strict.nonocc, b.strict_nonocc) << b.scene;
     EXPECT_LE(o.score.filled.nonocc, b.filled_nonocc) << b.scene;
     EXPECT_LE(o.score.filled.all, b.filled_all) << b.scene;
-    EXPECT_EQ(o.report.cycles, 2) << b.scene;
+    EXPECT_EQ(o.report.guided_cycles, 1) << b.scene;
+    EXPECT_EQ(o.report.cycles, 1) << b.scene;
+    EXPECT_EQ(o.report.start, GraphCutStart::dp) << b.scene;
   }
 }
 

@@ -37,7 +37,9 @@ TEST(StereoToolGraphCut, FilledTsukubaScoresLikeTheMatcher) {
   o.fill = true;
   auto r = run_stereo_tool(o);
   ASSERT_TRUE(r.ok()) << r.error().message;
-  EXPECT_EQ(r->graph.cycles, 2);
+  EXPECT_EQ(r->graph.guided_cycles, 1);
+  EXPECT_EQ(r->graph.cycles, 1);
+  EXPECT_EQ(r->graph.start, GraphCutStart::dp);
   auto pfm = io::read_pfm(o.out);
   ASSERT_TRUE(pfm.ok());
   auto data = eval::load_middlebury(*eval::find_middlebury_scene("tsukuba"), kRoot);
