@@ -19,9 +19,11 @@
 // Minimised by alpha-expansion: for each disparity alpha (seeded random or
 // fixed order) the best configuration reachable by deactivating assignments
 // and activating assignments of disparity alpha is one min cut (algo/maxflow).
-// Cycles over all disparities repeat until one brings no decrease or
-// max_cycles (default 2) is reached. The start is a left-right checked 5x5
-// block matching of D (or, optionally, all occluded as in the reference).
+// The start is the scanline DP matcher's map (algo/match_dp), rounded and
+// made unique (or a left-right checked 5x5 block matching of D, or all
+// occluded as in the reference); guided cycles (default 1) restricted to a
+// band of +-1 px around the start come first, then full cycles over all
+// disparities until one brings no decrease or max_cycles (default 1).
 //
 // Shadow pixels (nonzero in a mask) are marked occluded: every assignment that
 // touches a shadow pixel, left or right, is left out of the problem, so shadow
@@ -37,10 +39,11 @@
 //          occluded or shadowed.
 // Memory:  all from the Arena at init, for a budget (max ROI width, height,
 //          disparity count): bytes_needed() =
-//            193 B per ROI pixel (146 B of it the max-flow graph: up to two
+//            195 B per ROI pixel (146 B of it the max-flow graph: up to two
 //            nodes per pixel, 73 B each)
-//            + 13 B per right strip pixel (height x (width + disparities - 1)).
-//          Flight default 320 x 320 ROI, 128 disparities: 21.6 MB.
+//            + 13 B per right strip pixel (height x (width + disparities - 1))
+//            + match_dp_scratch_bytes of the same budget (the DP start).
+//          Flight default 320 x 320 ROI, 128 disparities: 23.7 MB.
 //          match() never allocates.
 #pragma once
 
@@ -135,11 +138,11 @@ struct GraphCutReport {
   std::int32_t occlusion_k = 0;  // the parameters used (after automatic choice)
   std::int32_t lambda1 = 0;
   std::int32_t lambda2 = 0;
-  int guided_cycles = 0;          // guided cycles run (before the full ones)
-  int cycles = 0;                 // full cycles run
-  int expansions = 0;             // min cuts solved
-  int expansions_skipped = 0;     // provably unchanged, not solved
-  bool converged = false;         // the last cycle brought no decrease
+  int guided_cycles = 0;                          // guided cycles run (before the full ones)
+  int cycles = 0;                                 // full cycles run
+  int expansions = 0;                             // min cuts solved
+  int expansions_skipped = 0;                     // provably unchanged, not solved
+  bool converged = false;                         // the last cycle brought no decrease
   GraphCutStart start = GraphCutStart::occluded;  // the start used (dp may fall back)
   std::int64_t energy_start = 0;  // energy of the starting labelling (all occluded: 0)
   std::int64_t energy = 0;        // final energy

@@ -104,7 +104,8 @@ void GraphCutMatcher::block_matching_labels() {
 // finds nothing to start from (too few edges, all shadow, range beyond its
 // limit); an error for bad DP parameters. Scratch: alpha_cost_ (the DP map),
 // dp_scratch_ (the DP's arena), right_best_ (claimant cost per strip pixel).
-Result<bool> GraphCutMatcher::dp_labels(const StereoInput& in, Rect roi, const GraphCutParams& params) {
+Result<bool> GraphCutMatcher::dp_labels(const StereoInput& in, Rect roi,
+                                        const GraphCutParams& params) {
   const int n = w_ * h_;
   DisparityMap map{ImageView<std::int16_t>(alpha_cost_.data(), w_, h_), {}};
   MatchDpParams dp = params.dp_start;
@@ -126,7 +127,8 @@ Result<bool> GraphCutMatcher::dp_labels(const StereoInput& in, Rect roi, const G
     for (int x = 0; x < w_; ++x) {
       const std::int16_t v = row[x];
       if (!is_valid_disparity(v)) continue;
-      const int d = (v + kDisparityScale / 2) >> kDisparityFracBits;  // nearest whole pixel (arithmetic shift)
+      const int d = (v + kDisparityScale / 2) >>
+                    kDisparityFracBits;  // nearest whole pixel (arithmetic shift)
       const int di = d - disp_min_;
       const int qx = roi_x_ + x - d;
       if (di < 0 || di >= num_disp_ || qx < 0 || qx >= image_w_) continue;

@@ -180,9 +180,8 @@ void check_step(void* context, const GraphCutStep& step) {
   if (step.energy_after > step.energy_before) t.failures.push_back("energy increased");
   if (step.energy_before != t.last_energy) t.failures.push_back("energy trace has a gap");
   if (t.brute_force && !step.skipped) {
-    const std::int64_t best =
-        t.problem->best_expansion(t.previous, step.disparity - t.problem->disp_min,
-                                  step.guided ? &t.guide : nullptr, t.band);
+    const std::int64_t best = t.problem->best_expansion(
+        t.previous, step.disparity - t.problem->disp_min, step.guided ? &t.guide : nullptr, t.band);
     std::int64_t e_before = 0;
     (void)t.problem->energy(t.previous, e_before);
     const std::int64_t expected = std::min(best, e_before);

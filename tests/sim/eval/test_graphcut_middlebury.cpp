@@ -113,13 +113,13 @@ void trace_step(void* context, const GraphCutStep& step) {
   const double now = thread_cpu_s();
   long changed = 0;
   if (tr->previous.size() == step.labels.size()) {
-    for (std::size_t i = 0; i < step.labels.size(); ++i) changed += tr->previous[i] != step.labels[i];
+    for (std::size_t i = 0; i < step.labels.size(); ++i)
+      changed += tr->previous[i] != step.labels[i];
   }
   tr->previous.assign(step.labels.begin(), step.labels.end());
   std::printf("  cycle %d d %3d %s changed %7ld dE %9lld %7.1f ms\n", step.cycle, step.disparity,
               step.skipped ? "skip" : (step.applied ? "move" : "keep"), changed,
-              static_cast<long long>(step.energy_after - step.energy_before),
-              1e3 * (now - tr->t));
+              static_cast<long long>(step.energy_after - step.energy_before), 1e3 * (now - tr->t));
   tr->t = thread_cpu_s();
 }
 
@@ -134,7 +134,8 @@ TEST(GraphCutMiddlebury, Explore) {
   GraphCutParams p;
   if (const char* c = std::getenv("PETRA_GC_CYCLES")) p.max_cycles = std::atoi(c);
   if (const char* c = std::getenv("PETRA_GC_PRUNE")) p.prune = std::atoi(c) != 0;
-  if (const char* c = std::getenv("PETRA_GC_START")) p.start = static_cast<GraphCutStart>(std::atoi(c));
+  if (const char* c = std::getenv("PETRA_GC_START"))
+    p.start = static_cast<GraphCutStart>(std::atoi(c));
   if (const char* c = std::getenv("PETRA_GC_RANDOM")) p.random_order = std::atoi(c) != 0;
   if (const char* c = std::getenv("PETRA_GC_GUIDED")) p.guided_cycles = std::atoi(c);
   if (const char* c = std::getenv("PETRA_GC_RADIUS")) p.guided_radius = std::atoi(c);
