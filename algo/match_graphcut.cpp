@@ -33,17 +33,22 @@ std::uint32_t next_random(std::uint32_t& state) {
   return state;
 }
 
+MatchBudget dp_budget(const GraphCutBudget& b) {
+  return {b.max_width, b.max_height, b.max_disparities};
+}
+
 }  // namespace
 
 std::size_t GraphCutMatcher::bytes_needed(const GraphCutBudget& budget) {
   if (budget.max_width <= 0 || budget.max_height <= 0 || budget.max_disparities <= 0) return 0;
   const Sizes s = sizes_of(budget);
   std::size_t bytes = 0;
-  bytes += s.roi * (sizeof(Sample) + 3 + 3 * sizeof(std::int16_t) + 8 * sizeof(std::int32_t));
+  bytes += s.roi * (sizeof(Sample) + 3 + 4 * sizeof(std::int16_t) + 8 * sizeof(std::int32_t));
   bytes += s.strip * (sizeof(Sample) + 1 + sizeof(std::int16_t) + sizeof(std::int32_t));
   bytes += s.disparities * (sizeof(std::int16_t) + sizeof(std::int32_t));
-  bytes += 20 * kAlignSlack;
+  bytes += 22 * kAlignSlack;
   bytes += MaxFlow<6>::bytes_needed(static_cast<std::int32_t>(2 * s.roi));
+  bytes += match_dp_scratch_bytes(dp_budget(budget));
   return bytes;
 }
 
@@ -88,6 +93,8 @@ Status GraphCutMatcher::init(Arena& arena, const GraphCutBudget& budget) {
   PETRA_GC_TAKE(owner_, std::int16_t, s.strip, "right owners");
   PETRA_GC_TAKE(order_, std::int16_t, s.disparities, "order");
   PETRA_GC_TAKE(last_change_, std::int32_t, s.disparities, "change stamps");
+  PETRA_GC_TAKE(guide_, std::int16_t, s.roi, "guide");
+  PETRA_GC_TAKE(dp_scratch_, std::byte, match_dp_scratch_bytes(dp_budget(budget)), "dp start");
 #undef PETRA_GC_TAKE
   PETRA_TRY(maxflow_.init(arena, static_cast<std::int32_t>(2 * s.roi)));
   budget_ = budget;
@@ -154,6 +161,19 @@ Status GraphCutMatcher::validate(const StereoInput& in, Rect roi, const GraphCut
       return Error::make(Errc::out_of_range, "graphcut: %s %d outside 0..%d", names[k], weights[k],
                          kMaxWeight);
     }
+  }
+  if (params.guided_cycles < 0 || params.guided_cycles > kGraphCutMaxCycles) {
+    return Error::make(Errc::out_of_range, "graphcut: guided_cycles %d outside 0..%d",
+                       params.guided_cycles, kGraphCutMaxCycles);
+  }
+  if (params.guided_radius < 0 || params.guided_radius > 2 * kMaxDisparityMagnitude) {
+    return Error::make(Errc::out_of_range, "graphcut: guided_radius %d outside 0..%d",
+                       params.guided_radius, 2 * kMaxDisparityMagnitude);
+  }
+  if (params.start != GraphCutStart::occluded && params.start != GraphCutStart::block_matching &&
+      params.start != GraphCutStart::dp) {
+    return Error::make(Errc::invalid_argument, "graphcut: start %d unknown",
+                       static_cast<int>(params.start));
   }
   if (params.edge_threshold < 1 || params.edge_threshold > 255) {
     return Error::make(Errc::out_of_range, "graphcut: edge_threshold %d outside 1..255",
@@ -238,94 +258,6 @@ std::int32_t GraphCutMatcher::automatic_k() const {
       return static_cast<std::int32_t>(std::max<std::int64_t>(1, (sum + count / 2) / count));
   }
   return 0;
-}
-
-// Starting labelling: winner-take-all over 5x5 sums of the data cost, kept
-// where the left and right winners agree (so it satisfies uniqueness), else
-// occluded. Scratch: alpha_cost_ (costs), keep_ (row sums), alpha_slack_
-// (window sums), old_slack_ (left best), right_best_ (right best).
-void GraphCutMatcher::block_matching_labels() {
-  constexpr int kRadius = 2;
-  const int n = w_ * h_;
-  const std::int32_t invalid_cost = clip2_ * clip2_;
-  std::fill_n(old_slack_.begin(), n, INT32_MAX);
-  std::fill_n(right_best_.begin(), h_ * strip_w_, INT32_MAX);
-  std::fill_n(owner_.begin(), h_ * strip_w_, std::int16_t{-1});
-  std::fill_n(label_.begin(), n, kOccluded);
-  std::int32_t* row_sum = keep_.data();
-  std::int32_t* window = alpha_slack_.data();
-  for (int di = 0; di < num_disp_; ++di) {
-    const int d = disp_min_ + di;
-    for (int y = 0; y < h_; ++y) {
-      const int qrow = y * strip_w_ + roi_x_ - d - strip_x0_;
-      for (int x = 0; x < w_; ++x) {
-        const int p = y * w_ + x;
-        const int qx = roi_x_ + x - d;
-        const bool valid = qx >= 0 && qx < image_w_ &&
-                           ((left_flags_[p] | right_flags_[qrow + x]) & kUnusable) == 0;
-        alpha_cost_[p] = static_cast<std::int16_t>(
-            valid ? gc::bt_cost(left_[p], right_[qrow + x], clip2_) : invalid_cost);
-      }
-      // Horizontal window sums (clamped at the ROI border).
-      std::int32_t acc = 0;
-      for (int x = 0; x <= std::min(kRadius, w_ - 1); ++x) acc += alpha_cost_[y * w_ + x];
-      for (int x = 0; x < w_; ++x) {
-        row_sum[y * w_ + x] = acc;
-        if (x + kRadius + 1 < w_) acc += alpha_cost_[y * w_ + x + kRadius + 1];
-        if (x - kRadius >= 0) acc -= alpha_cost_[y * w_ + x - kRadius];
-      }
-    }
-    for (int x = 0; x < w_; ++x) {
-      std::int32_t acc = 0;
-      for (int y = 0; y <= std::min(kRadius, h_ - 1); ++y) acc += row_sum[y * w_ + x];
-      for (int y = 0; y < h_; ++y) {
-        window[y * w_ + x] = acc;
-        if (y + kRadius + 1 < h_) acc += row_sum[(y + kRadius + 1) * w_ + x];
-        if (y - kRadius >= 0) acc -= row_sum[(y - kRadius) * w_ + x];
-      }
-    }
-    for (int y = 0; y < h_; ++y) {
-      for (int x = 0; x < w_; ++x) {
-        const int p = y * w_ + x;
-        const int qx = roi_x_ + x - d;
-        if (qx < 0 || qx >= image_w_) continue;
-        const std::int32_t c = window[p];
-        if (c < old_slack_[p]) {
-          old_slack_[p] = c;
-          label_[p] = static_cast<std::int16_t>(di);
-        }
-        const int q = y * strip_w_ + qx - strip_x0_;
-        if (c < right_best_[q]) {
-          right_best_[q] = c;
-          owner_[q] = static_cast<std::int16_t>(di);
-        }
-      }
-    }
-  }
-  // Keep the left winners the right side agrees with; owners become left x.
-  for (int y = 0; y < h_; ++y) {
-    for (int x = 0; x < w_; ++x) {
-      const int p = y * w_ + x;
-      const int l = label_[p];
-      if (l < 0) continue;
-      const int qx = roi_x_ + x - (disp_min_ + l);
-      const int q = y * strip_w_ + qx - strip_x0_;
-      const bool usable = ((left_flags_[p] | right_flags_[q]) & kUnusable) == 0;
-      if (!usable || owner_[q] != l) label_[p] = kOccluded;
-    }
-  }
-  std::fill_n(owner_.begin(), h_ * strip_w_, std::int16_t{-1});
-  for (int y = 0; y < h_; ++y) {
-    for (int x = 0; x < w_; ++x) {
-      const int p = y * w_ + x;
-      const int l = label_[p];
-      if (l < 0) continue;
-      const int q = y * strip_w_ + roi_x_ + x - (disp_min_ + l) - strip_x0_;
-      PETRA_ASSERT(owner_[q] < 0);
-      owner_[q] = static_cast<std::int16_t>(x);
-      cost_[p] = static_cast<std::int16_t>(gc::bt_cost(left_[p], right_[q], clip2_));
-    }
-  }
 }
 
 void GraphCutMatcher::refresh_pixel(int p, int x, int y) {
@@ -432,8 +364,14 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
 
   const int n = w_ * h_;
   std::int64_t e = 0;  // the all-occluded start
-  if (params.block_matching_start) {
-    block_matching_labels();
+  report.start = params.start;
+  if (report.start == GraphCutStart::dp) {
+    auto started = dp_labels(in, roi, params);
+    if (!started) return started.error();
+    if (!*started) report.start = GraphCutStart::block_matching;
+  }
+  if (report.start == GraphCutStart::block_matching) block_matching_labels();
+  if (report.start != GraphCutStart::occluded) {
     e = energy();
   } else {
     std::fill_n(label_.begin(), n, kOccluded);
@@ -457,25 +395,60 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
   notify(start);
 
   std::uint32_t rng = params.seed != 0 ? params.seed : 0x9E3779B9u;
+  auto shuffle = [&] {
+    for (int i = 0; i < num_disp_; ++i) order_[i] = static_cast<std::int16_t>(i);
+    if (!params.random_order) return;
+    for (int i = num_disp_ - 1; i > 0; --i) {
+      const int j = static_cast<int>(next_random(rng) % static_cast<std::uint32_t>(i + 1));
+      std::swap(order_[i], order_[j]);
+    }
+  };
+  auto cancelled = [&](int cycle) {
+    return Error::make(Errc::cancelled, "graphcut: cancelled in cycle %d after %d expansions",
+                       cycle + 1, report.expansions);
+  };
+
+  // Guided cycles: moves restricted to the band around the start (their
+  // results are not optimal over every move, so no skip stamps are set).
+  const int guided = report.start == GraphCutStart::occluded ? 0 : params.guided_cycles;
+  if (guided > 0) std::copy_n(label_.begin(), n, guide_.begin());
+  for (int cycle = 0; cycle < guided; ++cycle) {
+    shuffle();
+    bool decreased = false;
+    for (int i = 0; i < num_disp_; ++i) {
+      const int alpha = order_[i];
+      if (params.cancel != nullptr && params.cancel->cancelled()) return cancelled(cycle);
+      GraphCutStep step;
+      step.cycle = cycle;
+      step.guided = true;
+      step.disparity = disp_min_ + alpha;
+      step.energy_before = e;
+      const std::int64_t delta = expand(alpha, report.graph_nodes, params.guided_radius);
+      ++report.expansions;
+      if (delta < 0) {
+        e += delta;
+        decreased = true;
+        step.applied = true;
+      }
+      step.energy_after = e;
+      notify(step);
+    }
+    ++report.guided_cycles;
+    if (!decreased) break;
+  }
+
   std::int32_t changes = 0;
   for (int cycle = 0; cycle < params.max_cycles; ++cycle) {
-    for (int i = 0; i < num_disp_; ++i) order_[i] = static_cast<std::int16_t>(i);
-    if (params.random_order) {
-      for (int i = num_disp_ - 1; i > 0; --i) {
-        const int j = static_cast<int>(next_random(rng) % static_cast<std::uint32_t>(i + 1));
-        std::swap(order_[i], order_[j]);
-      }
-    }
+    shuffle();
     bool decreased = false;
     for (int i = 0; i < num_disp_; ++i) {
       const int alpha = order_[i];
       GraphCutStep step;
-      step.cycle = cycle;
+      step.cycle = report.guided_cycles + cycle;
       step.disparity = disp_min_ + alpha;
       step.energy_before = e;
       if (params.cancel != nullptr && params.cancel->cancelled()) {
-        return Error::make(Errc::cancelled, "graphcut: cancelled in cycle %d after %d expansions",
-                           cycle + 1, report.expansions);
+        return cancelled(report.guided_cycles + cycle);
       }
       if (last_change_[alpha] == changes) {
         // Unchanged since alpha's last expansion, whose result is optimal

@@ -19,9 +19,11 @@
 // Minimised by alpha-expansion: for each disparity alpha (seeded random or
 // fixed order) the best configuration reachable by deactivating assignments
 // and activating assignments of disparity alpha is one min cut (algo/maxflow).
-// Cycles over all disparities repeat until one brings no decrease or
-// max_cycles (default 2) is reached. The start is a left-right checked 5x5
-// block matching of D (or, optionally, all occluded as in the reference).
+// The start is the scanline DP matcher's map (algo/match_dp), rounded and
+// made unique (or a left-right checked 5x5 block matching of D, or all
+// occluded as in the reference); guided cycles (default 1) restricted to a
+// band of +-1 px around the start come first, then full cycles over all
+// disparities until one brings no decrease or max_cycles (default 1).
 //
 // Shadow pixels (nonzero in a mask) are marked occluded: every assignment that
 // touches a shadow pixel, left or right, is left out of the problem, so shadow
@@ -37,10 +39,11 @@
 //          occluded or shadowed.
 // Memory:  all from the Arena at init, for a budget (max ROI width, height,
 //          disparity count): bytes_needed() =
-//            193 B per ROI pixel (146 B of it the max-flow graph: up to two
+//            195 B per ROI pixel (146 B of it the max-flow graph: up to two
 //            nodes per pixel, 73 B each)
-//            + 13 B per right strip pixel (height x (width + disparities - 1)).
-//          Flight default 320 x 320 ROI, 128 disparities: 21.6 MB.
+//            + 13 B per right strip pixel (height x (width + disparities - 1))
+//            + match_dp_scratch_bytes of the same budget (the DP start).
+//          Flight default 320 x 320 ROI, 128 disparities: 23.7 MB.
 //          match() never allocates.
 #pragma once
 
@@ -70,6 +73,7 @@ struct GraphCutStep {
   int cycle = 0;
   int disparity = 0;
   bool skipped = false;  // nothing changed since this disparity's last expansion
+  bool guided = false;   // restricted to the start's band (not optimal over every move)
   bool applied = false;  // the move decreased the energy and was taken
   std::int64_t energy_before = 0;
   std::int64_t energy_after = 0;
@@ -83,10 +87,18 @@ struct GraphCutObserver {
   void* context = nullptr;
 };
 
+// Where the expansions start. Not "everything occluded" (the reference's
+// start), the expansions refine a labelling instead of building it, which is
+// much faster: the scanline DP matcher's map (fast and more accurate than one
+// cycle of expansions on it; falls back to block matching when the DP finds
+// no match, e.g. too few edges), or a left-right checked 5x5 block matching
+// of the data term.
+enum class GraphCutStart : std::uint8_t { occluded, block_matching, dp };
+
 struct GraphCutParams {
   int disp_min = 0;
   int disp_max = 15;
-  int max_cycles = 2;        // 1..kGraphCutMaxCycles (docs/graphcut.md: why 2)
+  int max_cycles = 1;        // full cycles, 1..kGraphCutMaxCycles (docs/graphcut.md: why 1)
   bool random_order = true;  // a new seeded permutation of the disparities each cycle
   std::uint32_t seed = 1;
   std::int32_t occlusion_k = kGraphCutAuto;  // K > 0, cost units
@@ -95,10 +107,17 @@ struct GraphCutParams {
   std::int32_t lambda2 = kGraphCutAuto;      // >= 0; default lambda
   int edge_threshold = 8;                    // gray levels, 1..255
   int data_clip = 30;                        // gray levels, 1..90
-  // Start from a left-right checked 5x5 block matching of the data term
-  // instead of "everything occluded" (the reference's start): the expansions
-  // then refine a labelling instead of building it, which is much faster.
-  bool block_matching_start = true;
+  // The labelling the expansions start from (docs/graphcut.md, "Start").
+  GraphCutStart start = GraphCutStart::dp;
+  // Parameters of the DP start (its disparity range is this one's).
+  MatchDpParams dp_start{};
+  // Guided cycles, run before the max_cycles full ones (not with the
+  // occluded start): each expansion on alpha may change only pixels whose
+  // starting disparity is within guided_radius of alpha, or that started
+  // occluded. A much smaller graph per expansion brings the labelling near
+  // a local minimum before the full cycles, which then change little.
+  int guided_cycles = 1;  // 0..kGraphCutMaxCycles
+  int guided_radius = 1;  // 0..kMaxDisparities px
   // Fixes, before each cut, the assignments whose choice is already decided
   // (an exact reduction: the minimum is unchanged). Off only to test it.
   bool prune = true;
@@ -119,10 +138,12 @@ struct GraphCutReport {
   std::int32_t occlusion_k = 0;  // the parameters used (after automatic choice)
   std::int32_t lambda1 = 0;
   std::int32_t lambda2 = 0;
-  int cycles = 0;                 // cycles run
-  int expansions = 0;             // min cuts solved
-  int expansions_skipped = 0;     // provably unchanged, not solved
-  bool converged = false;         // the last cycle brought no decrease
+  int guided_cycles = 0;                          // guided cycles run (before the full ones)
+  int cycles = 0;                                 // full cycles run
+  int expansions = 0;                             // min cuts solved
+  int expansions_skipped = 0;                     // provably unchanged, not solved
+  bool converged = false;                         // the last cycle brought no decrease
+  GraphCutStart start = GraphCutStart::occluded;  // the start used (dp may fall back)
   std::int64_t energy_start = 0;  // energy of the starting labelling (all occluded: 0)
   std::int64_t energy = 0;        // final energy
   FixedVector<std::int64_t, kGraphCutMaxCycles> cycle_energy;  // after each cycle
@@ -163,12 +184,15 @@ class GraphCutMatcher {
   void prepare(const StereoInput& in, Rect roi, const GraphCutParams& params);
   std::int32_t automatic_k() const;
   void block_matching_labels();
+  Result<bool> dp_labels(const StereoInput& in, Rect roi, const GraphCutParams& params);
   // Cached terms of the active assignment of pixel p (see keep_).
   void refresh_pixel(int p, int x, int y);
   void refresh_all();
   std::int64_t energy() const;
-  // One alpha-expansion; returns the energy change applied (<= 0).
-  std::int64_t expand(int alpha, std::int64_t& nodes_used);
+  // One alpha-expansion; returns the energy change applied (<= 0). With
+  // band >= 0 only pixels whose guide_ is negative or within band of alpha
+  // may change.
+  std::int64_t expand(int alpha, std::int64_t& nodes_used, int band = -1);
 
   GraphCutBudget budget_{};
   MaxFlow<6> maxflow_;       // 4 neighbours + 2 uniqueness links per node
@@ -195,6 +219,8 @@ class GraphCutMatcher {
   std::span<std::int16_t> owner_;        // per strip pixel: ROI x of its match, or -1
   std::span<std::int16_t> order_;        // disparity order of a cycle
   std::span<std::int32_t> last_change_;  // change counter at each disparity's last expansion
+  std::span<std::int16_t> guide_;        // per ROI pixel: the starting label (guided cycles)
+  std::span<std::byte> dp_scratch_;      // the DP start's arena (match_dp_scratch_bytes)
 
   // The current problem.
   int w_ = 0, h_ = 0;  // ROI size

@@ -24,6 +24,8 @@
 // their free neighbours. The minimum, and so the energy reached, is unchanged;
 // only the graph shrinks.
 #include <algorithm>
+#include <climits>
+#include <cstdlib>
 
 #include "algo/match_graphcut.hpp"
 
@@ -36,13 +38,15 @@ constexpr std::int32_t kInvalid = -1;        // (p, alpha) outside the image or 
 constexpr std::int32_t kFixedActive = -2;    // p already has disparity alpha
 constexpr std::int32_t kFixedInactive = -3;  // in R
 constexpr std::int32_t kFree = -4;           // a node, id not yet given
+// Slack of a forced-inactive alpha assignment: no neighbour sum reaches it.
+constexpr std::int32_t kOutsideBand = INT32_MAX / 2;
 // old_node_ states besides a node id.
 constexpr std::int32_t kNoOld = -1;      // occluded or already at alpha
 constexpr std::int32_t kFixedKept = -2;  // in Q
 
 }  // namespace
 
-std::int64_t GraphCutMatcher::expand(int alpha, std::int64_t& nodes_used) {
+std::int64_t GraphCutMatcher::expand(int alpha, std::int64_t& nodes_used, int band) {
   const int w = w_;
   const int h = h_;
   const int sw = strip_w_;
@@ -84,6 +88,10 @@ std::int64_t GraphCutMatcher::expand(int alpha, std::int64_t& nodes_used) {
         an[p] = kFixedActive;
       } else if ((f & kUnusable) != 0) {
         an[p] = kInvalid;
+      } else if (band >= 0 && guide_[p] >= 0 && std::abs(guide_[p] - alpha) > band) {
+        // Outside the guided band: inactive whatever its neighbours do.
+        an[p] = kFixedInactive;
+        aslack[p] = kOutsideBand;
       } else {
         an[p] = kFree;
         acost[p] = static_cast<std::int16_t>(gc::bt_cost(left_[p], right_[qrow + x], clip2_));

@@ -81,6 +81,10 @@ void BM_GraphCut(benchmark::State& state, const char* name) {
   petra::GraphCutParams p;
   p.disp_max = d.scene->disp_max;
   if (const char* c = std::getenv("PETRA_GC_CYCLES")) p.max_cycles = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_START"))
+    p.start = static_cast<petra::GraphCutStart>(std::atoi(c));
+  if (const char* c = std::getenv("PETRA_GC_GUIDED")) p.guided_cycles = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_RADIUS")) p.guided_radius = std::atoi(c);
   const petra::StereoInput in{d.left.view(), d.right.view()};
   petra::GraphCutReport r;
   for (auto _ : state) {
@@ -93,6 +97,7 @@ void BM_GraphCut(benchmark::State& state, const char* name) {
   }
   report(state, petra::eval::to_float_image(out, w, h), d);
   state.counters["cycles"] = r.cycles;
+  state.counters["start"] = static_cast<int>(r.start);
   state.counters["expansions"] = r.expansions;
   state.counters["K"] = r.occlusion_k;
   state.counters["energy"] = static_cast<double>(r.energy);
@@ -154,6 +159,11 @@ void BM_GraphCutRoi(benchmark::State& state) {
   petra::GraphCutParams p;
   p.disp_min = std::max(0, static_cast<int>((lo + hi) / 2) - count / 2);
   p.disp_max = p.disp_min + count - 1;
+  if (const char* c = std::getenv("PETRA_GC_CYCLES")) p.max_cycles = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_START"))
+    p.start = static_cast<petra::GraphCutStart>(std::atoi(c));
+  if (const char* c = std::getenv("PETRA_GC_GUIDED")) p.guided_cycles = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_RADIUS")) p.guided_radius = std::atoi(c);
   const petra::StereoInput in{d.left.view(), d.right.view()};
   petra::GraphCutReport r;
   for (auto _ : state) {
@@ -165,6 +175,7 @@ void BM_GraphCutRoi(benchmark::State& state) {
     r = *rep;
   }
   state.counters["cycles"] = r.cycles;
+  state.counters["start"] = static_cast<int>(r.start);
   state.counters["expansions"] = r.expansions;
   state.counters["disp_min"] = p.disp_min;
   state.counters["energy"] = static_cast<double>(r.energy);
