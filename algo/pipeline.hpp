@@ -53,17 +53,19 @@ struct PipelineParams {
   MatchDpParams match;       // disp_min/max are set per run by the range search
   GraphCutParams graph_cut;  // disp_min/max likewise
   SubpixelParams subpixel;   // refines the graph cut's whole-pixel labels
-  // Refines the DP's disparity the same way (its own sub-pixel step, a
-  // parabola on the aggregated path cost, pixel-locks on weakly textured
-  // steep faces: a staircase). search_px 0: the DP's label is kept, only the
-  // fraction comes from the window SSD.
-  SubpixelParams subpixel_dp{2, 0};
-  bool refine_dp = true;  // false: the DP's own sub-pixel values
+  // Optionally refines the DP's output the same way (its own sub-pixel step,
+  // a parabola on the aggregated path cost, pixel-locks on weakly textured
+  // steep faces). Off: on the scene set the photometric plane refinement
+  // below does better without it (docs/reconstruction.md).
+  bool refine_dp = false;
+  SubpixelParams subpixel_dp{2, 0};  // search_px 0: keep the DP's label, refine its fraction
   ReconstructionParams reconstruction;
   // Each ranked grind plane refined on the gray levels of both images
-  // (algo/plane_photometric): the matchers' staircases on steep, weakly lit
-  // faces tilt the mesh's plane.
+  // (algo/plane_photometric): the DP's staircases on steep, weakly lit faces
+  // tilt the mesh's plane. For the DP only by default: on the scene set it
+  // made the graph cut's worst face worse (docs/reconstruction.md).
   PhotometricPlaneParams photometric;
+  bool photometric_graph_cut = false;
 };
 Status validate(const PipelineParams& p);
 
