@@ -107,7 +107,7 @@ Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray
     plane.normal = (turn * plane.normal).normalized();
     plane.centroid_mm += *after - *before;
     plane.view_angle_deg = angle_deg(plane.normal, camera - plane.centroid_mm);
-    ++refined;
+    if (k < out.planes.accepted) ++refined;
   }
   return refined;
 }

@@ -7,7 +7,8 @@
 // count, verdicts and ranking stay those of the mesh.
 // Inputs:  rectified pair geometry and images (right valid in right_valid),
 //          the reconstruction output (pixels, vertex classes, planes).
-// Output:  out.planes refined in place; how many planes were refined.
+// Output:  out.planes refined in place (accepted and rejected); how many of
+//          the accepted planes were refined.
 // Memory:  arena scratch of ROI area x (1 + sizeof(PixelPos)) bytes, released.
 #pragma once
 

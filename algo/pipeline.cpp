@@ -327,10 +327,8 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
     StepTimer timer(clock, timings, "plane refinement");
     const Rect area = right_search_area(roi, params_.range.search_min_px,
                                         params_.range.search_max_px, W);
-    PhotometricPlaneParams pp = params_.photometric;
-    if (req.method == MatchMethod::graph_cut && !params_.photometric_graph_cut) pp.enabled = false;
-    auto n = refine_grind_planes_photometric(rectifier_.geometry(), rl, rr, area, pp, out.result,
-                                             arena);
+    auto n = refine_grind_planes_photometric(rectifier_.geometry(), rl, rr, area,
+                                             params_.photometric, out.result, arena);
     if (!n) return n.error();
     out.planes_refined = *n;
   }

@@ -61,11 +61,9 @@ struct PipelineParams {
   SubpixelParams subpixel_dp{2, 0};  // search_px 0: keep the DP's label, refine its fraction
   ReconstructionParams reconstruction;
   // Each ranked grind plane refined on the gray levels of both images
-  // (algo/plane_photometric): the DP's staircases on steep, weakly lit faces
-  // tilt the mesh's plane. For the DP only by default: on the scene set it
-  // made the graph cut's worst face worse (docs/reconstruction.md).
+  // (algo/plane_photometric), whichever matcher: on steep, weakly lit faces
+  // the DP's staircases and the graph cut's stairs tilt the mesh's plane.
   PhotometricPlaneParams photometric;
-  bool photometric_graph_cut = false;
 };
 Status validate(const PipelineParams& p);
 
@@ -94,7 +92,7 @@ struct PipelineOutput {
   MatchDpStats match;                    // method dp
   GraphCutReport graph_cut;              // method graph_cut
   long subpixel_refined = 0;             // pixels given a window-SSD sub-pixel value
-  int planes_refined = 0;                // grind planes refined photometrically
+  int planes_refined = 0;                // accepted grind planes refined photometrically
   StepTimings timings;
 };
 

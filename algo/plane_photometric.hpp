@@ -30,9 +30,9 @@ namespace petra {
 struct PhotometricPlaneParams {
   bool enabled = true;
   int max_iterations = 10;    // 1..50
-  double trim_sigma = 2.0;    // residuals beyond this many RMS are left out, > 1
+  double trim_sigma = 2.5;    // residuals beyond this many RMS are left out, > 1
   double max_shift_px = 1.5;  // largest disparity change at the face's corners, px, > 0
-  int edge_px = 2;            // face pixels this close to another class are left out, 0..5
+  int edge_px = 1;            // face pixels this close to another class are left out, 0..5
   int min_pixels = 100;       // fewest face pixels to refine a plane
 };
 Status validate(const PhotometricPlaneParams& p);
