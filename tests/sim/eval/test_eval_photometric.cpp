@@ -5,14 +5,16 @@
 // levels, every face is within the 1.5 deg target.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstddef>
-#include <memory>
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include "algo/calib_json.hpp"
 #include "algo/core/arena.hpp"
 #include "algo/pipeline.hpp"
-#include "sim/eval/eval_products.hpp"
+#include "sim/eval/planes_json.hpp"
 #include "sim/scene/scene_render.hpp"
 #include "sim/scene/scene_set.hpp"
 #include "sim/score/plane_score.hpp"
