@@ -86,8 +86,15 @@ Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray
   int refined = 0;
   for (int k = 0; k < out.planes.count; ++k) {
     GrindPlane& plane = out.planes.planes[k];
-    const std::size_t n = face_pixels(classes, roi, static_cast<std::uint8_t>(kVertexPlane0 + k),
-                                      params.edge_px, *pix);
+    std::size_t n = face_pixels(classes, roi, static_cast<std::uint8_t>(kVertexPlane0 + k),
+                                params.edge_px, *pix);
+    // An even sample of a large face: the plane is fixed long before, and
+    // the time stays bounded whatever the ROI.
+    const std::size_t cap = static_cast<std::size_t>(params.max_pixels);
+    if (n > cap) {
+      for (std::size_t i = 0; i < cap; ++i) (*pix)[i] = (*pix)[i * n / cap];
+      n = cap;
+    }
     auto initial = to_disparity_plane(rect, plane.normal, plane.centroid_mm);
     if (!initial) continue;  // seen edge-on: nothing to refine
     auto fit = refine_plane_photometric(left, right, right_valid, pix->first(n), *initial, params);

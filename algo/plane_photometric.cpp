@@ -107,6 +107,9 @@ Status validate(const PhotometricPlaneParams& p) {
   if (p.min_pixels < 10 || p.min_pixels > 1000000)
     return Error::make(Errc::out_of_range, "photometric plane: min_pixels %d not in 10..1e6",
                        p.min_pixels);
+  if (p.max_pixels < p.min_pixels || p.max_pixels > 1000000)
+    return Error::make(Errc::out_of_range, "photometric plane: max_pixels %d not in %d..1e6",
+                       p.max_pixels, p.min_pixels);
   return {};
 }
 

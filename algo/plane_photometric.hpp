@@ -34,6 +34,7 @@ struct PhotometricPlaneParams {
   double max_shift_px = 1.5;  // largest disparity change at the face's corners, px, > 0
   int edge_px = 1;            // face pixels this close to another class are left out, 0..5
   int min_pixels = 100;       // fewest face pixels to refine a plane
+  int max_pixels = 4096;      // a larger face is sampled evenly down to this (time bound)
 };
 Status validate(const PhotometricPlaneParams& p);
 
