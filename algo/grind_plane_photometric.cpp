@@ -57,7 +57,8 @@ double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 }  // namespace
 
 std::size_t grind_photometric_scratch_bytes(int roi_width, int roi_height) {
-  const std::size_t area = static_cast<std::size_t>(roi_width) * static_cast<std::size_t>(roi_height);
+  const std::size_t area =
+      static_cast<std::size_t>(roi_width) * static_cast<std::size_t>(roi_height);
   return area * (1 + sizeof(PixelPos)) + 2 * alignof(std::max_align_t);
 }
 
@@ -109,7 +110,8 @@ Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray
     const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(*n0, *n1);
     const double c = initial->c;
     auto before = rectified_point(rect, initial->u0, initial->v0, c);
-    auto after = rectified_point(rect, initial->u0, initial->v0, fit->plane.at(initial->u0, initial->v0));
+    auto after =
+        rectified_point(rect, initial->u0, initial->v0, fit->plane.at(initial->u0, initial->v0));
     if (!before || !after) continue;
     plane.normal = (turn * plane.normal).normalized();
     plane.centroid_mm += *after - *before;

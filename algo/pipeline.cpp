@@ -325,8 +325,8 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
   PETRA_TRY(checkpoint(clock, "plane refinement"));
   {
     StepTimer timer(clock, timings, "plane refinement");
-    const Rect area = right_search_area(roi, params_.range.search_min_px,
-                                        params_.range.search_max_px, W);
+    const Rect area =
+        right_search_area(roi, params_.range.search_min_px, params_.range.search_max_px, W);
     auto n = refine_grind_planes_photometric(rectifier_.geometry(), rl, rr, area,
                                              params_.photometric, out.result, arena);
     if (!n) return n.error();

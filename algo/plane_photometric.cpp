@@ -194,8 +194,8 @@ Result<PhotometricPlaneFit> refine_plane_photometric(ConstGray8View left, ConstG
   const Pass last = gauss_newton_pass(left, right, right_valid, pixels, s, limit);
   fit.rms_after = last.rms;
   const double cost_after = truncated_cost(left, right, right_valid, pixels, s, tau);
-  if (corner_shift(s.plane) <= params.max_shift_px && cost_after < cost_before &&
-      s.gain > 0.5 && s.gain < 2.0) {
+  if (corner_shift(s.plane) <= params.max_shift_px && cost_after < cost_before && s.gain > 0.5 &&
+      s.gain < 2.0) {
     fit.plane = s.plane;
     fit.accepted = true;
   }
@@ -218,14 +218,16 @@ std::size_t face_pixels(ImageView<const std::uint8_t> classes, Rect roi, std::ui
       for (int dj = -edge_px; dj <= edge_px && !other; ++dj)
         for (int di = -edge_px; di <= edge_px; ++di) {
           const std::uint8_t c = classes(i + di, j + dj);
-          if (c == cls) ++same;
+          if (c == cls)
+            ++same;
           else if (c != kUnknown) {
             other = true;
             break;
           }
         }
       if (other || 2 * same < box) continue;
-      out[n++] = PixelPos{static_cast<std::int16_t>(roi.x + i), static_cast<std::int16_t>(roi.y + j)};
+      out[n++] =
+          PixelPos{static_cast<std::int16_t>(roi.x + i), static_cast<std::int16_t>(roi.y + j)};
     }
   return n;
 }

@@ -39,8 +39,8 @@ struct Pair {
       for (int x = 0; x < kW; ++x) {
         left[v * kW + x] = static_cast<std::uint8_t>(std::lround(texture(x, v) + noise(x, v, 1)));
         // Right pixel x sees the left pixel u with u - d(u, v) = x.
-        const double u = (x + kTruth.c - kTruth.a * kTruth.u0 + kTruth.b * (v - kTruth.v0)) /
-                         (1.0 - kTruth.a);
+        const double u =
+            (x + kTruth.c - kTruth.a * kTruth.u0 + kTruth.b * (v - kTruth.v0)) / (1.0 - kTruth.a);
         right[v * kW + x] = static_cast<std::uint8_t>(std::lround(texture(u, v) + noise(x, v, 2)));
       }
   }
@@ -51,7 +51,8 @@ struct Pair {
 std::vector<PixelPos> face() {
   std::vector<PixelPos> px;
   for (int v = 20; v < 70; ++v)
-    for (int u = 75; u < 125; ++u) px.push_back({static_cast<std::int16_t>(u), static_cast<std::int16_t>(v)});
+    for (int u = 75; u < 125; ++u)
+      px.push_back({static_cast<std::int16_t>(u), static_cast<std::int16_t>(v)});
   return px;
 }
 

@@ -68,8 +68,8 @@ void BM_PlanePhotometric(benchmark::State& state) {
   for (int v = 0; v < kH; ++v)
     for (int x = 0; x < kW; ++x) {
       left[v * kW + x] = static_cast<std::uint8_t>(std::lround(texture(x, v)));
-      const double u = (x + kTruth.c - kTruth.a * kTruth.u0 + kTruth.b * (v - kTruth.v0)) /
-                       (1.0 - kTruth.a);
+      const double u =
+          (x + kTruth.c - kTruth.a * kTruth.u0 + kTruth.b * (v - kTruth.v0)) / (1.0 - kTruth.a);
       right[v * kW + x] = static_cast<std::uint8_t>(std::lround(texture(u, v)));
     }
   // A square face of about N pixels around the plane's centre.
