@@ -160,8 +160,8 @@ Result<PhotometricPlaneFit> refine_plane_photometric(ConstGray8View left, ConstG
   }
   const Pass first = gauss_newton_pass(left, right, right_valid, pixels, s, inf);
   const double tau = params.trim_sigma * std::max(first.rms, 0.5);
-  fit.rms_before = first.rms;
   const double cost_before = truncated_cost(left, right, right_valid, pixels, s, tau);
+  fit.rms_before = std::sqrt(cost_before);
 
   const auto corner_shift = [&](const DisparityPlane& q) {
     double m = 0;
@@ -191,9 +191,8 @@ Result<PhotometricPlaneFit> refine_plane_photometric(ConstGray8View left, ConstG
       for (int v : {v_min, v_max}) moved = std::max(moved, std::abs(d.at(u, v)));
     if (moved < 1e-3) break;
   }
-  const Pass last = gauss_newton_pass(left, right, right_valid, pixels, s, limit);
-  fit.rms_after = last.rms;
   const double cost_after = truncated_cost(left, right, right_valid, pixels, s, tau);
+  fit.rms_after = std::sqrt(cost_after);
   if (corner_shift(s.plane) <= params.max_shift_px && cost_after < cost_before && s.gain > 0.5 &&
       s.gain < 2.0) {
     fit.plane = s.plane;

@@ -13,7 +13,7 @@
 // face's bounding box corners (a wrong basin is refused, not followed).
 // Inputs:  rectified left/right images (the right valid inside right_valid),
 //          the face's rectified left pixels, the initial plane (px).
-// Output:  the fit (plane, accepted, iterations, pixels, RMS gray before/after).
+// Output:  the fit (plane, accepted, iterations, pixels, truncated RMS gray before/after).
 // Memory:  none (no scratch, no heap). Time: pixels x iterations.
 #pragma once
 
@@ -48,8 +48,10 @@ struct PhotometricPlaneFit {
   DisparityPlane plane;
   bool accepted = false;  // false: `plane` is the initial one
   int iterations = 0;
-  long pixels = 0;        // face pixels used in the last iteration
-  double rms_before = 0;  // gray levels, initial plane (fitted gain/offset)
+  long pixels = 0;  // face pixels used in the last iteration
+  // RMS gray residual, truncated at trim_sigma x the initial plane's RMS
+  // (so both count every pixel alike): initial plane (its own gain/offset), final.
+  double rms_before = 0;
   double rms_after = 0;
 };
 
