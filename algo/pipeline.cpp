@@ -50,6 +50,8 @@ Status validate(const PipelineParams& p) {
                        p.shadow_fraction);
   PETRA_TRY(validate(p.range));
   PETRA_TRY(validate(p.subpixel));
+  PETRA_TRY(validate(p.subpixel_dp));
+  PETRA_TRY(validate(p.photometric));
   PETRA_TRY(validate(p.reconstruction.filter));
   PETRA_TRY(validate(p.reconstruction.normals));
   PETRA_TRY(validate(p.reconstruction.mesh));
@@ -76,7 +78,8 @@ std::size_t Pipeline::run_bytes(const PipelineBudget& b, const PipelineParams& p
       b.image_width, b.image_height, b.max_roi_width, b.max_roi_height, p.range);
   const std::size_t match =
       match_dp_scratch_bytes(MatchBudget{b.max_roi_width, b.max_roi_height, b.max_disparities});
-  const std::size_t recon = reconstruction_arena_bytes(recon_budget(b));
+  const std::size_t recon = reconstruction_arena_bytes(recon_budget(b)) +
+                            grind_photometric_scratch_bytes(b.max_roi_width, b.max_roi_height);
   return kept + std::max(range, std::max(match, recon)) + kSlack;
 }
 
@@ -302,6 +305,11 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
       auto st = match_dp(in, roi, mp, mb, arena, disp);
       if (!st) return st.error();
       out.match = *st;
+      if (params_.refine_dp) {
+        auto refined = refine_subpixel(in, params_.subpixel_dp, disp);
+        if (!refined) return refined.error();
+        out.subpixel_refined = *refined;
+      }
     }
   }
   out.disparity = disp;
@@ -314,6 +322,16 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
                        params_.reconstruction, recon_budget(budget_), arena, clock, timings);
   if (!r) return r.error();
   out.result = *r;
+  PETRA_TRY(checkpoint(clock, "plane refinement"));
+  {
+    StepTimer timer(clock, timings, "plane refinement");
+    const Rect area =
+        right_search_area(roi, params_.range.search_min_px, params_.range.search_max_px, W);
+    auto n = refine_grind_planes_photometric(rectifier_.geometry(), rl, rr, area,
+                                             params_.photometric, out.result, arena);
+    if (!n) return n.error();
+    out.planes_refined = *n;
+  }
   return out;
 }
 

@@ -168,7 +168,8 @@ void print_summary(const EvalOptions& o, const PipelineOutput& out, double total
               gn.x(), gn.y(), gn.z(), r.ground.plane.d, r.ground.rms_mm, r.ground.ground_points);
   std::printf("  rock                   %zu points, %zu triangles\n", r.ground.rock_points,
               s.rock_triangles);
-  std::printf("  grind planes found     %d of %d\n", r.planes.accepted, o.planes);
+  std::printf("  grind planes found     %d of %d   (%d of them refined on the gray levels)\n",
+              r.planes.accepted, o.planes, out.planes_refined);
   for (int k = 0; k < r.planes.accepted; ++k) {
     const GrindPlane& p = r.planes.planes[k];
     std::printf(
