@@ -7,6 +7,7 @@
 #include <span>
 
 #include "algo/disparity_median.hpp"
+#include "algo/dp_select_row.hpp"
 #include "algo/edge_pairs.hpp"
 #include "algo/match_cost.hpp"
 #include "algo/scanline_dp.hpp"
@@ -64,7 +65,8 @@ struct Layout {
     b += 3 * 2 * z(w);                                      // left winners
     b += sizeof(match::EdgePair) * z(w);                    // pairs
     b += 2 * median3x3_scratch(w) + 2 * z(w);               // median rows, shadow row, reasons
-    b += 32 * kAlignSlack;                                  // one per allocation below, with room
+    b += z(w + d) + 5 * 4 * z(w);                           // right shadow row, select_row
+    b += 40 * kAlignSlack;                                  // one per allocation below, with room
     return b + match::edge_row_scratch_bytes(w, band);
   }
   std::size_t total() const { return edge_maps() + std::max(canny(), rows()); }
@@ -80,12 +82,6 @@ Status take(Arena& arena, std::size_t n, const char* what, std::span<T>& out) {
 
 bool shadow_at(const ShadowMask* m, int x, int y) {
   return m != nullptr && m->is_shadow(x, y);
-}
-
-// std::clamp by value: the reference version made GCC keep the bounds in
-// memory in the per-pixel loop.
-constexpr int clamp_value(int v, int lo, int hi) {
-  return v < lo ? lo : (v > hi ? hi : v);
 }
 
 // out[i] = `yes` where column x0 + i of row y is shadow, else `no`: one
@@ -147,16 +143,6 @@ Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const M
   return ok_status();
 }
 
-// Why a pixel has no disparity (the first check it fails), or kMatched.
-enum Reason : std::uint8_t {
-  kMatched,
-  kShadowLeft,
-  kRange,
-  kLeftRight,
-  kUniqueness,
-  kCost,
-  kShadowRight,
-};
 
 // Best lane, its value and the best value more than one lane away, over
 // v[0..n). Written as three branch-free reductions the compiler vectorises.
@@ -529,6 +515,16 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   PETRA_TRY(take(arena, median3x3_scratch(w), "median rows", med));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "shadow row", skip));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "rejection reasons", reasons));
+  std::span<std::uint8_t> rshade;
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w + D - 1), "right shadow row", rshade));
+  std::span<std::int32_t> gathered;
+  PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(w), "winner neighbourhoods", gathered));
+  match::SelectRowScratch select_scratch;
+  select_scratch.below = gathered.data();
+  select_scratch.above = gathered.data() + w;
+  select_scratch.right = gathered.data() + 2 * w;
+  select_scratch.cost = gathered.data() + 3 * w;
+  select_scratch.shade = gathered.data() + 4 * w;
 
   // Raw cost of image row y into `raw` ([i][k], column i = left x0 - 4 + i).
   const int xl_first = roi.x - kMarginX;
@@ -682,67 +678,36 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     else
       row_winners<kLanes, false>(rb.S.data() + match::kGuardLanes, w, sp, Dp, wk.data(),
                                  wbest.data(), wsecond.data());
-    std::int16_t* o = out.q4.row(t);
-    std::uint8_t* conf = confidence.empty() ? nullptr : confidence.row(t);
-    // Every check is evaluated for every pixel and combined without
-    // branches: which check rejects a pixel is data, and a branch on it
-    // mispredicts. The counters keep the order of the checks (a pixel counts
-    // for the first one it fails).
-    std::uint8_t* __restrict why = reasons.data();
-    for (int i = 0; i < w; ++i) {
-      const int x = roi.x + i;
-      const std::int16_t* s = rb.S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
-      // Lanes outside [lo, hi] carry kForbiddenCost and never win.
-      const Winner win{wk[i], wbest[i], wsecond[i]};
-      const int k1 = win.k;
-      const int d = dmin + k1;
-      const bool left = skip[i] == 0;
-      const bool in_range = x - d >= 0 && x - d < W;
-      const bool lr =
-          std::abs(rk[static_cast<std::size_t>(w - 1 - i + k1)] - k1) <= p.lr_tolerance_px;
-      const bool unique = unique_enough(win, p.uniqueness_pct);
-      const bool cheap = rb.agg[static_cast<std::size_t>(i) * Dp + k1] <= cost_ceiling;
-      const bool lit = !in_range || !shadow_at(in.right_shadow, x - d, y);
-      // The first check failed, counted per row below (counters updated
-      // here would live in memory and chain every pixel to the previous).
-      why[i] = static_cast<std::uint8_t>(!left       ? kShadowLeft
-                                         : !in_range ? kRange
-                                         : !lr       ? kLeftRight
-                                         : !unique   ? kUniqueness
-                                         : !cheap    ? kCost
-                                         : !lit      ? kShadowRight
-                                                     : kMatched);
-      const bool valid = why[i] == kMatched;
-      // Sub-pixel: parabola through S at k1 - 1, k1, k1 + 1 when both
-      // neighbours are allowed lanes (the guard lanes make the reads safe).
-      const int sa = s[k1 - 1], sb = s[k1], sc = s[k1 + 1];
-      const int den = sa + sc - 2 * sb;
-      const bool fit = k1 > rb.lo[i] && k1 < rb.hi[i] && den > 0;
-      const int den_s = fit ? den : 1;
-      const int num = 8 * (sa - sc);  // offset (a - c) / (2 den) px, in 1/16 px
-      const int off = (num >= 0 ? num + den_s / 2 : num - den_s / 2) / den_s;
-      const int q = d * kDisparityScale + (fit ? clamp_value(off, -8, 8) : 0);
-      o[i] = valid ? static_cast<std::int16_t>(q) : kInvalidDisparity;
-      if (conf) {
-        const int margin = 255 * (win.second - win.best) / std::max(win.second, 1);
-        conf[i] = valid ? static_cast<std::uint8_t>(clamp_value(margin, 1, 255)) : std::uint8_t{0};
-      }
-    }
-    // Compares summed in vector lanes (a histogram would chain increments
-    // of the same counter through memory).
-    int n_range = 0, n_lr = 0, n_unique = 0, n_cost = 0, n_shadow = 0;
-    for (int i = 0; i < w; ++i) {
-      n_range += why[i] == kRange;
-      n_lr += why[i] == kLeftRight;
-      n_unique += why[i] == kUniqueness;
-      n_cost += why[i] == kCost;
-      n_shadow += why[i] == kShadowRight;
-    }
-    st.rejected_range += n_range;
-    st.rejected_lr += n_lr;
-    st.rejected_uniqueness += n_unique;
-    st.rejected_cost += n_cost;
-    st.rejected_shadow_right += n_shadow;
+    match::SelectRowInputs si;
+    si.w = w;
+    si.k1 = wk.data();
+    si.best = wbest.data();
+    si.second = wsecond.data();
+    si.S = rb.S.data() + match::kGuardLanes;
+    si.s_stride = sp;
+    si.cost = rb.agg.data();
+    si.c_stride = Dp;
+    si.lo = rb.lo.data();
+    si.hi = rb.hi.data();
+    si.right_lane = rk.data();
+    si.left_shadow = skip.data();
+    shadow_row(in.right_shadow, y, roi.x - p.disp_max, w + D - 1, 1, 0, rshade.data());
+    si.right_shadow = rshade.data();
+    si.lanes = D;
+    si.x0 = roi.x;
+    si.disp_min = dmin;
+    si.image_width = W;
+    si.lr_tolerance_px = p.lr_tolerance_px;
+    si.uniqueness_pct = p.uniqueness_pct;
+    si.cost_ceiling = cost_ceiling;
+    const match::RejectCounts rc =
+        match::select_row(si, select_scratch, out.q4.row(t),
+                          confidence.empty() ? nullptr : confidence.row(t), reasons.data());
+    st.rejected_range += rc.range;
+    st.rejected_lr += rc.lr;
+    st.rejected_uniqueness += rc.uniqueness;
+    st.rejected_cost += rc.cost;
+    st.rejected_shadow_right += rc.shadow_right;
   };
   for (int t = 0; t < h; t += 2) {
     RowBuffers& ra = rows[0];
