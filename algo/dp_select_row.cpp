@@ -79,12 +79,12 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void decide(const SelectRowInputs& in,
     const int xr = xd0 + i - k;
     const int b = best[i], s2 = second[i];
     const bool left = left_shadow[i] == 0;
-    const bool in_range = xr >= 0 && xr < width;
+    const bool in_range = (xr >= 0) & (xr < width);
     const int dr = right[i] - k;
     const bool lr = (dr < 0 ? -dr : dr) <= tol;
     const bool unique = (s2 - b) * 100 >= pct * s2;  // both below 2^15
     const bool cheap = cost[i] <= ceiling;
-    const bool lit = !in_range || shade[i] == 0;
+    const bool lit = !in_range | (shade[i] == 0);
     int r = lit ? kMatched : kShadowRight;
     r = cheap ? r : kCost;
     r = unique ? r : kUniqueness;
@@ -97,17 +97,24 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void decide(const SelectRowInputs& in,
     // rounded half away from zero. |num| < 2^19: div_exact holds.
     const int sa = below[i], sc = above[i];
     const int den = sa + sc - 2 * b;
-    const bool fit = k > lo[i] && k < hi[i] && den > 0;
+    const bool fit = (k > lo[i]) & (k < hi[i]) & (den > 0);  // &: no branch
     const int den_s = fit ? den : 1;
     const int num = 8 * (sa - sc);
+    // num + half or num - half by the sign of num, in arithmetic (selects
+    // around a division: see below).
+    const int sign = num >> 31;  // 0 or -1
     const int half = den_s >> 1;
-    const int off = div_exact(num >= 0 ? num + half : num - half, den_s);
-    const int q = d * kDisparityScale + (fit ? clamp_value(off, -8, 8) : 0);
-    out[i] = r == kMatched ? static_cast<std::int16_t>(q) : kInvalidDisparity;
+    const int off = div_exact(num + ((half ^ sign) - sign), den_s);
+    // Selects by multiplication: a select on a division's result lets the
+    // compiler move the division into a branch, which stops the vectoriser
+    // (a float division may trap, so it is not if-converted).
+    const int valid = r == kMatched;
+    const int q = d * kDisparityScale + static_cast<int>(fit) * clamp_value(off, -8, 8);
+    out[i] = static_cast<std::int16_t>(kInvalidDisparity + valid * (q - kInvalidDisparity));
     if constexpr (kConfidence) {
-      const int margin = div_exact(255 * (s2 - b), s2 > 1 ? s2 : 1);  // < 2^23
-      conf[i] = r == kMatched ? static_cast<std::uint8_t>(clamp_value(margin, 1, 255))
-                              : std::uint8_t{0};
+      // max(s2, 1) in arithmetic; 255 (s2 - b) < 2^23.
+      const int margin = div_exact(255 * (s2 - b), s2 + (s2 < 1) * (1 - s2));
+      conf[i] = static_cast<std::uint8_t>(valid * clamp_value(margin, 1, 255));
     }
   }
 }
