@@ -23,7 +23,6 @@ using match::kRawNeutral;
 using match::kWindowRows;
 
 constexpr std::size_t kAlignSlack = 64;  // per arena allocation
-constexpr int kLaneMultiple = 16;
 constexpr int kRightChains = 16;  // see right_winners
 constexpr int kLaneBits = 12;     // lanes < match::kMaxLanes = 2^12
 // "No winner" in rk: all lane bits set, so it loses every tie of a merge.
@@ -43,7 +42,7 @@ struct Layout {
       : w(width),
         h(height),
         d(disparities),
-        dp((disparities + kLaneMultiple - 1) / kLaneMultiple * kLaneMultiple),
+        dp((disparities + lane_multiple() - 1) / lane_multiple() * lane_multiple()),
         band(width + disparities - 1),
         wc(width + 2 * kMarginX),
         nrp(wc + dp - 1) {}
