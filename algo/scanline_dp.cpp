@@ -128,13 +128,13 @@ template <int kLanes, int kRows>
 }  // namespace
 
 template <int kLanes>
-PETRA_VECTOR_CLONES void scanline_dp(const ScanlineInputs& in, std::int16_t* S,
+PETRA_VECTOR_CLONES_256 void scanline_dp(const ScanlineInputs& in, std::int16_t* S,
                                      std::int16_t* backward) {
   run_scanlines<kLanes, 1>(&in, &S, &backward);
 }
 
 template <int kLanes>
-PETRA_VECTOR_CLONES void scanline_dp_pair(const ScanlineInputs& a, std::int16_t* Sa,
+PETRA_VECTOR_CLONES_256 void scanline_dp_pair(const ScanlineInputs& a, std::int16_t* Sa,
                                           std::int16_t* backward_a, const ScanlineInputs& b,
                                           std::int16_t* Sb, std::int16_t* backward_b) {
   const ScanlineInputs in[2] = {a, b};
