@@ -55,7 +55,7 @@ struct Layout {
     std::size_t b = 0;
     b += kWindowRows * cells;   // raw ring
     b += 2 * cells;             // column sums
-    b += 2 * z(w + 4) * z(dp);  // box sums
+    b += 2 * 5 * z(dp);         // box sums (a ring of five columns)
     // Per row in flight (two): cost, path costs S, backward path costs,
     // bounds, jump penalties.
     b += 2 * (2 * z(w) * z(dp) + 2 * 2 * z(w) * z(match::path_row_stride(dp)) + 3 * 2 * z(w));
@@ -73,9 +73,21 @@ struct Layout {
 
 template <class T>
 Status take(Arena& arena, std::size_t n, const char* what, std::span<T>& out) {
-  auto r = arena.allocate<T>(n, what);
+  // Each buffer starts on a 64-byte line (kAlignSlack per allocation in the
+  // budget): the lane kernels' rows are whole vectors, and a vector load
+  // split across two cache lines costs two accesses (every 512-bit load of
+  // an unaligned row does).
+  if constexpr (kAlignSlack % sizeof(T) != 0) {  // not a lane row (edge pairs)
+    auto r = arena.allocate<T>(n, what);
+    if (!r) return r.error();
+    out = *r;
+    return ok_status();
+  }
+  auto r = arena.allocate<T>(n + kAlignSlack / sizeof(T), what);
   if (!r) return r.error();
-  out = *r;
+  const std::size_t misalign = reinterpret_cast<std::uintptr_t>(r->data()) % kAlignSlack;
+  const std::size_t skip = misalign == 0 ? 0 : (kAlignSlack - misalign) / sizeof(T);
+  out = r->subspan(skip, n);
   return ok_status();
 }
 
@@ -469,7 +481,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   const std::size_t cells = static_cast<std::size_t>(wc) * Dp;
   PETRA_TRY(take(arena, kWindowRows * cells, "raw cost ring", ring));
   PETRA_TRY(take(arena, cells, "column sums", colsum));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w + 4) * Dp, "box sums", hs));
+  PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(Dp), "box sums", hs));
 
   const int sp = match::path_row_stride(Dp);
   // Rows go through in pairs: steps 1-3 for two rows, then both DPs at once
