@@ -720,18 +720,42 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     st.rejected_cost += rc.cost;
     st.rejected_shadow_right += rc.shadow_right;
   };
+  // The DP runs over D rounded up to 16 lanes, not over Dp: the scanline DP
+  // is compiled for 256-bit vectors at most (PETRA_VECTOR_CLONES_256), and
+  // the extra lanes of a row rounded up to 32 would only be padding to it.
+  const int dp_lanes = (D + 15) / 16 * 16;
+  auto run_dp_pair = [&](const match::ScanlineInputs& a, RowBuffers& ra,
+                         const match::ScanlineInputs& b, RowBuffers& rb) {
+    if constexpr (kLanes >= 32) {
+      if (dp_lanes == kLanes - 16) {
+        match::scanline_dp_pair<kLanes - 16>(a, ra.S.data(), ra.back.data(), b, rb.S.data(),
+                                             rb.back.data());
+        return;
+      }
+    }
+    match::scanline_dp_pair<kLanes == 0 ? 0 : kLanes>(a, ra.S.data(), ra.back.data(), b,
+                                                      rb.S.data(), rb.back.data());
+  };
+  auto run_dp_one = [&](const match::ScanlineInputs& a, RowBuffers& ra) {
+    if constexpr (kLanes >= 32) {
+      if (dp_lanes == kLanes - 16) {
+        match::scanline_dp<kLanes - 16>(a, ra.S.data(), ra.back.data());
+        return;
+      }
+    }
+    match::scanline_dp<kLanes>(a, ra.S.data(), ra.back.data());
+  };
   for (int t = 0; t < h; t += 2) {
     RowBuffers& ra = rows[0];
     RowBuffers& rb = rows[1];
     PETRA_TRY(prepare(t, ra));
-    const match::ScanlineInputs sa{ra.agg.data(), w, Dp, ra.p2.data(), p.p1};
+    const match::ScanlineInputs sa{ra.agg.data(), w, Dp, ra.p2.data(), p.p1, dp_lanes};
     if (t + 1 < h) {
       PETRA_TRY(prepare(t + 1, rb));
-      const match::ScanlineInputs sb{rb.agg.data(), w, Dp, rb.p2.data(), p.p1};
-      match::scanline_dp_pair<kLanes>(sa, ra.S.data(), ra.back.data(), sb, rb.S.data(),
-                                      rb.back.data());
+      const match::ScanlineInputs sb{rb.agg.data(), w, Dp, rb.p2.data(), p.p1, dp_lanes};
+      run_dp_pair(sa, ra, sb, rb);
     } else {
-      match::scanline_dp<kLanes>(sa, ra.S.data(), ra.back.data());
+      run_dp_one(sa, ra);
     }
     finish(t, ra);
     if (t + 1 < h) finish(t + 1, rb);

@@ -83,14 +83,19 @@ namespace {
 template <int kLanes, int kRows>
 [[gnu::always_inline]] inline void run_scanlines(const ScanlineInputs* in, std::int16_t* const* S,
                                                  std::int16_t* const* backward) {
-  const int stride = kLanes > 0 ? kLanes : in[0].stride;
-  const int sp = path_row_stride(stride);
+  const int row_lanes = in[0].stride;  // cost and path rows
+  const int lanes_arg = in[0].lanes > 0 ? in[0].lanes : row_lanes;
+  const int stride = kLanes > 0 ? kLanes : lanes_arg;  // lanes the DP runs over
+  const int sp = path_row_stride(row_lanes);
   const int n = in[0].n;
   for (int r = 0; r < kRows; ++r) {
     PETRA_ASSERT(in[r].n == n && in[r].n > 0 && in[r].stride == in[0].stride && in[r].p1 >= 0);
-    PETRA_ASSERT(kLanes == 0 || in[r].stride == kLanes);
+    PETRA_ASSERT(in[r].lanes == in[0].lanes && lanes_arg <= row_lanes);
+    PETRA_ASSERT(kLanes == 0 || lanes_arg == kLanes);
   }
-  auto cost = [&](int r, int x) { return in[r].cost + static_cast<std::ptrdiff_t>(x) * stride; };
+  auto cost = [&](int r, int x) {
+    return in[r].cost + static_cast<std::ptrdiff_t>(x) * row_lanes;
+  };
   auto srow = [&](int r, int x) {
     return S[r] + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes;
   };
@@ -116,12 +121,13 @@ template <int kLanes, int kRows>
                            in[r].p2[xb + 1], mb[r]);
     }
   }
-  // S = L_fwd + L_bwd.
+  // S = L_fwd + L_bwd; 0x7FFF on the skipped padding lanes.
   for (int r = 0; r < kRows; ++r)
     for (int x = 0; x < n; ++x) {
       std::int16_t* __restrict s = srow(r, x);
       const std::int16_t* __restrict b = brow(r, x);
       for (int k = 0; k < stride; ++k) s[k] = static_cast<std::int16_t>(s[k] + b[k]);
+      for (int k = stride; k < row_lanes; ++k) s[k] = 0x7FFF;
     }
 }
 
