@@ -28,7 +28,7 @@ struct Window {
   double sd;  // sqrt(var), once per window instead of once per pair
 };
 
-void load_window(ConstGray8View img, int x, int y, Window& w) {
+inline void load_window(ConstGray8View img, int x, int y, Window& w) {
   int n = 0;
   if (x >= kZnccRadius && x < img.width() - kZnccRadius) {  // no column clamping
     for (int dy = -kZnccRadius; dy <= kZnccRadius; ++dy) {
@@ -43,8 +43,8 @@ void load_window(ConstGray8View img, int x, int y, Window& w) {
     }
   }
   for (int i = kN; i < kPadded; ++i) w.px[i] = 0;
-  int s = 0, ss = 0;  // at most 25 * 255^2
-  for (int i = 0; i < kN; ++i) {
+  int s = 0, ss = 0;  // at most 25 * 255^2; over the padded vector (zeros add nothing)
+  for (int i = 0; i < kPadded; ++i) {
     s += w.px[i];
     ss += w.px[i] * w.px[i];
   }
