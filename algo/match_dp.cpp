@@ -625,13 +625,24 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
         const int base = e.x_right - roi.x + dmin;
         const int k_first = std::max(0, -base), k_last = std::min(D - 1, w - 1 - base);
         if (k_first > k_last) continue;
-        int kr = k_first;
-        int best = rb.agg[static_cast<std::size_t>(base + k_first) * Dp + k_first];
-        for (int k = k_first + 1; k <= k_last; ++k) {
-          const int v = rb.agg[static_cast<std::size_t>(base + k) * Dp + k];
-          kr = v < best ? k : kr;
-          best = v < best ? v : best;
+        // First lane of the smallest cost: the minimum of cost * 2^12 + lane
+        // (lanes < 2^12), over four interleaved chains (one chain of
+        // compare-and-selects waited on itself at every lane).
+        const std::uint16_t* diag = rb.agg.data() + static_cast<std::size_t>(base) * Dp;
+        const int dstep = Dp + 1;  // next column, next lane
+        auto key = [&](int k) {
+          return (static_cast<int>(diag[static_cast<std::ptrdiff_t>(k) * dstep]) << kLaneBits) | k;
+        };
+        int c0 = key(k_first), c1 = c0, c2 = c0, c3 = c0;
+        int k = k_first + 1;
+        for (; k + 3 <= k_last; k += 4) {
+          c0 = std::min(c0, key(k));
+          c1 = std::min(c1, key(k + 1));
+          c2 = std::min(c2, key(k + 2));
+          c3 = std::min(c3, key(k + 3));
         }
+        for (; k <= k_last; ++k) c0 = std::min(c0, key(k));
+        const int kr = std::min(std::min(c0, c1), std::min(c2, c3)) & kNoLane;
         if (std::abs(kr - kp) > tol) continue;
         pairs[static_cast<std::size_t>(n_anchor++)] = e;
       }
