@@ -23,28 +23,29 @@ enum Reason : std::uint8_t {
 };
 
 struct SelectRowInputs {
-  int w = 0;                            // ROI width
-  const std::int16_t* k1 = nullptr;     // winning lane per pixel (w)
-  const std::int16_t* best = nullptr;   // its path cost S (w)
-  const std::int16_t* second = nullptr; // best S more than one lane away (w)
-  const std::int16_t* S = nullptr;      // path costs: pixel i's lane k at S[i * s_stride + k]
-  int s_stride = 0;                     // (lanes -1 and D are readable: guard lanes)
-  const std::uint16_t* cost = nullptr;  // aggregated cost: pixel i's lane k at cost[i * c_stride + k]
+  int w = 0;                             // ROI width
+  const std::int16_t* k1 = nullptr;      // winning lane per pixel (w)
+  const std::int16_t* best = nullptr;    // its path cost S (w)
+  const std::int16_t* second = nullptr;  // best S more than one lane away (w)
+  const std::int16_t* S = nullptr;       // path costs: pixel i's lane k at S[i * s_stride + k]
+  int s_stride = 0;                      // (lanes -1 and D are readable: guard lanes)
+  const std::uint16_t* cost =
+      nullptr;  // aggregated cost: pixel i's lane k at cost[i * c_stride + k]
   int c_stride = 0;
-  const std::int16_t* lo = nullptr;     // allowed lanes [lo, hi] per pixel (w)
+  const std::int16_t* lo = nullptr;  // allowed lanes [lo, hi] per pixel (w)
   const std::int16_t* hi = nullptr;
-  const std::int16_t* right_lane = nullptr;  // right-view winner lane by reversed index w-1-i+k
-  const std::uint8_t* left_shadow = nullptr; // w flags (nonzero: shadow)
+  const std::int16_t* right_lane = nullptr;   // right-view winner lane by reversed index w-1-i+k
+  const std::uint8_t* left_shadow = nullptr;  // w flags (nonzero: shadow)
   // Right shadow flags of image columns x0 - disp_max .. x0 + w - 1 - disp_min
   // (w + D - 1 entries): pixel i at lane k reads right_shadow[i + D - 1 - k].
   const std::uint8_t* right_shadow = nullptr;
-  int lanes = 0;            // D, real lanes
-  int x0 = 0;               // image column of pixel 0
+  int lanes = 0;  // D, real lanes
+  int x0 = 0;     // image column of pixel 0
   int disp_min = 0;
   int image_width = 0;
   int lr_tolerance_px = 0;
   int uniqueness_pct = 0;
-  long cost_ceiling = 0;    // aggregated cost above this: rejected
+  long cost_ceiling = 0;  // aggregated cost above this: rejected
 };
 
 // Per-pixel scratch of select_row, 5 w int32 in all.

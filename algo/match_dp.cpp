@@ -23,8 +23,8 @@ using match::kRawNeutral;
 using match::kWindowRows;
 
 constexpr std::size_t kAlignSlack = 64;  // per arena allocation
-constexpr int kRightChains = 16;  // see right_winners
-constexpr int kLaneBits = 12;     // lanes < match::kMaxLanes = 2^12
+constexpr int kRightChains = 16;         // see right_winners
+constexpr int kLaneBits = 12;            // lanes < match::kMaxLanes = 2^12
 // "No winner" in rk: all lane bits set, so it loses every tie of a merge.
 constexpr std::int16_t kNoLane = (1 << kLaneBits) - 1;
 static_assert(match::kMaxLanes <= kNoLane + 1, "lane keys");
@@ -53,9 +53,9 @@ struct Layout {
   std::size_t rows() const {
     const std::size_t cells = z(wc) * z(dp);
     std::size_t b = 0;
-    b += kWindowRows * cells;   // raw ring
-    b += 2 * cells;             // column sums
-    b += 2 * 5 * z(dp);         // box sums (a ring of five columns)
+    b += kWindowRows * cells;  // raw ring
+    b += 2 * cells;            // column sums
+    b += 2 * 5 * z(dp);        // box sums (a ring of five columns)
     // Per row in flight (two): cost, path costs S, backward path costs,
     // bounds, jump penalties.
     b += 2 * (2 * z(w) * z(dp) + 2 * 2 * z(w) * z(match::path_row_stride(dp)) + 3 * 2 * z(w));
@@ -153,7 +153,6 @@ Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const M
                        "match_dp: tolerances must be >= 0 and the cost ceiling > 0");
   return ok_status();
 }
-
 
 // Best lane, its value and the best value more than one lane away, over
 // v[0..n). Written as three branch-free reductions the compiler vectorises.

@@ -93,9 +93,7 @@ template <int kLanes, int kRows>
     PETRA_ASSERT(in[r].lanes == in[0].lanes && lanes_arg <= row_lanes);
     PETRA_ASSERT(kLanes == 0 || lanes_arg == kLanes);
   }
-  auto cost = [&](int r, int x) {
-    return in[r].cost + static_cast<std::ptrdiff_t>(x) * row_lanes;
-  };
+  auto cost = [&](int r, int x) { return in[r].cost + static_cast<std::ptrdiff_t>(x) * row_lanes; };
   auto srow = [&](int r, int x) {
     return S[r] + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes;
   };
@@ -135,14 +133,14 @@ template <int kLanes, int kRows>
 
 template <int kLanes>
 PETRA_VECTOR_CLONES_256 void scanline_dp(const ScanlineInputs& in, std::int16_t* S,
-                                     std::int16_t* backward) {
+                                         std::int16_t* backward) {
   run_scanlines<kLanes, 1>(&in, &S, &backward);
 }
 
 template <int kLanes>
 PETRA_VECTOR_CLONES_256 void scanline_dp_pair(const ScanlineInputs& a, std::int16_t* Sa,
-                                          std::int16_t* backward_a, const ScanlineInputs& b,
-                                          std::int16_t* Sb, std::int16_t* backward_b) {
+                                              std::int16_t* backward_a, const ScanlineInputs& b,
+                                              std::int16_t* Sb, std::int16_t* backward_b) {
   const ScanlineInputs in[2] = {a, b};
   std::int16_t* const S[2] = {Sa, Sb};
   std::int16_t* const back[2] = {backward_a, backward_b};

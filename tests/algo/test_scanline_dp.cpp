@@ -74,5 +74,44 @@ TEST(ScanlineDp, ForbiddenLanesNeverWin) {
   }
 }
 
+// A row padded to 32 lanes whose DP runs over the first 16 (lanes = 16)
+// gives those lanes exactly the path costs of a 16-lane row, and 0x7FFF on
+// the skipped ones; the pair kernel gives each row the single one's result.
+TEST(ScanlineDp, SkippedPaddingLanesLeaveTheRealLanesUnchanged) {
+  const int n = 50, wide = 32, sp_wide = path_row_stride(wide);
+  std::mt19937 rng(9);
+  std::vector<std::uint16_t> narrow_cost(static_cast<std::size_t>(n) * kLanes), p2(n);
+  for (auto& c : narrow_cost) c = static_cast<std::uint16_t>(rng() % 1080);
+  for (auto& v : p2) v = static_cast<std::uint16_t>(200 + rng() % 700);
+  std::vector<std::uint16_t> wide_cost(static_cast<std::size_t>(n) * wide, 9999);
+  for (int x = 0; x < n; ++x)
+    for (int k = 0; k < kLanes; ++k)
+      wide_cost[static_cast<std::size_t>(x) * wide + k] =
+          narrow_cost[static_cast<std::size_t>(x) * kLanes + k];
+  std::vector<std::int16_t> s1(static_cast<std::size_t>(n) * kSp), b1(s1.size());
+  scanline_dp<kLanes>({narrow_cost.data(), n, kLanes, p2.data(), 90}, s1.data(), b1.data());
+  std::vector<std::int16_t> s2(static_cast<std::size_t>(n) * sp_wide), b2(s2.size());
+  std::vector<std::int16_t> s3(s2.size()), b3(s2.size()), s4(s2.size()), b4(s2.size());
+  const ScanlineInputs in{wide_cost.data(), n, wide, p2.data(), 90, kLanes};
+  scanline_dp<kLanes>(in, s2.data(), b2.data());
+  scanline_dp_pair<0>(in, s3.data(), b3.data(), in, s4.data(), b4.data());
+  for (int x = 0; x < n; ++x) {
+    const std::int16_t* a = s1.data() + static_cast<std::size_t>(x) * kSp + kGuardLanes;
+    const std::int16_t* b = s2.data() + static_cast<std::size_t>(x) * sp_wide + kGuardLanes;
+    const std::int16_t* c = s3.data() + static_cast<std::size_t>(x) * sp_wide + kGuardLanes;
+    const std::int16_t* e = s4.data() + static_cast<std::size_t>(x) * sp_wide + kGuardLanes;
+    for (int k = 0; k < kLanes; ++k) {
+      ASSERT_EQ(a[k], b[k]) << x << " " << k;
+      ASSERT_EQ(a[k], c[k]) << x << " " << k;
+      ASSERT_EQ(a[k], e[k]) << x << " " << k;
+    }
+    for (int k = kLanes; k < wide; ++k) {
+      ASSERT_EQ(b[k], 0x7FFF);
+      ASSERT_EQ(c[k], 0x7FFF);
+      ASSERT_EQ(e[k], 0x7FFF);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace petra::match
