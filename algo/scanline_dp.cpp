@@ -109,14 +109,34 @@ template <int kLanes, int kRows>
     mf[r] = first<kLanes>(cost(r, 0), srow(r, 0), stride);
     mb[r] = first<kLanes>(cost(r, n - 1), brow(r, n - 1), stride);
   }
+  // The chains' pointers and penalties in locals and the loop over rows
+  // unrolled: through the input structures and a rolled loop, each step
+  // spent as many scalar instructions on addresses as vector ones on lanes.
+  const std::uint16_t* cst[kRows];
+  const std::uint16_t* pen2[kRows];
+  std::int16_t* fw[kRows];
+  std::int16_t* bw[kRows];
+  int pen1[kRows];
+  for (int r = 0; r < kRows; ++r) {
+    cst[r] = in[r].cost;
+    pen2[r] = in[r].p2;
+    fw[r] = srow(r, 0);
+    bw[r] = brow(r, 0);
+    pen1[r] = in[r].p1;
+    for (int x = 1; x < n; ++x) PETRA_ASSERT(pen2[r][x] <= kMaxP2);
+  }
   for (int t = 1; t < n; ++t) {
     const int xb = n - 1 - t;
+    const std::ptrdiff_t sf = static_cast<std::ptrdiff_t>(t) * sp;
+    const std::ptrdiff_t sb = static_cast<std::ptrdiff_t>(xb) * sp;
+    const std::ptrdiff_t cf = static_cast<std::ptrdiff_t>(t) * row_lanes;
+    const std::ptrdiff_t cb = static_cast<std::ptrdiff_t>(xb) * row_lanes;
+#pragma GCC unroll 4
     for (int r = 0; r < kRows; ++r) {
-      PETRA_ASSERT(in[r].p2[t] <= kMaxP2);
-      mf[r] = step<kLanes>(srow(r, t - 1), cost(r, t), srow(r, t), stride, in[r].p1, in[r].p2[t],
+      mf[r] = step<kLanes>(fw[r] + sf - sp, cst[r] + cf, fw[r] + sf, stride, pen1[r], pen2[r][t],
                            mf[r]);
-      mb[r] = step<kLanes>(brow(r, xb + 1), cost(r, xb), brow(r, xb), stride, in[r].p1,
-                           in[r].p2[xb + 1], mb[r]);
+      mb[r] = step<kLanes>(bw[r] + sb + sp, cst[r] + cb, bw[r] + sb, stride, pen1[r],
+                           pen2[r][xb + 1], mb[r]);
     }
   }
   // S = L_fwd + L_bwd; 0x7FFF on the skipped padding lanes.
