@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "algo/canny.hpp"
 
@@ -76,6 +77,35 @@ int usable(std::uint8_t code) {  // & not &&: no branch in the list compaction
   return static_cast<int>(is_edge(code)) & static_cast<int>(edge_sector(code) != kSectorVertical);
 }
 
+// Columns x0 + i of the usable edges among codes[0..count) into list (count
+// entries); returns how many. Branch-free compaction (whether a pixel is an
+// edge is data, and a branch on it mispredicts; the unconditional store stays
+// inside the list), eight codes at a time tested as one word and skipped
+// when none is usable (most are not edges).
+int compact_usable(const std::uint8_t* codes, int count, int x0, std::int16_t* list) {
+  constexpr std::uint64_t kOnes = 0x0101010101010101ULL;
+  static_assert(kEdgeBit == 0x80 && kEdgeSectorMask == 0x03 && kSectorVertical == 2,
+                "the word test below reads these bits");
+  int m = 0, i = 0;
+  for (; i + 8 <= count; i += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, codes + i, sizeof word);
+    // Per byte: bit 7 = edge, and sector 2 (bits 1..0 = 10) = horizontal edge.
+    const std::uint64_t horizontal = (word >> 1) & ~word & kOnes;
+    const std::uint64_t ok = word & (kOnes * kEdgeBit) & ~(horizontal << 7);
+    if (ok == 0) continue;
+    for (int b = 0; b < 8; ++b) {
+      list[m] = static_cast<std::int16_t>(x0 + i + b);
+      m += static_cast<int>((ok >> (8 * b + 7)) & 1);
+    }
+  }
+  for (; i < count; ++i) {
+    list[m] = static_cast<std::int16_t>(x0 + i);
+    m += usable(codes[i]);
+  }
+  return m;
+}
+
 enum : std::uint8_t { kFromUp = 0, kFromLeft = 1, kMatch = 2 };
 
 }  // namespace
@@ -100,18 +130,8 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
   if (!lx) return lx.error();
   auto rx = arena.allocate<std::int16_t>(static_cast<std::size_t>(in.right_n), "edge list right");
   if (!rx) return rx.error();
-  int m = 0, n = 0;
-  // Branch-free compaction: whether a pixel is an edge is data, and a branch
-  // on it mispredicts. The lists hold left_n / right_n entries, so the
-  // unconditional store stays inside them.
-  for (int i = 0; i < in.left_n; ++i) {
-    (*lx)[static_cast<std::size_t>(m)] = static_cast<std::int16_t>(in.left_x0 + i);
-    m += usable(in.left_edges[i]);
-  }
-  for (int j = 0; j < in.right_n; ++j) {
-    (*rx)[static_cast<std::size_t>(n)] = static_cast<std::int16_t>(in.right_x0 + j);
-    n += usable(in.right_edges[j]);
-  }
+  const int m = compact_usable(in.left_edges, in.left_n, in.left_x0, lx->data());
+  const int n = compact_usable(in.right_edges, in.right_n, in.right_x0, rx->data());
   if (m == 0 || n == 0) return 0;
 
   auto lw = arena.allocate<Window>(static_cast<std::size_t>(m), "edge windows left");
