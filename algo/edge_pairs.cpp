@@ -23,7 +23,9 @@ constexpr int kPadded = 32;
 static_assert(kN <= kPadded, "5x5 window");
 
 struct Window {
-  alignas(kPadded) std::uint8_t px[kPadded];
+  // No alignas: the arena aligns to alignof(T) from the start of the
+  // caller's block, whose own alignment it does not know.
+  std::uint8_t px[kPadded];
   long sum;
   long var;   // kN * sum(p^2) - sum(p)^2
   double sd;  // sqrt(var), once per window instead of once per pair
