@@ -207,13 +207,18 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
     const std::uint32_t p = (*stack)[--top];
     const int j = static_cast<int>(p / static_cast<std::uint32_t>(w));
     const int i = static_cast<int>(p % static_cast<std::uint32_t>(w));
+    const int i0 = i > 0 ? i - 1 : 0, i1 = i < w - 1 ? i + 1 : w - 1;
     for (int dj = -1; dj <= 1; ++dj) {
       const int jj = j + dj;
       if (jj < 0 || jj >= h) continue;
       std::uint8_t* row = edges.row(jj);
-      for (int di = -1; di <= 1; ++di) {
-        const int ii = i + di;
-        if (ii < 0 || ii >= w || (row[ii] & kWeak) == 0) continue;
+      // Most neighbourhoods hold no weak pixel: one test for the three
+      // (a branch per pixel on data mispredicts).
+      int any = 0;
+      for (int ii = i0; ii <= i1; ++ii) any |= row[ii];
+      if ((any & kWeak) == 0) continue;
+      for (int ii = i0; ii <= i1; ++ii) {
+        if ((row[ii] & kWeak) == 0) continue;
         row[ii] = static_cast<std::uint8_t>((row[ii] & ~kWeak) | kEdgeBit);
         PETRA_ASSERT(top < capacity);
         (*stack)[top++] = static_cast<std::uint32_t>(jj * w + ii);
