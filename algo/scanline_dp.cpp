@@ -101,11 +101,12 @@ template <int kLanes, int kRows>
     return backward[r] + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes;
   };
   std::int16_t mf[kRows], mb[kRows];
+  // Guards of each column are set as the DP reaches it (below): set here in
+  // a pass of their own, they were the first touch of every line of S and
+  // of the backward rows, stores waiting on the cache in a row.
   for (int r = 0; r < kRows; ++r) {
-    for (int x = 0; x < n; ++x) {
-      srow(r, x)[-1] = srow(r, x)[stride] = kGuard;
-      brow(r, x)[-1] = brow(r, x)[stride] = kGuard;
-    }
+    srow(r, 0)[-1] = srow(r, 0)[stride] = kGuard;
+    brow(r, n - 1)[-1] = brow(r, n - 1)[stride] = kGuard;
     mf[r] = first<kLanes>(cost(r, 0), srow(r, 0), stride);
     mb[r] = first<kLanes>(cost(r, n - 1), brow(r, n - 1), stride);
   }
@@ -133,6 +134,8 @@ template <int kLanes, int kRows>
     const std::ptrdiff_t cb = static_cast<std::ptrdiff_t>(xb) * row_lanes;
 #pragma GCC unroll 4
     for (int r = 0; r < kRows; ++r) {
+      fw[r][sf - 1] = fw[r][sf + stride] = kGuard;
+      bw[r][sb - 1] = bw[r][sb + stride] = kGuard;
       mf[r] = step<kLanes>(fw[r] + sf - sp, cst[r] + cf, fw[r] + sf, stride, pen1[r], pen2[r][t],
                            mf[r]);
       mb[r] = step<kLanes>(bw[r] + sb + sp, cst[r] + cb, bw[r] + sb, stride, pen1[r],
