@@ -71,6 +71,11 @@ struct Layout {
   std::size_t total() const { return edge_maps() + std::max(canny(), rows()); }
 };
 
+// Lanes of the path costs S: D rounded up to 16 (see match_impl).
+constexpr int path_lanes(int disparities) {
+  return (disparities + 15) / 16 * 16;
+}
+
 template <class T>
 Status take(Arena& arena, std::size_t n, const char* what, std::span<T>& out) {
   // Each buffer starts on a 64-byte line (kAlignSlack per allocation in the
@@ -420,8 +425,12 @@ Rect right_search_area(Rect roi, int disp_min, int disp_max, int image_width) {
 namespace {
 
 // The whole matcher for one lane count (kLanes = Dp, or 0 for any), so every
-// row kernel runs with a compile-time lane count.
-template <int kLanes>
+// row kernel runs with a compile-time lane count. kPathLanes: the lanes of
+// the path costs S (D rounded up to 16, or 0 for any), which may be fewer
+// than Dp: the scanline DP is compiled for 256-bit vectors at most
+// (PETRA_VECTOR_CLONES_256), and the lanes of a row rounded up to 32 would
+// only be padding to it and to the kernels reading S.
+template <int kLanes, int kPathLanes>
 PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi,
                                                     const MatchDpParams& p, Arena& arena,
                                                     DisparityMap& out,
@@ -482,7 +491,9 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   PETRA_TRY(take(arena, cells, "column sums", colsum));
   PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(Dp), "box sums", hs));
 
-  const int sp = match::path_row_stride(Dp);
+  const int Ds = path_lanes(D);
+  PETRA_ASSERT(kPathLanes == 0 || kPathLanes == Ds);
+  const int sp = match::path_row_stride(Ds);
   // Rows go through in pairs: steps 1-3 for two rows, then both DPs at once
   // (scanline_dp_pair: the DP is latency-bound, two rows fill each other's
   // waits), then steps 4-5 for both. Each row in flight has its own cost,
@@ -689,16 +700,16 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     const int y = roi.y + t;
     // Right view winners along the same path costs (reversed index m).
     shadow_row(in.left_shadow, y, roi.x, w, 1, 0, skip.data());
-    right_winners<kLanes>(rb.S.data() + match::kGuardLanes, w, sp, Dp, skip.data(), rmin.data(),
-                          rk.data(), right_keys.data());
+    right_winners<kPathLanes>(rb.S.data() + match::kGuardLanes, w, sp, Ds, skip.data(), rmin.data(),
+                              rk.data(), right_keys.data());
 
     // Steps 4-5: select, reject, refine.
     if (unsigned_min)
-      row_winners<kLanes, true>(rb.S.data() + match::kGuardLanes, w, sp, Dp, wk.data(),
-                                wbest.data(), wsecond.data());
+      row_winners<kPathLanes, true>(rb.S.data() + match::kGuardLanes, w, sp, Ds, wk.data(),
+                                    wbest.data(), wsecond.data());
     else
-      row_winners<kLanes, false>(rb.S.data() + match::kGuardLanes, w, sp, Dp, wk.data(),
-                                 wbest.data(), wsecond.data());
+      row_winners<kPathLanes, false>(rb.S.data() + match::kGuardLanes, w, sp, Ds, wk.data(),
+                                     wbest.data(), wsecond.data());
     match::SelectRowInputs si;
     si.w = w;
     si.k1 = wk.data();
@@ -730,39 +741,22 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     st.rejected_cost += rc.cost;
     st.rejected_shadow_right += rc.shadow_right;
   };
-  // The DP runs over D rounded up to 16 lanes, not over Dp: the scanline DP
-  // is compiled for 256-bit vectors at most (PETRA_VECTOR_CLONES_256), and
-  // the extra lanes of a row rounded up to 32 would only be padding to it.
-  const int dp_lanes = (D + 15) / 16 * 16;
   auto run_dp_pair = [&](const match::ScanlineInputs& a, RowBuffers& ra,
                          const match::ScanlineInputs& b, RowBuffers& rb) {
-    if constexpr (kLanes >= 32) {
-      if (dp_lanes == kLanes - 16) {
-        match::scanline_dp_pair<kLanes - 16>(a, ra.S.data(), ra.back.data(), b, rb.S.data(),
-                                             rb.back.data());
-        return;
-      }
-    }
-    match::scanline_dp_pair<kLanes == 0 ? 0 : kLanes>(a, ra.S.data(), ra.back.data(), b,
-                                                      rb.S.data(), rb.back.data());
+    match::scanline_dp_pair<kPathLanes>(a, ra.S.data(), ra.back.data(), b, rb.S.data(),
+                                        rb.back.data());
   };
   auto run_dp_one = [&](const match::ScanlineInputs& a, RowBuffers& ra) {
-    if constexpr (kLanes >= 32) {
-      if (dp_lanes == kLanes - 16) {
-        match::scanline_dp<kLanes - 16>(a, ra.S.data(), ra.back.data());
-        return;
-      }
-    }
-    match::scanline_dp<kLanes>(a, ra.S.data(), ra.back.data());
+    match::scanline_dp<kPathLanes>(a, ra.S.data(), ra.back.data());
   };
   for (int t = 0; t < h; t += 2) {
     RowBuffers& ra = rows[0];
     RowBuffers& rb = rows[1];
     PETRA_TRY(prepare(t, ra));
-    const match::ScanlineInputs sa{ra.agg.data(), w, Dp, ra.p2.data(), p.p1, dp_lanes};
+    const match::ScanlineInputs sa{ra.agg.data(), w, Dp, ra.p2.data(), p.p1, Ds};
     if (t + 1 < h) {
       PETRA_TRY(prepare(t + 1, rb));
-      const match::ScanlineInputs sb{rb.agg.data(), w, Dp, rb.p2.data(), p.p1, dp_lanes};
+      const match::ScanlineInputs sb{rb.agg.data(), w, Dp, rb.p2.data(), p.p1, Ds};
       run_dp_pair(sa, ra, sb, rb);
     } else {
       run_dp_one(sa, ra);
@@ -787,14 +781,18 @@ Result<MatchDpStats> match_dp(const StereoInput& in, Rect roi, const MatchDpPara
                               const MatchBudget& budget, Arena& arena, DisparityMap& out,
                               ImageView<std::uint8_t> confidence) {
   PETRA_TRY(validate(in, roi, p, budget, out, confidence));
-  switch (Layout(roi.w, roi.h, p.disp_max - p.disp_min + 1).dp) {
-#define PETRA_CASE(n) \
-  case n:             \
-    return match_impl<n>(in, roi, p, arena, out, confidence);
+  const int d = p.disp_max - p.disp_min + 1;
+  const bool narrow = path_lanes(d) < Layout(roi.w, roi.h, d).dp;  // S rows 16 lanes short
+  switch (Layout(roi.w, roi.h, d).dp) {
+#define PETRA_CASE(n)                                                               \
+  case n:                                                                           \
+    if constexpr (n >= 32)                                                          \
+      if (narrow) return match_impl<n, n - 16>(in, roi, p, arena, out, confidence); \
+    return match_impl<n, n>(in, roi, p, arena, out, confidence);
     PETRA_MATCH_LANE_COUNTS(PETRA_CASE)
 #undef PETRA_CASE
     default:
-      return match_impl<0>(in, roi, p, arena, out, confidence);
+      return match_impl<0, 0>(in, roi, p, arena, out, confidence);
   }
 }
 

@@ -83,10 +83,10 @@ namespace {
 template <int kLanes, int kRows>
 [[gnu::always_inline]] inline void run_scanlines(const ScanlineInputs* in, std::int16_t* const* S,
                                                  std::int16_t* const* backward) {
-  const int row_lanes = in[0].stride;  // cost and path rows
+  const int row_lanes = in[0].stride;  // cost rows
   const int lanes_arg = in[0].lanes > 0 ? in[0].lanes : row_lanes;
   const int stride = kLanes > 0 ? kLanes : lanes_arg;  // lanes the DP runs over
-  const int sp = path_row_stride(row_lanes);
+  const int sp = path_row_stride(stride);              // path rows
   const int n = in[0].n;
   for (int r = 0; r < kRows; ++r) {
     PETRA_ASSERT(in[r].n == n && in[r].n > 0 && in[r].stride == in[0].stride && in[r].p1 >= 0);
@@ -142,13 +142,12 @@ template <int kLanes, int kRows>
                            pen2[r][xb + 1], mb[r]);
     }
   }
-  // S = L_fwd + L_bwd; 0x7FFF on the skipped padding lanes.
+  // S = L_fwd + L_bwd.
   for (int r = 0; r < kRows; ++r)
     for (int x = 0; x < n; ++x) {
       std::int16_t* __restrict s = srow(r, x);
       const std::int16_t* __restrict b = brow(r, x);
       for (int k = 0; k < stride; ++k) s[k] = static_cast<std::int16_t>(s[k] + b[k]);
-      for (int k = stride; k < row_lanes; ++k) s[k] = 0x7FFF;
     }
 }
 
