@@ -36,12 +36,14 @@
 //   then Canny (transient)       about 11 B h           (one view at a time)
 //   or the row buffers:
 //     raw cost window (9 rows)   9 wc Dp
-//     column sums, box sums      2 wc Dp + 2 (w + 4) Dp
+//     column sums, box sums      2 wc Dp + 10 Dp            (box sums: a ring of 5)
 //     two rows in flight: cost, path costs S and backward, bounds, penalties
-//                                2 (2 w Dp + 4 w (Dp + 16) + 6 w)
+//                                2 (2 w Dp + 4 w (Dp + 16) + 6 w)   (S: D rounded
+//                                up to 16 lanes, at most Dp)
 //     right-view winners         64 (w + Dp) + 4 (w + Dp)   (16 chains, keys)
 //     edge DP table (per row)    (w + 1)(B + 1) + 58 (w + B) + 12 B
-//     row vectors                about 14 (wc + Dp) + 30 w
+//     row vectors                about 14 (wc + Dp) + 50 w  (checks: 20 w)
+//     each buffer starts on a 64-byte line (64 bytes of slack each)
 // Flight budget (320 x 320 px, 128 disparities): 1 841 243 bytes (1.76 MiB),
 // the peak being Canny of the right search area (the row buffers: 1.32 MB);
 // 160 x 160 px with 42 disparities: 422 221 bytes. docs/matching.md has the
