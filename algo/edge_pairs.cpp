@@ -189,19 +189,14 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
       }
       score[j] = z;
     }
+    // The cells without branches (which predecessor wins is data).
     for (int j = j0; j < j1; ++j) {
-      std::int32_t best = prev[j];
-      std::uint8_t from = kFromUp;
-      if (cur[j - 1] > best) {
-        best = cur[j - 1];
-        from = kFromLeft;
-      }
-      if (score[j] >= 0 && prev[j - 1] + score[j] > best) {
-        best = prev[j - 1] + score[j];
-        from = kMatch;
-      }
-      cur[j] = best;
-      brow[j] = from;
+      const std::int32_t up = prev[j], left = cur[j - 1], diag = prev[j - 1] + score[j];
+      const bool from_left = left > up;
+      const std::int32_t b1 = from_left ? left : up;
+      const bool match = (score[j] >= 0) & (diag > b1);
+      cur[j] = match ? diag : b1;
+      brow[j] = match ? kMatch : (from_left ? kFromLeft : kFromUp);
     }
     // After the run: the better of the two predecessors, as a running value.
     std::int32_t run = cur[j1 - 1];
