@@ -321,19 +321,25 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void row_winners(const std::int16_t* __res
                                                        std::int16_t* __restrict k1,
                                                        std::int16_t* __restrict best,
                                                        std::int16_t* __restrict second) {
+  // Two passes: the second best needs the winner's lane (a reduction, then
+  // a load at an address it gives), so in one pass each pixel was a chain of
+  // three reductions; apart, the pixels of each pass overlap.
   for (int i = 0; i < w; ++i) {
     const std::int16_t* s = S + static_cast<std::size_t>(i) * row_stride;
     Winner win;
-    if constexpr (kUnsigned) {
+    if constexpr (kUnsigned)
       win = best_lane_inline<kLanes>(s, lanes_arg);
-      win.second = second_best_away_inline<kLanes>(s, lanes_arg, win.k);
-    } else {
+    else
       win = best_lane_signed<kLanes>(s, lanes_arg);
-      win.second = second_best_away_signed<kLanes>(s, lanes_arg, win.k);
-    }
     k1[i] = static_cast<std::int16_t>(win.k);
     best[i] = static_cast<std::int16_t>(win.best);
-    second[i] = static_cast<std::int16_t>(win.second);
+  }
+  for (int i = 0; i < w; ++i) {
+    const std::int16_t* s = S + static_cast<std::size_t>(i) * row_stride;
+    if constexpr (kUnsigned)
+      second[i] = static_cast<std::int16_t>(second_best_away_inline<kLanes>(s, lanes_arg, k1[i]));
+    else
+      second[i] = static_cast<std::int16_t>(second_best_away_signed<kLanes>(s, lanes_arg, k1[i]));
   }
 }
 
