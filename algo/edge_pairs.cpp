@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "algo/canny.hpp"
 
@@ -16,14 +17,21 @@ constexpr int kN = kWin * kWin;
 constexpr long kMinVariance = static_cast<long>(kN) * kN * 9 / 4;
 constexpr std::size_t kAlignSlack = 64;
 
+// Window pixels padded with zeros to a whole 32-byte vector, so the cross
+// term is one vector loop with no tail (the zeros add nothing).
+constexpr int kPadded = 32;
+static_assert(kN <= kPadded, "5x5 window");
+
 struct Window {
-  std::uint8_t px[kN];
+  // No alignas: the arena aligns to alignof(T) from the start of the
+  // caller's block, whose own alignment it does not know.
+  std::uint8_t px[kPadded];
   long sum;
   long var;   // kN * sum(p^2) - sum(p)^2
   double sd;  // sqrt(var), once per window instead of once per pair
 };
 
-void load_window(ConstGray8View img, int x, int y, Window& w) {
+inline void load_window(ConstGray8View img, int x, int y, Window& w) {
   int n = 0;
   if (x >= kZnccRadius && x < img.width() - kZnccRadius) {  // no column clamping
     for (int dy = -kZnccRadius; dy <= kZnccRadius; ++dy) {
@@ -37,8 +45,9 @@ void load_window(ConstGray8View img, int x, int y, Window& w) {
         w.px[n++] = row[std::clamp(x + dx, 0, img.width() - 1)];
     }
   }
-  int s = 0, ss = 0;  // at most 25 * 255^2
-  for (int i = 0; i < kN; ++i) {
+  for (int i = kN; i < kPadded; ++i) w.px[i] = 0;
+  int s = 0, ss = 0;  // at most 25 * 255^2; over the padded vector (zeros add nothing)
+  for (int i = 0; i < kPadded; ++i) {
     s += w.px[i];
     ss += w.px[i] * w.px[i];
   }
@@ -50,7 +59,7 @@ void load_window(ConstGray8View img, int x, int y, Window& w) {
 int zncc(const Window& a, const Window& b) {
   if (a.var < kMinVariance || b.var < kMinVariance) return 0;
   int cross = 0;  // at most 25 * 255^2: an int, which vectorises as 16-bit products
-  for (int i = 0; i < kN; ++i) cross += a.px[i] * b.px[i];
+  for (int i = 0; i < kPadded; ++i) cross += a.px[i] * b.px[i];
   const long num = kN * static_cast<long>(cross) - a.sum * b.sum;
   // var products stay below 2^50: the product of the roots is exact enough.
   // Rounded inline: for 1 <= v < 2^52, v + 0.5 is exact and truncation
@@ -58,12 +67,45 @@ int zncc(const Window& a, const Window& b) {
   const double v = a.sd * b.sd;
   const long den = static_cast<long>(v + 0.5);
   if (den <= 0) return 0;
-  return static_cast<int>(num * kZnccOne / den);
+  // The quotient in double: |num * kZnccOne| < 2^36 and den are exact, and
+  // a non-integer quotient lies at least 1 / den from an integer, more than
+  // its rounding error, so truncation gives the integer division's result
+  // (a 64-bit integer division per pair was the costlier instruction).
+  return static_cast<int>(static_cast<double>(num * kZnccOne) / static_cast<double>(den));
 }
 
 // A usable edge has a position along the row: not a horizontal edge.
 int usable(std::uint8_t code) {  // & not &&: no branch in the list compaction
   return static_cast<int>(is_edge(code)) & static_cast<int>(edge_sector(code) != kSectorVertical);
+}
+
+// Columns x0 + i of the usable edges among codes[0..count) into list (count
+// entries); returns how many. Branch-free compaction (whether a pixel is an
+// edge is data, and a branch on it mispredicts; the unconditional store stays
+// inside the list), eight codes at a time tested as one word and skipped
+// when none is usable (most are not edges).
+int compact_usable(const std::uint8_t* codes, int count, int x0, std::int16_t* list) {
+  constexpr std::uint64_t kOnes = 0x0101010101010101ULL;
+  static_assert(kEdgeBit == 0x80 && kEdgeSectorMask == 0x03 && kSectorVertical == 2,
+                "the word test below reads these bits");
+  int m = 0, i = 0;
+  for (; i + 8 <= count; i += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, codes + i, sizeof word);
+    // Per byte: bit 7 = edge, and sector 2 (bits 1..0 = 10) = horizontal edge.
+    const std::uint64_t horizontal = (word >> 1) & ~word & kOnes;
+    const std::uint64_t ok = word & (kOnes * kEdgeBit) & ~(horizontal << 7);
+    if (ok == 0) continue;
+    for (int b = 0; b < 8; ++b) {
+      list[m] = static_cast<std::int16_t>(x0 + i + b);
+      m += static_cast<int>((ok >> (8 * b + 7)) & 1);
+    }
+  }
+  for (; i < count; ++i) {
+    list[m] = static_cast<std::int16_t>(x0 + i);
+    m += usable(codes[i]);
+  }
+  return m;
 }
 
 enum : std::uint8_t { kFromUp = 0, kFromLeft = 1, kMatch = 2 };
@@ -90,18 +132,8 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
   if (!lx) return lx.error();
   auto rx = arena.allocate<std::int16_t>(static_cast<std::size_t>(in.right_n), "edge list right");
   if (!rx) return rx.error();
-  int m = 0, n = 0;
-  // Branch-free compaction: whether a pixel is an edge is data, and a branch
-  // on it mispredicts. The lists hold left_n / right_n entries, so the
-  // unconditional store stays inside them.
-  for (int i = 0; i < in.left_n; ++i) {
-    (*lx)[static_cast<std::size_t>(m)] = static_cast<std::int16_t>(in.left_x0 + i);
-    m += usable(in.left_edges[i]);
-  }
-  for (int j = 0; j < in.right_n; ++j) {
-    (*rx)[static_cast<std::size_t>(n)] = static_cast<std::int16_t>(in.right_x0 + j);
-    n += usable(in.right_edges[j]);
-  }
+  const int m = compact_usable(in.left_edges, in.left_n, in.left_x0, lx->data());
+  const int n = compact_usable(in.right_edges, in.right_n, in.right_x0, rx->data());
   if (m == 0 || n == 0) return 0;
 
   auto lw = arena.allocate<Window>(static_cast<std::size_t>(m), "edge windows left");
@@ -157,19 +189,14 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
       }
       score[j] = z;
     }
+    // The cells without branches (which predecessor wins is data).
     for (int j = j0; j < j1; ++j) {
-      std::int32_t best = prev[j];
-      std::uint8_t from = kFromUp;
-      if (cur[j - 1] > best) {
-        best = cur[j - 1];
-        from = kFromLeft;
-      }
-      if (score[j] >= 0 && prev[j - 1] + score[j] > best) {
-        best = prev[j - 1] + score[j];
-        from = kMatch;
-      }
-      cur[j] = best;
-      brow[j] = from;
+      const std::int32_t up = prev[j], left = cur[j - 1], diag = prev[j - 1] + score[j];
+      const bool from_left = left > up;
+      const std::int32_t b1 = from_left ? left : up;
+      const bool match = (score[j] >= 0) & (diag > b1);
+      cur[j] = match ? diag : b1;
+      brow[j] = match ? kMatch : (from_left ? kFromLeft : kFromUp);
     }
     // After the run: the better of the two predecessors, as a running value.
     std::int32_t run = cur[j1 - 1];

@@ -163,33 +163,43 @@ PETRA_VECTOR_CLONES void raw_cost_row(const RawRowInputs& in, int k_count, std::
   }
 }
 
+// Box sums of five columns, each computed directly (a running sum along x
+// would chain every column to the previous one's store), into a ring of
+// five columns, and the minimum over the five box positions as soon as the
+// ring holds them: the ring stays in the first-level cache, where a whole
+// row of box sums written then re-read five times did not (one row of
+// 64-lane sums is 21 kB). The order of the minimum does not change it.
+template <int kLanes>
+[[gnu::always_inline]] inline void box_column(const std::uint16_t* __restrict c0, int stride_arg,
+                                              std::uint16_t* __restrict cur) {
+  const int stride = kLanes > 0 ? kLanes : stride_arg;
+  for (int k = 0; k < stride; ++k)
+    cur[k] = static_cast<std::uint16_t>(c0[k] + c0[stride + k] + c0[2 * stride + k] +
+                                        c0[3 * stride + k] + c0[4 * stride + k]);
+}
+
 template <int kLanes>
 PETRA_VECTOR_CLONES void box_and_shift_row(const std::uint16_t* colsum, int n, int stride_arg,
                                            std::uint16_t* hs, std::uint16_t* agg) {
   const int stride = kLanes > 0 ? kLanes : stride_arg;
-  const int nh = n + 2 * kShiftRadiusX;
-  // Box sums of five columns, each computed directly: a running sum along x
-  // would chain every column to the previous one's store.
-  for (int j = 0; j < nh; ++j) {
-    const std::uint16_t* __restrict c0 = colsum + static_cast<std::ptrdiff_t>(j) * stride;
-    std::uint16_t* __restrict cur = hs + static_cast<std::ptrdiff_t>(j) * stride;
-    for (int k = 0; k < stride; ++k)
-      cur[k] = static_cast<std::uint16_t>(c0[k] + c0[stride + k] + c0[2 * stride + k] +
-                                          c0[3 * stride + k] + c0[4 * stride + k]);
-  }
-  // Minimum over five box positions: min(min(h0,h1), min(h2,h3), h4). The
-  // sums stay below 2^15 (kAggregatedMax, padding 45 kRawPad), so they are
-  // compared as int16: x86-64's baseline SSE2 has a one-instruction signed
-  // 16-bit minimum but none for unsigned (GCC emulates it in five).
+  constexpr int kRing = 2 * kShiftRadiusX + 1;
+  for (int j = 0; j < kRing - 1; ++j)
+    box_column<kLanes>(colsum + static_cast<std::ptrdiff_t>(j) * stride, stride,
+                       hs + static_cast<std::ptrdiff_t>(j) * stride);
+  // The sums stay below 2^15 (kAggregatedMax, padding 45 kRawPad), so they
+  // are compared as int16: x86-64's baseline SSE2 has a one-instruction
+  // signed 16-bit minimum but none for unsigned (GCC emulates it in five).
+  const std::int16_t* h = reinterpret_cast<const std::int16_t*>(hs);  // written above: not restrict
   for (int i = 0; i < n; ++i) {
-    const std::int16_t* __restrict h0 =
-        reinterpret_cast<const std::int16_t*>(hs) + static_cast<std::ptrdiff_t>(i) * stride;
+    const int j = i + kRing - 1;  // the column entering the ring
+    box_column<kLanes>(colsum + static_cast<std::ptrdiff_t>(j) * stride, stride,
+                       hs + static_cast<std::ptrdiff_t>(j % kRing) * stride);
     std::int16_t* __restrict out =
         reinterpret_cast<std::int16_t*>(agg) + static_cast<std::ptrdiff_t>(i) * stride;
     for (int k = 0; k < stride; ++k) {
-      const std::int16_t a = min16(h0[k], h0[stride + k]);
-      const std::int16_t b = min16(h0[2 * stride + k], h0[3 * stride + k]);
-      out[k] = min16(min16(a, b), h0[4 * stride + k]);
+      const std::int16_t a = min16(h[k], h[stride + k]);
+      const std::int16_t b = min16(h[2 * stride + k], h[3 * stride + k]);
+      out[k] = min16(min16(a, b), h[4 * stride + k]);
     }
   }
 }

@@ -70,8 +70,8 @@ template <int kLanes>
 void raw_cost_row(const RawRowInputs& in, int k_count, std::uint8_t* raw, std::uint16_t* colsum,
                   int stride);
 
-// hs[j][k] = sum of colsum[j..j+4][k]; agg[i][k] = min of hs[i..i+4][k].
-// colsum has n + 2*kMarginX columns; agg gets n; hs is scratch of n + 4.
+// agg[i][k] = min over j in [i, i + 4] of the sum of colsum[j..j+4][k].
+// colsum has n + 2*kMarginX columns; agg gets n; hs is scratch of 5 columns.
 template <int kLanes>
 void box_and_shift_row(const std::uint16_t* colsum, int n, int stride, std::uint16_t* hs,
                        std::uint16_t* agg);

@@ -7,6 +7,7 @@
 #include <span>
 
 #include "algo/disparity_median.hpp"
+#include "algo/dp_select_row.hpp"
 #include "algo/edge_pairs.hpp"
 #include "algo/match_cost.hpp"
 #include "algo/scanline_dp.hpp"
@@ -22,9 +23,8 @@ using match::kRawNeutral;
 using match::kWindowRows;
 
 constexpr std::size_t kAlignSlack = 64;  // per arena allocation
-constexpr int kLaneMultiple = 16;
-constexpr int kRightChains = 16;  // see right_winners
-constexpr int kLaneBits = 12;     // lanes < match::kMaxLanes = 2^12
+constexpr int kRightChains = 16;         // see right_winners
+constexpr int kLaneBits = 12;            // lanes < match::kMaxLanes = 2^12
 // "No winner" in rk: all lane bits set, so it loses every tie of a merge.
 constexpr std::int16_t kNoLane = (1 << kLaneBits) - 1;
 static_assert(match::kMaxLanes <= kNoLane + 1, "lane keys");
@@ -42,7 +42,7 @@ struct Layout {
       : w(width),
         h(height),
         d(disparities),
-        dp((disparities + kLaneMultiple - 1) / kLaneMultiple * kLaneMultiple),
+        dp((disparities + lane_multiple() - 1) / lane_multiple() * lane_multiple()),
         band(width + disparities - 1),
         wc(width + 2 * kMarginX),
         nrp(wc + dp - 1) {}
@@ -53,9 +53,9 @@ struct Layout {
   std::size_t rows() const {
     const std::size_t cells = z(wc) * z(dp);
     std::size_t b = 0;
-    b += kWindowRows * cells;   // raw ring
-    b += 2 * cells;             // column sums
-    b += 2 * z(w + 4) * z(dp);  // box sums
+    b += kWindowRows * cells;  // raw ring
+    b += 2 * cells;            // column sums
+    b += 2 * 5 * z(dp);        // box sums (a ring of five columns)
     // Per row in flight (two): cost, path costs S, backward path costs,
     // bounds, jump penalties.
     b += 2 * (2 * z(w) * z(dp) + 2 * 2 * z(w) * z(match::path_row_stride(dp)) + 3 * 2 * z(w));
@@ -64,28 +64,40 @@ struct Layout {
     b += 3 * 2 * z(w);                                      // left winners
     b += sizeof(match::EdgePair) * z(w);                    // pairs
     b += 2 * median3x3_scratch(w) + 2 * z(w);               // median rows, shadow row, reasons
-    b += 32 * kAlignSlack;                                  // one per allocation below, with room
+    b += z(w + d) + 5 * 4 * z(w);                           // right shadow row, select_row
+    b += 40 * kAlignSlack;                                  // one per allocation below, with room
     return b + match::edge_row_scratch_bytes(w, band);
   }
   std::size_t total() const { return edge_maps() + std::max(canny(), rows()); }
 };
 
+// Lanes of the path costs S: D rounded up to 16 (see match_impl).
+constexpr int path_lanes(int disparities) {
+  return (disparities + 15) / 16 * 16;
+}
+
 template <class T>
 Status take(Arena& arena, std::size_t n, const char* what, std::span<T>& out) {
-  auto r = arena.allocate<T>(n, what);
+  // Each buffer starts on a 64-byte line (kAlignSlack per allocation in the
+  // budget): the lane kernels' rows are whole vectors, and a vector load
+  // split across two cache lines costs two accesses (every 512-bit load of
+  // an unaligned row does).
+  if constexpr (kAlignSlack % sizeof(T) != 0) {  // not a lane row (edge pairs)
+    auto r = arena.allocate<T>(n, what);
+    if (!r) return r.error();
+    out = *r;
+    return ok_status();
+  }
+  auto r = arena.allocate<T>(n + kAlignSlack / sizeof(T), what);
   if (!r) return r.error();
-  out = *r;
+  const std::size_t misalign = reinterpret_cast<std::uintptr_t>(r->data()) % kAlignSlack;
+  const std::size_t skip = misalign == 0 ? 0 : (kAlignSlack - misalign) / sizeof(T);
+  out = r->subspan(skip, n);
   return ok_status();
 }
 
 bool shadow_at(const ShadowMask* m, int x, int y) {
   return m != nullptr && m->is_shadow(x, y);
-}
-
-// std::clamp by value: the reference version made GCC keep the bounds in
-// memory in the per-pixel loop.
-constexpr int clamp_value(int v, int lo, int hi) {
-  return v < lo ? lo : (v > hi ? hi : v);
 }
 
 // out[i] = `yes` where column x0 + i of row y is shadow, else `no`: one
@@ -146,17 +158,6 @@ Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const M
                        "match_dp: tolerances must be >= 0 and the cost ceiling > 0");
   return ok_status();
 }
-
-// Why a pixel has no disparity (the first check it fails), or kMatched.
-enum Reason : std::uint8_t {
-  kMatched,
-  kShadowLeft,
-  kRange,
-  kLeftRight,
-  kUniqueness,
-  kCost,
-  kShadowRight,
-};
 
 // Best lane, its value and the best value more than one lane away, over
 // v[0..n). Written as three branch-free reductions the compiler vectorises.
@@ -320,19 +321,25 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void row_winners(const std::int16_t* __res
                                                        std::int16_t* __restrict k1,
                                                        std::int16_t* __restrict best,
                                                        std::int16_t* __restrict second) {
+  // Two passes: the second best needs the winner's lane (a reduction, then
+  // a load at an address it gives), so in one pass each pixel was a chain of
+  // three reductions; apart, the pixels of each pass overlap.
   for (int i = 0; i < w; ++i) {
     const std::int16_t* s = S + static_cast<std::size_t>(i) * row_stride;
     Winner win;
-    if constexpr (kUnsigned) {
+    if constexpr (kUnsigned)
       win = best_lane_inline<kLanes>(s, lanes_arg);
-      win.second = second_best_away_inline<kLanes>(s, lanes_arg, win.k);
-    } else {
+    else
       win = best_lane_signed<kLanes>(s, lanes_arg);
-      win.second = second_best_away_signed<kLanes>(s, lanes_arg, win.k);
-    }
     k1[i] = static_cast<std::int16_t>(win.k);
     best[i] = static_cast<std::int16_t>(win.best);
-    second[i] = static_cast<std::int16_t>(win.second);
+  }
+  for (int i = 0; i < w; ++i) {
+    const std::int16_t* s = S + static_cast<std::size_t>(i) * row_stride;
+    if constexpr (kUnsigned)
+      second[i] = static_cast<std::int16_t>(second_best_away_inline<kLanes>(s, lanes_arg, k1[i]));
+    else
+      second[i] = static_cast<std::int16_t>(second_best_away_signed<kLanes>(s, lanes_arg, k1[i]));
   }
 }
 
@@ -424,8 +431,12 @@ Rect right_search_area(Rect roi, int disp_min, int disp_max, int image_width) {
 namespace {
 
 // The whole matcher for one lane count (kLanes = Dp, or 0 for any), so every
-// row kernel runs with a compile-time lane count.
-template <int kLanes>
+// row kernel runs with a compile-time lane count. kPathLanes: the lanes of
+// the path costs S (D rounded up to 16, or 0 for any), which may be fewer
+// than Dp: the scanline DP is compiled for 256-bit vectors at most
+// (PETRA_VECTOR_CLONES_256), and the lanes of a row rounded up to 32 would
+// only be padding to it and to the kernels reading S.
+template <int kLanes, int kPathLanes>
 PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi,
                                                     const MatchDpParams& p, Arena& arena,
                                                     DisparityMap& out,
@@ -484,9 +495,11 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   const std::size_t cells = static_cast<std::size_t>(wc) * Dp;
   PETRA_TRY(take(arena, kWindowRows * cells, "raw cost ring", ring));
   PETRA_TRY(take(arena, cells, "column sums", colsum));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w + 4) * Dp, "box sums", hs));
+  PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(Dp), "box sums", hs));
 
-  const int sp = match::path_row_stride(Dp);
+  const int Ds = path_lanes(D);
+  PETRA_ASSERT(kPathLanes == 0 || kPathLanes == Ds);
+  const int sp = match::path_row_stride(Ds);
   // Rows go through in pairs: steps 1-3 for two rows, then both DPs at once
   // (scanline_dp_pair: the DP is latency-bound, two rows fill each other's
   // waits), then steps 4-5 for both. Each row in flight has its own cost,
@@ -529,6 +542,16 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   PETRA_TRY(take(arena, median3x3_scratch(w), "median rows", med));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "shadow row", skip));
   PETRA_TRY(take(arena, static_cast<std::size_t>(w), "rejection reasons", reasons));
+  std::span<std::uint8_t> rshade;
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w + D - 1), "right shadow row", rshade));
+  std::span<std::int32_t> gathered;
+  PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(w), "winner neighbourhoods", gathered));
+  match::SelectRowScratch select_scratch;
+  select_scratch.below = gathered.data();
+  select_scratch.above = gathered.data() + w;
+  select_scratch.right = gathered.data() + 2 * w;
+  select_scratch.cost = gathered.data() + 3 * w;
+  select_scratch.shade = gathered.data() + 4 * w;
 
   // Raw cost of image row y into `raw` ([i][k], column i = left x0 - 4 + i).
   const int xl_first = roi.x - kMarginX;
@@ -618,13 +641,24 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
         const int base = e.x_right - roi.x + dmin;
         const int k_first = std::max(0, -base), k_last = std::min(D - 1, w - 1 - base);
         if (k_first > k_last) continue;
-        int kr = k_first;
-        int best = rb.agg[static_cast<std::size_t>(base + k_first) * Dp + k_first];
-        for (int k = k_first + 1; k <= k_last; ++k) {
-          const int v = rb.agg[static_cast<std::size_t>(base + k) * Dp + k];
-          kr = v < best ? k : kr;
-          best = v < best ? v : best;
+        // First lane of the smallest cost: the minimum of cost * 2^12 + lane
+        // (lanes < 2^12), over four interleaved chains (one chain of
+        // compare-and-selects waited on itself at every lane).
+        const std::uint16_t* diag = rb.agg.data() + static_cast<std::size_t>(base) * Dp;
+        const int dstep = Dp + 1;  // next column, next lane
+        auto key = [&](int k) {
+          return (static_cast<int>(diag[static_cast<std::ptrdiff_t>(k) * dstep]) << kLaneBits) | k;
+        };
+        int c0 = key(k_first), c1 = c0, c2 = c0, c3 = c0;
+        int k = k_first + 1;
+        for (; k + 3 <= k_last; k += 4) {
+          c0 = std::min(c0, key(k));
+          c1 = std::min(c1, key(k + 1));
+          c2 = std::min(c2, key(k + 2));
+          c3 = std::min(c3, key(k + 3));
         }
+        for (; k <= k_last; ++k) c0 = std::min(c0, key(k));
+        const int kr = std::min(std::min(c0, c1), std::min(c2, c3)) & kNoLane;
         if (std::abs(kr - kp) > tol) continue;
         pairs[static_cast<std::size_t>(n_anchor++)] = e;
       }
@@ -672,90 +706,66 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     const int y = roi.y + t;
     // Right view winners along the same path costs (reversed index m).
     shadow_row(in.left_shadow, y, roi.x, w, 1, 0, skip.data());
-    right_winners<kLanes>(rb.S.data() + match::kGuardLanes, w, sp, Dp, skip.data(), rmin.data(),
-                          rk.data(), right_keys.data());
+    right_winners<kPathLanes>(rb.S.data() + match::kGuardLanes, w, sp, Ds, skip.data(), rmin.data(),
+                              rk.data(), right_keys.data());
 
     // Steps 4-5: select, reject, refine.
     if (unsigned_min)
-      row_winners<kLanes, true>(rb.S.data() + match::kGuardLanes, w, sp, Dp, wk.data(),
-                                wbest.data(), wsecond.data());
+      row_winners<kPathLanes, true>(rb.S.data() + match::kGuardLanes, w, sp, Ds, wk.data(),
+                                    wbest.data(), wsecond.data());
     else
-      row_winners<kLanes, false>(rb.S.data() + match::kGuardLanes, w, sp, Dp, wk.data(),
-                                 wbest.data(), wsecond.data());
-    std::int16_t* o = out.q4.row(t);
-    std::uint8_t* conf = confidence.empty() ? nullptr : confidence.row(t);
-    // Every check is evaluated for every pixel and combined without
-    // branches: which check rejects a pixel is data, and a branch on it
-    // mispredicts. The counters keep the order of the checks (a pixel counts
-    // for the first one it fails).
-    std::uint8_t* __restrict why = reasons.data();
-    for (int i = 0; i < w; ++i) {
-      const int x = roi.x + i;
-      const std::int16_t* s = rb.S.data() + static_cast<std::size_t>(i) * sp + match::kGuardLanes;
-      // Lanes outside [lo, hi] carry kForbiddenCost and never win.
-      const Winner win{wk[i], wbest[i], wsecond[i]};
-      const int k1 = win.k;
-      const int d = dmin + k1;
-      const bool left = skip[i] == 0;
-      const bool in_range = x - d >= 0 && x - d < W;
-      const bool lr =
-          std::abs(rk[static_cast<std::size_t>(w - 1 - i + k1)] - k1) <= p.lr_tolerance_px;
-      const bool unique = unique_enough(win, p.uniqueness_pct);
-      const bool cheap = rb.agg[static_cast<std::size_t>(i) * Dp + k1] <= cost_ceiling;
-      const bool lit = !in_range || !shadow_at(in.right_shadow, x - d, y);
-      // The first check failed, counted per row below (counters updated
-      // here would live in memory and chain every pixel to the previous).
-      why[i] = static_cast<std::uint8_t>(!left       ? kShadowLeft
-                                         : !in_range ? kRange
-                                         : !lr       ? kLeftRight
-                                         : !unique   ? kUniqueness
-                                         : !cheap    ? kCost
-                                         : !lit      ? kShadowRight
-                                                     : kMatched);
-      const bool valid = why[i] == kMatched;
-      // Sub-pixel: parabola through S at k1 - 1, k1, k1 + 1 when both
-      // neighbours are allowed lanes (the guard lanes make the reads safe).
-      const int sa = s[k1 - 1], sb = s[k1], sc = s[k1 + 1];
-      const int den = sa + sc - 2 * sb;
-      const bool fit = k1 > rb.lo[i] && k1 < rb.hi[i] && den > 0;
-      const int den_s = fit ? den : 1;
-      const int num = 8 * (sa - sc);  // offset (a - c) / (2 den) px, in 1/16 px
-      const int off = (num >= 0 ? num + den_s / 2 : num - den_s / 2) / den_s;
-      const int q = d * kDisparityScale + (fit ? clamp_value(off, -8, 8) : 0);
-      o[i] = valid ? static_cast<std::int16_t>(q) : kInvalidDisparity;
-      if (conf) {
-        const int margin = 255 * (win.second - win.best) / std::max(win.second, 1);
-        conf[i] = valid ? static_cast<std::uint8_t>(clamp_value(margin, 1, 255)) : std::uint8_t{0};
-      }
-    }
-    // Compares summed in vector lanes (a histogram would chain increments
-    // of the same counter through memory).
-    int n_range = 0, n_lr = 0, n_unique = 0, n_cost = 0, n_shadow = 0;
-    for (int i = 0; i < w; ++i) {
-      n_range += why[i] == kRange;
-      n_lr += why[i] == kLeftRight;
-      n_unique += why[i] == kUniqueness;
-      n_cost += why[i] == kCost;
-      n_shadow += why[i] == kShadowRight;
-    }
-    st.rejected_range += n_range;
-    st.rejected_lr += n_lr;
-    st.rejected_uniqueness += n_unique;
-    st.rejected_cost += n_cost;
-    st.rejected_shadow_right += n_shadow;
+      row_winners<kPathLanes, false>(rb.S.data() + match::kGuardLanes, w, sp, Ds, wk.data(),
+                                     wbest.data(), wsecond.data());
+    match::SelectRowInputs si;
+    si.w = w;
+    si.k1 = wk.data();
+    si.best = wbest.data();
+    si.second = wsecond.data();
+    si.S = rb.S.data() + match::kGuardLanes;
+    si.s_stride = sp;
+    si.cost = rb.agg.data();
+    si.c_stride = Dp;
+    si.lo = rb.lo.data();
+    si.hi = rb.hi.data();
+    si.right_lane = rk.data();
+    si.left_shadow = skip.data();
+    shadow_row(in.right_shadow, y, roi.x - p.disp_max, w + D - 1, 1, 0, rshade.data());
+    si.right_shadow = rshade.data();
+    si.lanes = D;
+    si.x0 = roi.x;
+    si.disp_min = dmin;
+    si.image_width = W;
+    si.lr_tolerance_px = p.lr_tolerance_px;
+    si.uniqueness_pct = p.uniqueness_pct;
+    si.cost_ceiling = cost_ceiling;
+    const match::RejectCounts rc =
+        match::select_row(si, select_scratch, out.q4.row(t),
+                          confidence.empty() ? nullptr : confidence.row(t), reasons.data());
+    st.rejected_range += rc.range;
+    st.rejected_lr += rc.lr;
+    st.rejected_uniqueness += rc.uniqueness;
+    st.rejected_cost += rc.cost;
+    st.rejected_shadow_right += rc.shadow_right;
+  };
+  auto run_dp_pair = [&](const match::ScanlineInputs& a, RowBuffers& ra,
+                         const match::ScanlineInputs& b, RowBuffers& rb) {
+    match::scanline_dp_pair<kPathLanes>(a, ra.S.data(), ra.back.data(), b, rb.S.data(),
+                                        rb.back.data());
+  };
+  auto run_dp_one = [&](const match::ScanlineInputs& a, RowBuffers& ra) {
+    match::scanline_dp<kPathLanes>(a, ra.S.data(), ra.back.data());
   };
   for (int t = 0; t < h; t += 2) {
     RowBuffers& ra = rows[0];
     RowBuffers& rb = rows[1];
     PETRA_TRY(prepare(t, ra));
-    const match::ScanlineInputs sa{ra.agg.data(), w, Dp, ra.p2.data(), p.p1};
+    const match::ScanlineInputs sa{ra.agg.data(), w, Dp, ra.p2.data(), p.p1, Ds};
     if (t + 1 < h) {
       PETRA_TRY(prepare(t + 1, rb));
-      const match::ScanlineInputs sb{rb.agg.data(), w, Dp, rb.p2.data(), p.p1};
-      match::scanline_dp_pair<kLanes>(sa, ra.S.data(), ra.back.data(), sb, rb.S.data(),
-                                      rb.back.data());
+      const match::ScanlineInputs sb{rb.agg.data(), w, Dp, rb.p2.data(), p.p1, Ds};
+      run_dp_pair(sa, ra, sb, rb);
     } else {
-      match::scanline_dp<kLanes>(sa, ra.S.data(), ra.back.data());
+      run_dp_one(sa, ra);
     }
     finish(t, ra);
     if (t + 1 < h) finish(t + 1, rb);
@@ -777,14 +787,18 @@ Result<MatchDpStats> match_dp(const StereoInput& in, Rect roi, const MatchDpPara
                               const MatchBudget& budget, Arena& arena, DisparityMap& out,
                               ImageView<std::uint8_t> confidence) {
   PETRA_TRY(validate(in, roi, p, budget, out, confidence));
-  switch (Layout(roi.w, roi.h, p.disp_max - p.disp_min + 1).dp) {
-#define PETRA_CASE(n) \
-  case n:             \
-    return match_impl<n>(in, roi, p, arena, out, confidence);
+  const int d = p.disp_max - p.disp_min + 1;
+  const bool narrow = path_lanes(d) < Layout(roi.w, roi.h, d).dp;  // S rows 16 lanes short
+  switch (Layout(roi.w, roi.h, d).dp) {
+#define PETRA_CASE(n)                                                               \
+  case n:                                                                           \
+    if constexpr (n >= 32)                                                          \
+      if (narrow) return match_impl<n, n - 16>(in, roi, p, arena, out, confidence); \
+    return match_impl<n, n>(in, roi, p, arena, out, confidence);
     PETRA_MATCH_LANE_COUNTS(PETRA_CASE)
 #undef PETRA_CASE
     default:
-      return match_impl<0>(in, roi, p, arena, out, confidence);
+      return match_impl<0, 0>(in, roi, p, arena, out, confidence);
   }
 }
 

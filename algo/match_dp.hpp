@@ -29,22 +29,25 @@
 //
 // Memory: all from the caller's Arena, released on return, no heap.
 // match_dp_scratch_bytes(budget) bounds it for any ROI and range within the
-// budget. With w x h the ROI, D the disparity count, Dp = D rounded up to 16,
+// budget. With w x h the ROI, D the disparity count, Dp = D rounded up to 16
+// (to 32 where the AVX-512 copy runs: lane_multiple(), algo/vector_clones.hpp),
 // B = w + D - 1 the right search width and wc = w + 8, the arena holds
 //   edge maps (whole call)       w h + B h
 //   then Canny (transient)       about 11 B h           (one view at a time)
 //   or the row buffers:
 //     raw cost window (9 rows)   9 wc Dp
-//     column sums, box sums      2 wc Dp + 2 (w + 4) Dp
+//     column sums, box sums      2 wc Dp + 10 Dp            (box sums: a ring of 5)
 //     two rows in flight: cost, path costs S and backward, bounds, penalties
-//                                2 (2 w Dp + 4 w (Dp + 16) + 6 w)
+//                                2 (2 w Dp + 4 w (Dp + 16) + 6 w)   (S: D rounded
+//                                up to 16 lanes, at most Dp)
 //     right-view winners         64 (w + Dp) + 4 (w + Dp)   (16 chains, keys)
 //     edge DP table (per row)    (w + 1)(B + 1) + 58 (w + B) + 12 B
-//     row vectors                about 14 (wc + Dp) + 30 w
+//     row vectors                about 14 (wc + Dp) + 50 w  (checks: 20 w)
+//     each buffer starts on a 64-byte line (64 bytes of slack each)
 // Flight budget (320 x 320 px, 128 disparities): 1 841 243 bytes (1.76 MiB),
 // the peak being Canny of the right search area (the row buffers: 1.32 MB);
 // 160 x 160 px with 42 disparities: 422 221 bytes. docs/matching.md has the
-// table. Lane kernels also have an x86-64-v3 copy chosen at load
+// table. Lane kernels also have x86-64-v3 and -v4 copies chosen at load
 // (algo/vector_clones.hpp); outputs are the same bit for bit.
 #pragma once
 

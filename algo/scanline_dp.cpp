@@ -83,14 +83,17 @@ namespace {
 template <int kLanes, int kRows>
 [[gnu::always_inline]] inline void run_scanlines(const ScanlineInputs* in, std::int16_t* const* S,
                                                  std::int16_t* const* backward) {
-  const int stride = kLanes > 0 ? kLanes : in[0].stride;
-  const int sp = path_row_stride(stride);
+  const int row_lanes = in[0].stride;  // cost rows
+  const int lanes_arg = in[0].lanes > 0 ? in[0].lanes : row_lanes;
+  const int stride = kLanes > 0 ? kLanes : lanes_arg;  // lanes the DP runs over
+  const int sp = path_row_stride(stride);              // path rows
   const int n = in[0].n;
   for (int r = 0; r < kRows; ++r) {
     PETRA_ASSERT(in[r].n == n && in[r].n > 0 && in[r].stride == in[0].stride && in[r].p1 >= 0);
-    PETRA_ASSERT(kLanes == 0 || in[r].stride == kLanes);
+    PETRA_ASSERT(in[r].lanes == in[0].lanes && lanes_arg <= row_lanes);
+    PETRA_ASSERT(kLanes == 0 || lanes_arg == kLanes);
   }
-  auto cost = [&](int r, int x) { return in[r].cost + static_cast<std::ptrdiff_t>(x) * stride; };
+  auto cost = [&](int r, int x) { return in[r].cost + static_cast<std::ptrdiff_t>(x) * row_lanes; };
   auto srow = [&](int r, int x) {
     return S[r] + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes;
   };
@@ -98,22 +101,45 @@ template <int kLanes, int kRows>
     return backward[r] + static_cast<std::ptrdiff_t>(x) * sp + kGuardLanes;
   };
   std::int16_t mf[kRows], mb[kRows];
+  // Guards of each column are set as the DP reaches it (below): set here in
+  // a pass of their own, they were the first touch of every line of S and
+  // of the backward rows, stores waiting on the cache in a row.
   for (int r = 0; r < kRows; ++r) {
-    for (int x = 0; x < n; ++x) {
-      srow(r, x)[-1] = srow(r, x)[stride] = kGuard;
-      brow(r, x)[-1] = brow(r, x)[stride] = kGuard;
-    }
+    srow(r, 0)[-1] = srow(r, 0)[stride] = kGuard;
+    brow(r, n - 1)[-1] = brow(r, n - 1)[stride] = kGuard;
     mf[r] = first<kLanes>(cost(r, 0), srow(r, 0), stride);
     mb[r] = first<kLanes>(cost(r, n - 1), brow(r, n - 1), stride);
   }
+  // The chains' pointers and penalties in locals and the loop over rows
+  // unrolled: through the input structures and a rolled loop, each step
+  // spent as many scalar instructions on addresses as vector ones on lanes.
+  const std::uint16_t* cst[kRows];
+  const std::uint16_t* pen2[kRows];
+  std::int16_t* fw[kRows];
+  std::int16_t* bw[kRows];
+  int pen1[kRows];
+  for (int r = 0; r < kRows; ++r) {
+    cst[r] = in[r].cost;
+    pen2[r] = in[r].p2;
+    fw[r] = srow(r, 0);
+    bw[r] = brow(r, 0);
+    pen1[r] = in[r].p1;
+    for (int x = 1; x < n; ++x) PETRA_ASSERT(pen2[r][x] <= kMaxP2);
+  }
   for (int t = 1; t < n; ++t) {
     const int xb = n - 1 - t;
+    const std::ptrdiff_t sf = static_cast<std::ptrdiff_t>(t) * sp;
+    const std::ptrdiff_t sb = static_cast<std::ptrdiff_t>(xb) * sp;
+    const std::ptrdiff_t cf = static_cast<std::ptrdiff_t>(t) * row_lanes;
+    const std::ptrdiff_t cb = static_cast<std::ptrdiff_t>(xb) * row_lanes;
+#pragma GCC unroll 4
     for (int r = 0; r < kRows; ++r) {
-      PETRA_ASSERT(in[r].p2[t] <= kMaxP2);
-      mf[r] = step<kLanes>(srow(r, t - 1), cost(r, t), srow(r, t), stride, in[r].p1, in[r].p2[t],
+      fw[r][sf - 1] = fw[r][sf + stride] = kGuard;
+      bw[r][sb - 1] = bw[r][sb + stride] = kGuard;
+      mf[r] = step<kLanes>(fw[r] + sf - sp, cst[r] + cf, fw[r] + sf, stride, pen1[r], pen2[r][t],
                            mf[r]);
-      mb[r] = step<kLanes>(brow(r, xb + 1), cost(r, xb), brow(r, xb), stride, in[r].p1,
-                           in[r].p2[xb + 1], mb[r]);
+      mb[r] = step<kLanes>(bw[r] + sb + sp, cst[r] + cb, bw[r] + sb, stride, pen1[r],
+                           pen2[r][xb + 1], mb[r]);
     }
   }
   // S = L_fwd + L_bwd.
@@ -128,15 +154,15 @@ template <int kLanes, int kRows>
 }  // namespace
 
 template <int kLanes>
-PETRA_VECTOR_CLONES void scanline_dp(const ScanlineInputs& in, std::int16_t* S,
-                                     std::int16_t* backward) {
+PETRA_VECTOR_CLONES_256 void scanline_dp(const ScanlineInputs& in, std::int16_t* S,
+                                         std::int16_t* backward) {
   run_scanlines<kLanes, 1>(&in, &S, &backward);
 }
 
 template <int kLanes>
-PETRA_VECTOR_CLONES void scanline_dp_pair(const ScanlineInputs& a, std::int16_t* Sa,
-                                          std::int16_t* backward_a, const ScanlineInputs& b,
-                                          std::int16_t* Sb, std::int16_t* backward_b) {
+PETRA_VECTOR_CLONES_256 void scanline_dp_pair(const ScanlineInputs& a, std::int16_t* Sa,
+                                              std::int16_t* backward_a, const ScanlineInputs& b,
+                                              std::int16_t* Sb, std::int16_t* backward_b) {
   const ScanlineInputs in[2] = {a, b};
   std::int16_t* const S[2] = {Sa, Sb};
   std::int16_t* const back[2] = {backward_a, backward_b};

@@ -38,13 +38,18 @@ struct ScanlineInputs {
   int stride;                 // disparity lanes per column (multiple of 8)
   const std::uint16_t* p2;    // per column x >= 1: penalty for a jump between x-1 and x
   int p1;
+  // Lanes the DP runs over and of the path rows, 0 < lanes <= stride (0:
+  // stride). The cost lanes from `lanes` to `stride` are padding that never
+  // wins (a cost row rounded up to a 512-bit multiple): the DP skips them.
+  int lanes = 0;
 };
 
-// S = forward + backward path costs: n rows of path_row_stride(stride)
+// S = forward + backward path costs: n rows of path_row_stride(lanes)
 // int16, lanes of column x at S + x * path_row_stride + kGuardLanes (the
 // forward pass writes there directly; the guards are set here). `backward`
-// is scratch of the same size (n rows of path_row_stride(stride) int16): the
+// is scratch of the same size (n rows of path_row_stride(lanes) int16): the
 // backward pass keeps every row so the two passes run interleaved.
+// kLanes: the lanes the DP runs over (ScanlineInputs::lanes), or 0 for any.
 template <int kLanes>
 void scanline_dp(const ScanlineInputs& in, std::int16_t* S, std::int16_t* backward);
 

@@ -1,8 +1,9 @@
 // PETRA_VECTOR_CLONES marks a lane kernel (a loop over disparity lanes the
-// compiler vectorises) to be compiled twice on x86-64: for the baseline
-// (SSE2) and for x86-64-v3 (AVX2, 256-bit vectors), the copy being chosen
-// once at program load from the CPU's features (GCC function multiversioning:
-// no heap, no intrinsics, same integer arithmetic, so bit-identical outputs).
+// compiler vectorises) to be compiled three times on x86-64: for the baseline
+// (SSE2), for x86-64-v3 (AVX2, 256-bit vectors) and for x86-64-v4 (AVX-512,
+// 512-bit vectors), the copy being chosen once at program load from the CPU's
+// features (GCC function multiversioning: no heap, no intrinsics, same
+// integer arithmetic, so bit-identical outputs).
 // Elsewhere (aarch64 flight build: NEON) it is empty and the kernel is
 // compiled once for the target. Define PETRA_NO_VECTOR_CLONES to measure the
 // baseline copy alone.
@@ -10,10 +11,14 @@
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
     !defined(PETRA_NO_VECTOR_CLONES)
-#define PETRA_VECTOR_CLONES [[gnu::target_clones("arch=x86-64-v3", "default")]]
+#define PETRA_VECTOR_CLONES [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
+// Kernels latency-bound on 16-bit lane shifts through memory (the scanline
+// DP): 512-bit vectors measured slower there than 256-bit ones.
+#define PETRA_VECTOR_CLONES_256 [[gnu::target_clones("arch=x86-64-v3", "default")]]
 #define PETRA_HAVE_VECTOR_CLONES 1
 #else
 #define PETRA_VECTOR_CLONES
+#define PETRA_VECTOR_CLONES_256
 #define PETRA_HAVE_VECTOR_CLONES 0
 #endif
 
@@ -23,6 +28,20 @@ namespace petra {
 // copy that runs (x86-64-v3: pminuw and phminposuw; aarch64: umin, uminv);
 // false for x86-64's baseline SSE2, which only has the signed one. Kernels
 // whose values are never negative pick the faster form with it.
+// Disparity lanes per pixel are rounded up to a multiple of this: 32 where
+// the AVX-512 copy runs (a 512-bit vector holds 32 16-bit lanes, so 42
+// disparities take two vectors as 64 lanes instead of one and a half as 48),
+// 16 elsewhere. The extra lanes are padding that never wins: outputs are the
+// same whatever the multiple.
+inline int lane_multiple() {
+#if PETRA_HAVE_VECTOR_CLONES
+  static const int m = __builtin_cpu_supports("x86-64-v4") ? 32 : 16;  // as the clones choose
+  return m;
+#else
+  return 16;
+#endif
+}
+
 inline bool unsigned_min_is_native() {
 #if PETRA_HAVE_VECTOR_CLONES
   static const bool wide = __builtin_cpu_supports("x86-64-v3");  // as the clones choose

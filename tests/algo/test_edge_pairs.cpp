@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <random>
 #include <vector>
 
 #include "algo/canny.hpp"
@@ -15,6 +18,51 @@ TEST(EdgePairs, IdenticalWindowsCorrelatePerfectlyAndFlatOnesNotAtAll) {
   EXPECT_EQ(zncc_q10(s.lv(), 30, s.rv(), 30, 10), kZnccOne);
   std::vector<std::uint8_t> flat(60 * 20, 99);
   EXPECT_EQ(zncc_q10(ConstGray8View(flat.data(), 60, 20), 30, s.rv(), 30, 10), 0);
+}
+
+// zncc_q10 against the formula with 64-bit integer division (its quotient is
+// taken in double, which must truncate to the same integer), on random and
+// near-flat textures, including the borders where the window is clamped.
+TEST(EdgePairs, ZnccEqualsTheIntegerFormula) {
+  const int w = 64, h = 12, n = 25;
+  std::mt19937 rng(3);
+  long nonzero = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const int spread = trial % 4 == 0 ? 3 : 256;  // some windows near the variance floor
+    std::vector<std::uint8_t> a(static_cast<std::size_t>(w) * h), b(a.size());
+    for (auto& v : a) v = static_cast<std::uint8_t>(rng() % spread);
+    for (auto& v : b) v = static_cast<std::uint8_t>(rng() % spread);
+    const ConstGray8View va(a.data(), w, h), vb(b.data(), w, h);
+    auto px = [&](const ConstGray8View& v, int x, int y) {
+      return static_cast<long>(v(std::clamp(x, 0, w - 1), std::clamp(y, 0, h - 1)));
+    };
+    for (int y = 0; y < h; ++y)
+      for (int xl = 0; xl < w; xl += 3) {
+        const int xr = static_cast<int>(rng() % w);
+        long sa = 0, sb = 0, qa = 0, qb = 0, cross = 0;
+        for (int dy = -2; dy <= 2; ++dy)
+          for (int dx = -2; dx <= 2; ++dx) {
+            const long p = px(va, xl + dx, y + dy), q = px(vb, xr + dx, y + dy);
+            sa += p;
+            sb += q;
+            qa += p * p;
+            qb += q * q;
+            cross += p * q;
+          }
+        const long var_a = n * qa - sa * sa, var_b = n * qb - sb * sb;
+        const long floor = static_cast<long>(n) * n * 9 / 4;
+        long expect = 0;
+        if (var_a >= floor && var_b >= floor) {
+          const double v =
+              std::sqrt(static_cast<double>(var_a)) * std::sqrt(static_cast<double>(var_b));
+          const long den = std::lround(v);
+          if (den > 0) expect = (n * cross - sa * sb) * kZnccOne / den;
+        }
+        ASSERT_EQ(zncc_q10(va, xl, vb, xr, y), expect) << trial << " " << xl << " " << y;
+        nonzero += expect != 0;
+      }
+  }
+  EXPECT_GT(nonzero, 1000);
 }
 
 TEST(EdgePairs, PairsFollowTheShiftInOrderWithinTheRange) {

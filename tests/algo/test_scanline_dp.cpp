@@ -74,5 +74,34 @@ TEST(ScanlineDp, ForbiddenLanesNeverWin) {
   }
 }
 
+// A cost row padded to 32 lanes whose DP runs over the first 16 (lanes =
+// 16) gives exactly the path costs of a 16-lane row (path rows of 16 lanes);
+// the pair kernel gives each row the single one's result.
+TEST(ScanlineDp, SkippedPaddingLanesLeaveTheRealLanesUnchanged) {
+  const int n = 50, wide = 32;
+  std::mt19937 rng(9);
+  std::vector<std::uint16_t> narrow_cost(static_cast<std::size_t>(n) * kLanes), p2(n);
+  for (auto& c : narrow_cost) c = static_cast<std::uint16_t>(rng() % 1080);
+  for (auto& v : p2) v = static_cast<std::uint16_t>(200 + rng() % 700);
+  std::vector<std::uint16_t> wide_cost(static_cast<std::size_t>(n) * wide, 9999);
+  for (int x = 0; x < n; ++x)
+    for (int k = 0; k < kLanes; ++k)
+      wide_cost[static_cast<std::size_t>(x) * wide + k] =
+          narrow_cost[static_cast<std::size_t>(x) * kLanes + k];
+  const std::size_t len = static_cast<std::size_t>(n) * kSp;
+  std::vector<std::int16_t> s1(len), b1(len), s2(len), b2(len), s3(len), b3(len), s4(len), b4(len);
+  scanline_dp<kLanes>({narrow_cost.data(), n, kLanes, p2.data(), 90}, s1.data(), b1.data());
+  const ScanlineInputs in{wide_cost.data(), n, wide, p2.data(), 90, kLanes};
+  scanline_dp<kLanes>(in, s2.data(), b2.data());
+  scanline_dp_pair<0>(in, s3.data(), b3.data(), in, s4.data(), b4.data());
+  for (int x = 0; x < n; ++x)
+    for (int k = 0; k < kLanes; ++k) {
+      const std::size_t at = static_cast<std::size_t>(x) * kSp + kGuardLanes + k;
+      ASSERT_EQ(s1[at], s2[at]) << x << " " << k;
+      ASSERT_EQ(s1[at], s3[at]) << x << " " << k;
+      ASSERT_EQ(s1[at], s4[at]) << x << " " << k;
+    }
+}
+
 }  // namespace
 }  // namespace petra::match
