@@ -24,8 +24,11 @@ class Arena {
   template <class T>
   Result<std::span<T>> allocate(std::size_t count, const char* what = "buffer") {
     static_assert(std::is_trivially_destructible_v<T>, "arena holds trivially destructible types");
+    // Aligned as an address, not as an offset: a caller's block need only be
+    // byte-aligned, and over-aligned types (vector rows) get what they ask.
     const std::size_t align = alignof(T);
-    const std::size_t start = (used_ + align - 1) / align * align;
+    const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(base_) + used_;
+    const std::size_t start = used_ + ((align - at % align) % align);
     if (count > (SIZE_MAX - start) / sizeof(T) || start + count * sizeof(T) > capacity_) {
       return Error::make(Errc::capacity_exceeded, "arena: %s needs %zu bytes, %zu of %zu free",
                          what, count * sizeof(T), capacity_ - used_, capacity_);

@@ -24,6 +24,24 @@ TEST(Arena, AllocatesAlignedAndTracksHighWater) {
   EXPECT_EQ(a.high_water(), 40u);
 }
 
+// A vector row type asks for more than max_align_t; the block the caller
+// gives may start anywhere (here 8 bytes into a 64-byte line).
+struct alignas(64) WideRow {
+  std::uint16_t lanes[32];
+};
+
+TEST(Arena, OverAlignedTypesAreAlignedAsAddressesInAnyBlock) {
+  alignas(64) std::byte storage[1024];
+  for (std::size_t skew : {0u, 1u, 8u, 16u, 40u}) {
+    Arena a(std::span<std::byte>(storage + skew, sizeof(storage) - skew));
+    ASSERT_TRUE(a.allocate<std::uint8_t>(3).ok());
+    auto row = a.allocate<WideRow>(2);
+    ASSERT_TRUE(row.ok()) << "skew " << skew;
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(row->data()) % 64u, 0u) << "skew " << skew;
+    EXPECT_LE(a.used(), sizeof(storage) - skew);
+  }
+}
+
 TEST(Arena, ZeroInitialisesEveryAllocation) {
   StaticArena<256> storage;
   Arena& a = storage.arena();
