@@ -38,7 +38,7 @@ Step slot_of(const char* name) {
       {"mean filter", Step::RECONSTRUCT}, {"triangulate", Step::RECONSTRUCT},
       {"delaunay", Step::RECONSTRUCT},    {"mesh filter", Step::RECONSTRUCT},
       {"segmentation", Step::SEGMENT},    {"normals", Step::PLANES},
-      {"grind planes", Step::PLANES},
+      {"grind planes", Step::PLANES},     {"plane refinement", Step::PLANES},
   };
   for (const Map& m : kMap)
     if (std::strcmp(m.name, name) == 0) return m.step;
