@@ -63,10 +63,16 @@ Result<PhotometricPlaneFit> refine_plane_photometric(ConstGray8View left, ConstG
 
 // The pixels of class `cls` in a class image over `roi` (rectified left
 // pixels; 0xFF = unknown, e.g. no disparity): every pixel whose box of
-// radius edge_px holds no other known class and at least half of it `cls`
-// (unknown pixels inside a face count: the photometric fit needs no
-// disparity there). Writes at most out.size(); returns the count.
+// radius edge_px holds no other known class and either at least half of it
+// `cls`, or (an unknown pixel) lies between two `cls` pixels of its row (a
+// facet projects to a convex polygon; the photometric fit needs no
+// disparity there). Scratch: face_pixels_scratch(W, H) ints.
+// Writes at most out.size(); returns the count (0 when scratch is short).
+inline std::size_t face_pixels_scratch(int width, int height) {
+  (void)width;
+  return 2 * static_cast<std::size_t>(height);
+}
 std::size_t face_pixels(ImageView<const std::uint8_t> classes, Rect roi, std::uint8_t cls,
-                        int edge_px, std::span<PixelPos> out);
+                        int edge_px, std::span<std::int32_t> scratch, std::span<PixelPos> out);
 
 }  // namespace petra
