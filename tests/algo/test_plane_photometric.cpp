@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -26,9 +27,9 @@ double texture(double u, double v) {
 
 // Deterministic noise of about one gray level.
 double noise(int x, int y, int seed) {
-  const std::uint32_t h = static_cast<std::uint32_t>(x * 73856093) ^
-                          static_cast<std::uint32_t>(y * 19349663) ^
-                          static_cast<std::uint32_t>(seed * 83492791);
+  const std::uint32_t h = static_cast<std::uint32_t>(x) * 73856093u ^
+                          static_cast<std::uint32_t>(y) * 19349663u ^
+                          static_cast<std::uint32_t>(seed) * 83492791u;
   return static_cast<double>((h * 2654435761u) >> 24) / 128.0 - 1.0;
 }
 
@@ -149,7 +150,9 @@ TEST(PlanePhotometric, FacePixelsLeaveOutTheBorderAndTakeHolesInside) {
   c[4 * w + 3] = 0xFF;
   const Rect roi{100, 50, w, h};
   std::vector<PixelPos> out(w * h);
-  const std::size_t n = face_pixels(ImageView<const std::uint8_t>(c.data(), w, h), roi, 2, 1, out);
+  std::vector<std::int32_t> scratch(face_pixels_scratch(w, h));
+  const std::size_t n =
+      face_pixels(ImageView<const std::uint8_t>(c.data(), w, h), roi, 2, 1, scratch, out);
   // Columns 1..6 (column 7 touches class 3), rows 1..6: 36, the hole included.
   EXPECT_EQ(n, 36u);
   bool hole = false;
@@ -159,6 +162,60 @@ TEST(PlanePhotometric, FacePixelsLeaveOutTheBorderAndTakeHolesInside) {
     hole |= out[i].u == 103 && out[i].v == 54;
   }
   EXPECT_TRUE(hole);
+}
+
+TEST(PlanePhotometric, FacePixelsTakeABandOfNoMatchAcrossTheFace) {
+  // 20 x 10 class image, all class 2 but a band of unknown pixels 4 columns
+  // wide (a matcher's false occlusion on a steep face) and class 3 on the
+  // right 3 columns. The band lies between face pixels on every row: it is
+  // on the face.
+  constexpr int w = 20, h = 10;
+  std::vector<std::uint8_t> c(w * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) c[y * w + x] = x >= 17 ? 3 : (x >= 6 && x < 10 ? 0xFF : 2);
+  const Rect roi{0, 0, w, h};
+  std::vector<PixelPos> out(w * h);
+  std::vector<std::int32_t> scratch(face_pixels_scratch(w, h));
+  const std::size_t n =
+      face_pixels(ImageView<const std::uint8_t>(c.data(), w, h), roi, 2, 1, scratch, out);
+  int band = 0;
+  for (std::size_t i = 0; i < n; ++i) band += out[i].u >= 6 && out[i].u < 10;
+  EXPECT_EQ(band, 4 * 8);  // every band pixel of rows 1..8
+  EXPECT_EQ(n, 15u * 8u);  // columns 1..15 (16 touches class 3), rows 1..8
+  // Too little scratch: nothing, not a write past its end.
+  std::vector<std::int32_t> short_scratch(3);
+  EXPECT_EQ(face_pixels(ImageView<const std::uint8_t>(c.data(), w, h), roi, 2, 1, short_scratch,
+                        out),
+            0u);
+}
+
+TEST(PlanePhotometric, ABlurrierRightViewDoesNotTiltThePlane) {
+  // A face seen more obliquely by the right camera: each right pixel
+  // integrates more of the surface, so the right image is the blurrier
+  // (here a [1 2 1]/4 row kernel over the right rendering). The plane must
+  // not lean to trade the slope against the lost detail.
+  Pair p;
+  std::vector<std::uint8_t> blurred(p.right);
+  for (int v = 0; v < kH; ++v)
+    for (int x = 1; x + 1 < kW; ++x)
+      blurred[v * kW + x] = static_cast<std::uint8_t>(
+          std::lround(0.25 * p.right[v * kW + x - 1] + 0.5 * p.right[v * kW + x] +
+                      0.25 * p.right[v * kW + x + 1]));
+  p.right = blurred;
+  DisparityPlane start = kTruth;
+  start.a += 0.035;
+  start.c += 0.3;
+  const std::vector<PixelPos> px = face();
+  test::HeapScope scope;
+  auto fit = refine_plane_photometric(p.l(), p.r(), Rect{0, 0, kW, kH}, px, start, {});
+  EXPECT_EQ(scope.allocations(), 0u);
+  ASSERT_TRUE(fit.ok());
+  EXPECT_TRUE(fit->accepted);
+  EXPECT_NEAR(fit->plane.a, kTruth.a, 0.004);
+  EXPECT_NEAR(fit->plane.b, kTruth.b, 0.004);
+  EXPECT_LT(worst(fit->plane), 0.15);
+  std::printf("blurred right: a %.4f (truth %.4f), b %.4f, worst %.3f px\n", fit->plane.a,
+              kTruth.a, fit->plane.b, worst(fit->plane));
 }
 
 }  // namespace
