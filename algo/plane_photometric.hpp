@@ -1,8 +1,12 @@
 // Photometric refinement of a face's disparity plane. A plane is affine in
 // rectified disparity, d(u, v) = a (u - u0) + b (v - v0) + c; Gauss-Newton
-// on (a, b, c) and a gain/offset of the right image minimises
-//   sum over the face's left pixels of (L(u, v) - g R(u - d(u, v), v) - o)^2
-// with bilinear sampling of R. Every pixel of the face votes for one plane:
+// on (a, b, c), a gain/offset of the right image and a relative blur of the
+// left image (wx, wy) minimises
+//   sum over the face's left pixels of (L + wx Lxx + wy Lyy - g R(u - d, v) - o)^2
+// (Lxx, Lyy: second differences of L at (u, v)) with linear sampling of R.
+// The blur term: a face seen more obliquely by one camera shows it less
+// detail (a pixel integrates a larger footprint); without it the plane
+// leans to trade slope against the lost detail. Every pixel of the face votes for one plane:
 // on a steep, weakly textured face a matcher's per-pixel disparity is a
 // staircase of whole-pixel steps (the scanline DP lays it out as
 // fronto-parallel runs with false occlusions between them) whose plane leans
