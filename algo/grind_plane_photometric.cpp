@@ -59,7 +59,9 @@ double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 std::size_t grind_photometric_scratch_bytes(int roi_width, int roi_height) {
   const std::size_t area =
       static_cast<std::size_t>(roi_width) * static_cast<std::size_t>(roi_height);
-  return area * (1 + sizeof(PixelPos)) + 2 * alignof(std::max_align_t);
+  return area * (1 + sizeof(PixelPos)) +
+         face_pixels_scratch(roi_width, roi_height) * sizeof(std::int32_t) +
+         3 * alignof(std::max_align_t);
 }
 
 Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray8View left,
@@ -75,6 +77,9 @@ Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray
   if (!cls) return cls.error();
   auto pix = arena.allocate<PixelPos>(area, "photometric face pixels");
   if (!pix) return pix.error();
+  auto spans =
+      arena.allocate<std::int32_t>(face_pixels_scratch(roi.w, roi.h), "photometric face spans");
+  if (!spans) return spans.error();
   for (std::uint8_t& c : *cls) c = kUnknown;
   for (std::size_t i = 0; i < out.pixels.size(); ++i) {
     const int x = out.pixels[i].u - roi.x, y = out.pixels[i].v - roi.y;
@@ -88,7 +93,7 @@ Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray
   for (int k = 0; k < out.planes.count; ++k) {
     GrindPlane& plane = out.planes.planes[k];
     std::size_t n = face_pixels(classes, roi, static_cast<std::uint8_t>(kVertexPlane0 + k),
-                                params.edge_px, *pix);
+                                params.edge_px, *spans, *pix);
     // An even sample of a large face: the plane is fixed long before, and
     // the time stays bounded whatever the ROI.
     const std::size_t cap = static_cast<std::size_t>(params.max_pixels);

@@ -9,7 +9,8 @@
 //          the reconstruction output (pixels, vertex classes, planes).
 // Output:  out.planes refined in place (accepted and rejected); how many of
 //          the accepted planes were refined.
-// Memory:  arena scratch of ROI area x (1 + sizeof(PixelPos)) bytes, released.
+// Memory:  arena scratch of ROI area x (1 + sizeof(PixelPos)) + 8 x ROI height
+//          bytes (grind_photometric_scratch_bytes), released.
 #pragma once
 
 #include <cstddef>

@@ -31,15 +31,42 @@ bool sample_row(ConstGray8View right, Rect valid, double x, int v, Sample& s) {
   return true;
 }
 
-using Vec5 = Eigen::Matrix<double, 5, 1>;
-using Mat5 = Eigen::Matrix<double, 5, 5>;
+// Unknowns: plane (a, b, c), gain, offset, left blur along the row and the column.
+using Vec7 = Eigen::Matrix<double, 7, 1>;
+using Mat7 = Eigen::Matrix<double, 7, 7>;
+
+// Second differences of the left image at a pixel, along the row and the
+// column (zero at the image border).
+double second_diff_row(ConstGray8View im, int u, int v) {
+  if (u < 1 || u + 1 >= im.width()) return 0;
+  return static_cast<double>(im(u - 1, v)) + static_cast<double>(im(u + 1, v)) -
+         2.0 * static_cast<double>(im(u, v));
+}
+double second_diff_col(ConstGray8View im, int u, int v) {
+  if (v < 1 || v + 1 >= im.height()) return 0;
+  return static_cast<double>(im(u, v - 1)) + static_cast<double>(im(u, v + 1)) -
+         2.0 * static_cast<double>(im(u, v));
+}
 
 // Plane and photometric gain/offset of one iterate.
 struct State {
   DisparityPlane plane;
   double gain = 1;
   double offset = 0;
+  // Blur of the left image relative to the right, along the row and the
+  // column: the left gray level is compared as L + wx Lxx + wy Lyy (a
+  // 3-tap kernel [w, 1 - 2w, w]; negative: the left is the blurrier).
+  double wx = 0, wy = 0;
 };
+
+// The left gray level at p under the state's relative blur; the second
+// differences are returned for the Jacobian.
+double left_value(ConstGray8View left, const PixelPos& p, const State& s, double& dxx,
+                  double& dyy) {
+  dxx = second_diff_row(left, p.u, p.v);
+  dyy = second_diff_col(left, p.u, p.v);
+  return static_cast<double>(left(p.u, p.v)) + s.wx * dxx + s.wy * dyy;
+}
 
 // Gray residuals L - g R - o at the state, truncated at tau (pixels that
 // leave the right image count as tau): a cost that compares planes fairly.
@@ -52,7 +79,8 @@ double truncated_cost(ConstGray8View left, ConstGray8View right, Rect valid,
       sum += tau * tau;
       continue;
     }
-    const double e = left(p.u, p.v) - s.gain * r.value - s.offset;
+    double dxx, dyy;
+    const double e = left_value(left, p, s, dxx, dyy) - s.gain * r.value - s.offset;
     sum += std::min(e * e, tau * tau);
   }
   return pixels.empty() ? 0.0 : sum / static_cast<double>(pixels.size());
@@ -61,8 +89,8 @@ double truncated_cost(ConstGray8View left, ConstGray8View right, Rect valid,
 // One Gauss-Newton pass: the normal equations of the residuals within
 // `limit`; returns the RMS of those residuals and how many there were.
 struct Pass {
-  Mat5 H = Mat5::Zero();
-  Vec5 g = Vec5::Zero();
+  Mat7 H = Mat7::Zero();
+  Vec7 g = Vec7::Zero();
   double rms = 0;
   long used = 0;
 };
@@ -74,12 +102,13 @@ Pass gauss_newton_pass(ConstGray8View left, ConstGray8View right, Rect valid,
   for (const PixelPos& p : pixels) {
     Sample r;
     if (!sample_row(right, valid, p.u - s.plane.at(p.u, p.v), p.v, r)) continue;
-    const double e = left(p.u, p.v) - s.gain * r.value - s.offset;
+    double dxx, dyy;
+    const double e = left_value(left, p, s, dxx, dyy) - s.gain * r.value - s.offset;
     if (std::abs(e) > limit) continue;
     // d grows -> the right sample moves left: de/dd = +g R_x.
     const double ed = s.gain * r.dx;
-    Vec5 J;
-    J << ed * (p.u - s.plane.u0), ed * (p.v - s.plane.v0), ed, -r.value, -1.0;
+    Vec7 J;
+    J << ed * (p.u - s.plane.u0), ed * (p.v - s.plane.v0), ed, -r.value, -1.0, dxx, dyy;
     pass.H.selfadjointView<Eigen::Lower>().rankUpdate(J);
     pass.g += J * e;
     sq += e * e;
@@ -151,8 +180,8 @@ Result<PhotometricPlaneFit> refine_plane_photometric(ConstGray8View left, ConstG
   {
     Pass p = gauss_newton_pass(left, right, right_valid, pixels, s, inf);
     if (p.used < params.min_pixels) return fit;
-    const Eigen::Matrix2d H2 = p.H.bottomRightCorner<2, 2>();
-    const Eigen::Vector2d g2 = p.g.tail<2>();
+    const Eigen::Matrix2d H2 = p.H.block<2, 2>(3, 3);
+    const Eigen::Vector2d g2 = p.g.segment<2>(3);
     const Eigen::Vector2d step = H2.ldlt().solve(-g2);
     if (!step.allFinite()) return fit;
     s.gain += step(0);
@@ -174,13 +203,15 @@ Result<PhotometricPlaneFit> refine_plane_photometric(ConstGray8View left, ConstG
     const Pass p = gauss_newton_pass(left, right, right_valid, pixels, s, limit);
     fit.iterations = it + 1;
     if (p.used < params.min_pixels) return fit;
-    const Vec5 step = p.H.ldlt().solve(-p.g);
+    const Vec7 step = p.H.ldlt().solve(-p.g);
     if (!step.allFinite()) return fit;
     s.plane.a += step(0);
     s.plane.b += step(1);
     s.plane.c += step(2);
     s.gain += step(3);
     s.offset += step(4);
+    s.wx += step(5);
+    s.wy += step(6);
     if (corner_shift(s.plane) > 2.0 * params.max_shift_px) return fit;  // left the basin
     fit.pixels = p.used;
     limit = params.trim_sigma * std::max(p.rms, 0.5);
@@ -202,16 +233,32 @@ Result<PhotometricPlaneFit> refine_plane_photometric(ConstGray8View left, ConstG
 }
 
 std::size_t face_pixels(ImageView<const std::uint8_t> classes, Rect roi, std::uint8_t cls,
-                        int edge_px, std::span<PixelPos> out) {
+                        int edge_px, std::span<std::int32_t> scratch, std::span<PixelPos> out) {
   constexpr std::uint8_t kUnknown = 0xFF;
-  std::size_t n = 0;
   const int W = classes.width(), H = classes.height();
+  if (scratch.size() < face_pixels_scratch(W, H)) return 0;
+  // The face's extent along each row: a plane facet projects to a convex
+  // polygon, so an unknown pixel between two of its pixels on the same row
+  // lies on it. Those are the matchers' holes on a steep face (false
+  // occlusions, bands of no match): leaving them out cuts the face into
+  // pieces whose photometric optimum wanders by degrees.
+  std::int32_t* row_lo = scratch.data();
+  std::int32_t* row_hi = row_lo + H;
+  for (int j = 0; j < H; ++j) row_lo[j] = W, row_hi[j] = -1;
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i)
+      if (classes(i, j) == cls) {
+        row_lo[j] = std::min(row_lo[j], i);
+        row_hi[j] = std::max(row_hi[j], i);
+      }
+  std::size_t n = 0;
   const int box = (2 * edge_px + 1) * (2 * edge_px + 1);
   for (int j = 0; j < H && n < out.size(); ++j)
     for (int i = 0; i < W && n < out.size(); ++i) {
       const std::uint8_t c0 = classes(i, j);
       if (c0 != cls && c0 != kUnknown) continue;
       if (i < edge_px || j < edge_px || i + edge_px >= W || j + edge_px >= H) continue;
+      const bool enclosed = i >= row_lo[j] && i <= row_hi[j];
       int same = 0;
       bool other = false;
       for (int dj = -edge_px; dj <= edge_px && !other; ++dj)
@@ -224,7 +271,7 @@ std::size_t face_pixels(ImageView<const std::uint8_t> classes, Rect roi, std::ui
             break;
           }
         }
-      if (other || 2 * same < box) continue;
+      if (other || (!enclosed && 2 * same < box)) continue;
       out[n++] =
           PixelPos{static_cast<std::int16_t>(roi.x + i), static_cast<std::int16_t>(roi.y + j)};
     }

@@ -1,8 +1,12 @@
 // Photometric refinement of a face's disparity plane. A plane is affine in
 // rectified disparity, d(u, v) = a (u - u0) + b (v - v0) + c; Gauss-Newton
-// on (a, b, c) and a gain/offset of the right image minimises
-//   sum over the face's left pixels of (L(u, v) - g R(u - d(u, v), v) - o)^2
-// with bilinear sampling of R. Every pixel of the face votes for one plane:
+// on (a, b, c), a gain/offset of the right image and a relative blur of the
+// left image (wx, wy) minimises
+//   sum over the face's left pixels of (L + wx Lxx + wy Lyy - g R(u - d, v) - o)^2
+// (Lxx, Lyy: second differences of L at (u, v)) with linear sampling of R.
+// The blur term: a face seen more obliquely by one camera shows it less
+// detail (a pixel integrates a larger footprint); without it the plane
+// leans to trade slope against the lost detail. Every pixel of the face votes for one plane:
 // on a steep, weakly textured face a matcher's per-pixel disparity is a
 // staircase of whole-pixel steps (the scanline DP lays it out as
 // fronto-parallel runs with false occlusions between them) whose plane leans
@@ -63,10 +67,16 @@ Result<PhotometricPlaneFit> refine_plane_photometric(ConstGray8View left, ConstG
 
 // The pixels of class `cls` in a class image over `roi` (rectified left
 // pixels; 0xFF = unknown, e.g. no disparity): every pixel whose box of
-// radius edge_px holds no other known class and at least half of it `cls`
-// (unknown pixels inside a face count: the photometric fit needs no
-// disparity there). Writes at most out.size(); returns the count.
+// radius edge_px holds no other known class and either at least half of it
+// `cls`, or (an unknown pixel) lies between two `cls` pixels of its row (a
+// facet projects to a convex polygon; the photometric fit needs no
+// disparity there). Scratch: face_pixels_scratch(W, H) ints.
+// Writes at most out.size(); returns the count (0 when scratch is short).
+inline std::size_t face_pixels_scratch(int width, int height) {
+  (void)width;
+  return 2 * static_cast<std::size_t>(height);
+}
 std::size_t face_pixels(ImageView<const std::uint8_t> classes, Rect roi, std::uint8_t cls,
-                        int edge_px, std::span<PixelPos> out);
+                        int edge_px, std::span<std::int32_t> scratch, std::span<PixelPos> out);
 
 }  // namespace petra
