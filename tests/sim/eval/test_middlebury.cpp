@@ -48,6 +48,7 @@ TEST(Middlebury, TableHoldsTheEightScenesOfTheSharedData) {
 
 TEST(Middlebury, GroundTruthScoresZeroAndAnOffsetScoresEverything) {
   const MiddleburyData d = load("venus");
+  ASSERT_NE(d.scene, nullptr);
   auto perfect = score_middlebury(d.gt.view(), d);
   ASSERT_TRUE(perfect.ok());
   EXPECT_EQ(perfect->strict.nonocc, 0.0);
@@ -64,6 +65,7 @@ TEST(Middlebury, GroundTruthScoresZeroAndAnOffsetScoresEverything) {
 
 TEST(Middlebury, InvalidPixelsAreBadWhenStrictAndFilledOtherwise) {
   const MiddleburyData d = load("tsukuba");
+  ASSERT_NE(d.scene, nullptr);
   io::FloatImage holes = d.gt;
   long known = 0, holed = 0;
   for (std::size_t i = 0; i < holes.data.size(); ++i) {
@@ -97,6 +99,7 @@ TEST(Middlebury, DpMatcherAccuracyOnTheEightScenes) {
   int better_than_sgbm = 0;
   for (const Target& t : kTargets) {
     const MiddleburyData d = load(t.scene);
+    ASSERT_NE(d.scene, nullptr) << t.scene << ": not loaded";  // the data is missing
     MatchDpParams p;
     p.disp_max = d.scene->disp_max;
     auto run = run_match_dp(d.left.view(), d.right.view(), {0, 0, d.left.width, d.left.height}, p);
