@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include "algo/grind_planes.hpp"
+
 namespace petra {
 
 namespace {
@@ -47,11 +49,6 @@ Result<Eigen::Vector3d> world_normal(const RectifiedPair& rect, const DisparityP
   const Eigen::Vector3d n = (*b - *a).cross(*c - *a);
   if (!(n.norm() > 0)) return Error::make(Errc::no_solution, "photometric plane: degenerate");
   return n.normalized();
-}
-
-double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const double c = a.normalized().dot(b.normalized());
-  return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / M_PI;
 }
 
 }  // namespace
@@ -120,7 +117,7 @@ Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray
     if (!before || !after) continue;
     plane.normal = (turn * plane.normal).normalized();
     plane.centroid_mm += *after - *before;
-    plane.view_angle_deg = angle_deg(plane.normal, camera - plane.centroid_mm);
+    plane.view_angle_deg = plane_view_angle_deg(plane.normal, plane.centroid_mm, camera);
     if (k < out.planes.accepted) ++refined;
   }
   return refined;

@@ -164,6 +164,11 @@ std::size_t erode(std::span<const MeshTriangle> tris, const Scratch& s, std::siz
 
 }  // namespace
 
+double plane_view_angle_deg(const Eigen::Vector3d& normal, const Eigen::Vector3d& centroid_mm,
+                            const Eigen::Vector3d& camera_centre_mm) {
+  return angle_deg(normal, camera_centre_mm - centroid_mm);
+}
+
 // Area-weighted angular dispersion of a clustering: sum of w (1 - cos) of
 // every sample to its class centre (what the angle clustering lowers).
 double dispersion(std::span<const Eigen::Vector3d> normals, std::span<const double> weights,
@@ -530,7 +535,7 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     const Eigen::Vector3d centre = weighted / core_area;
     plane.centroid_mm = centre - fit.plane.distance(centre) * fit.plane.normal;  // onto the plane
     plane.rms_mm = fit.rms;
-    plane.view_angle_deg = angle_deg(plane.normal, camera - plane.centroid_mm);
+    plane.view_angle_deg = plane_view_angle_deg(plane.normal, plane.centroid_mm, camera);
     const double footprint = M_PI * params.grinder_diameter_mm * params.grinder_diameter_mm / 4.0;
     if (plane.view_angle_deg > params.max_view_angle_deg) {
       plane.verdict = PlaneVerdict::faces_away;

@@ -123,6 +123,11 @@ Status validate(const GrindParams& p);
 int cluster_count(int c);
 std::size_t grind_planes_scratch_bytes(std::size_t triangles);
 
+// Angle between a plane's normal and the direction from its centroid to the
+// camera centre, degrees (the faces-away verdict's measure).
+double plane_view_angle_deg(const Eigen::Vector3d& normal, const Eigen::Vector3d& centroid_mm,
+                            const Eigen::Vector3d& camera_centre_mm);
+
 // point_normals: optional smoothed normals per point (algo/surface_normals);
 // a triangle whose three vertices have one clusters by their mean, any
 // other by its own AB x AC normal. Empty: AB x AC everywhere (the paper).

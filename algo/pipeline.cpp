@@ -50,7 +50,6 @@ Status validate(const PipelineParams& p) {
                        p.shadow_fraction);
   PETRA_TRY(validate(p.range));
   PETRA_TRY(validate(p.subpixel));
-  PETRA_TRY(validate(p.subpixel_dp));
   PETRA_TRY(validate(p.photometric));
   PETRA_TRY(validate(p.reconstruction.filter));
   PETRA_TRY(validate(p.reconstruction.normals));
@@ -212,14 +211,15 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
   const Gray8View rl(lbuf->data(), W, H), rr(rbuf->data(), W, H);
   out.left_rectified = rl;
   PETRA_TRY(checkpoint(clock, "rectify"));
+  // The right image is rectified (and valid) over the ROI's search envelope.
+  const Rect right_rectified =
+      right_search_area(roi, params_.range.search_min_px, params_.range.search_max_px, W);
   {
     StepTimer timer(clock, timings, "rectify");
     PETRA_TRY(rectifier_.rectify(StereoSide::left, left, rl, roi));
-    const Rect area =
-        right_search_area(roi, params_.range.search_min_px, params_.range.search_max_px, W);
-    if (area.empty())
+    if (right_rectified.empty())
       return Error::make(Errc::out_of_range, "pipeline: no right search area for the ROI");
-    PETRA_TRY(rectifier_.rectify(StereoSide::right, right, rr, area));
+    PETRA_TRY(rectifier_.rectify(StereoSide::right, right, rr, right_rectified));
   }
 
   // Disparity range for the fine matcher.
@@ -305,11 +305,6 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
       auto st = match_dp(in, roi, mp, mb, arena, disp);
       if (!st) return st.error();
       out.match = *st;
-      if (params_.refine_dp) {
-        auto refined = refine_subpixel(in, params_.subpixel_dp, disp);
-        if (!refined) return refined.error();
-        out.subpixel_refined = *refined;
-      }
     }
   }
   out.disparity = disp;
@@ -325,9 +320,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
   PETRA_TRY(checkpoint(clock, "plane refinement"));
   {
     StepTimer timer(clock, timings, "plane refinement");
-    const Rect area =
-        right_search_area(roi, params_.range.search_min_px, params_.range.search_max_px, W);
-    auto n = refine_grind_planes_photometric(rectifier_.geometry(), rl, rr, area,
+    auto n = refine_grind_planes_photometric(rectifier_.geometry(), rl, rr, right_rectified,
                                              params_.photometric, out.result, arena);
     if (!n) return n.error();
     out.planes_refined = *n;

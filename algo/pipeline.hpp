@@ -53,12 +53,6 @@ struct PipelineParams {
   MatchDpParams match;       // disp_min/max are set per run by the range search
   GraphCutParams graph_cut;  // disp_min/max likewise
   SubpixelParams subpixel;   // refines the graph cut's whole-pixel labels
-  // Optionally refines the DP's output the same way (its own sub-pixel step,
-  // a parabola on the aggregated path cost, pixel-locks on weakly textured
-  // steep faces). Off: on the scene set the photometric plane refinement
-  // below does better without it (docs/reconstruction.md).
-  bool refine_dp = false;
-  SubpixelParams subpixel_dp{2, 0};  // search_px 0: keep the DP's label, refine its fraction
   ReconstructionParams reconstruction;
   // Each ranked grind plane refined on the gray levels of both images
   // (algo/plane_photometric), whichever matcher: on steep, weakly lit faces
@@ -91,7 +85,7 @@ struct PipelineOutput {
   MatchMethod method = MatchMethod::dp;  // the matcher that made `disparity`
   MatchDpStats match;                    // method dp
   GraphCutReport graph_cut;              // method graph_cut
-  long subpixel_refined = 0;             // pixels given a window-SSD sub-pixel value
+  long subpixel_refined = 0;             // graph-cut pixels given a sub-pixel value
   int planes_refined = 0;                // accepted grind planes refined photometrically
   StepTimings timings;
 };
