@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <numbers>
+#include <thread>
 
 #include "fsw/arm/flight_arm.hpp"
 #include "hal/can_loopback.hpp"
@@ -58,6 +60,19 @@ struct ArmRig {
     for (int i = 0; i < max_cycles; ++i) {
       cycle();
       if (pred()) return true;
+    }
+    return false;
+  }
+  // Waits for work done beside the loop (the pipeline job's worker thread):
+  // cycles with a 1 ms pause for at most `seconds` of wall time, so the bound
+  // does not depend on how fast the loop spins against the worker under load.
+  template <class Pred>
+  bool until_wall(Pred pred, int seconds) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
+    while (std::chrono::steady_clock::now() < end) {
+      cycle();
+      if (pred()) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     return false;
   }

@@ -145,12 +145,12 @@ TEST(ExecutiveArm, TheFullChainOnASimulatedSceneEndsOnTheChosenPlane) {
   const auto eval = rig.h.make(FunctionCode::EVALUATE, ev);
   rig.h.send(sel);
   rig.h.send(eval);
-  ASSERT_TRUE(rig.until(
+  ASSERT_TRUE(rig.until_wall(
       [&] {
         return rig.h.has_ack(eval.counter, AckStage::COMPLETED) ||
                rig.h.has_ack(eval.counter, AckStage::FAILED);
       },
-      60000));
+      120));
   ASSERT_TRUE(rig.h.has_ack(eval.counter, AckStage::COMPLETED));
   const auto planes = rig.h.all<tlm::GrindPlane>();
   ASSERT_FALSE(planes.empty());
