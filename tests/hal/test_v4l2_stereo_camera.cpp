@@ -99,13 +99,19 @@ TEST_F(StereoOnVivid, TwoFreeRunningCamerasArePairedWithinTheSkew) {
   EXPECT_GT(differs, 0) << "left view is blank";
 }
 
-TEST_F(StereoOnVivid, AnImpossibleSkewBoundIsRefusedNamingTheSkew) {
+TEST_F(StereoOnVivid, AZeroSkewBoundIsEnforcedAndARefusalNamesTheSkew) {
   V4l2StereoCamera cam;
   auto c = two_vivids(0);
   c.timing.max_pair_frames = 3;
   ASSERT_TRUE(cam.open(c).ok());
   auto info = test::acquire_pair(cam, left(), right());
-  ASSERT_FALSE(info.ok());
+  if (info.ok()) {
+    // Two free-running vivid instances can stamp a frame at the same instant
+    // (one kernel timer drives both): a pair is then correct only if its
+    // stamps are equal. Usually they are not and the pair is refused.
+    EXPECT_EQ(info->left_time_ns, info->right_time_ns);
+    return;
+  }
   EXPECT_EQ(info.code(), Errc::timeout);
   EXPECT_NE(std::strstr(info.error().message, "no pair within 0 us"), nullptr)
       << info.error().message;
