@@ -20,6 +20,7 @@
 #include "algo/match_graphcut.hpp"
 #include "sim/eval/disparity_image.hpp"
 #include "sim/eval/middlebury.hpp"
+#include "tests/bench/bench_middlebury.hpp"
 
 #ifdef PETRA_HAVE_OPENCV
 #include <opencv2/calib3d.hpp>
@@ -32,30 +33,17 @@ namespace {
 using petra::eval::MiddleburyData;
 
 const MiddleburyData& scene(const std::string& name) {
-  static std::vector<MiddleburyData> cache;
-  for (const auto& d : cache)
-    if (name == d.scene->name) return d;
-  auto d = petra::eval::load_middlebury(*petra::eval::find_middlebury_scene(name),
-                                        petra::eval::default_data_root(PETRA_SOURCE_DIR));
-  if (!d) {
-    std::fprintf(stderr, "bench_graphcut: %s\n", d.error().message);
-    std::exit(1);
-  }
-  cache.reserve(16);
-  cache.push_back(std::move(*d));
-  return cache.back();
+  return petra::bench::middlebury_scene(name, "bench_graphcut");
 }
 
-void report(benchmark::State& state, const petra::io::FloatImage& disp, const MiddleburyData& d) {
-  auto s = petra::eval::score_middlebury(disp.view(), d);
-  if (!s) {
-    state.SkipWithError(s.error().message);
-    return;
-  }
-  state.counters["strict_nonocc"] = s->strict.nonocc;
-  state.counters["strict_all"] = s->strict.all;
-  state.counters["filled_nonocc"] = s->filled.nonocc;
-  state.counters["filled_all"] = s->filled.all;
+// Overrides of the defaults for the exploration commands of
+// docs/performance.md ("Start and cycles").
+void apply_env_overrides(petra::GraphCutParams& p) {
+  if (const char* c = std::getenv("PETRA_GC_CYCLES")) p.max_cycles = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_START"))
+    p.start = static_cast<petra::GraphCutStart>(std::atoi(c));
+  if (const char* c = std::getenv("PETRA_GC_GUIDED")) p.guided_cycles = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_RADIUS")) p.guided_radius = std::atoi(c);
 }
 
 // One matcher with its arena, sized at "init" for a budget.
@@ -80,11 +68,7 @@ void BM_GraphCut(benchmark::State& state, const char* name) {
   petra::DisparityMap out{petra::ImageView<std::int16_t>(q4.data(), w, h), {}};
   petra::GraphCutParams p;
   p.disp_max = d.scene->disp_max;
-  if (const char* c = std::getenv("PETRA_GC_CYCLES")) p.max_cycles = std::atoi(c);
-  if (const char* c = std::getenv("PETRA_GC_START"))
-    p.start = static_cast<petra::GraphCutStart>(std::atoi(c));
-  if (const char* c = std::getenv("PETRA_GC_GUIDED")) p.guided_cycles = std::atoi(c);
-  if (const char* c = std::getenv("PETRA_GC_RADIUS")) p.guided_radius = std::atoi(c);
+  apply_env_overrides(p);
   const petra::StereoInput in{d.left.view(), d.right.view()};
   petra::GraphCutReport r;
   for (auto _ : state) {
@@ -95,7 +79,7 @@ void BM_GraphCut(benchmark::State& state, const char* name) {
     }
     r = *rep;
   }
-  report(state, petra::eval::to_float_image(out, w, h), d);
+  petra::bench::report_bad1(state, petra::eval::to_float_image(out, w, h), d);
   state.counters["cycles"] = r.cycles;
   state.counters["start"] = static_cast<int>(r.start);
   state.counters["expansions"] = r.expansions;
@@ -106,19 +90,7 @@ void BM_GraphCut(benchmark::State& state, const char* name) {
 }
 
 #ifdef PETRA_HAVE_OPENCV
-petra::io::FloatImage from_cv(const cv::Mat& d16, int dmin) {
-  petra::io::FloatImage out(d16.cols, d16.rows);
-  for (int y = 0; y < d16.rows; ++y)
-    for (int x = 0; x < d16.cols; ++x) {
-      const short v = d16.at<short>(y, x);
-      out.data[static_cast<std::size_t>(y) * d16.cols + x] =
-          v < dmin * 16 ? std::numeric_limits<float>::infinity() : static_cast<float>(v) / 16.0f;
-    }
-  return out;
-}
-
-// The peer's settings of shared/data/README.md (speckle window 100 px, range
-// 2 px: these reproduce its tsukuba and venus figures).
+// The peer of shared/data/README.md (bench_middlebury.hpp).
 void BM_Sgbm(benchmark::State& state, const char* name) {
   cv::setNumThreads(1);
   const MiddleburyData& d = scene(name);
@@ -126,13 +98,13 @@ void BM_Sgbm(benchmark::State& state, const char* name) {
   cv::Mat l(h, w, CV_8U, const_cast<std::uint8_t*>(d.left.pixels.data()));
   cv::Mat r(h, w, CV_8U, const_cast<std::uint8_t*>(d.right.pixels.data()));
   const int ndisp = (d.scene->disp_max + 1 + 15) / 16 * 16;
-  auto sgbm = cv::StereoSGBM::create(0, ndisp, 5, 200, 800, 0, 0, 10, 100, 2);
+  auto sgbm = petra::bench::make_peer_sgbm(0, ndisp);
   cv::Mat out;
   for (auto _ : state) {
     sgbm->compute(l, r, out);
     benchmark::DoNotOptimize(out.data);
   }
-  report(state, from_cv(out, 0), d);
+  petra::bench::report_bad1(state, petra::bench::from_opencv(out, 0), d);
 }
 #endif
 
@@ -159,11 +131,7 @@ void BM_GraphCutRoi(benchmark::State& state) {
   petra::GraphCutParams p;
   p.disp_min = std::max(0, static_cast<int>((lo + hi) / 2) - count / 2);
   p.disp_max = p.disp_min + count - 1;
-  if (const char* c = std::getenv("PETRA_GC_CYCLES")) p.max_cycles = std::atoi(c);
-  if (const char* c = std::getenv("PETRA_GC_START"))
-    p.start = static_cast<petra::GraphCutStart>(std::atoi(c));
-  if (const char* c = std::getenv("PETRA_GC_GUIDED")) p.guided_cycles = std::atoi(c);
-  if (const char* c = std::getenv("PETRA_GC_RADIUS")) p.guided_radius = std::atoi(c);
+  apply_env_overrides(p);
   const petra::StereoInput in{d.left.view(), d.right.view()};
   petra::GraphCutReport r;
   for (auto _ : state) {

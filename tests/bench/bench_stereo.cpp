@@ -22,6 +22,7 @@
 #include "algo/shadow.hpp"
 #include "sim/eval/disparity_image.hpp"
 #include "sim/eval/middlebury.hpp"
+#include "tests/bench/bench_middlebury.hpp"
 
 #ifdef PETRA_HAVE_OPENCV
 #include <opencv2/calib3d.hpp>
@@ -33,32 +34,8 @@ namespace {
 
 using petra::eval::MiddleburyData;
 
-const std::string kData = petra::eval::default_data_root(PETRA_SOURCE_DIR);
-
 const MiddleburyData& scene(const std::string& name) {
-  static std::vector<MiddleburyData> cache;
-  for (const auto& d : cache)
-    if (name == d.scene->name) return d;
-  auto d = petra::eval::load_middlebury(*petra::eval::find_middlebury_scene(name), kData);
-  if (!d) {
-    std::fprintf(stderr, "bench_stereo: %s\n", d.error().message);
-    std::exit(1);
-  }
-  cache.push_back(std::move(*d));
-  return cache.back();
-}
-
-void report(benchmark::State& state, const petra::io::FloatImage& disp, const MiddleburyData& d) {
-  auto s = petra::eval::score_middlebury(disp.view(), d);
-  if (!s) {
-    state.SkipWithError(s.error().message);
-    return;
-  }
-  state.counters["strict_nonocc"] = s->strict.nonocc;
-  state.counters["strict_all"] = s->strict.all;
-  state.counters["filled_nonocc"] = s->filled.nonocc;
-  state.counters["filled_all"] = s->filled.all;
-  state.counters["invalid_pct"] = s->invalid_pct;
+  return petra::bench::middlebury_scene(name, "bench_stereo");
 }
 
 // Our matcher over a whole image: budget and arena sized at "init".
@@ -98,15 +75,15 @@ void BM_MatchDp(benchmark::State& state, const char* name) {
     map = runner.run(d.left.view(), d.right.view(), {0, 0, w, h}, 0, d.scene->disp_max);
     benchmark::DoNotOptimize(map.q4.data());
   }
-  report(state, petra::eval::to_float_image(map, w, h), d);
+  petra::bench::report_bad1(state, petra::eval::to_float_image(map, w, h), d);
 }
 
 #ifdef PETRA_HAVE_OPENCV
 
-// The peer's settings (shared/data/README.md): SGBM blockSize 5, P1 200,
-// P2 800, uniqueness 10, speckle filter; BM with OpenCV's usual settings.
+// The peers: SGBM with the settings of shared/data/README.md
+// (bench_middlebury.hpp), BM with OpenCV's usual settings.
 cv::Ptr<cv::StereoMatcher> make_sgbm(int dmin, int ndisp) {
-  return cv::StereoSGBM::create(dmin, ndisp, 5, 200, 800, 0, 0, 10, 100, 32);
+  return petra::bench::make_peer_sgbm(dmin, ndisp);
 }
 cv::Ptr<cv::StereoMatcher> make_bm(int dmin, int ndisp) {
   auto bm = cv::StereoBM::create(ndisp, 15);
@@ -115,17 +92,6 @@ cv::Ptr<cv::StereoMatcher> make_bm(int dmin, int ndisp) {
   bm->setSpeckleWindowSize(100);
   bm->setSpeckleRange(32);
   return bm;
-}
-
-petra::io::FloatImage from_cv(const cv::Mat& d16, int dmin) {
-  petra::io::FloatImage out(d16.cols, d16.rows);
-  for (int y = 0; y < d16.rows; ++y)
-    for (int x = 0; x < d16.cols; ++x) {
-      const short v = d16.at<short>(y, x);
-      out.data[static_cast<std::size_t>(y) * d16.cols + x] =
-          v < dmin * 16 ? std::numeric_limits<float>::infinity() : static_cast<float>(v) / 16.0f;
-    }
-  return out;
 }
 
 void BM_OpenCv(benchmark::State& state, const char* name, bool sgbm) {
@@ -141,7 +107,7 @@ void BM_OpenCv(benchmark::State& state, const char* name, bool sgbm) {
     m->compute(l, r, out);
     benchmark::DoNotOptimize(out.data);
   }
-  report(state, from_cv(out, 0), d);
+  petra::bench::report_bad1(state, petra::bench::from_opencv(out, 0), d);
 }
 
 #endif
