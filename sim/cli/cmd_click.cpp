@@ -51,6 +51,17 @@ int run(const ClickArgs& a) {
     return fail("click", "--uv: outside the left image");
   auto f = fundamental_matrix(*rig);
   if (!f) return fail("click", f.error().message);
+  // The searched depth range, checked before anything is printed (with or
+  // without images: a bad option is refused either way).
+  const double baseline = (camera_centre_world(rig->right) - camera_centre_world(l)).norm();
+  if (a.min_depth_mm < 0) return fail("click", "--min-depth: must be > 0 mm");
+  if (a.max_depth_mm < 0) return fail("click", "--max-depth: must be > 0 mm");
+  ClickOptions o;
+  o.half_window = a.half_window;
+  o.min_depth_mm = a.min_depth_mm > 0 ? a.min_depth_mm : 3 * baseline;
+  if (a.max_depth_mm > 0) o.max_depth_mm = a.max_depth_mm;
+  if (!(o.max_depth_mm > o.min_depth_mm))
+    return fail("click", "--max-depth must exceed --min-depth");
 
   const Eigen::Vector2d ideal = ideal_pixel(l, click);
   std::printf("left pixel (%.2f, %.2f), ideal (undistorted) (%.2f, %.2f)\n", click.x(), click.y(),
@@ -61,7 +72,6 @@ int run(const ClickArgs& a) {
   const Eigen::Vector3d line = epipolar_line(*f, ideal);
   std::printf("epipolar line in the right image (ideal pixels): %.6f u + %.6f v + %.4f = 0\n",
               line.x(), line.y(), line.z());
-  const double baseline = (camera_centre_world(rig->right) - camera_centre_world(l)).norm();
   std::printf(
       "epipolar curve in the right image (pixels, distortion applied), by depth along the left "
       "ray:\n");
@@ -82,12 +92,6 @@ int run(const ClickArgs& a) {
   if (!left_img) return fail("click", left_img.error().message);
   auto right_img = io::read_gray_image(a.right);
   if (!right_img) return fail("click", right_img.error().message);
-  ClickOptions o;
-  o.half_window = a.half_window;
-  o.min_depth_mm = a.min_depth_mm > 0 ? a.min_depth_mm : 3 * baseline;
-  if (a.max_depth_mm > 0) o.max_depth_mm = a.max_depth_mm;
-  if (!(o.max_depth_mm > o.min_depth_mm))
-    return fail("click", "--max-depth must exceed --min-depth");
   auto m = transfer_click(*rig, left_img->view(), right_img->view(), click, o);
   if (!m) return fail("click", m.error().message);
   std::printf(
@@ -124,6 +128,8 @@ void add_click(CLI::App& app, Outcome& outcome) {
       ->capture_default_str();
   cmd->add_option("--min-depth", args.min_depth_mm,
                   "nearest depth searched, mm (default: 3 baselines)");
+  cmd->add_option("--max-depth", args.max_depth_mm,
+                  "farthest depth searched, mm (default: no limit)");
   cmd->callback([&outcome] {
     try {
       outcome.exit_code = run(args);

@@ -39,3 +39,25 @@ set_tests_properties(sim_cli.calib_no_images PROPERTIES LABELS integration
 add_test(NAME sim_cli.click_bad_uv COMMAND petra click --calib ${PETRA_CLI_OUT}/calib_sample.json --uv 300)
 set_tests_properties(sim_cli.click_bad_uv PROPERTIES LABELS integration FIXTURES_REQUIRED calib_sample
   PASS_REGULAR_EXPRESSION "petra click: --uv: expected u,v")
+
+# --max-depth bounds the search; one not beyond --min-depth is refused naming both.
+add_test(NAME sim_cli.click_depth_range_empty
+  COMMAND petra click --calib ${PETRA_CLI_OUT}/calib_sample.json --uv 300,200
+          --min-depth 50 --max-depth 40)
+set_tests_properties(sim_cli.click_depth_range_empty PROPERTIES LABELS integration
+  FIXTURES_REQUIRED calib_sample
+  PASS_REGULAR_EXPRESSION "petra click: --max-depth must exceed --min-depth")
+
+add_test(NAME sim_cli.click_negative_depth
+  COMMAND petra click --calib ${PETRA_CLI_OUT}/calib_sample.json --uv 300,200 --max-depth -1)
+set_tests_properties(sim_cli.click_negative_depth PROPERTIES LABELS integration
+  FIXTURES_REQUIRED calib_sample PASS_REGULAR_EXPRESSION "petra click: --max-depth: must be > 0 mm")
+
+# A range that stops short of the true match (depth 15.9 square units): the
+# point found lies inside it (3 baselines = 9.98 to 12).
+add_test(NAME sim_cli.click_max_depth_bounds_the_search
+  COMMAND petra click --calib ${PETRA_CLI_OUT}/calib_sample.json --uv 300,200 --max-depth 12
+          --left ${PETRA_CHESSBOARD_DATA}/left01.jpg --right ${PETRA_CHESSBOARD_DATA}/right01.jpg)
+set_tests_properties(sim_cli.click_max_depth_bounds_the_search PROPERTIES
+  LABELS integration FIXTURES_REQUIRED calib_sample
+  PASS_REGULAR_EXPRESSION "3D point .* depth (9\\.9[89]|1[01]\\.[0-9]+|12\\.000) mm, rays")
