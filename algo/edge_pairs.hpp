@@ -8,7 +8,9 @@
 // floor, and neither point may be a horizontal edge (no position along the
 // row). Part of algo/match_dp; exposed for tests.
 // Memory: edge_row_scratch_bytes(left_n, right_n), at most
-// (left_n + 1)(right_n + 1) + 50 (left_n + right_n) + 8 (right_n + 1) bytes.
+// (left_n + 1)(right_n + 1) + 58 (left_n + right_n) + 12 (right_n + 1) + 448 bytes
+// (a 56-byte window and a 2-byte position per edge point; 64 bytes of
+// alignment slack per buffer).
 #pragma once
 
 #include <cstddef>

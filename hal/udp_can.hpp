@@ -1,5 +1,5 @@
 // CAN frames over UDP on the loopback interface: the arm's simulated drives
-// (`petra sim-arm --udp`) as a separate process on hosts without AF_CAN, so
+// (`petra sim arm --can udp:LOCAL:PEER`) as a separate process on hosts without AF_CAN, so
 // that petra-fsw itself boots and moves the simulated arm (the ground
 // station's end-to-end test, software-in-the-loop runs). Not a flight link:
 // the rover uses SocketCAN (hal/socketcan.hpp).

@@ -278,7 +278,10 @@ fi
 sed 's/^/  . /' $A/fsw.log | tail -3
 else
   arm_stop
-  for n in arm-power-on arm-motion arm-candump-frames can-error-warning-and-bad-frame can-bus-off-ends-in-safe estop-ends-in-safe lost-drive-heartbeat-ends-in-safe arm-power-off-at-stop; do
+  # The checks that needed the booted service, as named above.
+  motion="arm-evaluate-grind-planes arm-goto"
+  [ $EVALUATE = 0 ] && motion=arm-stow
+  for n in arm-power-on $motion arm-candump-frames can-error-warning-and-bad-frame can-bus-off-ends-in-safe estop-ends-in-safe lost-drive-heartbeat-ends-in-safe arm-power-off-at-stop; do
     hil_fail system/$n "not run: petra-fsw with the arm did not boot"
   done
 fi
