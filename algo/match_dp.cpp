@@ -433,9 +433,9 @@ namespace {
 // The whole matcher for one lane count (kLanes = Dp, or 0 for any), so every
 // row kernel runs with a compile-time lane count. kPathLanes: the lanes of
 // the path costs S (D rounded up to 16, or 0 for any), which may be fewer
-// than Dp: the scanline DP is compiled for 256-bit vectors at most
-// (PETRA_VECTOR_CLONES_256), and the lanes of a row rounded up to 32 would
-// only be padding to it and to the kernels reading S.
+// than Dp: the scanline DP runs 256-bit vectors on most CPUs
+// (algo/scanline_dp.cpp), and the lanes of a row rounded up to 32 would only
+// be padding to it and to the kernels reading S.
 template <int kLanes, int kPathLanes>
 PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect roi,
                                                     const MatchDpParams& p, Arena& arena,

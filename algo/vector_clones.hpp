@@ -12,13 +12,11 @@
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
     !defined(PETRA_NO_VECTOR_CLONES)
 #define PETRA_VECTOR_CLONES [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
-// Kernels latency-bound on 16-bit lane shifts through memory (the scanline
-// DP): 512-bit vectors measured slower there than 256-bit ones.
-#define PETRA_VECTOR_CLONES_256 [[gnu::target_clones("arch=x86-64-v3", "default")]]
+// (The scanline DP, latency-bound, picks its copy by vendor as well:
+// algo/scanline_dp.cpp.)
 #define PETRA_HAVE_VECTOR_CLONES 1
 #else
 #define PETRA_VECTOR_CLONES
-#define PETRA_VECTOR_CLONES_256
 #define PETRA_HAVE_VECTOR_CLONES 0
 #endif
 
