@@ -101,7 +101,7 @@ Status make_products(const PipelineOutput& p, const RectifiedPair& pair, std::si
       const std::int16_t q = p.disparity.q4(x, y);
       (*gray)[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
               static_cast<std::size_t>(x)] =
-          is_valid_disparity(q) ? static_cast<std::uint8_t>(1 + (q - lo) * 254 / span) : 0;
+          static_cast<std::uint8_t>(is_valid_disparity(q) ? 1 + (q - lo) * 254 / span : 0);
     }
   out.disparity_gray = ConstGray8View(gray->data(), w, h);
 
