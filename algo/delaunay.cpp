@@ -271,6 +271,7 @@ class Builder {
       const std::int32_t c = static_cast<std::int32_t>(i);
       if (T(c).v[0] != kDead && conflict(c, p)) return c;
     }
+    // cppcheck-suppress incorrectStringBooleanError ; the message is the assert's text
     PETRA_ASSERT(false && "delaunay: no conflicting triangle");
     return -1;
   }

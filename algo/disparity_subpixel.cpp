@@ -63,7 +63,7 @@ Result<long> refine_subpixel(const StereoInput& in, const SubpixelParams& params
       const int reach = params.search_px + 1;
       if (x - rad < 0 || x + rad >= W || x - d - reach - rad < 0 || x - d + reach + rad >= W)
         continue;
-      std::int64_t c[2 * kMaxSearchPx + 3];
+      std::int64_t c[2 * kMaxSearchPx + 3] = {};  // entries 0 .. 2 reach are set below
       for (int k = 0; k <= 2 * reach; ++k) c[k] = window_ssd(l, r, x, y, d - reach + k, rad);
       // The best of d - search .. d + search (a whole-pixel label can be a
       // little off), then the parabola through it and its neighbours.

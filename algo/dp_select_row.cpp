@@ -102,6 +102,7 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void decide(const SelectRowInputs& in,
     const int num = 8 * (sa - sc);
     // num + half or num - half by the sign of num, in arithmetic (selects
     // around a division: see below).
+    // cppcheck-suppress shiftTooManyBitsSigned ; C++20 defines >> of a negative value
     const int sign = num >> 31;  // 0 or -1
     const int half = den_s >> 1;
     const int off = div_exact(num + ((half ^ sign) - sign), den_s);

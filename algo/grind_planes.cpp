@@ -584,7 +584,7 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
 
   // 5. Rank: accepted by area (largest first; beyond c they are surplus),
   // then the rejected ones.
-  int order[kMaxClasses];
+  int order[kMaxClasses] = {};
   bool qualified[kMaxClasses] = {};  // ranked in pass 0 (accepted or surplus): not again
   for (int k = 0; k < ac->c; ++k) qualified[k] = candidates[k].verdict == PlaneVerdict::accepted;
   int ranked = 0;
