@@ -154,8 +154,8 @@ template <int kLanes, int kRows>
 // Which vector width runs the DP. It is latency-bound: each step waits for
 // the previous row's minimum and for the stores of prev to reach the
 // shifted loads prev(k+-1). 512-bit vectors measured faster than 256-bit
-// ones on an Intel Xeon (160x160 ROI, 42 disparities: the whole matcher 1.80
-// against 1.96 ms) and slower on an AMD EPYC, whose AVX-512 splits each
+// ones on an Intel Xeon (160x160 ROI, 42 disparities: the whole matcher 1.86
+// against 1.95 ms) and slower on an AMD EPYC, whose AVX-512 splits each
 // 512-bit operation in two; so the 512-bit copy runs on Intel CPUs only.
 // The copies compute the same integers: outputs are identical.
 #if PETRA_HAVE_VECTOR_CLONES
