@@ -63,13 +63,14 @@ Result<long> refine_subpixel(const StereoInput& in, const SubpixelParams& params
       const int reach = params.search_px + 1;
       if (x - rad < 0 || x + rad >= W || x - d - reach - rad < 0 || x - d + reach + rad >= W)
         continue;
-      std::int64_t c[2 * kMaxSearchPx + 3] = {};  // entries 0 .. 2 reach are set below
+      std::int64_t c[2 * kMaxSearchPx + 3];
       for (int k = 0; k <= 2 * reach; ++k) c[k] = window_ssd(l, r, x, y, d - reach + k, rad);
       // The best of d - search .. d + search (a whole-pixel label can be a
       // little off), then the parabola through it and its neighbours.
       int b = reach;
       for (int k = 1; k < 2 * reach; ++k)
         if (c[k] < c[b]) b = k;
+      // cppcheck-suppress uninitvar ; c[0 .. 2 reach] are all set above and 1 <= b < 2 reach
       const std::int64_t cm = c[b - 1], c0 = c[b], cp = c[b + 1];
       if (!(c0 <= cm && c0 <= cp && cm + cp > 2 * c0)) continue;
       const double offset =
