@@ -187,8 +187,10 @@ class MaxFlow {
   std::int32_t sink_links_ = 0;  // nodes with tr_cap < 0, kept by add_terminal_weights()
   std::int64_t augmentations_ = 0;
   std::int64_t orphans_seen_ = 0;
-  int one_sided_ratio_ = 8;
-  int orphan_budget_ = 2;
+  // Measured on the graph-cut matcher's default configuration
+  // (docs/graphcut.md, "Max-flow solver").
+  int one_sided_ratio_ = 32;
+  int orphan_budget_ = 3;
 };
 
 extern template class MaxFlow<2>;
