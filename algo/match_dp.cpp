@@ -23,7 +23,7 @@ using match::kRawNeutral;
 using match::kWindowRows;
 
 constexpr std::size_t kAlignSlack = 64;  // per arena allocation
-constexpr int kRightChains = 16;         // see right_winners
+constexpr int kRightChains = 16;         // at most; see right_winners
 constexpr int kLaneBits = 12;            // lanes < match::kMaxLanes = 2^12
 // "No winner" in rk: all lane bits set, so it loses every tie of a merge.
 constexpr std::int16_t kNoLane = (1 << kLaneBits) - 1;
@@ -367,28 +367,47 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void reverse_copy(const std::uint8_t* __re
 // minima one entry left of column i - 1's: in one array, each load would
 // overlap the previous column's stores at a 2-byte offset, which the CPU
 // cannot forward, and wait for them to reach the cache. So column i goes to
-// chain i % kRightChains: a chain's consecutive updates are then 16 entries
-// (32 bytes, a whole vector) apart and its loads match earlier stores
-// exactly. The chains are merged at the end through (cost, lane) keys whose
-// minimum keeps the smaller lane on ties: the same first-i rule. rmin and
-// rk hold kRightChains * (w + lanes) entries, key w + lanes; the lanes of
-// the winners end up in rk[0 .. w + lanes - 1).
+// chain i % chains: with 16 chains a chain's consecutive updates are 16
+// entries (32 bytes, a whole 256-bit vector) apart and its loads match
+// earlier stores exactly. The chains are merged at the end through (cost,
+// lane) keys whose minimum keeps the smaller lane on ties: the same first-i
+// rule, whatever the number of chains. rmin and rk hold
+// kRightChains * (w + lanes) entries, key w + lanes; the lanes of the
+// winners end up in rk[0 .. w + lanes - 1).
+// How many chains (a power of two, at most kRightChains): 16 where the
+// 256-bit argument holds. On an Intel Xeon running the AVX-512 copy, the
+// setting and merging of 16 chains cost more than the waits they avoid: 4
+// chains measured right_winners at 5.8 % of the 160x160 ROI's time against
+// 7.7 % with 16 (2 chains 7.4 %, 1 chain 11 %; perf, docs/performance.md).
+int right_chains() {
+#if PETRA_HAVE_VECTOR_CLONES
+  static const int chains = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("x86-64-v4") && __builtin_cpu_is("intel") ? 4 : kRightChains;
+  }();
+  return chains;
+#else
+  return kRightChains;
+#endif
+}
+
 template <int kLanes>
 PETRA_VECTOR_CLONES [[gnu::noinline]] void right_winners(const std::int16_t* __restrict S, int w,
                                                          int row_stride, int lanes_arg,
                                                          const std::uint8_t* __restrict skip,
                                                          std::int16_t* __restrict rmin,
                                                          std::int16_t* __restrict rk,
-                                                         std::int32_t* __restrict key) {
+                                                         std::int32_t* __restrict key,
+                                                         int chains) {
   const int lanes = kLanes > 0 ? kLanes : lanes_arg;
   const int len = w + lanes;
-  for (int m = 0; m < kRightChains * len; ++m) {
+  for (int m = 0; m < chains * len; ++m) {
     rmin[m] = 0x7FFF;
     rk[m] = kNoLane;
   }
   for (int i = 0; i < w; ++i) {
     if (skip[i]) continue;
-    const std::ptrdiff_t chain = static_cast<std::ptrdiff_t>(i % kRightChains) * len;
+    const std::ptrdiff_t chain = static_cast<std::ptrdiff_t>(i & (chains - 1)) * len;
     const std::int16_t* __restrict s = S + static_cast<std::size_t>(i) * row_stride;
     std::int16_t* __restrict rm = rmin + chain + (w - 1 - i);
     std::int16_t* __restrict rl = rk + chain + (w - 1 - i);
@@ -400,7 +419,7 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void right_winners(const std::int16_t* __r
   }
   // key = cost * 2^12 + lane: costs are below 2^15, lanes below 2^12.
   for (int m = 0; m < len; ++m) key[m] = 0x7FFFFFFF;
-  for (int c = 0; c < kRightChains; ++c) {
+  for (int c = 0; c < chains; ++c) {
     const std::int16_t* __restrict cm = rmin + static_cast<std::ptrdiff_t>(c) * len;
     const std::int16_t* __restrict cl = rk + static_cast<std::ptrdiff_t>(c) * len;
     for (int m = 0; m < len; ++m) {
@@ -594,6 +613,8 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     p2_of_step[g] = static_cast<std::uint16_t>(std::max(p2_floor, p.p2 * 8 / (8 + g)));
   const int tol = p.edge_tolerance_px;
   const bool unsigned_min = unsigned_min_is_native();
+  const int chains = right_chains();
+  PETRA_ASSERT(chains >= 1 && chains <= kRightChains && (chains & (chains - 1)) == 0);
   const long cost_ceiling = static_cast<long>(p.max_mean_cost) * kWindowPixels;
   const int zfloor = p.edge_zncc_floor_pct * match::kZnccOne / 100;
 
@@ -707,7 +728,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     // Right view winners along the same path costs (reversed index m).
     shadow_row(in.left_shadow, y, roi.x, w, 1, 0, skip.data());
     right_winners<kPathLanes>(rb.S.data() + match::kGuardLanes, w, sp, Ds, skip.data(), rmin.data(),
-                              rk.data(), right_keys.data());
+                              rk.data(), right_keys.data(), chains);
 
     // Steps 4-5: select, reject, refine.
     if (unsigned_min)
