@@ -97,6 +97,18 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void nms_row(
   }
 }
 
+// Clears the weak pixels hysteresis left behind; returns the edges of the row.
+// Out of line and cloned: inside canny() the loop stayed scalar.
+PETRA_VECTOR_CLONES [[gnu::noinline]] int drop_weak_row(std::uint8_t* __restrict row, int w) {
+  int n = 0;  // a local count: the vectoriser keeps it in lanes
+  for (int i = 0; i < w; ++i) {
+    const std::uint8_t v = (row[i] & kWeak) != 0 ? std::uint8_t{0} : row[i];
+    row[i] = v;
+    n += is_edge(v);
+  }
+  return n;
+}
+
 std::size_t sz(int w, int h) {
   return static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
 }
@@ -124,6 +136,13 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
     return Error::make(Errc::invalid_argument,
                        "canny: thresholds low %d, high %d (need 0 < low <= high)", params.low,
                        params.high);
+  // The hysteresis stack holds pixels as row << shift | column (w <= 2^shift):
+  // no division to unpack them.
+  int shift = 0;
+  while ((1L << shift) < area.w) ++shift;
+  if ((static_cast<std::uint64_t>(area.h) << shift) > 0xFFFFFFFFull)
+    return Error::make(Errc::capacity_exceeded, "canny: area %dx%d too large", area.w, area.h);
+  const std::uint32_t column_mask = (std::uint32_t{1} << shift) - 1;
   ArenaScope scope(scratch);
   const int w = area.w, h = area.h;
   const int sw = w + 4, sh = h + 4;  // smoothed: area grown by 2
@@ -188,12 +207,12 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
       std::memcpy(&word, out + i, sizeof word);
       if ((word & (0x0101010101010101ULL * kEdgeBit)) == 0) continue;
       for (int b = 0; b < 8; ++b) {
-        st[top] = static_cast<std::uint32_t>(j * w + i + b);
+        st[top] = (static_cast<std::uint32_t>(j) << shift) | static_cast<std::uint32_t>(i + b);
         top += (out[i + b] & kEdgeBit) != 0;
       }
     }
     for (; i < w; ++i) {
-      st[top] = static_cast<std::uint32_t>(j * w + i);
+      st[top] = (static_cast<std::uint32_t>(j) << shift) | static_cast<std::uint32_t>(i);
       top += (out[i] & kEdgeBit) != 0;
     }
   }
@@ -205,36 +224,25 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
   const std::size_t capacity = stack->size();
   while (top > 0) {
     const std::uint32_t p = (*stack)[--top];
-    const int j = static_cast<int>(p / static_cast<std::uint32_t>(w));
-    const int i = static_cast<int>(p % static_cast<std::uint32_t>(w));
+    const int j = static_cast<int>(p >> shift);
+    const int i = static_cast<int>(p & column_mask);
     const int i0 = i > 0 ? i - 1 : 0, i1 = i < w - 1 ? i + 1 : w - 1;
     for (int dj = -1; dj <= 1; ++dj) {
       const int jj = j + dj;
       if (jj < 0 || jj >= h) continue;
       std::uint8_t* row = edges.row(jj);
       // Most neighbourhoods hold no weak pixel: one test for the three
-      // (a branch per pixel on data mispredicts).
-      int any = 0;
-      for (int ii = i0; ii <= i1; ++ii) any |= row[ii];
-      if ((any & kWeak) == 0) continue;
+      // (a branch per pixel on data mispredicts), as three loads.
+      if (((row[i0] | row[i] | row[i1]) & kWeak) == 0) continue;
       for (int ii = i0; ii <= i1; ++ii) {
         if ((row[ii] & kWeak) == 0) continue;
         row[ii] = static_cast<std::uint8_t>((row[ii] & ~kWeak) | kEdgeBit);
         PETRA_ASSERT(top < capacity);
-        (*stack)[top++] = static_cast<std::uint32_t>(jj * w + ii);
+        (*stack)[top++] = (static_cast<std::uint32_t>(jj) << shift) | static_cast<std::uint32_t>(ii);
       }
     }
   }
-  for (int j = 0; j < h; ++j) {
-    std::uint8_t* __restrict row = edges.row(j);
-    int n = 0;  // a local count: the vectoriser keeps it in lanes
-    for (int i = 0; i < w; ++i) {
-      const std::uint8_t v = (row[i] & kWeak) != 0 ? std::uint8_t{0} : row[i];
-      row[i] = v;
-      n += is_edge(v);
-    }
-    stats.edge_pixels += n;
-  }
+  for (int j = 0; j < h; ++j) stats.edge_pixels += drop_weak_row(edges.row(j), w);
   return stats;
 }
 

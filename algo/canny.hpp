@@ -55,7 +55,8 @@ struct CannyStats {
 std::size_t canny_scratch_bytes(int width, int height);
 
 // Errors: empty area, area outside the image, `edges` not the area's size,
-// bad thresholds, scratch too small (names the buffer).
+// bad thresholds, an area whose h * 2^ceil(log2 w) exceeds 2^32 (far beyond
+// any camera), scratch too small (names the buffer).
 Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& params, Arena& scratch,
                          Gray8View edges);
 
