@@ -31,7 +31,7 @@ struct Window {
   double sd;  // sqrt(var), once per window instead of once per pair
 };
 
-inline void load_window(ConstGray8View img, int x, int y, Window& w) {
+inline void gather_window(ConstGray8View img, int x, int y, Window& w) {
   int n = 0;
   if (x >= kZnccRadius && x < img.width() - kZnccRadius) {  // no column clamping
     for (int dy = -kZnccRadius; dy <= kZnccRadius; ++dy) {
@@ -46,6 +46,13 @@ inline void load_window(ConstGray8View img, int x, int y, Window& w) {
     }
   }
   for (int i = kN; i < kPadded; ++i) w.px[i] = 0;
+}
+
+// Sums of a gathered window. Apart from the gathering: run right after it,
+// the vector loads of px waited for its 32 byte stores to reach the cache
+// (a load spanning several stores is not forwarded from them); one pass of
+// gathering, then one of sums, puts a whole list of windows between the two.
+inline void window_stats(Window& w) {
   int s = 0, ss = 0;  // at most 25 * 255^2; over the padded vector (zeros add nothing)
   for (int i = 0; i < kPadded; ++i) {
     s += w.px[i];
@@ -114,8 +121,10 @@ enum : std::uint8_t { kFromUp = 0, kFromLeft = 1, kMatch = 2 };
 
 int zncc_q10(ConstGray8View left, int xl, ConstGray8View right, int xr, int y) {
   Window a, b;
-  load_window(left, xl, y, a);
-  load_window(right, xr, y, b);
+  gather_window(left, xl, y, a);
+  gather_window(right, xr, y, b);
+  window_stats(a);
+  window_stats(b);
   return zncc(a, b);
 }
 
@@ -140,8 +149,10 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
   if (!lw) return lw.error();
   auto rw = arena.allocate<Window>(static_cast<std::size_t>(n), "edge windows right");
   if (!rw) return rw.error();
-  for (int i = 0; i < m; ++i) load_window(in.left, (*lx)[i], in.y, (*lw)[i]);
-  for (int j = 0; j < n; ++j) load_window(in.right, (*rx)[j], in.y, (*rw)[j]);
+  for (int i = 0; i < m; ++i) gather_window(in.left, (*lx)[i], in.y, (*lw)[i]);
+  for (int j = 0; j < n; ++j) gather_window(in.right, (*rx)[j], in.y, (*rw)[j]);
+  for (int i = 0; i < m; ++i) window_stats((*lw)[i]);
+  for (int j = 0; j < n; ++j) window_stats((*rw)[j]);
 
   const std::size_t cols = static_cast<std::size_t>(n) + 1;
   auto back =
