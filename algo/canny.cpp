@@ -147,19 +147,23 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
   const int w = area.w, h = area.h;
   const int sw = w + 4, sh = h + 4;  // smoothed: area grown by 2
   const int gw = w + 2, gh = h + 2;  // gradients: area grown by 1
-  auto sm_buf = scratch.allocate<std::uint8_t>(sz(sw, sh), "canny smoothed image");
+  // Every buffer is written whole before it is read (smoothing, Sobel, the
+  // row filters; the stack below its top): no value-initialisation.
+  auto sm_buf = scratch.allocate_uninitialised<std::uint8_t>(sz(sw, sh), "canny smoothed image");
   if (!sm_buf) return sm_buf.error();
-  auto gx_buf = scratch.allocate<std::int16_t>(sz(gw, gh), "canny gx");
+  auto gx_buf = scratch.allocate_uninitialised<std::int16_t>(sz(gw, gh), "canny gx");
   if (!gx_buf) return gx_buf.error();
-  auto gy_buf = scratch.allocate<std::int16_t>(sz(gw, gh), "canny gy");
+  auto gy_buf = scratch.allocate_uninitialised<std::int16_t>(sz(gw, gh), "canny gy");
   if (!gy_buf) return gy_buf.error();
-  auto mag_buf = scratch.allocate<std::uint16_t>(sz(gw, gh), "canny magnitude");
+  auto mag_buf = scratch.allocate_uninitialised<std::uint16_t>(sz(gw, gh), "canny magnitude");
   if (!mag_buf) return mag_buf.error();
-  auto stack = scratch.allocate<std::uint32_t>(sz(w, h), "canny stack");
+  auto stack = scratch.allocate_uninitialised<std::uint32_t>(sz(w, h), "canny stack");
   if (!stack) return stack.error();
-  auto src_row = scratch.allocate<std::uint8_t>(static_cast<std::size_t>(w + 8), "canny row");
+  auto src_row =
+      scratch.allocate_uninitialised<std::uint8_t>(static_cast<std::size_t>(w + 8), "canny row");
   if (!src_row) return src_row.error();
-  auto hring = scratch.allocate<std::uint16_t>(static_cast<std::size_t>(sw) * 5, "canny ring");
+  auto hring =
+      scratch.allocate_uninitialised<std::uint16_t>(static_cast<std::size_t>(sw) * 5, "canny ring");
   if (!hring) return hring.error();
 
   // 1. Smoothing, separable binomial [1 4 6 4 1]/16 per axis: horizontal
@@ -238,7 +242,8 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
         if ((row[ii] & kWeak) == 0) continue;
         row[ii] = static_cast<std::uint8_t>((row[ii] & ~kWeak) | kEdgeBit);
         PETRA_ASSERT(top < capacity);
-        (*stack)[top++] = (static_cast<std::uint32_t>(jj) << shift) | static_cast<std::uint32_t>(ii);
+        (*stack)[top++] =
+            (static_cast<std::uint32_t>(jj) << shift) | static_cast<std::uint32_t>(ii);
       }
     }
   }

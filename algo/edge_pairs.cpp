@@ -137,17 +137,23 @@ std::size_t edge_row_scratch_bytes(int left_n, int right_n) {
 
 Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<EdgePair> pairs) {
   ArenaScope scope(arena);
-  auto lx = arena.allocate<std::int16_t>(static_cast<std::size_t>(in.left_n), "edge list left");
+  // Scratch written before it is read, so not value-initialised: the lists
+  // up to their counts, the windows whole, the DP table's rows 1..m at
+  // columns 1..n (all the backtrack reads), the two DP rows and the scores of
+  // each run.
+  auto lx = arena.allocate_uninitialised<std::int16_t>(static_cast<std::size_t>(in.left_n),
+                                                       "edge list left");
   if (!lx) return lx.error();
-  auto rx = arena.allocate<std::int16_t>(static_cast<std::size_t>(in.right_n), "edge list right");
+  auto rx = arena.allocate_uninitialised<std::int16_t>(static_cast<std::size_t>(in.right_n),
+                                                       "edge list right");
   if (!rx) return rx.error();
   const int m = compact_usable(in.left_edges, in.left_n, in.left_x0, lx->data());
   const int n = compact_usable(in.right_edges, in.right_n, in.right_x0, rx->data());
   if (m == 0 || n == 0) return 0;
 
-  auto lw = arena.allocate<Window>(static_cast<std::size_t>(m), "edge windows left");
+  auto lw = arena.allocate_uninitialised<Window>(static_cast<std::size_t>(m), "edge windows left");
   if (!lw) return lw.error();
-  auto rw = arena.allocate<Window>(static_cast<std::size_t>(n), "edge windows right");
+  auto rw = arena.allocate_uninitialised<Window>(static_cast<std::size_t>(n), "edge windows right");
   if (!rw) return rw.error();
   for (int i = 0; i < m; ++i) gather_window(in.left, (*lx)[i], in.y, (*lw)[i]);
   for (int j = 0; j < n; ++j) gather_window(in.right, (*rx)[j], in.y, (*rw)[j]);
@@ -155,14 +161,14 @@ Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<Edge
   for (int j = 0; j < n; ++j) window_stats((*rw)[j]);
 
   const std::size_t cols = static_cast<std::size_t>(n) + 1;
-  auto back =
-      arena.allocate<std::uint8_t>((static_cast<std::size_t>(m) + 1) * cols, "edge DP table");
+  auto back = arena.allocate_uninitialised<std::uint8_t>((static_cast<std::size_t>(m) + 1) * cols,
+                                                         "edge DP table");
   if (!back) return back.error();
-  auto f = arena.allocate<std::int32_t>(2 * cols, "edge DP rows");
+  auto f = arena.allocate_uninitialised<std::int32_t>(2 * cols, "edge DP rows");
   if (!f) return f.error();
   std::int32_t* prev = f->data();
   std::int32_t* cur = f->data() + cols;
-  auto zs = arena.allocate<std::int32_t>(cols, "edge pair scores");
+  auto zs = arena.allocate_uninitialised<std::int32_t>(cols, "edge pair scores");
   if (!zs) return zs.error();
   std::int32_t* score = zs->data();
   std::fill(prev, prev + cols, 0);

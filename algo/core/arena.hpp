@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <new>
 #include <span>
 #include <type_traits>
@@ -24,20 +25,29 @@ class Arena {
   template <class T>
   Result<std::span<T>> allocate(std::size_t count, const char* what = "buffer") {
     static_assert(std::is_trivially_destructible_v<T>, "arena holds trivially destructible types");
-    // Aligned as an address, not as an offset: a caller's block need only be
-    // byte-aligned, and over-aligned types (vector rows) get what they ask.
-    const std::size_t align = alignof(T);
-    const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(base_) + used_;
-    const std::size_t start = used_ + ((align - at % align) % align);
-    if (count > (SIZE_MAX - start) / sizeof(T) || start + count * sizeof(T) > capacity_) {
-      return Error::make(Errc::capacity_exceeded, "arena: %s needs %zu bytes, %zu of %zu free",
-                         what, count * sizeof(T), capacity_ - used_, capacity_);
-    }
-    T* p = reinterpret_cast<T*>(base_ + start);  // NOLINT: storage reuse is the point
+    auto r = reserve<T>(count, what);
+    if (!r) return r.error();
+    T* p = r->data();
     for (std::size_t i = 0; i < count; ++i) new (p + i) T{};
-    used_ = start + count * sizeof(T);
-    if (used_ > high_water_) high_water_ = used_;
-    return std::span<T>(p, count);
+    return r;
+  }
+
+  // As allocate(), without the value-initialisation, for buffers their user
+  // writes whole before reading them (the call says so): it spares a pass of
+  // stores over memory about to be overwritten, which on a large scratch
+  // buffer also evicts what the caches held.
+  template <class T>
+  Result<std::span<T>> allocate_uninitialised(std::size_t count, const char* what = "buffer") {
+    static_assert(
+        std::is_trivially_destructible_v<T> && std::is_trivially_default_constructible_v<T>,
+        "no constructor to skip");
+    auto r = reserve<T>(count, what);
+#ifndef NDEBUG
+    // Debug builds fill it with a pattern, so a user that reads before
+    // writing fails its tests instead of reading the last run's values.
+    if (r) std::memset(static_cast<void*>(r->data()), 0xA5, count * sizeof(T));
+#endif
+    return r;
   }
 
   // A mark to roll back to: scratch memory of one step is released after it.
@@ -54,6 +64,23 @@ class Arena {
   std::size_t high_water() const { return high_water_; }
 
  private:
+  template <class T>
+  Result<std::span<T>> reserve(std::size_t count, const char* what) {
+    // Aligned as an address, not as an offset: a caller's block need only be
+    // byte-aligned, and over-aligned types (vector rows) get what they ask.
+    const std::size_t align = alignof(T);
+    const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(base_) + used_;
+    const std::size_t start = used_ + ((align - at % align) % align);
+    if (count > (SIZE_MAX - start) / sizeof(T) || start + count * sizeof(T) > capacity_) {
+      return Error::make(Errc::capacity_exceeded, "arena: %s needs %zu bytes, %zu of %zu free",
+                         what, count * sizeof(T), capacity_ - used_, capacity_);
+    }
+    T* p = reinterpret_cast<T*>(base_ + start);  // NOLINT: storage reuse is the point
+    used_ = start + count * sizeof(T);
+    if (used_ > high_water_) high_water_ = used_;
+    return std::span<T>(p, count);
+  }
+
   std::byte* base_ = nullptr;
   std::size_t capacity_ = 0;
   std::size_t used_ = 0;

@@ -54,6 +54,27 @@ TEST(Arena, ZeroInitialisesEveryAllocation) {
   for (int v : *t) EXPECT_EQ(v, 0);
 }
 
+// The uninitialised form takes the same room and fails the same way; in
+// debug builds it fills the buffer with 0xA5 so a read-before-write shows.
+TEST(Arena, UninitialisedAllocationAccountsAlikeAndIsPoisonedInDebug) {
+  StaticArena<256> storage;
+  Arena& a = storage.arena();
+  ASSERT_TRUE(a.allocate<std::uint8_t>(3).ok());
+  auto s = a.allocate_uninitialised<std::uint32_t>(8, "scratch row");
+  ASSERT_TRUE(s.ok());
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(s->data()) % alignof(std::uint32_t), 0u);
+  EXPECT_EQ(a.used(), 4u + 32u);
+  EXPECT_EQ(s->size(), 8u);
+#ifndef NDEBUG
+  for (std::uint32_t v : *s) EXPECT_EQ(v, 0xA5A5A5A5u);
+#endif
+  auto r = a.allocate_uninitialised<std::uint32_t>(1000, "big row");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.code(), Errc::capacity_exceeded);
+  EXPECT_NE(std::strstr(r.error().message, "big row"), nullptr);
+  EXPECT_EQ(a.used(), 36u);
+}
+
 TEST(Arena, ExhaustionIsAnErrorNamingTheRequest) {
   StaticArena<64> storage;
   Arena& a = storage.arena();
