@@ -397,8 +397,7 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void right_winners(const std::int16_t* __r
                                                          const std::uint8_t* __restrict skip,
                                                          std::int16_t* __restrict rmin,
                                                          std::int16_t* __restrict rk,
-                                                         std::int32_t* __restrict key,
-                                                         int chains) {
+                                                         std::int32_t* __restrict key, int chains) {
   const int lanes = kLanes > 0 ? kLanes : lanes_arg;
   const int len = w + lanes;
   for (int m = 0; m < chains * len; ++m) {
