@@ -27,8 +27,7 @@ class Arena {
     static_assert(std::is_trivially_destructible_v<T>, "arena holds trivially destructible types");
     auto r = reserve<T>(count, what);
     if (!r) return r.error();
-    T* p = r->data();
-    for (std::size_t i = 0; i < count; ++i) new (p + i) T{};
+    for (T& v : *r) new (&v) T{};
     return r;
   }
 
