@@ -1,6 +1,7 @@
 #include "algo/canny.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cstdlib>
 #include <cstring>
 
@@ -138,8 +139,7 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
                        params.high);
   // The hysteresis stack holds pixels as row << shift | column (w <= 2^shift):
   // no division to unpack them.
-  int shift = 0;
-  while ((1L << shift) < area.w) ++shift;
+  const int shift = std::bit_width(static_cast<unsigned>(area.w - 1));
   if ((static_cast<std::uint64_t>(area.h) << shift) > 0xFFFFFFFFull)
     return Error::make(Errc::capacity_exceeded, "canny: area %dx%d too large", area.w, area.h);
   const std::uint32_t column_mask = (std::uint32_t{1} << shift) - 1;

@@ -380,15 +380,7 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void reverse_copy(const std::uint8_t* __re
 // chains measured right_winners at 5.8 % of the 160x160 ROI's time against
 // 7.7 % with 16 (2 chains 7.4 %, 1 chain 11 %; perf, docs/performance.md).
 int right_chains() {
-#if PETRA_HAVE_VECTOR_CLONES
-  static const int chains = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("x86-64-v4") && __builtin_cpu_is("intel") ? 4 : kRightChains;
-  }();
-  return chains;
-#else
-  return kRightChains;
-#endif
+  return intel_avx512() ? 4 : kRightChains;
 }
 
 template <int kLanes>

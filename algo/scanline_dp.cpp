@@ -163,8 +163,7 @@ enum class DpCopy { baseline, avx2, avx512 };
 
 DpCopy dp_copy() {
   static const DpCopy copy = [] {
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("x86-64-v4") && __builtin_cpu_is("intel")) return DpCopy::avx512;
+    if (intel_avx512()) return DpCopy::avx512;
     if (__builtin_cpu_supports("x86-64-v3")) return DpCopy::avx2;
     return DpCopy::baseline;
   }();

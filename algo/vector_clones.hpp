@@ -55,4 +55,20 @@ inline bool unsigned_min_is_native() {
 #endif
 }
 
+// True on an Intel CPU that runs the AVX-512 copy. Kernels whose best form
+// differs between vendors there (full-width 512-bit units on Intel, split in
+// two on AMD) choose by it: the scanline DP's vector width, the right-view
+// winners' chain count.
+inline bool intel_avx512() {
+#if PETRA_HAVE_VECTOR_CLONES
+  static const bool yes = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("x86-64-v4") && __builtin_cpu_is("intel");
+  }();
+  return yes;
+#else
+  return false;
+#endif
+}
+
 }  // namespace petra

@@ -50,17 +50,29 @@ class Arena {
   }
 
   // A mark to roll back to: scratch memory of one step is released after it.
-  std::size_t mark() const { return used_; }
+  std::size_t mark() const {
+    return used_;
+  }
   void release_to(std::size_t mark) {
     PETRA_ASSERT(mark <= used_);
     used_ = mark;
   }
-  void reset() { used_ = 0; }
+  void reset() {
+    used_ = 0;
+  }
 
-  std::size_t used() const { return used_; }
-  std::size_t capacity() const { return capacity_; }
-  std::size_t remaining() const { return capacity_ - used_; }
-  std::size_t high_water() const { return high_water_; }
+  std::size_t used() const {
+    return used_;
+  }
+  std::size_t capacity() const {
+    return capacity_;
+  }
+  std::size_t remaining() const {
+    return capacity_ - used_;
+  }
+  std::size_t high_water() const {
+    return high_water_;
+  }
 
  private:
   template <class T>
