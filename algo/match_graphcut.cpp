@@ -171,9 +171,15 @@ Status GraphCutMatcher::validate(const StereoInput& in, Rect roi, const GraphCut
                        params.guided_radius, 2 * kMaxDisparityMagnitude);
   }
   if (params.start != GraphCutStart::occluded && params.start != GraphCutStart::block_matching &&
-      params.start != GraphCutStart::dp) {
+      params.start != GraphCutStart::dp && params.start != GraphCutStart::given) {
     return Error::make(Errc::invalid_argument, "graphcut: start %d unknown",
                        static_cast<int>(params.start));
+  }
+  if (params.start == GraphCutStart::given &&
+      (params.start_map.q4.data() == nullptr || params.start_map.q4.width() != roi.w ||
+       params.start_map.q4.height() != roi.h)) {
+    return Error::make(Errc::invalid_argument, "graphcut: start_map %dx%d, roi %dx%d",
+                       params.start_map.q4.width(), params.start_map.q4.height(), roi.w, roi.h);
   }
   if (params.edge_threshold < 1 || params.edge_threshold > 255) {
     return Error::make(Errc::out_of_range, "graphcut: edge_threshold %d outside 1..255",
@@ -370,6 +376,7 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
     if (!started) return started.error();
     if (!*started) report.start = GraphCutStart::block_matching;
   }
+  if (report.start == GraphCutStart::given) labels_from_map(params.start_map);
   if (report.start == GraphCutStart::block_matching) block_matching_labels();
   if (report.start != GraphCutStart::occluded) {
     e = energy();

@@ -92,8 +92,9 @@ struct GraphCutObserver {
 // much faster: the scanline DP matcher's map (fast and more accurate than one
 // cycle of expansions on it; falls back to block matching when the DP finds
 // no match, e.g. too few edges), or a left-right checked 5x5 block matching
-// of the data term.
-enum class GraphCutStart : std::uint8_t { occluded, block_matching, dp };
+// of the data term; or a map the caller gives (a previous result to refine,
+// or, in evaluation, the ground truth: docs/graphcut.md).
+enum class GraphCutStart : std::uint8_t { occluded, block_matching, dp, given };
 
 struct GraphCutParams {
   int disp_min = 0;
@@ -111,6 +112,9 @@ struct GraphCutParams {
   GraphCutStart start = GraphCutStart::dp;
   // Parameters of the DP start (its disparity range is this one's).
   MatchDpParams dp_start{};
+  // The given start: Q4 disparities over the ROI (roi.w x roi.h), rounded to
+  // whole pixels and made unique as the DP's map is.
+  ConstDisparityMap start_map{};
   // Guided cycles, run before the max_cycles full ones (not with the
   // occluded start): each expansion on alpha may change only pixels whose
   // starting disparity is within guided_radius of alpha, or that started
@@ -185,6 +189,7 @@ class GraphCutMatcher {
   std::int32_t automatic_k() const;
   void block_matching_labels();
   Result<bool> dp_labels(const StereoInput& in, Rect roi, const GraphCutParams& params);
+  void labels_from_map(const ConstDisparityMap& map);
   // Cached terms of the active assignment of pixel p (see keep_).
   void refresh_pixel(int p, int x, int y);
   void refresh_all();

@@ -97,16 +97,12 @@ void GraphCutMatcher::block_matching_labels() {
 }
 
 // Starting labelling from the scanline DP matcher (algo/match_dp) run on
-// the same input: its Q4 disparities rounded to whole pixels; invalid,
-// shadowed or out-of-range ones occluded. Where two left pixels claim one
-// right pixel (rounding or the DP's +-1 px consistency tolerance), the
-// cheaper claimant keeps it (ties: the first on the row). False when the DP
-// finds nothing to start from (too few edges, all shadow, range beyond its
-// limit); an error for bad DP parameters. Scratch: alpha_cost_ (the DP map),
-// dp_scratch_ (the DP's arena), right_best_ (claimant cost per strip pixel).
+// the same input (labels_from_map below). False when the DP finds nothing to
+// start from (too few edges, all shadow, range beyond its limit); an error
+// for bad DP parameters. Scratch: alpha_cost_ (the DP map), dp_scratch_ (the
+// DP's arena).
 Result<bool> GraphCutMatcher::dp_labels(const StereoInput& in, Rect roi,
                                         const GraphCutParams& params) {
-  const int n = w_ * h_;
   DisparityMap map{ImageView<std::int16_t>(alpha_cost_.data(), w_, h_), {}};
   MatchDpParams dp = params.dp_start;
   dp.disp_min = params.disp_min;
@@ -119,7 +115,17 @@ Result<bool> GraphCutMatcher::dp_labels(const StereoInput& in, Rect roi,
     if (code == Errc::invalid_argument || code == Errc::capacity_exceeded) return run.error();
     return false;
   }
+  labels_from_map(map);
+  return true;
+}
 
+// A map's Q4 disparities rounded to whole pixels; invalid, shadowed or
+// out-of-range ones occluded. Where two left pixels claim one right pixel
+// (rounding, or the DP's +-1 px consistency tolerance), the cheaper claimant
+// keeps it (ties: the first on the row). Scratch: right_best_ (claimant cost
+// per strip pixel).
+void GraphCutMatcher::labels_from_map(const ConstDisparityMap& map) {
+  const int n = w_ * h_;
   std::fill_n(label_.begin(), n, kOccluded);
   std::fill_n(owner_.begin(), h_ * strip_w_, std::int16_t{-1});
   for (int y = 0; y < h_; ++y) {
@@ -147,7 +153,6 @@ Result<bool> GraphCutMatcher::dp_labels(const StereoInput& in, Rect roi,
       cost_[p] = static_cast<std::int16_t>(c);
     }
   }
-  return true;
 }
 
 }  // namespace petra

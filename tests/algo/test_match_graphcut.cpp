@@ -249,13 +249,23 @@ TEST(MatchGraphCut, EachExpansionIsOptimalAndTheResultIsALocalMinimum) {
   std::mt19937 rng(2024);
   Matcher m({4, 2, 4});
   int checked = 0;
-  for (int round = 0; round < 12; ++round) {
+  for (int round = 0; round < 16; ++round) {
     const int w = 3 + round % 2, h = 2, disp_max = 1 + round % 3;
     Problem pr = random_problem(rng, w, h, disp_max, round % 3 == 2);
     GraphCutParams params;
     params.max_cycles = 8;
     params.prune = round % 2 == 0;
     params.start = static_cast<GraphCutStart>(round % 3);
+    // The last rounds start from a given map: random disparities, some
+    // between pixels, invalid or out of range, some claiming one right pixel.
+    std::vector<std::int16_t> start(static_cast<std::size_t>(w * h));
+    if (round >= 12) {
+      std::uniform_int_distribution<int> q4(-20, 16 * disp_max + 20);
+      for (auto& v : start)
+        v = rng() % 5 == 0 ? kInvalidDisparity : static_cast<std::int16_t>(q4(rng));
+      params.start = GraphCutStart::given;
+      params.start_map = ConstDisparityMap(ImageView<const std::int16_t>(start.data(), w, h), {});
+    }
     params.guided_cycles = round % 4 < 2 ? 1 : 2;
     params.guided_radius = (round / 2) % 2;
     params.seed = static_cast<std::uint32_t>(round + 1);
@@ -286,7 +296,7 @@ TEST(MatchGraphCut, EachExpansionIsOptimalAndTheResultIsALocalMinimum) {
     }
     checked += trace.checked;
   }
-  EXPECT_GT(checked, 40);
+  EXPECT_GT(checked, 50);
 }
 
 // A textured plane at disparity 2 with a nearer square at 7 in front of it.
@@ -376,6 +386,42 @@ TEST(MatchGraphCut, DpStartFallsBackToBlockMatchingWhenTheDpFindsNothing) {
   auto run2 = m.run(textured.pr, GraphCutParams{});
   ASSERT_TRUE(run2.ok()) << run2.error().message;
   EXPECT_EQ(run2->report.start, GraphCutStart::dp);
+}
+
+// Given the DP's own map, the matcher starts where the DP start does and
+// ends with the same labels and energy.
+TEST(MatchGraphCut, GivenStartFromTheDpMapEqualsTheDpStart) {
+  const Scene s = square_scene(64, 40, 2, 7, {28, 12, 20, 16}, {4, 2, 56, 36}, 0, 9, 11);
+  const Problem& pr = s.pr;
+  std::vector<std::int16_t> dp_q4(static_cast<std::size_t>(pr.roi.w * pr.roi.h));
+  DisparityMap dp_map{ImageView<std::int16_t>(dp_q4.data(), pr.roi.w, pr.roi.h), {}};
+  const MatchBudget budget{64, 40, 10};
+  std::vector<std::byte> block(match_dp_scratch_bytes(budget));
+  Arena arena(block);
+  MatchDpParams dp;
+  dp.disp_min = pr.disp_min;
+  dp.disp_max = pr.disp_max;
+  const StereoInput in{ConstGray8View(pr.left.data(), pr.width, pr.height),
+                       ConstGray8View(pr.right.data(), pr.width, pr.height)};
+  ASSERT_TRUE(match_dp(in, pr.roi, dp, budget, arena, dp_map).ok());
+  Matcher m({64, 40, 10});
+  auto from_dp = m.run(pr, GraphCutParams{});
+  ASSERT_TRUE(from_dp.ok()) << from_dp.error().message;
+  GraphCutParams given;
+  given.start = GraphCutStart::given;
+  given.start_map = dp_map;
+  auto from_map = m.run(pr, given);
+  ASSERT_TRUE(from_map.ok()) << from_map.error().message;
+  EXPECT_EQ(from_dp->report.start, GraphCutStart::dp);
+  EXPECT_EQ(from_map->report.start, GraphCutStart::given);
+  EXPECT_EQ(from_map->report.energy_start, from_dp->report.energy_start);
+  EXPECT_EQ(from_map->report.energy, from_dp->report.energy);
+  EXPECT_EQ(from_map->q4, from_dp->q4);
+  // Another map gives another start.
+  std::fill(dp_q4.begin(), dp_q4.end(), std::int16_t{2 * kDisparityScale});
+  auto flat = m.run(pr, given);
+  ASSERT_TRUE(flat.ok()) << flat.error().message;
+  EXPECT_NE(flat->report.energy_start, from_dp->report.energy_start);
 }
 
 TEST(MatchGraphCut, RoiAndNegativeDisparitiesUseImageCoordinates) {
@@ -580,6 +626,12 @@ TEST(MatchGraphCut, BadInputIsRefusedWithTheFieldNamed) {
   q = p;
   q.start = static_cast<GraphCutStart>(7);
   expect_error(gc.match(in, {0, 0, 40, 24}, q, out), Errc::invalid_argument, "start");
+  q = p;
+  q.start = GraphCutStart::given;  // without its map
+  expect_error(gc.match(in, {0, 0, 40, 24}, q, out), Errc::invalid_argument, "start_map");
+  std::vector<std::int16_t> small_start(39 * 24, 0);
+  q.start_map = ConstDisparityMap(ImageView<const std::int16_t>(small_start.data(), 39, 24), {});
+  expect_error(gc.match(in, {0, 0, 40, 24}, q, out), Errc::invalid_argument, "start_map 39x24");
   q = p;
   q.dp_start.p1 = -1;  // the DP start's own parameters are checked by match_dp
   expect_error(gc.match(in, {0, 0, 40, 24}, q, out), Errc::invalid_argument, "match_dp");

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,20 @@ struct Outcome {
   double cpu_s = 0;
 };
 
+// The labels and energy at the end of the guided cycles (the start's, if none).
+struct GuidedEnd {
+  std::vector<std::int16_t> labels;
+  std::int64_t start_energy = 0;
+  std::int64_t energy = 0;
+};
+void keep_last_guided(void* context, const GraphCutStep& step) {
+  auto* g = static_cast<GuidedEnd*>(context);
+  if (step.cycle >= 0 && !step.guided) return;
+  if (step.cycle < 0) g->start_energy = step.energy_after;
+  g->labels.assign(step.labels.begin(), step.labels.end());
+  g->energy = step.energy_after;
+}
+
 // Whole image, budget sized for it (as `petra stereo --method gc` does).
 Outcome run_scene(const eval::MiddleburyScene& s, const GraphCutParams& base) {
   Outcome o;
@@ -44,6 +59,17 @@ Outcome run_scene(const eval::MiddleburyScene& s, const GraphCutParams& base) {
   GraphCutParams p = base;
   p.disp_min = 0;
   p.disp_max = s.disp_max;
+  // PETRA_GC_START=3 (given): start from the ground truth (known pixels,
+  // occluded ones included, made unique by the matcher), to see where the
+  // energy takes it (docs/graphcut.md, "Limits").
+  GuidedEnd guided;
+  std::vector<std::int16_t> truth_q4(static_cast<std::size_t>(w) * h, kInvalidDisparity);
+  if (p.start == GraphCutStart::given) {
+    for (std::size_t i = 0; i < truth_q4.size(); ++i)
+      if (data->known[i] != 0) truth_q4[i] = disparity_q4(data->gt.data[i]);
+    p.start_map = ConstDisparityMap(ImageView<const std::int16_t>(truth_q4.data(), w, h), {});
+    p.observer = {keep_last_guided, &guided};
+  }
   const StereoInput in{data->left.view(), data->right.view()};
   const double t0 = thread_cpu_s();
   auto rep = m.match(in, {0, 0, w, h}, p, out);
@@ -54,6 +80,17 @@ Outcome run_scene(const eval::MiddleburyScene& s, const GraphCutParams& base) {
   auto score = eval::score_middlebury(eval::to_float_image(out, w, h).view(), *data);
   EXPECT_TRUE(score.ok());
   if (score) o.score = *score;
+  if (p.start == GraphCutStart::given) {
+    io::FloatImage f(w, h, std::numeric_limits<float>::infinity());
+    for (std::size_t i = 0; i < guided.labels.size(); ++i)
+      if (guided.labels[i] >= 0) f.data[i] = static_cast<float>(guided.labels[i] + p.disp_min);
+    auto at_start = eval::score_middlebury(f.view(), *data);
+    std::printf(
+        "%-8s from the truth: start E %lld; after the guided cycles E %lld, strict %.2f "
+        "filled %.2f (nonocc)\n",
+        s.name, static_cast<long long>(guided.start_energy), static_cast<long long>(guided.energy),
+        at_start ? at_start->strict.nonocc : -1.0, at_start ? at_start->filled.nonocc : -1.0);
+  }
   std::printf(
       "%-8s strict %5.2f / %5.2f  filled %5.2f / %5.2f (nonocc / all)  K %d l1 %d l2 %d  "
       "cycles %d expansions %d  E %lld  %.2f s cpu\n",
@@ -125,9 +162,11 @@ void trace_step(void* context, const GraphCutStep& step) {
 
 // Exploration for tuning and the documentation, skipped unless asked:
 //   PETRA_GC_SCENES=tsukuba,cones [PETRA_GC_CYCLES=n PETRA_GC_SEED=s
-//   PETRA_GC_RANDOM=0|1 PETRA_GC_START=0|1|2 (occluded, block
-//   matching, dp) PETRA_GC_GUIDED=n PETRA_GC_RADIUS=r PETRA_GC_PRUNE=0|1
-//   PETRA_GC_TRACE=1] <this test>
+//   PETRA_GC_RANDOM=0|1 PETRA_GC_START=0|1|2|3 (occluded, block
+//   matching, dp, given: the ground truth) PETRA_GC_GUIDED=n
+//   PETRA_GC_RADIUS=r PETRA_GC_PRUNE=0|1 PETRA_GC_TRACE=1 (not with start 3)
+//   PETRA_GC_K=k PETRA_GC_LAMBDA=l PETRA_GC_LAMBDA1=l1 PETRA_GC_LAMBDA2=l2
+//   PETRA_GC_EDGE=t PETRA_GC_CLIP=c] <this test>
 TEST(GraphCutMiddlebury, Explore) {
   const char* only = std::getenv("PETRA_GC_SCENES");
   if (only == nullptr) GTEST_SKIP();
@@ -141,6 +180,12 @@ TEST(GraphCutMiddlebury, Explore) {
   if (const char* c = std::getenv("PETRA_GC_RADIUS")) p.guided_radius = std::atoi(c);
   if (const char* c = std::getenv("PETRA_GC_SEED"))
     p.seed = static_cast<std::uint32_t>(std::atoi(c));
+  if (const char* c = std::getenv("PETRA_GC_K")) p.occlusion_k = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_LAMBDA")) p.lambda = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_LAMBDA1")) p.lambda1 = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_LAMBDA2")) p.lambda2 = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_EDGE")) p.edge_threshold = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_CLIP")) p.data_clip = std::atoi(c);
   Trace trace;
   if (std::getenv("PETRA_GC_TRACE") != nullptr) p.observer = {trace_step, &trace};
   for (const eval::MiddleburyScene& s : eval::middlebury_scenes()) {
