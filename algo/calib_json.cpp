@@ -87,8 +87,9 @@ Result<TsaiCamera> read_camera(const json::Document& doc, const char* name) {
   if (!R) return R.error();
   auto T = r.numbers<3>("T");
   if (!T) return T.error();
+  std::size_t k = 0;  // R is row-major
   for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) c.R(i, j) = (*R)[static_cast<std::size_t>(3 * i + j)];
+    for (int j = 0; j < 3; ++j) c.R(i, j) = (*R)[k++];
     c.T_mm(i) = (*T)[static_cast<std::size_t>(i)];
   }
   PETRA_TRY(validate(c, name));

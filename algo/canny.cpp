@@ -160,7 +160,7 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
   auto stack = scratch.allocate_uninitialised<std::uint32_t>(sz(w, h), "canny stack");
   if (!stack) return stack.error();
   auto src_row =
-      scratch.allocate_uninitialised<std::uint8_t>(static_cast<std::size_t>(w + 8), "canny row");
+      scratch.allocate_uninitialised<std::uint8_t>(static_cast<std::size_t>(w) + 8, "canny row");
   if (!src_row) return src_row.error();
   auto hring =
       scratch.allocate_uninitialised<std::uint16_t>(static_cast<std::size_t>(sw) * 5, "canny ring");

@@ -36,8 +36,8 @@ std::size_t disparity_range_scratch_bytes(int width, int height, int max_roi_w, 
   // Every factor the ROI width may select; the smallest gives the largest problem.
   std::size_t worst = 0;
   for (int factor = p.factor; factor >= 1; factor /= 2) {
-    const std::size_t cw = static_cast<std::size_t>(width / factor + 1);
-    const std::size_t ch = static_cast<std::size_t>(height / factor + 1);
+    const std::size_t cw = static_cast<std::size_t>(width / factor) + 1;
+    const std::size_t ch = static_cast<std::size_t>(height / factor) + 1;
     const MatchBudget mb{max_roi_w / factor + 2, max_roi_h / factor + 2,
                          (p.search_max_px - p.search_min_px) / factor + 3};
     const std::size_t bytes = 2 * cw * ch +

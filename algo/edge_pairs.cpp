@@ -72,7 +72,7 @@ int zncc(const Window& a, const Window& b) {
   // Rounded inline: for 1 <= v < 2^52, v + 0.5 is exact and truncation
   // gives lround(v) (a library call per pair otherwise).
   const double v = a.sd * b.sd;
-  const long den = static_cast<long>(v + 0.5);
+  const long den = static_cast<long>(v + 0.5);  // NOLINT(bugprone-incorrect-roundings): see above
   if (den <= 0) return 0;
   // The quotient in double: |num * kZnccOne| < 2^36 and den are exact, and
   // a non-integer quotient lies at least 1 / den from an integer, more than

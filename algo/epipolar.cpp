@@ -236,11 +236,11 @@ Result<ClickMatch> transfer_click(const StereoRig& rig, ConstGray8View left, Con
   m.at_search_end = best == first || best == last;
   m.score = score[static_cast<std::size_t>(best)];
   double offset = 0;
-  if (best > 0 && best + 1 < count && score[static_cast<std::size_t>(best - 1)] > -2 &&
-      score[static_cast<std::size_t>(best + 1)] > -2) {
-    const double a = score[static_cast<std::size_t>(best - 1)],
+  if (best > 0 && best + 1 < count && score[static_cast<std::size_t>(best) - 1] > -2 &&
+      score[static_cast<std::size_t>(best) + 1] > -2) {
+    const double a = score[static_cast<std::size_t>(best) - 1],
                  b = score[static_cast<std::size_t>(best)],
-                 c = score[static_cast<std::size_t>(best + 1)];
+                 c = score[static_cast<std::size_t>(best) + 1];
     const double den = a - 2 * b + c;
     if (den < 0) offset = std::clamp(0.5 * (a - c) / den, -0.5, 0.5);
   }

@@ -288,7 +288,7 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
   if (!point_normals.empty() && point_normals.size() != xyz.size())
     return Error::make(Errc::invalid_argument, "grind planes: %zu points, %zu normals", xyz.size(),
                        point_normals.size());
-  if (n < static_cast<std::size_t>(3 * c))
+  if (n < 3 * static_cast<std::size_t>(c))
     return Error::make(Errc::degenerate, "grind planes: %zu rock triangles, too few for c = %d", n,
                        c);
   const std::int32_t npts = static_cast<std::int32_t>(xyz.size());

@@ -106,6 +106,9 @@ struct GrindPlane {
   PlaneVerdict verdict = PlaneVerdict::no_support;
 };
 
+// The analyser reports '__i0', the compiler's own loop variable of the
+// implicit copy over planes[], not a name of ours.
+// NOLINTNEXTLINE(bugprone-reserved-identifier)
 struct GrindResult {
   GrindPlane planes[kMaxClasses];  // accepted (ranked by area) then rejected
   int count = 0;                   // planes listed

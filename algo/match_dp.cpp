@@ -804,8 +804,8 @@ Result<MatchDpStats> match_dp(const StereoInput& in, Rect roi, const MatchDpPara
   switch (Layout(roi.w, roi.h, d).dp) {
 #define PETRA_CASE(n)                                                               \
   case n:                                                                           \
-    if constexpr (n >= 32)                                                          \
-      if (narrow) return match_impl<n, n - 16>(in, roi, p, arena, out, confidence); \
+    if constexpr ((n) >= 32)                                                        \
+      if (narrow) return match_impl<n, (n)-16>(in, roi, p, arena, out, confidence); \
     return match_impl<n, n>(in, roi, p, arena, out, confidence);
     PETRA_MATCH_LANE_COUNTS(PETRA_CASE)
 #undef PETRA_CASE

@@ -71,7 +71,7 @@ Status GraphCutMatcher::init(Arena& arena, const GraphCutBudget& budget) {
   do {                                                            \
     auto taken = arena.allocate<type>((count), "graphcut " what); \
     if (!taken) return taken.error();                             \
-    member = *taken;                                              \
+    (member) = *taken;                                            \
   } while (false)
   PETRA_GC_TAKE(left_, Sample, s.roi, "left samples");
   PETRA_GC_TAKE(right_, Sample, s.strip, "right samples");

@@ -30,7 +30,7 @@ inline constexpr std::size_t kCrcBytes = 2;
 inline constexpr std::size_t kTcOverheadBytes = kTcHeaderBytes + kHmacBytes + kCrcBytes;
 
 enum class FunctionCode : std::uint8_t {
-#define PETRA_CMD_ENUM(Name, NAME, code, modes, desc, FIELDS) NAME = code,
+#define PETRA_CMD_ENUM(Name, NAME, code, modes, desc, FIELDS) NAME = (code),
   PETRA_COMMANDS(PETRA_CMD_ENUM)
 #undef PETRA_CMD_ENUM
 };

@@ -103,8 +103,11 @@ constexpr bool in_range(const std::array<T, N>& a, double lo, double hi) {
 
 // ---- Expansion helpers applied to a field list F(type, name, count, unit, min, max, desc) ----
 
+// `name` is the member being declared: it cannot take parentheses.
+// NOLINTBEGIN(bugprone-macro-parentheses)
 #define PETRA_WIRE_MEMBER(type, name, count, unit, lo, hi, desc) \
   ::petra::wire::Slot<::petra::wire::type##_t, count> name{};
+// NOLINTEND(bugprone-macro-parentheses)
 #define PETRA_WIRE_DESC(type, name, count, unit, lo, hi, desc) \
   ::petra::wire::FieldDesc{#name, ::petra::wire::FieldType::type, count, unit, lo, hi, desc},
 #define PETRA_WIRE_WRITE(type, name, count, unit, lo, hi, desc) w.put(name);

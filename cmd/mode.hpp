@@ -16,7 +16,7 @@
 namespace petra {
 
 enum class Mode : std::uint8_t {
-#define PETRA_MODE_ENUM(NAME, value, desc) NAME = value,
+#define PETRA_MODE_ENUM(NAME, value, desc) NAME = (value),
   PETRA_MODES(PETRA_MODE_ENUM)
 #undef PETRA_MODE_ENUM
 };

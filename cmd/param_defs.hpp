@@ -29,25 +29,25 @@
 namespace petra {
 
 enum class ParamId : std::uint16_t {
-#define PETRA_PARAM_ENUM(NAME, id, unit, lo, hi, def, integer, desc) NAME = id,
+#define PETRA_PARAM_ENUM(NAME, id, unit, lo, hi, def, integer, desc) NAME = (id),
   PETRA_PARAMS(PETRA_PARAM_ENUM)
 #undef PETRA_PARAM_ENUM
 };
 
-struct ParamDesc {
+struct ParamDesc {  // pointers, doubles, then the small fields: no padding between
   const char* name;
-  std::uint16_t id;
   const char* unit;
+  const char* description;
   double min;
   double max;
   double default_value;
+  std::uint16_t id;
   bool integer;
-  const char* description;
 };
 
 inline constexpr ParamDesc kParamTable[] = {
 #define PETRA_PARAM_DESC(NAME, id, unit, lo, hi, def, integer, desc) \
-  ParamDesc{#NAME, id, unit, lo, hi, def, integer, desc},
+  ParamDesc{#NAME, unit, desc, lo, hi, def, id, integer},
     PETRA_PARAMS(PETRA_PARAM_DESC)
 #undef PETRA_PARAM_DESC
 };

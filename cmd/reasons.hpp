@@ -45,7 +45,7 @@ namespace petra {
 
 enum class Reason : std::uint8_t {
   NONE = 0,
-#define PETRA_REASON_ENUM(NAME, code, desc) NAME = code,
+#define PETRA_REASON_ENUM(NAME, code, desc) NAME = (code),
   PETRA_REJECT_REASONS(PETRA_REASON_ENUM) PETRA_FAIL_REASONS(PETRA_REASON_ENUM)
 #undef PETRA_REASON_ENUM
 };

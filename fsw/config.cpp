@@ -95,8 +95,8 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
   if (doc->token(0).type != Type::object)
     return Error::make(Errc::wrong_type, "config: top level must be an object");
   FswConfig c;
-  std::snprintf(c.cmd_host.data(), c.cmd_host.size(), "127.0.0.1");
-  std::snprintf(c.tlm_host.data(), c.tlm_host.size(), "127.0.0.1");
+  (void)std::snprintf(c.cmd_host.data(), c.cmd_host.size(), "127.0.0.1");
+  (void)std::snprintf(c.tlm_host.data(), c.tlm_host.size(), "127.0.0.1");
   const Reader r{*doc, base_dir};
 
   const std::uint32_t up = doc->find(0, "uplink");
@@ -202,13 +202,17 @@ Result<FswConfig> load_config(const char* path) {
   auto buf = std::make_unique<char[]>(65536);  // init only
   auto n = hal::read_small_file(path, std::span<char>(buf.get(), 65536));
   if (!n) return n.error();
+  // Relative paths in the file are resolved against its folder: a cut path
+  // would resolve them somewhere else.
   char dir[256];
-  std::snprintf(dir, sizeof(dir), "%s", path);
+  if (std::snprintf(dir, sizeof(dir), "%s", path) >= static_cast<int>(sizeof(dir)))
+    return Error::make(Errc::invalid_argument, "config path: longer than %zu characters",
+                       sizeof(dir) - 1);
   char* slash = std::strrchr(dir, '/');
   if (slash != nullptr)
     *slash = '\0';
   else
-    std::snprintf(dir, sizeof(dir), ".");
+    (void)std::snprintf(dir, sizeof(dir), ".");
   return parse_config(buf.get(), *n, dir);
 }
 

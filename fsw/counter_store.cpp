@@ -31,7 +31,7 @@ Result<std::uint32_t> CounterStore::open(const char* path) {
 Status CounterStore::store(std::uint32_t counter) {
   if (fd_ < 0) return Error::make(Errc::not_ready, "counter file not open");
   char text[16];
-  std::snprintf(text, sizeof(text), "%010u\n", counter);
+  (void)std::snprintf(text, sizeof(text), "%010u\n", counter);
   if (::pwrite(fd_, text, 11, 0) != 11)
     return Error::make(Errc::io_error, "counter file: write failed");
   return {};

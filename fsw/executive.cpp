@@ -48,7 +48,8 @@ Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
                       align_up(arena_bytes);
   for (std::size_t s : product_sizes) total += align_up(s);
 
-  memory_.reset(new (std::nothrow) std::byte[total]);
+  // The one allocation, at init; nothrow, so a failure is an error value.
+  memory_.reset(new (std::nothrow) std::byte[total]);  // NOLINT(cppcoreguidelines-owning-memory)
   if (!memory_)
     return Error::make(Errc::capacity_exceeded, "init: cannot allocate %zu bytes", total);
   std::memset(memory_.get(), 0, total);  // touch every page now: resident memory stays flat
@@ -152,7 +153,7 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
   health_.reset(deps.clock->monotonic_ns());
   update_periods();
   if (config.lock_memory && ::mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
-    std::fprintf(stderr, "petra-fsw: mlockall refused; memory not locked\n");
+    (void)std::fprintf(stderr, "petra-fsw: mlockall refused; memory not locked\n");
 
   events_.raise(EventId::BOOT_COMPLETE, static_cast<std::int32_t>(memory_bytes_),
                 static_cast<std::int32_t>(runner_.arena_capacity()), params_loaded);

@@ -29,8 +29,8 @@ Status FlightDevices::open(const FswConfig& config) {
   }
   if (kind_ == CameraKind::file) {
     PETRA_TRY(file_camera_.open(config.camera_dir.data()));
-    std::snprintf(camera_text_, sizeof camera_text_, "file %.180s (%dx%d)",
-                  config.camera_dir.data(), file_camera_.width(), file_camera_.height());
+    (void)std::snprintf(camera_text_, sizeof camera_text_, "file %.180s (%dx%d)",
+                        config.camera_dir.data(), file_camera_.width(), file_camera_.height());
     return ok_status();
   }
   hal::V4l2StereoConfig v4l2 = config.v4l2.config;
@@ -45,7 +45,7 @@ Status FlightDevices::open(const FswConfig& config) {
         v4l2.timing.layout == hal::StereoLayout::two_devices ? " + " : "",
         v4l2.timing.layout == hal::StereoLayout::two_devices ? v4l2.right.device.data() : "",
         s.error().message);
-  std::snprintf(
+  (void)std::snprintf(
       camera_text_, sizeof camera_text_, "v4l2 %.90s%s%.90s (%dx%d%s)", v4l2.left.device.data(),
       v4l2.timing.layout == hal::StereoLayout::two_devices ? " + " : "",
       v4l2.timing.layout == hal::StereoLayout::two_devices ? v4l2.right.device.data() : "",

@@ -6,14 +6,12 @@ bool ModeManager::allowed(Mode from, Mode to) {
   if (from == to) return false;
   if (to == Mode::SAFE) return true;  // any fault or the ground, from anywhere
   switch (from) {
-    case Mode::BOOT:
-      return to == Mode::IDLE;
     case Mode::IDLE:
       return to == Mode::ACQUIRE || to == Mode::EVALUATE || to == Mode::ARM_MOVING;
+    case Mode::BOOT:  // every other mode leads back to IDLE only
     case Mode::ACQUIRE:
     case Mode::EVALUATE:
     case Mode::ARM_MOVING:
-      return to == Mode::IDLE;
     case Mode::SAFE:
       return to == Mode::IDLE;
   }

@@ -29,7 +29,7 @@ inline constexpr std::size_t kMaxPlanes = 8;
 inline constexpr std::size_t kStepSlots = PETRA_STEP_SLOTS;
 
 enum class Step : std::uint8_t {
-#define PETRA_STEP_ENUM(NAME, slot) NAME = slot,
+#define PETRA_STEP_ENUM(NAME, slot) NAME = (slot),
   PETRA_PIPELINE_STEPS(PETRA_STEP_ENUM)
 #undef PETRA_STEP_ENUM
 };

@@ -25,7 +25,7 @@ Status text(const json::Document& doc, std::uint32_t obj, const char* section, c
   if (s.empty() || s.size() >= N)
     return Error::make(Errc::invalid_argument, "%s.%s: length %zu outside 1..%zu", section, key,
                        s.size(), N - 1);
-  std::snprintf(out.data(), N, "%.*s", static_cast<int>(s.size()), s.data());
+  (void)std::snprintf(out.data(), N, "%.*s", static_cast<int>(s.size()), s.data());
   return ok_status();
 }
 
@@ -65,13 +65,14 @@ Status gpio_line(const json::Document& doc, std::uint32_t obj, const char* key,
   out = GpioLineConfig{};
   out.chip = chip;
   char section[32];
-  std::snprintf(section, sizeof section, "gpio.%s", key);
+  (void)std::snprintf(section, sizeof section, "gpio.%s", key);
   if (doc.token(i).type == Type::string) {
     const std::string_view s = doc.text_of(i);
     if (s.empty() || s.size() >= out.line.size())
       return Error::make(Errc::invalid_argument, "%s: line name length %zu outside 1..%zu", section,
                          s.size(), out.line.size() - 1);
-    std::snprintf(out.line.data(), out.line.size(), "%.*s", static_cast<int>(s.size()), s.data());
+    (void)std::snprintf(out.line.data(), out.line.size(), "%.*s", static_cast<int>(s.size()),
+                        s.data());
   } else if (doc.token(i).type == Type::object) {
     PETRA_TRY(text(doc, i, section, "chip", out.chip, false));
     PETRA_TRY(text(doc, i, section, "line", out.line, true));

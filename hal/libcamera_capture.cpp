@@ -147,7 +147,7 @@ Status LibcameraCapture::open(const LibcameraCaptureConfig& cfg) {
     close();
     return Error::make(Errc::io_error, "libcamera: no camera matches '%s'", cfg.camera.data());
   }
-  std::snprintf(id_.data(), id_.size(), "%s", m.camera->id().c_str());
+  (void)std::snprintf(id_.data(), id_.size(), "%s", m.camera->id().c_str());
   if (m.camera->acquire() < 0) {
     close();
     return Error::make(Errc::io_error, "libcamera: camera '%s' is in use", id_.data());

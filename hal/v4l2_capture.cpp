@@ -60,10 +60,10 @@ Status find_video_node(const char* name, std::array<char, V4l2CaptureConfig::kMa
   for (int n = 0; n < 64; ++n) {
     char sys[80];
     char got[64];
-    std::snprintf(sys, sizeof sys, "/sys/class/video4linux/video%d/name", n);
+    (void)std::snprintf(sys, sizeof sys, "/sys/class/video4linux/video%d/name", n);
     if (!read_sysfs_line(sys, got, sizeof got)) continue;
     if (std::strcmp(got, name) == 0) {
-      std::snprintf(path.data(), path.size(), "/dev/video%d", n);
+      (void)std::snprintf(path.data(), path.size(), "/dev/video%d", n);
       return ok_status();
     }
   }
@@ -94,7 +94,7 @@ Status V4l2Capture::open(const V4l2CaptureConfig& config) {
                        kMaxBuffers);
   gaps_are_faults_ = config.gaps_are_faults;
   if (config.device[0] == '/') {
-    std::snprintf(path_.data(), path_.size(), "%s", config.device.data());
+    (void)std::snprintf(path_.data(), path_.size(), "%s", config.device.data());
   } else {
     PETRA_TRY(find_video_node(config.device.data(), path_));
   }
@@ -108,7 +108,7 @@ Status V4l2Capture::open(const V4l2CaptureConfig& config) {
     close();
     return fail_device("VIDIOC_QUERYCAP (not a V4L2 device?)", err);
   }
-  std::snprintf(card_.data(), card_.size(), "%s", reinterpret_cast<const char*>(cap.card));
+  (void)std::snprintf(card_.data(), card_.size(), "%s", reinterpret_cast<const char*>(cap.card));
   const std::uint32_t caps =
       (cap.capabilities & V4L2_CAP_DEVICE_CAPS) != 0 ? cap.device_caps : cap.capabilities;
   if ((caps & V4L2_CAP_VIDEO_CAPTURE) == 0 || (caps & V4L2_CAP_STREAMING) == 0) {

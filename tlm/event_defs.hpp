@@ -57,7 +57,7 @@ namespace petra {
 enum class Severity : std::uint8_t { DEBUG = 0, INFO = 1, WARNING = 2, ERROR = 3, FATAL = 4 };
 
 enum class EventId : std::uint16_t {
-#define PETRA_EVENT_ENUM(NAME, id, sev, text) NAME = id,
+#define PETRA_EVENT_ENUM(NAME, id, sev, text) NAME = (id),
   PETRA_EVENTS(PETRA_EVENT_ENUM)
 #undef PETRA_EVENT_ENUM
 };
@@ -73,8 +73,8 @@ inline constexpr EventDesc kEventTable[] = {
 #define PETRA_EVENT_DESC(NAME, id, sev, text) EventDesc{#NAME, id, Severity::sev, text},
     PETRA_EVENTS(PETRA_EVENT_DESC)
 #undef PETRA_EVENT_DESC
-#define PETRA_REJECT_EVENT_DESC(NAME, code, desc)                                     \
-  EventDesc{"CMD_REJECTED_" #NAME, PETRA_REJECT_EVENT_BASE + code, Severity::WARNING, \
+#define PETRA_REJECT_EVENT_DESC(NAME, code, desc)                                       \
+  EventDesc{"CMD_REJECTED_" #NAME, PETRA_REJECT_EVENT_BASE + (code), Severity::WARNING, \
             "command {0:fc} rejected: " desc " (detail {1}, counter {2})"},
         PETRA_REJECT_REASONS(PETRA_REJECT_EVENT_DESC)
 #undef PETRA_REJECT_EVENT_DESC

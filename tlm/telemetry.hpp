@@ -21,7 +21,7 @@ inline constexpr std::size_t kTmHeaderBytes = 14;
 inline constexpr std::size_t kTmCrcBytes = 2;
 
 enum class Apid : std::uint16_t {
-#define PETRA_TM_ENUM(Name, NAME, apid, desc, FIELDS) NAME = apid,
+#define PETRA_TM_ENUM(Name, NAME, apid, desc, FIELDS) NAME = (apid),
   PETRA_TELEMETRY(PETRA_TM_ENUM)
 #undef PETRA_TM_ENUM
 };

@@ -22,7 +22,7 @@ void on_signal(int) {
 }
 
 int usage() {
-  std::fprintf(stderr, "usage: petra-fsw --config FILE\n");
+  (void)std::fprintf(stderr, "usage: petra-fsw --config FILE\n");
   return 2;
 }
 
@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
     else if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0)
       return usage();
     else {
-      std::fprintf(stderr, "petra-fsw: unknown argument '%s'\n", argv[i]);
+      (void)std::fprintf(stderr, "petra-fsw: unknown argument '%s'\n", argv[i]);
       return usage();
     }
   }
@@ -44,13 +44,13 @@ int main(int argc, char** argv) {
 
   auto config = petra::fsw::load_config(config_path);
   if (!config) {
-    std::fprintf(stderr, "petra-fsw: %s\n", config.error().message);
+    (void)std::fprintf(stderr, "petra-fsw: %s\n", config.error().message);
     return 1;
   }
   static petra::hal::SystemClock clock;
   static petra::fsw::FlightDevices devices;
   if (auto s = devices.open(*config); !s) {
-    std::fprintf(stderr, "petra-fsw: %s\n", s.error().message);
+    (void)std::fprintf(stderr, "petra-fsw: %s\n", s.error().message);
     return 1;
   }
   petra::fsw::Dependencies deps;
@@ -76,12 +76,12 @@ int main(int argc, char** argv) {
       opened = socketcan.open(iface);
     }
     if (!opened) {
-      std::fprintf(stderr, "petra-fsw: arm: %s\n", opened.error().message);
+      (void)std::fprintf(stderr, "petra-fsw: arm: %s\n", opened.error().message);
       return 1;
     }
     // Drives powered before the master boots them (a boot-up message starts configuration).
     if (auto s = devices.power_arm(true); !s) {
-      std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
+      (void)std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
       return 1;
     }
     petra::fsw::arm::ArmServiceConfig arm_config;
@@ -92,19 +92,19 @@ int main(int argc, char** argv) {
           Eigen::AngleAxisd(m[3] * 3.14159265358979323846 / 180.0, Eigen::Vector3d::UnitZ());
     }
     if (auto s = arm.init(arm_config, *can, clock); !s) {
-      std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
+      (void)std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
       return 1;
     }
     deps.arm = &arm;
   }
   static petra::fsw::Executive exec;
   if (auto s = exec.init(*config, deps); !s) {
-    std::fprintf(stderr, "petra-fsw: %s\n", s.error().message);
+    (void)std::fprintf(stderr, "petra-fsw: %s\n", s.error().message);
     return 1;
   }
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
-  std::fprintf(
+  if (std::signal(SIGINT, on_signal) == SIG_ERR || std::signal(SIGTERM, on_signal) == SIG_ERR)
+    (void)std::fprintf(stderr, "petra-fsw: cannot handle SIGINT/SIGTERM; no orderly stop\n");
+  (void)std::fprintf(
       stderr,
       "petra-fsw: running: commands on udp %s:%u, telemetry to %s:%u, camera %s, "
       "pipeline %s, arm %s, e-stop %s, %zu bytes allocated at init\n",
@@ -115,6 +115,6 @@ int main(int argc, char** argv) {
   exec.run(&g_stop);
   exec.shutdown();
   devices.close();  // arm power off
-  std::fprintf(stderr, "petra-fsw: stopped after %u cycles\n", exec.loop_counters().cycles);
+  (void)std::fprintf(stderr, "petra-fsw: stopped after %u cycles\n", exec.loop_counters().cycles);
   return 0;
 }

@@ -78,6 +78,9 @@ CobId split_cob_id(std::uint32_t id) {
     c.function = Function::nmt;
   } else if (id == 0x080) {
     c.function = Function::sync;
+    // Node 0 is refused before the function table (as the final else does
+    // for unknown functions), on purpose: the order is the rule.
+    // NOLINTNEXTLINE(bugprone-branch-clone)
   } else if (node == 0) {
     c.known = false;
   } else if (fn == 0x080) {
