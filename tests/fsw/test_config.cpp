@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace petra::fsw {
@@ -97,6 +99,28 @@ TEST(Config, AV4l2CameraAndTheGpioLinesAreReadForTheDevices) {
   ASSERT_TRUE(plain.ok());
   EXPECT_EQ(plain->camera_kind, CameraKind::file);
   EXPECT_FALSE(plain->gpio.has_estop || plain->gpio.has_arm_power || plain->gpio.has_trigger);
+}
+
+// Relative paths resolve against the file's folder: a path too long for the
+// folder's buffer is an error naming it, not a cut folder.
+TEST(Config, AFilePathTooLongForItsFolderIsRefused) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() / "petra_config_long_path";
+  const fs::path dir = root / std::string(120, 'a') / std::string(120, 'b') / std::string(40, 'c');
+  fs::create_directories(dir);
+  const fs::path file = dir / "fsw.json";
+  std::ofstream(file) << kMinimal;
+  ASSERT_GT(file.string().size(), 255u);
+  auto c = load_config(file.c_str());
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(std::string(c.error().message).find("config path"), std::string::npos)
+      << c.error().message;
+  // The same content under a short path loads.
+  const fs::path near = root / "fsw.json";
+  std::ofstream(near) << kMinimal;
+  auto ok = load_config(near.c_str());
+  EXPECT_TRUE(ok.ok()) << (ok.ok() ? "" : ok.error().message);
+  fs::remove_all(root);
 }
 
 }  // namespace
