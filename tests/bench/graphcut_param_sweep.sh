@@ -5,13 +5,14 @@
 # and prints its score line, prefixed with the setting. Two runs at a time (one
 # per core); about 10 minutes on 2 cores for the Baby1 grid.
 #   tests/bench/graphcut_param_sweep.sh [baby1|others] [BUILD_DIR]
-# baby1: 47 settings of K, lambda1, lambda2, edge threshold and clip on Baby1
+# baby1: 54 settings of K, lambda1, lambda2, edge threshold and clip on Baby1
 #   (automatic K 107, lambda1 63, lambda2 21);
 # others: the two settings best for Baby1, scaled to each other pair's
 #   automatic K (edge threshold 32; K x 2 with lambda1 = lambda2 = 0.39 K).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 which=${1:-baby1}
+case "$which" in baby1 | others) ;; *) echo "usage: $0 [baby1|others] [BUILD_DIR]"; exit 2 ;; esac
 build=${2:-build/release}
 test_bin=$build/tests/sim_eval_test_graphcut_middlebury
 [ -x "$test_bin" ] || { echo "missing $test_bin (cmake --build $build --target sim_eval_test_graphcut_middlebury)"; exit 1; }
@@ -46,7 +47,10 @@ settings() {
       done; done
       # The ratio lambda1 / lambda2, then one lambda at larger K.
       echo "Baby1 107 21 21 8 30"; echo "Baby1 107 63 7 8 30"; echo "Baby1 107 63 63 8 30"
+      echo "Baby1 107 42 21 8 30"
       for k in 214 321 428; do for l in 42 63 100 150; do echo "Baby1 $k $l $l 8 30"; done; done
+      # Threshold 32 at larger K.
+      echo "Baby1 214 63 21 32 30"; echo "Baby1 214 126 42 32 30"; echo "Baby1 321 63 21 32 30"
       ;;
     others)
       for s in tsukuba venus sawtooth map teddy cones Aloe; do echo "$s - - - 32 30"; done
@@ -56,7 +60,6 @@ settings() {
       echo "map 512 100 100 8 30"; echo "teddy 314 61 61 8 30"; echo "cones 412 80 80 8 30"
       echo "Aloe 500 98 98 8 30"
       ;;
-    *) echo "usage: $0 [baby1|others] [BUILD_DIR]"; exit 2 ;;
   esac
 }
 settings | xargs -P 2 -L 1 bash -c 'run_one "$@"' _
