@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "cmd/command_packet.hpp"
@@ -38,10 +39,37 @@ int stop(pid_t pid) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-std::uint16_t free_udp_port() {
-  hal::UdpLink l;
-  EXPECT_TRUE(l.open("127.0.0.1", 0).ok());
-  return l.local_port();
+// Two distinct free ports: both sockets are held while the second is chosen.
+std::pair<std::uint16_t, std::uint16_t> two_free_udp_ports() {
+  hal::UdpLink a, b;
+  EXPECT_TRUE(a.open("127.0.0.1", 0).ok());
+  EXPECT_TRUE(b.open("127.0.0.1", 0).ok());
+  return {a.local_port(), b.local_port()};
+}
+
+// True once some socket is bound to this UDP port (IPv4), read from the
+// kernel's table: a probe bind would itself take the port for a moment and
+// could make the program it waits for fail its own bind.
+bool udp_port_bound(std::uint16_t port) {
+  std::ifstream f("/proc/net/udp");
+  std::string line;
+  std::getline(f, line);  // header
+  while (std::getline(f, line)) {
+    std::istringstream fields(line);
+    std::string slot, local;
+    fields >> slot >> local;
+    const auto colon = local.find(':');
+    if (colon != std::string::npos && std::stoul(local.substr(colon + 1), nullptr, 16) == port)
+      return true;
+  }
+  return false;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream f(path);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
 }
 
 long rss_kb(pid_t pid) {
@@ -82,8 +110,7 @@ TEST(FswLoopback, PetraCmdAndPetraTlmTalkToTheFlightProcess) {
   ASSERT_EQ(
       std::system((cli + " keygen --out " + (dir / "forger.key").string() + " >/dev/null").c_str()),
       0);
-  const std::uint16_t cmd_port = free_udp_port();
-  const std::uint16_t tlm_port = free_udp_port();
+  const auto [cmd_port, tlm_port] = two_free_udp_ports();
   std::ofstream(dir / "fsw.json") << R"({"uplink":{"host":"127.0.0.1","port":)" << cmd_port
                                   << R"(,"key_file":"uplink.key","counter_file":"fsw_counter"},
     "downlink":{"host":"127.0.0.1","port":)"
@@ -95,12 +122,13 @@ TEST(FswLoopback, PetraCmdAndPetraTlmTalkToTheFlightProcess) {
                                 " --save-products " + (dir / "products").string() + " > " +
                                 (dir / "tlm.jsonl").string() + " 2>" + (dir / "tlm.err").string());
   // petra tlm must be listening before petra-fsw boots, or the boot event is lost.
-  for (int i = 0; i < 500; ++i) {
-    hal::UdpLink probe;
-    if (!probe.open("127.0.0.1", tlm_port).ok()) break;  // taken: petra tlm is up
-    probe.close();
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  bool listening = false;
+  for (int i = 0; i < 1000 && !listening; ++i) {
+    listening = udp_port_bound(tlm_port);
+    if (!listening) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
+  ASSERT_TRUE(listening) << "petra tlm is not listening on " << tlm_port
+                         << " after 10 s: " << read_text(dir / "tlm.err");
   const pid_t fsw = spawn_shell(std::string(PETRA_FSW_BIN) + " --config " +
                                 (dir / "fsw.json").string() + " 2>" + (dir / "fsw.err").string());
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
@@ -150,7 +178,8 @@ TEST(FswLoopback, PetraCmdAndPetraTlmTalkToTheFlightProcess) {
   std::vector<std::string> lines;
   std::ifstream in(dir / "tlm.jsonl");
   for (std::string l; std::getline(in, l);) lines.push_back(l);
-  ASSERT_FALSE(lines.empty());
+  ASSERT_FALSE(lines.empty()) << "petra tlm: " << read_text(dir / "tlm.err")
+                              << "petra-fsw: " << read_text(dir / "fsw.err");
   EXPECT_TRUE(contains_line(lines, {"\"packet\":\"EVENT\"", "boot complete"}));
   EXPECT_TRUE(contains_line(lines, {"\"packet\":\"HK\""}));
   EXPECT_TRUE(contains_line(
