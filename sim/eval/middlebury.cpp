@@ -1,6 +1,8 @@
 #include "sim/eval/middlebury.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "sim/eval/disparity_image.hpp"
 
@@ -29,26 +31,22 @@ Result<io::FloatImage> load_gt(const std::string& path, int scale) {
   return out;
 }
 
-Bad1 bad1(ImageView<const float> d, const MiddleburyData& m) {
-  long bad_all = 0, n_all = 0, bad_no = 0, n_no = 0;
-  const int w = m.gt.width;
+double bad1_over(ImageView<const float> d, const MiddleburyData& m,
+                 const std::vector<std::uint8_t>& mask) {
+  long bad = 0, n = 0;
   for (int y = 0; y < m.gt.height; ++y)
-    for (int x = 0; x < w; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * w + x;
-      if (!m.known[i]) continue;
+    for (int x = 0; x < m.gt.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * m.gt.width + x;
+      if (!mask[i]) continue;
       const float v = d(x, y);
-      const bool bad = !std::isfinite(v) || std::fabs(v - m.gt.data[i]) > 1.0f;
-      ++n_all;
-      bad_all += bad;
-      if (m.nonocc[i]) {
-        ++n_no;
-        bad_no += bad;
-      }
+      ++n;
+      bad += !std::isfinite(v) || std::fabs(v - m.gt.data[i]) > 1.0f;
     }
-  Bad1 b;
-  b.all = n_all ? 100.0 * static_cast<double>(bad_all) / static_cast<double>(n_all) : 0.0;
-  b.nonocc = n_no ? 100.0 * static_cast<double>(bad_no) / static_cast<double>(n_no) : 0.0;
-  return b;
+  return n ? 100.0 * static_cast<double>(bad) / static_cast<double>(n) : 0.0;
+}
+
+Bad1 bad1(ImageView<const float> d, const MiddleburyData& m) {
+  return Bad1{bad1_over(d, m, m.nonocc), bad1_over(d, m, m.known)};
 }
 
 }  // namespace
@@ -61,6 +59,22 @@ const MiddleburyScene* find_middlebury_scene(const std::string& name) {
   for (const MiddleburyScene& s : kScenes)
     if (name == s.name) return &s;
   return nullptr;
+}
+
+std::vector<std::uint8_t> visible_in_right_view(const io::FloatImage& gt,
+                                                const std::vector<std::uint8_t>& known) {
+  std::vector<std::uint8_t> visible(known.size(), 0);
+  for (int y = 0; y < gt.height; ++y) {
+    float nearest_right_match = std::numeric_limits<float>::infinity();
+    for (int x = gt.width - 1; x >= 0; --x) {
+      const std::size_t i = static_cast<std::size_t>(y) * gt.width + x;
+      if (!known[i]) continue;
+      const float match = static_cast<float>(x) - gt.data[i];
+      visible[i] = match < nearest_right_match;
+      nearest_right_match = std::min(nearest_right_match, match);
+    }
+  }
+  return visible;
 }
 
 std::string default_data_root(const char* source_dir) {
@@ -89,6 +103,7 @@ Result<MiddleburyData> load_middlebury(const MiddleburyScene& s, const std::stri
   m.known.assign(n, 0);
   m.nonocc.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) m.known[i] = m.gt.data[i] > 0.0f;
+  m.visible = visible_in_right_view(m.gt, m.known);
   if (s.gt_right == nullptr) {
     m.nonocc = m.known;
     return m;
@@ -129,6 +144,8 @@ Result<MiddleburyScore> score_middlebury(ImageView<const float> d, const Middleb
     }
   fill_invalid_background(filled.view());
   s.filled = bad1(filled.view(), m);
+  for (float& v : filled.data) v = std::round(v);  // inf stays inf
+  s.filled_whole_visible = bad1_over(filled.view(), m, m.visible);
   s.invalid_pct = known ? 100.0 * static_cast<double>(invalid) / static_cast<double>(known) : 0.0;
   return s;
 }

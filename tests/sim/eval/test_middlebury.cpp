@@ -82,6 +82,51 @@ TEST(Middlebury, InvalidPixelsAreBadWhenStrictAndFilledOtherwise) {
   EXPECT_LT(s->filled.all, 1.0);  // background fill recovers nearly all of them
 }
 
+TEST(Middlebury, ABackgroundPixelBehindAForegroundStepIsNotVisible) {
+  // One row: background d = 2 for x < 6, foreground d = 5 from x = 6. The
+  // foreground's x = 6 lands on right x = 1, hiding the background pixels
+  // whose matches x - 2 lie at 1 or beyond: x = 3, 4, 5. x = 0 is unknown.
+  io::FloatImage gt(12, 1);
+  for (int x = 0; x < 12; ++x) gt.data[x] = x < 6 ? 2.0f : 5.0f;
+  gt.data[0] = 0.0f;
+  std::vector<std::uint8_t> known(12, 1);
+  known[0] = 0;
+  const auto v = visible_in_right_view(gt, known);
+  const std::vector<std::uint8_t> expected = {0, 1, 1, 0, 0, 0, 1, 1, 1, 1, 1, 1};
+  EXPECT_EQ(v, expected);
+}
+
+TEST(Middlebury, TheWholePixelFigureRoundsAndLeavesOccludedPixelsOut) {
+  const MiddleburyData d = load("tsukuba");  // whole-pixel truth, no right map
+  ASSERT_NE(d.scene, nullptr);
+  long known = 0, visible = 0;
+  for (std::size_t i = 0; i < d.known.size(); ++i) {
+    known += d.known[i];
+    visible += d.visible[i];
+    EXPECT_TRUE(!d.visible[i] || d.known[i]);
+  }
+  // About 3.4 % of tsukuba's known pixels are hidden from the right camera.
+  EXPECT_GT(visible, known * 95 / 100);
+  EXPECT_LT(visible, known * 98 / 100);
+  // 1.2 px off everywhere: bad on the convention, whole after rounding.
+  io::FloatImage off = d.gt;
+  for (float& v : off.data) v += 1.2f;
+  auto s = score_middlebury(off.view(), d);
+  ASSERT_TRUE(s.ok());
+  EXPECT_EQ(s->filled.all, 100.0);
+  EXPECT_EQ(s->filled_whole_visible, 0.0);
+  // 1.6 px off rounds to 2 px: bad either way.
+  for (float& v : off.data) v += 0.4f;
+  EXPECT_EQ(score_middlebury(off.view(), d)->filled_whole_visible, 100.0);
+  // Occluded pixels 5 px off count on the convention only.
+  io::FloatImage occ_wrong = d.gt;
+  for (std::size_t i = 0; i < occ_wrong.data.size(); ++i)
+    if (d.known[i] && !d.visible[i]) occ_wrong.data[i] += 5.0f;
+  s = score_middlebury(occ_wrong.view(), d);
+  EXPECT_GT(s->filled.all, 3.0);
+  EXPECT_EQ(s->filled_whole_visible, 0.0);
+}
+
 // Published filled-in-the-gaps figures of the classic scanline DP
 // (Scharstein-Szeliski 2002, Middlebury v2, bad-1 nonocc) and OpenCV SGBM on
 // this project's convention (shared/data/README.md, filled nonocc).
@@ -106,13 +151,18 @@ TEST(Middlebury, DpMatcherAccuracyOnTheEightScenes) {
     ASSERT_TRUE(run.ok()) << t.scene << ": " << run.error().message;
     auto s = score_middlebury(run->disparity.view(), d);
     ASSERT_TRUE(s.ok());
-    std::printf("%-9s strict %6.2f / %6.2f  filled %6.2f / %6.2f (nonocc / all)\n", t.scene,
-                s->strict.nonocc, s->strict.all, s->filled.nonocc, s->filled.all);
+    std::printf(
+        "%-9s strict %6.2f / %6.2f  filled %6.2f / %6.2f (nonocc / all), whole-pixel visible "
+        "%6.2f\n",
+        t.scene, s->strict.nonocc, s->strict.all, s->filled.nonocc, s->filled.all,
+        s->filled_whole_visible);
     if (t.scanline_dp > 0) {
       if (std::string(t.scene) == "tsukuba") {
-        // Target 4.12 NOT met (measured 6.25, docs/performance.md); this bound
-        // only guards against regressions.
+        // Target 4.12 NOT met (measured 6.16, docs/performance.md); this bound
+        // only guards against regressions. On the published figure's terms
+        // (whole pixels, occluded pixels left out) the output measures 4.03.
         EXPECT_LE(s->filled.nonocc, 6.5) << t.scene;
+        EXPECT_LE(s->filled_whole_visible, 4.3) << t.scene;
       } else {
         EXPECT_LE(s->filled.nonocc, t.scanline_dp) << t.scene;
       }
