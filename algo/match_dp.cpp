@@ -315,8 +315,12 @@ template <int kLanes>
 // interleaved with the per-pixel checks each one's latency was exposed.
 // kUnsigned picks the reduction form (unsigned_min_is_native()); both give
 // the same result.
+// S arrives holding the forward path costs; the first pass adds the
+// backward ones (S = forward + backward) as it reads each column, instead of
+// the DP's own pass over S (ScanlineInputs::sum_paths).
 template <int kLanes, bool kUnsigned>
-PETRA_VECTOR_CLONES [[gnu::noinline]] void row_winners(const std::int16_t* __restrict S, int w,
+PETRA_VECTOR_CLONES [[gnu::noinline]] void row_winners(std::int16_t* __restrict S,
+                                                       const std::int16_t* __restrict back, int w,
                                                        int row_stride, int lanes_arg,
                                                        std::int16_t* __restrict k1,
                                                        std::int16_t* __restrict best,
@@ -324,8 +328,11 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void row_winners(const std::int16_t* __res
   // Two passes: the second best needs the winner's lane (a reduction, then
   // a load at an address it gives), so in one pass each pixel was a chain of
   // three reductions; apart, the pixels of each pass overlap.
+  const int lanes = kLanes > 0 ? kLanes : lanes_arg;
   for (int i = 0; i < w; ++i) {
-    const std::int16_t* s = S + static_cast<std::size_t>(i) * row_stride;
+    std::int16_t* __restrict s = S + static_cast<std::size_t>(i) * row_stride;
+    const std::int16_t* __restrict b = back + static_cast<std::size_t>(i) * row_stride;
+    for (int k = 0; k < lanes; ++k) s[k] = static_cast<std::int16_t>(s[k] + b[k]);
     Winner win;
     if constexpr (kUnsigned)
       win = best_lane_inline<kLanes>(s, lanes_arg);
@@ -716,18 +723,19 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   };
   auto finish = [&](int t, RowBuffers& rb) {
     const int y = roi.y + t;
+    // Steps 4-5: select (row_winners completes S = forward + backward
+    // first: the DP left the sum to it), reject, refine.
+    std::int16_t* const S = rb.S.data() + match::kGuardLanes;
+    const std::int16_t* const back = rb.back.data() + match::kGuardLanes;
+    if (unsigned_min)
+      row_winners<kPathLanes, true>(S, back, w, sp, Ds, wk.data(), wbest.data(), wsecond.data());
+    else
+      row_winners<kPathLanes, false>(S, back, w, sp, Ds, wk.data(), wbest.data(), wsecond.data());
+
     // Right view winners along the same path costs (reversed index m).
     shadow_row(in.left_shadow, y, roi.x, w, 1, 0, skip.data());
-    right_winners<kPathLanes>(rb.S.data() + match::kGuardLanes, w, sp, Ds, skip.data(), rmin.data(),
-                              rk.data(), right_keys.data(), chains);
-
-    // Steps 4-5: select, reject, refine.
-    if (unsigned_min)
-      row_winners<kPathLanes, true>(rb.S.data() + match::kGuardLanes, w, sp, Ds, wk.data(),
-                                    wbest.data(), wsecond.data());
-    else
-      row_winners<kPathLanes, false>(rb.S.data() + match::kGuardLanes, w, sp, Ds, wk.data(),
-                                     wbest.data(), wsecond.data());
+    right_winners<kPathLanes>(S, w, sp, Ds, skip.data(), rmin.data(), rk.data(), right_keys.data(),
+                              chains);
     match::SelectRowInputs si;
     si.w = w;
     si.k1 = wk.data();
@@ -771,10 +779,10 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     RowBuffers& ra = rows[0];
     RowBuffers& rb = rows[1];
     PETRA_TRY(prepare(t, ra));
-    const match::ScanlineInputs sa{ra.agg.data(), w, Dp, ra.p2.data(), p.p1, Ds};
+    const match::ScanlineInputs sa{ra.agg.data(), w, Dp, ra.p2.data(), p.p1, Ds, false};
     if (t + 1 < h) {
       PETRA_TRY(prepare(t + 1, rb));
-      const match::ScanlineInputs sb{rb.agg.data(), w, Dp, rb.p2.data(), p.p1, Ds};
+      const match::ScanlineInputs sb{rb.agg.data(), w, Dp, rb.p2.data(), p.p1, Ds, false};
       run_dp_pair(sa, ra, sb, rb);
     } else {
       run_dp_one(sa, ra);

@@ -144,7 +144,7 @@ template <int kLanes, int kRows>
   }
   // S = L_fwd + L_bwd.
   for (int r = 0; r < kRows; ++r)
-    for (int x = 0; x < n; ++x) {
+    for (int x = 0; x < n && in[r].sum_paths; ++x) {
       std::int16_t* __restrict s = srow(r, x);
       const std::int16_t* __restrict b = brow(r, x);
       for (int k = 0; k < stride; ++k) s[k] = static_cast<std::int16_t>(s[k] + b[k]);

@@ -42,6 +42,9 @@ struct ScanlineInputs {
   // stride). The cost lanes from `lanes` to `stride` are padding that never
   // wins (a cost row rounded up to a 512-bit multiple): the DP skips them.
   int lanes = 0;
+  // false: S is left holding the forward path costs alone, for a caller that
+  // adds `backward` itself as it first reads S (one pass over S fewer).
+  bool sum_paths = true;
 };
 
 // S = forward + backward path costs: n rows of path_row_stride(lanes)

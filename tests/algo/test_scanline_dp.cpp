@@ -103,5 +103,37 @@ TEST(ScanlineDp, SkippedPaddingLanesLeaveTheRealLanesUnchanged) {
     }
 }
 
+// sum_paths = false leaves the forward path costs in S and the backward ones
+// in the scratch: their sum is the summed S, lane by lane, guards untouched.
+TEST(ScanlineDp, UnsummedPathsAddUpToTheSummedOnes) {
+  const int n = 37;
+  std::mt19937 rng(12);
+  std::vector<std::uint16_t> cost(static_cast<std::size_t>(n) * kLanes), p2(n);
+  for (auto& c : cost) c = static_cast<std::uint16_t>(rng() % 1080);
+  for (auto& v : p2) v = static_cast<std::uint16_t>(150 + rng() % 800);
+  const std::size_t len = static_cast<std::size_t>(n) * kSp;
+  std::vector<std::int16_t> summed(len), b1(len), forward(len), backward(len), fp(len), bp(len),
+      fq(len), bq(len);
+  ScanlineInputs in{cost.data(), n, kLanes, p2.data(), 70};
+  scanline_dp<kLanes>(in, summed.data(), b1.data());
+  in.sum_paths = false;
+  scanline_dp<kLanes>(in, forward.data(), backward.data());
+  scanline_dp_pair<kLanes>(in, fp.data(), bp.data(), in, fq.data(), bq.data());
+  int differ = 0;
+  for (int x = 0; x < n; ++x) {
+    const std::size_t row = static_cast<std::size_t>(x) * kSp + kGuardLanes;
+    for (int k = 0; k < kLanes; ++k) {
+      const std::size_t at = row + k;
+      ASSERT_EQ(summed[at], forward[at] + backward[at]) << x << " " << k;
+      ASSERT_EQ(fp[at], forward[at]) << x << " " << k;
+      ASSERT_EQ(fq[at] + bq[at], summed[at]) << x << " " << k;
+      differ += forward[at] != summed[at];
+    }
+    EXPECT_EQ(forward[row - 1], summed[row - 1]);  // guards
+    EXPECT_EQ(forward[row + kLanes], summed[row + kLanes]);
+  }
+  EXPECT_GT(differ, n * kLanes / 2);  // the forward costs alone are not the sum
+}
+
 }  // namespace
 }  // namespace petra::match
