@@ -142,13 +142,15 @@ template <int kLanes, int kRows>
                            pen2[r][xb + 1], mb[r]);
     }
   }
-  // S = L_fwd + L_bwd.
-  for (int r = 0; r < kRows; ++r)
-    for (int x = 0; x < n && in[r].sum_paths; ++x) {
+  // S = L_fwd + L_bwd, unless the caller adds them as it reads S.
+  for (int r = 0; r < kRows; ++r) {
+    if (!in[r].sum_paths) continue;
+    for (int x = 0; x < n; ++x) {
       std::int16_t* __restrict s = srow(r, x);
       const std::int16_t* __restrict b = brow(r, x);
       for (int k = 0; k < stride; ++k) s[k] = static_cast<std::int16_t>(s[k] + b[k]);
     }
+  }
 }
 
 // Which vector width runs the DP. It is latency-bound: each step waits for
