@@ -127,6 +127,7 @@ TEST(FswLoopback, PetraCmdAndPetraTlmTalkToTheFlightProcess) {
     listening = udp_port_bound(tlm_port);
     if (!listening) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
+  if (!listening) stop(tlm);  // leave no receiver behind
   ASSERT_TRUE(listening) << "petra tlm is not listening on " << tlm_port
                          << " after 10 s: " << read_text(dir / "tlm.err");
   const pid_t fsw = spawn_shell(std::string(PETRA_FSW_BIN) + " --config " +
