@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 #include <memory>
 #include <string_view>
 
@@ -79,6 +80,72 @@ Status get_int(const Reader& r, std::uint32_t obj, const char* section, const ch
   return {};
 }
 
+// Every member of object `obj` must be one of `known`: a misspelt key
+// ("upink") would otherwise be ignored and its default would fly.
+Status only_known_keys(const Document& doc, std::uint32_t obj, const char* section,
+                       std::initializer_list<std::string_view> known) {
+  std::uint32_t key = obj + 1;
+  for (std::uint32_t m = 0; m < doc.token(obj).count; ++m) {
+    const std::string_view name = doc.text_of(key);
+    bool found = false;
+    for (std::string_view k : known) found = found || k == name;
+    if (!found) {
+      char list[512] = "";
+      std::size_t used = 0;
+      for (std::string_view k : known) {
+        const int n = std::snprintf(list + used, sizeof(list) - used, "%s%.*s", used ? ", " : "",
+                                    static_cast<int>(k.size()), k.data());
+        if (n < 0 || used + static_cast<std::size_t>(n) >= sizeof(list)) break;
+        used += static_cast<std::size_t>(n);
+      }
+      return Error::make(Errc::invalid_argument, "config: %s%s%.*s: unknown key (expected one of %s)",
+                         section, section[0] ? "." : "", static_cast<int>(name.size()),
+                         name.data(), list);
+    }
+    key = doc.token(key + 1).next;
+  }
+  return {};
+}
+
+// The keys of each section (docs/icd.md "petra-fsw configuration", docs/hal.md).
+Status check_keys(const Document& doc, bool v4l2) {
+  PETRA_TRY(only_known_keys(
+      doc, 0, "", {"uplink", "downlink", "loop", "budget", "camera", "gpio", "arm", "calib", "params"}));
+  struct Section {
+    const char* name;
+    std::initializer_list<std::string_view> keys;
+  };
+  const Section sections[] = {
+      {"uplink", {"host", "port", "key_file", "counter_file"}},
+      {"downlink", {"host", "port"}},
+      {"loop", {"cycle_ms", "commands_per_cycle", "health_period_ms", "watchdog_device",
+                "lock_memory"}},
+      {"budget", {"image_width", "image_height", "arena_mb", "tlm_queue_packets",
+                  "worker_stack_kb", "cloud_points"}},
+      {"arm", {"can_interface", "mount"}},
+      {"gpio", {"chip", "trigger", "arm_power", "estop"}},
+  };
+  for (const Section& s : sections)
+    if (const std::uint32_t t = doc.find(0, s.name); t != 0)
+      PETRA_TRY(only_known_keys(doc, t, s.name, s.keys));
+  if (const std::uint32_t gpio = doc.find(0, "gpio"); gpio != 0) {
+    for (const char* line : {"trigger", "arm_power", "estop"}) {
+      const std::uint32_t t = doc.find(gpio, line);
+      char section[24];
+      (void)std::snprintf(section, sizeof(section), "gpio.%s", line);
+      if (t != 0 && doc.token(t).type == Type::object)
+        PETRA_TRY(only_known_keys(doc, t, section, {"chip", "line", "active_low"}));
+    }
+  }
+  const std::uint32_t camera = doc.find(0, "camera");
+  if (v4l2)
+    return only_known_keys(doc, camera, "camera",
+                           {"kind", "layout", "left", "right", "width", "height", "formats",
+                            "buffers", "fps", "timeout_ms", "max_skew_us", "max_pair_frames",
+                            "trigger_width_us", "triggered"});
+  return only_known_keys(doc, camera, "camera", {"kind", "dir"});
+}
+
 Status object_or_absent(const Document& doc, std::uint32_t t, const char* name) {
   if (t != 0 && doc.token(t).type != Type::object)
     return Error::make(Errc::wrong_type, "config: %s: expected an object", name);
@@ -111,6 +178,10 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
   PETRA_TRY(object_or_absent(*doc, camera, "camera"));
   if (up == 0) return Error::make(Errc::missing_field, "config: uplink: missing");
   if (camera == 0) return Error::make(Errc::missing_field, "config: camera: missing");
+  PETRA_TRY(object_or_absent(*doc, doc->find(0, "gpio"), "gpio"));
+  PETRA_TRY(object_or_absent(*doc, doc->find(0, "arm"), "arm"));
+  PETRA_TRY(check_keys(*doc, doc->find(camera, "kind") != 0 &&
+                                 doc->text_of(doc->find(camera, "kind")) == "v4l2"));
 
   PETRA_TRY(r.text(up, "uplink", "host", c.cmd_host, false, false));
   PETRA_TRY(get_int(r, up, "uplink", "port", 0, 65535, c.cmd_port));

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "cmd/param_defs.hpp"
+#include "tlm/palette.hpp"
 
 namespace petra::fsw {
 
@@ -68,13 +69,10 @@ std::size_t product_bytes(int roi_w, int roi_h, std::size_t cloud_points) {
   return px + 3 * px + 3 * sizeof(float) * cloud_points + kSlack;
 }
 
-// Class colours of the overlay (tint over the rectified left image).
-constexpr std::uint8_t kPlaneRgb[8][3] = {{230, 40, 40}, {40, 200, 40}, {40, 90, 240},
-                                          {240, 200, 0}, {200, 0, 200}, {0, 200, 200},
-                                          {255, 128, 0}, {128, 64, 255}};
-
-void tint(std::uint8_t* px, std::uint8_t gray, const std::uint8_t rgb[3]) {
-  for (int c = 0; c < 3; ++c) px[c] = static_cast<std::uint8_t>((gray + 2 * rgb[c]) / 3);
+// Class colours of the overlay (tint over the rectified left image): tlm/palette.hpp.
+void tint(std::uint8_t* px, std::uint8_t gray, palette::Rgb8 c) {
+  const std::uint8_t rgb[3] = {c.r, c.g, c.b};
+  for (int k = 0; k < 3; ++k) px[k] = static_cast<std::uint8_t>((gray + 2 * rgb[k]) / 3);
 }
 
 Status make_products(const PipelineOutput& p, const RectifiedPair& pair, std::size_t max_cloud,
@@ -113,14 +111,12 @@ Status make_products(const PipelineOutput& p, const RectifiedPair& pair, std::si
     return rgb->data() + 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
                               static_cast<std::size_t>(x));
   };
-  static constexpr std::uint8_t kShadow[3] = {20, 20, 120};
-  static constexpr std::uint8_t kGround[3] = {90, 140, 90};
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const std::uint8_t g = p.left_rectified(roi.x + x, roi.y + y);
       std::uint8_t* o = at(x, y);
       o[0] = o[1] = o[2] = g;
-      if (p.left_shadow.is_shadow(roi.x + x, roi.y + y)) tint(o, g, kShadow);
+      if (p.left_shadow.is_shadow(roi.x + x, roi.y + y)) tint(o, g, palette::kShadow);
     }
   const ReconstructionOutput& r = p.result;
   const int accepted = r.planes.accepted;
@@ -131,9 +127,9 @@ Status make_products(const PipelineOutput& p, const RectifiedPair& pair, std::si
     std::uint8_t* o = at(x, y);
     const std::uint8_t g = p.left_rectified(roi.x + x, roi.y + y);
     if (k == kVertexGround)
-      tint(o, g, kGround);
+      tint(o, g, palette::kGround);
     else if (k >= kVertexPlane0 && k - kVertexPlane0 < accepted)
-      tint(o, g, kPlaneRgb[(k - kVertexPlane0) % 8]);
+      tint(o, g, palette::plane_colour(k - kVertexPlane0));
   }
   for (int k = 0; k < accepted; ++k) {
     auto c = rectified_project(pair, r.planes.planes[k].centroid_mm);

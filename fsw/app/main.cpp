@@ -1,7 +1,8 @@
 // petra-fsw --config FILE: the onboard service. Loads the configuration,
 // opens the devices (camera, GPIO lines, the arm's CAN bus), allocates every
-// buffer, then runs the executive's loop until SIGINT or SIGTERM. Exit status 0 after a clean stop;
-// 1 with a one-line reason on stderr when initialisation fails.
+// buffer, then runs the executive's loop until SIGINT or SIGTERM. Exit status 0 after a clean stop
+// and for --help and --version; 1 with a one-line reason on stderr when initialisation fails;
+// 2 for a usage error ("petra-fsw: ..." and the usage line on stderr).
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -21,9 +22,26 @@ void on_signal(int) {
   g_stop = 1;
 }
 
-int usage() {
-  (void)std::fprintf(stderr, "usage: petra-fsw --config FILE\n");
+#ifndef PETRA_VERSION
+#define PETRA_VERSION "unknown"
+#endif
+
+constexpr const char* kUsage = "usage: petra-fsw --config FILE | --help | --version\n";
+
+int usage_error(const char* why, const char* arg) {
+  (void)std::fprintf(stderr, "petra-fsw: %s%s%s%s\n%s", why, arg[0] ? " '" : "", arg,
+                     arg[0] ? "'" : "", kUsage);
   return 2;
+}
+
+int help() {
+  (void)std::printf(
+      "%s\nThe onboard service: loads the configuration (JSON, docs/icd.md \"petra-fsw "
+      "configuration\"),\nopens the devices, allocates every buffer, then serves commands and "
+      "sends telemetry\nuntil SIGINT or SIGTERM.\n  --config FILE  the configuration\n"
+      "  --help        this text\n  --version     the version\n",
+      kUsage);
+  return 0;
 }
 
 }  // namespace
@@ -31,16 +49,20 @@ int usage() {
 int main(int argc, char** argv) {
   const char* config_path = nullptr;
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--config") == 0 && i + 1 < argc)
+    if (std::strcmp(argv[i], "--config") == 0 && i + 1 < argc) {
       config_path = argv[++i];
-    else if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0)
-      return usage();
-    else {
-      (void)std::fprintf(stderr, "petra-fsw: unknown argument '%s'\n", argv[i]);
-      return usage();
+    } else if (std::strcmp(argv[i], "--config") == 0) {
+      return usage_error("--config needs a file name", "");
+    } else if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
+      return help();
+    } else if (std::strcmp(argv[i], "--version") == 0) {
+      (void)std::printf("petra-fsw %s\n", PETRA_VERSION);
+      return 0;
+    } else {
+      return usage_error("unknown argument", argv[i]);
     }
   }
-  if (config_path == nullptr) return usage();
+  if (config_path == nullptr) return usage_error("--config FILE is required", "");
 
   auto config = petra::fsw::load_config(config_path);
   if (!config) {

@@ -49,7 +49,7 @@ void add_cmd(CLI::App& app, Outcome& outcome) {
       outcome.exit_code = fail("cmd", s.error().message);
       return;
     }
-    auto key = cmd::load_key_file(key_path.c_str());
+    auto key = ground::load_uplink_key(key_path);
     if (!key) {
       outcome.exit_code = fail("cmd", key.error().message);
       return;

@@ -4,6 +4,7 @@
 #include <signal.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <thread>
 
@@ -19,6 +20,9 @@
 #endif
 
 namespace petra::cli {
+
+// The 3D view's modules in the vendor folder (sim/gnd/web/index.html's import map).
+constexpr const char* kViewAssets[] = {"three/build/three.module.js", "delaunator/index.js"};
 
 void add_gnd(CLI::App& app, Outcome& outcome) {
   auto* gnd = app.add_subcommand("gnd", "Ground station in the browser");
@@ -45,6 +49,9 @@ void add_gnd(CLI::App& app, Outcome& outcome) {
   sub->add_option("--tlm-port", link.tlm_port, "telemetry port")->capture_default_str();
   sub->add_option("--left-image", link.left_image,
                   "image shown until the first LEFT_IMAGE product (e.g. the scene's left.png)");
+  sub->add_option("--archive", link.archive_path,
+                  "telemetry archive (SQLite file, created when absent): every packet received "
+                  "is kept there (petra archive)");
   static std::string arm_mount = "300,100,100,90";
   sub->add_option("--arm-mount", arm_mount,
                   "arm base in the world, x_mm,y_mm,z_mm,yaw_deg (petra-fsw's arm.mount)")
@@ -56,6 +63,16 @@ void add_gnd(CLI::App& app, Outcome& outcome) {
       return;
     }
     link.arm_geometry = *geometry;
+    // The page works without its npm assets, minus the 3D view: say so, and how to get them.
+    for (const char* asset : kViewAssets)
+      if (!std::filesystem::exists(std::filesystem::path(http.vendor_dir) / asset)) {
+        std::fprintf(stderr,
+                     "petra gnd serve: warning: no 3D view: %s/%s is missing (install the page's "
+                     "assets: cmake --build <this build folder> --target gnd_web, or --vendor "
+                     "DIR)\n",
+                     http.vendor_dir.c_str(), asset);
+        break;
+      }
     // SIGINT/SIGTERM are taken by a watcher thread that stops the server, so
     // the telemetry thread and the sockets close cleanly.
     sigset_t stop_signals;

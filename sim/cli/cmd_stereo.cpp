@@ -2,8 +2,12 @@
 // left-view disparity as a Middlebury PFM (docs/icd.md). The work is in
 // sim/stereo/stereo_tool; this file is the command line.
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <limits>
+#include <string>
 
+#include "algo/disparity.hpp"
 #include "sim/cli/commands.hpp"
 #include "sim/stereo/stereo_tool.hpp"
 
@@ -40,6 +44,9 @@ int run(const stereo::StereoToolOptions& o) {
 
 }  // namespace
 
+// The matchers' disparities are Q4 in int16 (algo/disparity.hpp): 2047 px at most.
+constexpr int kMaxDisparityPx = std::numeric_limits<std::int16_t>::max() / kDisparityScale;
+
 void add_stereo(CLI::App& app, Outcome& outcome) {
   auto* cmd =
       app.add_subcommand("stereo", "Match a stereo pair; write the left-view disparity (PFM)");
@@ -64,6 +71,19 @@ void add_stereo(CLI::App& app, Outcome& outcome) {
   cmd->add_flag("--no-edges", no_edges, "skip the edge constraint (for comparisons only)");
   cmd->callback([&outcome] {
     o.edge_constraint = !no_edges;
+    // Checked here, at the edge, so the message speaks of the options.
+    if (o.disp_min > o.disp_max) {
+      const std::string why = "--disp-min " + std::to_string(o.disp_min) + " is above --disp-max " +
+                              std::to_string(o.disp_max) + ": the disparity range is empty";
+      outcome.exit_code = fail("stereo", why.c_str());
+      return;
+    }
+    if (std::abs(o.disp_min) > kMaxDisparityPx || std::abs(o.disp_max) > kMaxDisparityPx) {
+      const std::string why =
+          "--disp-min and --disp-max must lie within +-" + std::to_string(kMaxDisparityPx) + " px";
+      outcome.exit_code = fail("stereo", why.c_str());
+      return;
+    }
     try {
       outcome.exit_code = run(o);
     } catch (const std::exception& e) {

@@ -1,6 +1,7 @@
 // The `petra` ground CLI: one file per subcommand, each registering itself on
 // the app. A subcommand reports failure by printing one line on stderr and
-// setting a non-zero exit code (docs/icd.md: command lines).
+// setting a non-zero exit code; main turns usage errors into exit 2
+// (docs/ops.md "Command line conventions").
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -29,6 +30,7 @@ void add_eval(CLI::App& app, Outcome& outcome);
 // Registers `name` on `app`; `petra sim arm` = add_arm_sim(sim_subcommand, outcome, "arm").
 void add_arm_sim(CLI::App& app, Outcome& outcome, const char* name = "sim-arm");
 void add_arm_view(CLI::App& app, Outcome& outcome);
+void add_archive(CLI::App& app, Outcome& outcome);
 
 // Prints "petra <cmd>: <message>" on stderr and returns the exit code 1.
 int fail(const char* cmd, const char* message);

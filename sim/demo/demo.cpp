@@ -185,10 +185,16 @@ std::string run_petra_eval(const Options& o, const Scene& scene, const fs::path&
 int run(const Options& o, std::FILE* out) {
   auto fail = [out](const std::string& why) {
     std::fprintf(out, "demo stopped: %s\n", why.c_str());
+    std::fflush(out);
+    if (out != stderr) std::fprintf(stderr, "petra demo: %s\n", why.c_str());
     return 1;
   };
-  const fs::path dir = fs::absolute(o.out_dir);
-  fs::create_directories(dir / "pairs");
+  std::error_code ec;
+  const fs::path dir = fs::absolute(o.out_dir, ec);
+  if (ec) return fail(o.out_dir + ": " + ec.message());
+  if (fs::create_directories(dir / "pairs", ec); ec)
+    return fail("cannot create the output folder " + (dir / "pairs").string() + ": " +
+                ec.message());
 
   // 1. The scene.
   fs::path scene_dir = o.scene_dir;
@@ -213,9 +219,10 @@ int run(const Options& o, std::FILE* out) {
   auto right = io::read_gray_image(scene->right.string());
   if (!left) return fail(left.error().message);
   if (!right) return fail(right.error().message);
-  if (!io::write_pgm((dir / "pairs/left.pgm").string(), left->view()) ||
-      !io::write_pgm((dir / "pairs/right.pgm").string(), right->view()))
-    return fail("cannot write the camera folder " + (dir / "pairs").string());
+  if (auto s = io::write_pgm((dir / "pairs/left.pgm").string(), left->view()); !s)
+    return fail(std::string("cannot write the camera folder: ") + s.error().message);
+  if (auto s = io::write_pgm((dir / "pairs/right.pgm").string(), right->view()); !s)
+    return fail(std::string("cannot write the camera folder: ") + s.error().message);
 
   {
     // What the operator selected, drawn on the left image.
@@ -241,20 +248,23 @@ int run(const Options& o, std::FILE* out) {
   {
     char hex[65];
     sodium_bin2hex(hex, sizeof(hex), key.bytes.data(), key.bytes.size());
-    std::ofstream(dir / "petra.key") << hex << "\n";
+    if (auto s = io::write_text_file((dir / "petra.key").string(), std::string(hex) + "\n"); !s)
+      return fail(s.error().message);
   }
   const std::uint16_t cmd_port = free_port();
   const std::uint16_t tlm_port = free_port();
   hal::UdpLink tlm;
   if (!tlm.open("127.0.0.1", tlm_port)) return fail("cannot listen for telemetry");
   {
-    std::ofstream cfg(dir / "fsw.json");
+    std::ostringstream cfg;
     cfg << R"({"uplink":{"host":"127.0.0.1","port":)" << cmd_port
         << R"(,"key_file":"petra.key"},"downlink":{"host":"127.0.0.1","port":)" << tlm_port
         << R"(},"budget":{"image_width":)" << left->width << R"(,"image_height":)" << left->height
         << R"(,"arena_mb":512},"camera":{"kind":"file","dir":"pairs"})";
     if (!scene->calib.empty()) cfg << R"(,"calib":")" << scene->calib.string() << "\"";
     cfg << "}\n";
+    if (auto s = io::write_text_file((dir / "fsw.json").string(), cfg.str()); !s)
+      return fail(s.error().message);
   }
   Session fsw;
   const std::string fsw_bin = find_fsw(o);
@@ -378,7 +388,8 @@ int run(const Options& o, std::FILE* out) {
                result ? result->planes_requested : 0, result ? result->total_ms : 0);
   print_received(got, out);
   const std::string tlm_json = planes_json(got);
-  std::ofstream(dir / "planes.json") << tlm_json;
+  if (auto s = io::write_text_file((dir / "planes.json").string(), tlm_json); !s)
+    return fail(s.error().message);
 
   // 6. The same pair on the ground, with the same parameters.
   std::fprintf(out, "6. the same pair through `petra eval` on the ground:\n");

@@ -7,32 +7,26 @@
 
 #include "sim/eval/ply_writer.hpp"
 #include "sim/eval/tiny_font.hpp"
+#include "tlm/palette.hpp"
 
 namespace petra::eval {
 
 namespace {
 
 constexpr Colour kWhite{255, 255, 255}, kBlack{0, 0, 0};
-constexpr Colour kShadowTint{70, 90, 255}, kRejectedTint{150, 150, 170};
+constexpr Colour from(palette::Rgb8 c) {
+  return {c.r, c.g, c.b};
+}
+constexpr Colour kShadowTint = from(palette::kShadow), kRejectedTint = from(palette::kRejected);
 
 // Scale so small ROIs are still readable (at least ~480 px wide).
 int picture_scale(int w) {
   return std::clamp((480 + w - 1) / std::max(w, 1), 1, 4);
 }
 
-// Blue (far) -> cyan -> green -> yellow -> red (near).
+// Blue (far) -> cyan -> green -> yellow -> red (near): tlm/palette.hpp.
 Colour ramp(double t) {
-  t = std::clamp(t, 0.0, 1.0);
-  static constexpr double kStops[5][3] = {
-      {30, 40, 200}, {0, 200, 230}, {40, 200, 60}, {250, 220, 0}, {230, 30, 30}};
-  const double x = t * 4.0;
-  const int i = std::min(static_cast<int>(x), 3);
-  const double f = x - i;
-  Colour c;
-  c.r = static_cast<std::uint8_t>(kStops[i][0] + f * (kStops[i + 1][0] - kStops[i][0]));
-  c.g = static_cast<std::uint8_t>(kStops[i][1] + f * (kStops[i + 1][1] - kStops[i][1]));
-  c.b = static_cast<std::uint8_t>(kStops[i][2] + f * (kStops[i + 1][2] - kStops[i][2]));
-  return c;
+  return from(palette::disparity_colour(t));
 }
 
 Colour blend(std::uint8_t gray, Colour tint, double alpha) {

@@ -3,17 +3,16 @@
 #include <cstring>
 
 #include "sim/io/image_io.hpp"
+#include "tlm/palette.hpp"
 
 namespace petra::eval {
 
 Rgb class_colour(std::uint8_t c) {
-  // Ground olive, rock light sand, planes in strong distinct hues.
-  static constexpr Rgb kPlanes[] = {{230, 40, 40}, {40, 110, 240}, {250, 200, 0},  {200, 60, 220},
-                                    {0, 200, 200}, {255, 120, 0},  {120, 220, 60}, {255, 255, 255}};
-  if (c == kVertexGround) return {110, 140, 70};
-  if (c == kVertexRock) return {215, 200, 170};
-  const int k = c - kVertexPlane0;
-  return kPlanes[k >= 0 && k < 8 ? k : 7];
+  // The one palette of every picture (tlm/palette.hpp).
+  const palette::Rgb8 p = c == kVertexGround ? palette::kGround
+                          : c == kVertexRock ? palette::kRock
+                                             : palette::plane_colour(c - kVertexPlane0);
+  return {p.r, p.g, p.b};
 }
 
 namespace {

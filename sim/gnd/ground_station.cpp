@@ -29,7 +29,9 @@ std::string names_of(const tlm::TmPacket& p) {
   if (const auto* a = std::get_if<tlm::Ack>(&p.body)) {
     o << "\"command\":" << json_string(command_name(a->function_code))
       << ",\"stage\":" << json_string(ack_stage_name(static_cast<AckStage>(a->stage)))
-      << ",\"reason\":" << json_string(reason_name(static_cast<Reason>(a->reason)));
+      << ",\"reason\":" << json_string(reason_name(static_cast<Reason>(a->reason)))
+      << ",\"detail\":"
+      << json_string(ground::refusal_detail(a->function_code, a->reason, a->detail));
   } else if (const auto* e = std::get_if<tlm::Event>(&p.body)) {
     const EventDesc* d = find_event(e->event_id);
     o << "\"event\":" << json_string(d != nullptr ? d->name : "?")
@@ -71,7 +73,7 @@ Status GroundStation::start(const StationOptions& options) {
   PETRA_TRY(arm::validate_geometry(options.arm_geometry));
   arm_model_ = ArmModel(options.arm_geometry);
   PETRA_TRY(cmd::auth_init());
-  auto key = cmd::load_key_file(options.key_path.c_str());
+  auto key = ground::load_uplink_key(options.key_path);
   if (!key) return key.error();
   key_ = *key;
   if (options.cmd_port < 1 || options.cmd_port > 65535)
@@ -89,6 +91,11 @@ Status GroundStation::start(const StationOptions& options) {
     p.bytes.assign(img->pixels.begin(), img->pixels.end());
     keep_product(std::move(p));
   }
+  if (!options.archive_path.empty()) {
+    auto a = ground::TlmArchive::open(options.archive_path);
+    if (!a) return a.error();
+    archive_ = std::move(*a);
+  }
   PETRA_TRY(uplink_.open("0.0.0.0", 0));
   PETRA_TRY(
       uplink_.set_peer(options.fsw_host.c_str(), static_cast<std::uint16_t>(options.cmd_port)));
@@ -102,7 +109,18 @@ Status GroundStation::start(const StationOptions& options) {
 void GroundStation::stop() {
   running_ = false;
   if (thread_.joinable()) thread_.join();
+  archive_.reset();  // commits the last packets
   hub_.close();
+}
+
+// raw empty: commit what is pending (a quiet link).
+void GroundStation::archive(std::span<const std::uint8_t> raw, const tlm::TmPacket* p) {
+  if (!archive_) return;
+  const Status s = p != nullptr ? archive_->add(raw, *p, ground::unix_now_s()) : archive_->flush();
+  if (!s) {
+    ++archive_errors_;
+    hub_.publish("archive_error", "{\"error\":" + json_string(s.error().message) + "}");
+  }
 }
 
 Result<std::uint32_t> GroundStation::send(cmd::Command c) {
@@ -175,14 +193,19 @@ void GroundStation::receive_loop() {
   std::vector<std::uint8_t> buf(70000);
   while (running_) {
     auto n = downlink_.receive_wait(buf, 100);
-    if (!n || *n == 0) continue;
-    auto p = tlm::decode_tm(std::span(buf).first(std::min(*n, buf.size())));
+    if (!n || *n == 0) {
+      archive({}, nullptr);  // a quiet link: what came is on disk
+      continue;
+    }
+    const auto raw = std::span(buf).first(std::min(*n, buf.size()));
+    auto p = tlm::decode_tm(raw);
     if (!p) {
       ++bad_packets_;
       hub_.publish("bad_packet", "{\"error\":" + json_string(p.error().message) + "}");
       continue;
     }
     ++packets_;
+    archive(raw, &*p);
     publish_packet(*p);
   }
 }

@@ -13,6 +13,7 @@
 #include <atomic>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -25,6 +26,7 @@
 #include "sim/gnd/arm_model.hpp"
 #include "sim/gnd/event_hub.hpp"
 #include "sim/ground/product_assembler.hpp"
+#include "sim/ground/tlm_archive.hpp"
 
 namespace petra::gnd {
 
@@ -37,6 +39,7 @@ struct StationOptions {
   std::string counter_path;  // empty: KEY.counter (shared with `petra cmd`)
   std::string left_image;    // optional: shown until a LEFT_IMAGE product arrives
   arm::ArmGeometry arm_geometry = arm::rover_arm_geometry();  // as petra-fsw's arm.mount
+  std::string archive_path;  // optional: every packet received kept there (tlm_archive.hpp)
 };
 
 class GroundStation {
@@ -63,11 +66,14 @@ class GroundStation {
   std::array<double, arm::kJointCount> arm_joints_deg() const;
   std::uint64_t packets() const { return packets_.load(); }
   std::uint64_t bad_packets() const { return bad_packets_.load(); }
+  // Packets the archive could not store (its error is published as "archive_error").
+  std::uint64_t archive_errors() const { return archive_errors_.load(); }
 
  private:
   void receive_loop();
   void publish_packet(const tlm::TmPacket& p);
   void keep_product(ground::Product p);
+  void archive(std::span<const std::uint8_t> raw, const tlm::TmPacket* p);
 
   StationOptions options_;
   cmd::AuthKey key_{};
@@ -85,6 +91,8 @@ class GroundStation {
   std::atomic<bool> running_{false};
   std::atomic<std::uint64_t> packets_{0};
   std::atomic<std::uint64_t> bad_packets_{0};
+  std::atomic<std::uint64_t> archive_errors_{0};
+  std::unique_ptr<ground::TlmArchive> archive_;  // used by the telemetry thread only
 };
 
 }  // namespace petra::gnd

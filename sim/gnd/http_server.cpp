@@ -3,6 +3,7 @@
 #include <arpa/inet.h>
 #include <httplib.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -12,6 +13,7 @@
 #include "cmd/commands.hpp"
 #include "sim/gnd/command_request.hpp"
 #include "sim/gnd/json_text.hpp"
+#include "tlm/palette.hpp"
 
 namespace petra::gnd {
 
@@ -88,6 +90,24 @@ std::string info_json() {
   return o.str();
 }
 
+std::string palette_json() {
+  auto rgb = [](palette::Rgb8 c) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "\"#%02x%02x%02x\"", c.r, c.g, c.b);
+    return std::string(buf);
+  };
+  std::ostringstream o;
+  o << "{\"planes\":[";
+  for (int k = 0; k < palette::kPlaneCount; ++k) o << (k ? "," : "") << rgb(palette::kPlanes[k]);
+  o << "],\"ground\":" << rgb(palette::kGround) << ",\"rock\":" << rgb(palette::kRock)
+    << ",\"shadow\":" << rgb(palette::kShadow) << ",\"rejected\":" << rgb(palette::kRejected)
+    << ",\"no_data\":" << rgb(palette::kNoData) << ",\"disparity_ramp\":[";
+  for (int k = 0; k < palette::kRampStops; ++k)
+    o << (k ? "," : "") << rgb(palette::kDisparityRamp[k]);
+  o << "]}";
+  return o.str();
+}
+
 struct HttpServer::Impl {
   explicit Impl(GroundStation& s) : station(s) {}
   GroundStation& station;
@@ -107,6 +127,9 @@ struct HttpServer::Impl {
 
     server.Get("/api/info", [](const httplib::Request&, httplib::Response& res) {
       res.set_content(info_json(), "application/json");
+    });
+    server.Get("/api/palette", [](const httplib::Request&, httplib::Response& res) {
+      res.set_content(palette_json(), "application/json");
     });
 
     server.Post("/api/command", [this](const httplib::Request& req, httplib::Response& res) {

@@ -2,6 +2,7 @@
 // bridges it to the GroundStation.
 //   GET  /                      static page (web dir); /vendor/ npm-built assets
 //   GET  /api/info              command definitions (names, fields, ranges, units)
+//   GET  /api/palette           the picture colours (tlm/palette.hpp), see palette_json()
 //   GET  /api/events            server-sent events (see ground_station.hpp)
 //   POST /api/command           {"command": NAME, "args": {...}} -> {"counter": n}
 //                               or HTTP 400 {"error": "<field>: <problem>"}
@@ -48,5 +49,8 @@ class HttpServer {
 
 // The body of GET /api/info.
 std::string info_json();
+// The body of GET /api/palette: tlm/palette.hpp as "#rrggbb" strings
+// {"planes":[..8..],"ground","rock","shadow","rejected","no_data","disparity_ramp":[..5..]}.
+std::string palette_json();
 
 }  // namespace petra::gnd

@@ -1,12 +1,20 @@
 #include "sim/ground/command_builder.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 #include <type_traits>
+
+#include "cmd/param_defs.hpp"
 
 namespace petra::ground {
 
@@ -23,16 +31,62 @@ void assign(T& slot, double v) {
   slot = static_cast<T>(v);
 }
 
+// The only fields an operator may leave out: SELECT_ROI's click (none by
+// default); has_click follows from the click fields when not given.
+bool optional_field(const cmd::CommandDesc& c, const wire::FieldDesc& f) {
+  const std::string_view n = f.name;
+  return c.code == static_cast<std::uint8_t>(cmd::FunctionCode::SELECT_ROI) &&
+         (n == "has_click" || n == "click_u_px" || n == "click_v_px");
+}
+
+// Checks between fields that the ground can make before sending (the
+// onboard validator makes them again, with the image size).
+Status check_consistency(const cmd::Command& c, const std::vector<std::string>& given) {
+  auto has = [&](const char* f) { return std::find(given.begin(), given.end(), f) != given.end(); };
+  if (const auto* roi = std::get_if<cmd::SelectRoiArgs>(&c.args)) {
+    if (has("click_u_px") != has("click_v_px"))
+      return Error::make(Errc::missing_field,
+                         "SELECT_ROI: give both click_u_px and click_v_px, or neither");
+    if (roi->has_click != 0 && !has("click_u_px"))
+      return Error::make(Errc::missing_field,
+                         "SELECT_ROI: has_click=1 needs click_u_px and click_v_px");
+    if (roi->has_click != 0 &&
+        (roi->click_u_px < roi->x_px || roi->click_u_px >= roi->x_px + roi->w_px ||
+         roi->click_v_px < roi->y_px || roi->click_v_px >= roi->y_px + roi->h_px))
+      return Error::make(Errc::out_of_range,
+                         "SELECT_ROI: click_u_px, click_v_px = %u, %u lies outside the ROI",
+                         roi->click_u_px, roi->click_v_px);
+  } else if (const auto* set = std::get_if<cmd::SetParamArgs>(&c.args)) {
+    const ParamDesc* p = find_param(set->param_id);
+    if (p == nullptr)
+      return Error::make(Errc::invalid_argument, "SET_PARAM.param_id = %u: no such parameter",
+                         set->param_id);
+    if (!param_value_valid(*p, set->value))
+      return Error::make(Errc::out_of_range, "SET_PARAM.value = %g: outside %s's range %g..%g",
+                         set->value, p->name, p->min, p->max);
+  } else if (const auto* get = std::get_if<cmd::GetParamArgs>(&c.args)) {
+    if (find_param(get->param_id) == nullptr)
+      return Error::make(Errc::invalid_argument, "GET_PARAM.param_id = %u: no such parameter",
+                         get->param_id);
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string command_usage() {
   std::ostringstream o;
   for (const cmd::CommandDesc& c : cmd::command_table()) {
     o << "  " << c.name;
-    for (const auto& f : c.fields)
-      o << " " << f.name << "=<" << f.min << ".." << f.max
-        << (f.unit[0] ? std::string(" ") + f.unit : "") << ">";
+    bool optional = false;
+    for (const auto& f : c.fields) {
+      const bool opt = optional_field(c, f);
+      optional = optional || opt;
+      o << " " << (opt ? "[" : "") << f.name << "=<" << f.min << ".." << f.max
+        << (f.unit[0] ? std::string(" ") + f.unit : "") << ">" << (opt ? "]" : "");
+    }
     o << "\n      " << c.description << "\n";
+    if (optional) o << "      [optional]: default no click; has_click=1 when the click is given\n";
   }
   return o.str();
 }
@@ -49,6 +103,7 @@ Result<cmd::Command> build_command(const std::string& name, const std::vector<st
   c.code = static_cast<cmd::FunctionCode>(desc->code);
   c.args = cmd::default_args(c.code);
   bool click = false;
+  std::vector<std::string> given;
   for (const std::string& w : words) {
     const auto eq = w.find('=');
     if (eq == std::string::npos)
@@ -61,6 +116,9 @@ Result<cmd::Command> build_command(const std::string& name, const std::vector<st
       if (key == fd.name) f = &fd;
     if (f == nullptr)
       return Error::make(Errc::invalid_argument, "%s has no field '%s'", desc->name, key.c_str());
+    if (std::find(given.begin(), given.end(), key) != given.end())
+      return Error::make(Errc::invalid_argument, "%s.%s: given twice", desc->name, f->name);
+    given.push_back(key);
     double v = 0;
     if (!parse_number(value, v))
       return Error::make(Errc::invalid_argument, "%s.%s: '%s' is not a number", desc->name, f->name,
@@ -81,9 +139,26 @@ Result<cmd::Command> build_command(const std::string& name, const std::vector<st
         },
         c.args);
   }
+  std::string missing;
+  for (const auto& f : desc->fields)
+    if (!optional_field(*desc, f) && std::find(given.begin(), given.end(), f.name) == given.end())
+      missing += (missing.empty() ? "" : ", ") + std::string(f.name);
+  if (!missing.empty())
+    return Error::make(Errc::missing_field, "%s: missing %s (every field is required)",
+                       desc->name, missing.c_str());
   if (auto* roi = std::get_if<cmd::SelectRoiArgs>(&c.args); roi != nullptr && click)
     roi->has_click = 1;
+  PETRA_TRY(check_consistency(c, given));
   return c;
+}
+
+Result<cmd::AuthKey> load_uplink_key(const std::string& path) {
+  // cmd::load_key_file says "cannot open" only: the ground names the reason.
+  if (::access(path.c_str(), R_OK) != 0)
+    return Error::make(Errc::io_error, "key file %s: %s", path.c_str(), std::strerror(errno));
+  if (std::filesystem::is_directory(path))
+    return Error::make(Errc::io_error, "key file %s: is a directory, not a file", path.c_str());
+  return cmd::load_key_file(path.c_str());
 }
 
 Result<std::uint32_t> next_counter(const std::string& path) {
@@ -99,7 +174,8 @@ Result<std::uint32_t> next_counter(const std::string& path) {
   const auto next = static_cast<std::uint32_t>(last + 1);
   std::ofstream out(path, std::ios::trunc);
   out << next << "\n";
-  if (!out) return Error::make(Errc::io_error, "counter file %s: cannot write", path.c_str());
+  if (!out)
+    return Error::make(Errc::io_error, "counter file %s: %s", path.c_str(), std::strerror(errno));
   return next;
 }
 

@@ -9,17 +9,23 @@
 #include <vector>
 
 #include "algo/core/result.hpp"
+#include "cmd/auth.hpp"
 #include "cmd/commands.hpp"
 
 namespace petra::ground {
 
-// NAME is case-insensitive; words are field=value (every field is optional and
-// defaults to 0, except has_click which is set by giving click_u_px/click_v_px).
-// Values outside a field's range are refused here, naming the field.
+// NAME is case-insensitive; words are field=value. Every field is required,
+// except SELECT_ROI's click (click_u_px and click_v_px together, or neither;
+// has_click follows from them). Values outside a field's range, unknown or
+// repeated fields, a click outside the ROI and an unknown parameter or a value
+// outside its range are refused here, naming the field.
 Result<cmd::Command> build_command(const std::string& name, const std::vector<std::string>& words);
 
 // Text listing every command and its fields (for --help and errors).
 std::string command_usage();
+
+// Reads the uplink key file; a file error names the system's reason.
+Result<cmd::AuthKey> load_uplink_key(const std::string& path);
 
 // Reads the counter file (0 when absent), returns last + 1 and stores it.
 Result<std::uint32_t> next_counter(const std::string& path);

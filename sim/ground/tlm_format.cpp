@@ -66,6 +66,34 @@ const char* packet_name(std::uint16_t apid) {
 
 }  // namespace
 
+std::string refusal_detail(std::uint8_t function_code, std::uint8_t reason, std::uint16_t detail) {
+  const cmd::CommandDesc* c = cmd::find_command(function_code);
+  auto field = [&]() -> std::string {
+    if (c != nullptr && detail < c->fields.size()) return std::string("field ") + c->fields[detail].name;
+    return "field " + std::to_string(detail);
+  };
+  const bool param_command =
+      function_code == static_cast<std::uint8_t>(cmd::FunctionCode::SET_PARAM) ||
+      function_code == static_cast<std::uint8_t>(cmd::FunctionCode::GET_PARAM);
+  switch (static_cast<Reason>(reason)) {
+    case Reason::OUT_OF_RANGE:
+      return field();
+    case Reason::INVALID_ARGUMENT:
+      if (param_command) return "unknown parameter id " + std::to_string(detail);
+      return field();
+    case Reason::WRONG_MODE:
+      return "in mode " + kind_name("mode", detail);
+    case Reason::BAD_TRANSITION:
+      return "to mode " + kind_name("mode", detail);
+    case Reason::UNKNOWN_FUNCTION:
+      return "function code " + std::to_string(detail);
+    case Reason::BAD_PAYLOAD_LENGTH:
+      return std::to_string(detail) + " argument bytes";
+    default:
+      return detail != 0 ? "detail " + std::to_string(detail) : "";
+  }
+}
+
 std::string event_text(const tlm::Event& e) {
   const EventDesc* d = find_event(e.event_id);
   if (d == nullptr) return "unknown event " + std::to_string(e.event_id);
@@ -77,7 +105,16 @@ std::string event_text(const tlm::Event& e) {
       if (close != std::string::npos && close > i + 1 && text[i + 1] >= '0' && text[i + 1] <= '3') {
         const int n = text[i + 1] - '0';
         const std::string kind = close > i + 3 ? text.substr(i + 3, close - i - 3) : "";
-        out += kind_name(kind, e.args[static_cast<std::size_t>(n)]);
+        const bool rejection = e.event_id > PETRA_REJECT_EVENT_BASE &&
+                               e.event_id < PETRA_REJECT_EVENT_BASE + 32;
+        if (rejection && n == 1 && i >= 7 && text.compare(i - 7, 7, "detail ") == 0) {
+          out.erase(out.size() - 7);  // "detail 2" becomes "field planes"
+          out += refusal_detail(static_cast<std::uint8_t>(e.args[0]),
+                                static_cast<std::uint8_t>(e.event_id - PETRA_REJECT_EVENT_BASE),
+                                static_cast<std::uint16_t>(e.args[1]));
+        } else {
+          out += kind_name(kind, e.args[static_cast<std::size_t>(n)]);
+        }
         i = close;
         continue;
       }
@@ -103,9 +140,11 @@ std::string format_line(const tlm::TmPacket& p) {
         } else if constexpr (std::is_same_v<B, tlm::Ack>) {
           o << fc_name(b.function_code) << " counter " << b.counter << " "
             << ack_stage_name(static_cast<AckStage>(b.stage));
-          if (b.reason != 0)
-            o << " " << reason_name(static_cast<Reason>(b.reason)) << " (detail " << b.detail
-              << ")";
+          if (b.reason != 0) {
+            o << " " << reason_name(static_cast<Reason>(b.reason));
+            const std::string why = refusal_detail(b.function_code, b.reason, b.detail);
+            if (!why.empty()) o << " (" << why << ")";
+          }
         } else if constexpr (std::is_same_v<B, tlm::ParamValue>) {
           const ParamDesc* d = find_param(b.param_id);
           o << (d != nullptr ? d->name : "?") << " = " << number(b.value) << " "
@@ -180,6 +219,9 @@ std::string format_json(const tlm::TmPacket& p) {
               o << "]";
             }
           });
+          if constexpr (std::is_same_v<B, tlm::Ack>)
+            o << ",\"detail_text\":\"" << refusal_detail(b.function_code, b.reason, b.detail)
+              << "\"";  // names only: nothing to escape
           if constexpr (std::is_same_v<B, tlm::Event>) {
             std::string text = event_text(b);
             std::string esc;

@@ -1,6 +1,7 @@
 #include "sim/io/image_io.hpp"
 
 #include <png.h>
+#include <sys/stat.h>
 // libjpeg's header needs size_t and FILE declared first.
 #include <csetjmp>
 #include <cstddef>
@@ -8,6 +9,7 @@
 
 #include <jpeglib.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -231,9 +233,12 @@ Status write_png_raw(const std::string& path, int w, int h, bool colour, const s
   img.width = static_cast<png_uint_32>(w);
   img.height = static_cast<png_uint_32>(h);
   img.format = colour ? PNG_FORMAT_RGB : PNG_FORMAT_GRAY;
-  if (!png_image_write_to_file(&img, path.c_str(), 0, data, static_cast<png_int_32>(row_stride),
-                               nullptr))
+  auto f = open_file(path, "wb");
+  if (!f) return file_error(path, std::strerror(errno));
+  if (!png_image_write_to_stdio(&img, f.get(), 0, data, static_cast<png_int_32>(row_stride),
+                                nullptr))
     return file_error(path, img.message[0] ? img.message : "cannot write PNG");
+  if (std::fflush(f.get()) != 0) return file_error(path, std::strerror(errno));
   return {};
 }
 
@@ -273,8 +278,8 @@ Status write_pgm(const std::string& path, ConstGray8View image) {
   for (int y = 0; y < image.height(); ++y)
     if (std::fwrite(image.row(y), 1, static_cast<std::size_t>(image.width()), f.get()) !=
         static_cast<std::size_t>(image.width()))
-      return file_error(path, "short write");
-  if (std::fflush(f.get()) != 0) return file_error(path, "flush failed");
+      return file_error(path, std::strerror(errno));
+  if (std::fflush(f.get()) != 0) return file_error(path, std::strerror(errno));
   return {};
 }
 
@@ -339,24 +344,31 @@ Status write_pfm(const std::string& path, ImageView<const float> image) {
         row[static_cast<std::size_t>(x) * 4 + k] = static_cast<unsigned char>(u >> (8 * k));
     }
     if (std::fwrite(row.data(), 1, row.size(), f.get()) != row.size())
-      return file_error(path, "short write");
+      return file_error(path, std::strerror(errno));
   }
-  if (std::fflush(f.get()) != 0) return file_error(path, "flush failed");
+  if (std::fflush(f.get()) != 0) return file_error(path, std::strerror(errno));
   return {};
 }
 
 Result<std::string> read_text_file(const std::string& path, std::size_t max_bytes) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return file_error(path, "cannot open");
+  auto f = open_file(path, "rb");
+  if (!f) return file_error(path, std::strerror(errno));
+  struct stat st {};
+  if (::fstat(::fileno(f.get()), &st) != 0) return file_error(path, std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) return file_error(path, "is a directory, not a file");
   std::string s;
-  in.seekg(0, std::ios::end);
-  const auto size = in.tellg();
-  if (size < 0) return file_error(path, "cannot read");
-  if (static_cast<std::size_t>(size) > max_bytes) return file_error(path, "file too large");
-  s.resize(static_cast<std::size_t>(size));
-  in.seekg(0);
-  in.read(s.data(), size);
-  if (!in) return file_error(path, "read failed");
+  char chunk[65536];
+  for (;;) {  // also reads pipes and /proc files, whose size is unknown
+    const std::size_t n = std::fread(chunk, 1, sizeof chunk, f.get());
+    s.append(chunk, n);
+    if (s.size() > max_bytes) {
+      char why[64];
+      std::snprintf(why, sizeof why, "larger than %zu bytes", max_bytes);
+      return file_error(path, why);
+    }
+    if (n < sizeof chunk) break;
+  }
+  if (std::ferror(f.get())) return file_error(path, std::strerror(errno));
   return s;
 }
 
@@ -368,8 +380,8 @@ Status write_binary_file(const std::string& path, const void* data, std::size_t 
   auto f = open_file(path, "wb");
   if (!f) return file_error(path, std::strerror(errno));
   if (bytes > 0 && std::fwrite(data, 1, bytes, f.get()) != bytes)
-    return file_error(path, "short write");
-  if (std::fflush(f.get()) != 0) return file_error(path, "flush failed");
+    return file_error(path, std::strerror(errno));
+  if (std::fflush(f.get()) != 0) return file_error(path, std::strerror(errno));
   return {};
 }
 

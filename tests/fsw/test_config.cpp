@@ -64,6 +64,41 @@ TEST(Config, EveryErrorNamesTheField) {
   }
 }
 
+// A misspelt key would leave its default flying: every section refuses keys
+// it does not know, naming the key and the section.
+TEST(Config, UnknownKeysAreRefusedByName) {
+  const struct {
+    const char* text;
+    const char* names;
+  } cases[] = {
+      {R"({"upink":{"key_file":"k"},"uplink":{"key_file":"k"},"camera":{"dir":"x"}})",
+       "config: upink: unknown key"},
+      {R"({"uplink":{"key_file":"k","prot":47100},"camera":{"dir":"x"}})",
+       "config: uplink.prot: unknown key"},
+      {R"({"uplink":{"key_file":"k"},"downlink":{"hots":"1.2.3.4"},"camera":{"dir":"x"}})",
+       "downlink.hots"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"loop":{"cycle":5}})", "loop.cycle"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"budget":{"arena":5}})", "budget.arena"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x","width":64}})", "camera.width"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"v4l2","left":"a","right":"b","width":64,"height":48,"fsp":5}})",
+       "camera.fsp"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"arm":{"can_interface":"can0","mnt":[0,0,0,0]}})",
+       "arm.mnt"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"gpio":{"chip":"c","e_stop":"x"}})",
+       "gpio.e_stop"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"gpio":{"chip":"c","estop":{"line":"x","active_high":true}}})",
+       "gpio.estop.active_high"},
+  };
+  for (const auto& c : cases) {
+    auto r = parse(c.text);
+    ASSERT_FALSE(r.ok()) << c.text;
+    EXPECT_NE(std::string(r.error().message).find(c.names), std::string::npos)
+        << r.error().message << " should name " << c.names;
+    EXPECT_NE(std::string(r.error().message).find("expected one of"), std::string::npos)
+        << r.error().message;
+  }
+}
+
 TEST(Config, ArmOnCanOverUdpKeepsTheSpec) {
   auto c = parse(
       R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"arm":{"can_interface":"udp:47200:47201","mount":[300,100,100,90]}})");

@@ -75,6 +75,16 @@ TEST(CommandRequest, NamesTheUnknownCommandOrField) {
             std::string::npos);
 }
 
+// As `petra cmd`: a field left out is refused, not sent as 0.
+TEST(CommandRequest, NamesTheMissingFields) {
+  EXPECT_NE(error_of(R"({"command":"ARM_GOTO","args":{"plane_rank":1}})")
+                .find("ARM_GOTO: missing standoff_mm"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"command":"SELECT_ROI","args":{"x_px":10}})")
+                .find("missing y_px, w_px, h_px, planes"),
+            std::string::npos);
+}
+
 TEST(CommandRequest, NamesTheFieldOutOfRange) {
   EXPECT_NE(error_of(R"({"command":"SELECT_ROI","args":{"x_px":9000}})").find("SELECT_ROI.x_px"),
             std::string::npos);
