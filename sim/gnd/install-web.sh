@@ -15,4 +15,9 @@ mkdir -p vendor/three/examples/jsm
 cp -r node_modules/three/build vendor/three/build
 cp -r node_modules/three/examples/jsm/controls vendor/three/examples/jsm/controls
 cp node_modules/three/LICENSE vendor/three/LICENSE
+# The 3D view's surface mesh: Delaunay triangulation (and its exact predicates).
+mkdir -p vendor/delaunator vendor/robust-predicates
+cp node_modules/delaunator/index.js node_modules/delaunator/LICENSE vendor/delaunator/
+cp -r node_modules/robust-predicates/index.js node_modules/robust-predicates/esm \
+  node_modules/robust-predicates/LICENSE vendor/robust-predicates/
 echo "npm packages in $out/node_modules, page assets in $out/vendor"

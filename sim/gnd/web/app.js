@@ -2,12 +2,16 @@
 // (POST /api/command), products fetched as they complete. window.petra
 // exposes the decoded state for inspection (and for the end-to-end test).
 import { RoiCanvas } from './roi_canvas.js';
-import { fetchProduct, toImageData, drawImageProduct, toPoints } from './products.js';
+import { fetchProduct, toImageData, drawImageProduct, drawDisparity, drawColourBar, toPoints } from './products.js';
 
 const $ = (id) => document.getElementById(id);
 const fmt = (x, d = 1) => Number(x).toFixed(d);
 const vec = (a, d) => `(${a.map((x) => fmt(x, d)).join(', ')})`;
-const COLOURS = ['#e6194b', '#3cb44b', '#4363d8', '#f58231', '#911eb4', '#42d4f4', '#f032e6', '#bfef45'];
+// The colours of every picture, `petra eval`'s included (tlm/palette.hpp).
+const palette = await fetch('/api/palette').then((r) => r.json());
+const planeColour = (rank) => palette.planes[Math.min(rank, palette.planes.length - 1)];
+// Planes are numbered 1..c for the operator; the wire's plane_rank is 0..c-1.
+const planeNumber = (rank) => rank + 1;
 
 const state = {
   commands: new Map(),  // counter -> {command, args, stage, reason, detail}
@@ -16,24 +20,32 @@ const state = {
   armGeometry: null, armTlm: null, plan: null,
 };
 window.petra = state;
+state.palette = palette;
 state.view3dStats = () => (view3d ? view3d.stats() : null);
 state.view3dFrame = (mode) => view3d && view3d.frame(mode);
 
+// The 3D view is created once: every caller awaits the same load (a page
+// opened during an evaluation gets its point cloud before three.js has
+// loaded; a second View3D would be a second WebGL canvas).
 let view3d = null;
-let view3dError = null;
-async function get3d() {
-  if (view3d || view3dError) return view3d;
+let view3dLoad = null;
+function get3d() {
+  if (!view3dLoad) view3dLoad = load3d();
+  return view3dLoad;
+}
+
+async function load3d() {
   try {
     const { View3D } = await import('./view3d.js');
-    view3d = new View3D($('view3d'));
+    view3d = new View3D($('view3d'), palette);
     view3d.setLabel('no point cloud yet');
     if (state.armTlm) view3d.setArm('arm', state.armTlm.skeleton);
     $('view3d-status').remove();
     state.view3d = 'ready';
   } catch (e) {
-    view3dError = String(e.message || e);
-    state.view3d = view3dError;
-    $('view3d-status').textContent = `3D view unavailable: ${view3dError} (install the page assets: sim/gnd/install-web.sh)`;
+    const why = String(e.message || e);
+    state.view3d = why;
+    $('view3d-status').textContent = `3D view unavailable: ${why} (install the page assets: cmake --build <build folder> --target gnd_web)`;
   }
   return view3d;
 }
@@ -62,7 +74,7 @@ async function send(command, args = {}) {
 }
 
 function noteCommand(counter, fields) {
-  const row = state.commands.get(counter) || { counter, command: '?', args: {}, stage: 'SENT', reason: '', detail: 0 };
+  const row = state.commands.get(counter) || { counter, command: '?', args: {}, stage: 'SENT', reason: '', detail: '' };
   Object.assign(row, fields);
   state.commands.set(counter, row);
   renderCommands();
@@ -143,7 +155,7 @@ function onTlm(m) {
 
 function onAck(f, names) {
   const row = noteCommand(f.counter, { command: names.command, stage: names.stage,
-                                       reason: f.reason ? names.reason : '', detail: f.detail });
+                                       reason: f.reason ? names.reason : '', detail: names.detail || '' });
   continueEvaluate(row);
   if (row.command === 'EVALUATE' && (names.stage === 'FAILED' || names.stage === 'REJECTED'))
     $('planes-status').textContent = `EVALUATE ${names.stage}: ${names.reason} - no planes.`;
@@ -161,9 +173,14 @@ async function onProduct(info) {
     const img = toImageData(p);
     if (img) roi.setImage(img);
     $('image-source').textContent = p.id ? `LEFT_IMAGE of frame ${p.id}, ${p.width} × ${p.height}` : `scene image, ${p.width} × ${p.height}`;
-  } else if (info.kind === 'disparity' || info.kind === 'overlay') {
-    if (drawImageProduct($(info.kind), p))
-      $(`${info.kind}-caption`).textContent = `${info.kind} of evaluation ${p.id}, ${p.width} × ${p.height}`;
+  } else if (info.kind === 'disparity') {
+    if (drawDisparity($('disparity'), p, palette)) {
+      $('disparity-caption').textContent = `disparity of evaluation ${p.id}, ${p.width} × ${p.height} px`;
+      renderDisparityScale(p.id);
+    }
+  } else if (info.kind === 'overlay') {
+    if (drawImageProduct($('overlay'), p))
+      $('overlay-caption').textContent = `overlay of evaluation ${p.id}, ${p.width} × ${p.height} px`;
   } else if (info.kind === 'point_cloud') {
     const xyz = toPoints(p);
     const v = await get3d();
@@ -193,8 +210,9 @@ function renderCommands() {
     tr.dataset.counter = c.counter;
     tr.dataset.command = c.command;
     tr.dataset.stage = c.stage;
-    const args = Object.entries(c.args || {}).map(([k, v]) => `${k}=${v}`).join(' ');
-    const status = c.reason ? `${c.stage}: ${c.reason}${c.detail ? ` (detail ${c.detail})` : ''}` : c.stage;
+    const args = Object.entries(c.args || {}).map(([k, v]) =>
+      k === 'plane_rank' ? `plane ${planeNumber(Number(v))} (plane_rank=${v})` : `${k}=${v}`).join(' ');
+    const status = c.reason ? `${c.stage}: ${c.reason}${c.detail ? ` (${c.detail})` : ''}` : c.stage;
     for (const [text, cls] of [[c.counter, ''], [c.command, ''], [args, ''], [status, c.stage]]) {
       const td = document.createElement('td');
       td.textContent = text;
@@ -243,13 +261,13 @@ function renderPlanes() {
     const tr = document.createElement('tr');
     tr.dataset.rank = p.rank;
     if (p.rank === state.picked) tr.className = 'picked';
-    const cells = [p.rank, vec(p.normal, 3), vec(p.centroid_mm, 1), fmt(p.area_mm2, 0), fmt(p.flatness_rms_mm, 2), p.triangles];
+    const cells = [planeNumber(p.rank), vec(p.normal, 3), vec(p.centroid_mm, 1), fmt(p.area_mm2, 0), fmt(p.flatness_rms_mm, 2), p.triangles];
     cells.forEach((text, i) => {
       const td = document.createElement('td');
       if (i === 0) {
         const s = document.createElement('span');
         s.className = 'swatch';
-        s.style.background = COLOURS[p.rank % 8];
+        s.style.background = planeColour(p.rank);
         td.append(s);
       }
       td.append(String(text));
@@ -260,6 +278,30 @@ function renderPlanes() {
   }));
   if (view3d) view3d.setPlanes(state.planes);
   $('send-goto').disabled = state.picked === null;
+  renderLegend();
+}
+
+// The overlay's legend: the classes and each plane of the evaluation, 1..c.
+function renderLegend() {
+  const entries = [['ground', palette.ground], ['rock', palette.rock], ['shadow', palette.shadow]]
+    .concat(state.planes.map((p) => [`plane ${planeNumber(p.rank)}`, planeColour(p.rank)]));
+  $('overlay-legend').replaceChildren(...entries.map(([name, colour]) => {
+    const item = document.createElement('span');
+    const s = document.createElement('span');
+    s.className = 'swatch';
+    s.style.background = colour;
+    item.append(s, name);
+    return item;
+  }));
+}
+
+// The disparity's colour bar, far to near, in px when EVAL_RESULT gave the range.
+function renderDisparityScale(id) {
+  drawColourBar($('disparity-bar'), palette);
+  const r = state.evalResult;
+  const known = r && r.eval_id === id;
+  $('disparity-far').textContent = known ? `${fmt(r.disparity_min, 1)} px (far)` : 'far';
+  $('disparity-near').textContent = known ? `${fmt(r.disparity_max, 1)} px (near)` : 'near';
 }
 
 // Picking a plane asks the server to plan the approach as the arm service
@@ -327,14 +369,14 @@ function renderArmTable() {
 function renderArm() {
   const rank = state.arm === 'reached' ? state.armGotoRank : state.picked;
   const p = state.planes.find((q) => q.rank === rank);
-  const where = p ? `plane ${p.rank}: grinder face on ${vec(p.centroid_mm, 1)} mm, axis along ${vec(p.normal.map((x) => -x), 3)}` : '';
+  const where = p ? `plane ${planeNumber(p.rank)}: grinder face on ${vec(p.centroid_mm, 1)} mm, axis along ${vec(p.normal.map((x) => -x), 3)}` : '';
   const plan = state.plan;
   const a = state.armTlm;
   const text = {
     'not requested': 'Arm: pick a plane to see the planned pose.',
     planning: `Planning ${where}...`,
     planned: plan && plan.ok ? `Planned ${where}; joints ${vec(plan.contact.joint_deg, 1)} deg, approach ${plan.standoff.tip_mm ? fmt(dist(plan.standoff.tip_mm, plan.contact.tip_mm), 0) : '?'} mm along the normal.` : '',
-    'plan refused': plan ? `Plane ${rank} cannot be reached: ${plan.reason}` : '',
+    'plan refused': plan ? `Plane ${planeNumber(rank)} cannot be reached: ${plan.reason}` : '',
     requested: `ARM_GOTO sent for ${where}; waiting for the acknowledgement.`,
     reached: `Arm reached ${where}${a && p ? `; tip ${fmt(dist(a.tip_mm, p.centroid_mm), 3)} mm from the centroid` : ''}.`,
   }[state.arm] ?? `ARM_GOTO ${state.arm}: the arm did not reach the plane.`;
@@ -349,6 +391,8 @@ function renderArm() {
 fetch('/api/arm').then((r) => r.json()).then((g) => { state.armGeometry = g; }).catch(() => {});
 
 get3d();  // three.js from /vendor and WebGL: ready before the first cloud
+renderLegend();
+drawColourBar($('disparity-bar'), palette);
 
 setInterval(() => {
   const age = (Date.now() - state.lastPacketMs) / 1000;

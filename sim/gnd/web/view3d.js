@@ -1,15 +1,22 @@
 // The reconstruction in 3D (three.js, served from /vendor): the point cloud
-// coloured by the grind plane each point lies on, a disc per plane, the arm
+// and its surface mesh (Delaunay over the ground plane, delaunator) coloured
+// by the grind plane each point lies on (ground and rock otherwise, the
+// colours of `petra eval`: GET /api/palette), a disc per plane, the arm
 // as ARM_STATUS reports it (solid) and the pose planned for the picked plane
 // (ghost, with its standoff waypoint). Drag to rotate, wheel to zoom.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import Delaunator from 'delaunator';
 
-export const PLANE_COLOURS = ['#e6194b', '#3cb44b', '#4363d8', '#f58231', '#911eb4', '#42d4f4', '#f032e6', '#bfef45'];
+// Triangles with an edge longer than this many times the median edge span a
+// gap in the cloud (occlusion, the rock's outline): not drawn.
+const MAX_EDGE_OVER_MEDIAN = 3;
 
 export class View3D {
-  constructor(el) {
+  // palette: GET /api/palette (tlm/palette.hpp).
+  constructor(el, palette) {
     this.el = el;
+    this.palette = palette;
     this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(window.devicePixelRatio);
     this.renderer.setClearColor(0x101317);
@@ -65,10 +72,13 @@ export class View3D {
 
   setLabel(text) { this.label.textContent = text; }
 
+  planeColour(rank) { return this.palette.planes[Math.min(rank, this.palette.planes.length - 1)]; }
+
   // What is drawn, for the operator's checks and the end-to-end test.
   stats() {
     const tipOf = (g) => (g.userData.skeleton ? g.userData.skeleton[g.userData.skeleton.length - 1] : null);
     return { points: this.points ? this.points.length / 3 : 0, colourCounts: this.colourCounts || [],
+             meshTriangles: this.meshTriangles || 0, canvases: this.el.querySelectorAll('canvas').length,
              planes: this.groups.planes.children.length, armTip: tipOf(this.groups.arm), planTip: tipOf(this.groups.plan),
              armMeshes: this.groups.arm.children.length, planMeshes: this.groups.plan.children.length,
              camera: this.camera.position.toArray() };
@@ -184,7 +194,7 @@ export class View3D {
     for (const p of planes) {
       const radius = Math.sqrt(p.area_mm2 / Math.PI);
       const disc = new THREE.Mesh(new THREE.CircleGeometry(radius, 48),
-        new THREE.MeshBasicMaterial({ color: PLANE_COLOURS[p.rank % 8], transparent: true, opacity: 0.25, side: THREE.DoubleSide, depthWrite: false }));
+        new THREE.MeshBasicMaterial({ color: this.planeColour(p.rank), transparent: true, opacity: 0.25, side: THREE.DoubleSide, depthWrite: false }));
       disc.position.fromArray(p.centroid_mm);
       disc.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), new THREE.Vector3().fromArray(p.normal).normalize());
       this.groups.planes.add(disc);
@@ -202,12 +212,15 @@ export class View3D {
     const c = new THREE.Color();
     const fits = this.planes.map((p) => ({
       n: new THREE.Vector3().fromArray(p.normal).normalize(), o: new THREE.Vector3().fromArray(p.centroid_mm),
-      tol: Math.max(1.5, 3 * p.flatness_rms_mm), r2: 1.5 * p.area_mm2 / Math.PI, colour: new THREE.Color(PLANE_COLOURS[p.rank % 8]) }));
+      tol: Math.max(1.5, 3 * p.flatness_rms_mm), r2: 1.5 * p.area_mm2 / Math.PI, colour: new THREE.Color(this.planeColour(p.rank)) }));
     const v = new THREE.Vector3();
+    const up = new THREE.Vector3().fromArray(this.ground ? this.ground.normal : [0, 0, 1]).normalize();
+    const groundD = this.ground ? this.ground.d_mm : null;
+    const rock = new THREE.Color(this.palette.rock), ground = new THREE.Color(this.palette.ground);
     this.colourCounts = this.planes.map(() => 0);
     for (let i = 0; i < n; ++i) {
       v.fromArray(this.points, i * 3);
-      c.setRGB(0.62, 0.62, 0.62);
+      c.copy(groundD !== null && Math.abs(v.dot(up) + groundD) < 3 ? ground : rock);
       for (let k = 0; k < fits.length; ++k) {
         const f = fits[k];
         const d = v.clone().sub(f.o);
@@ -219,8 +232,46 @@ export class View3D {
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.BufferAttribute(this.points, 3));
     geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3));
-    this.groups.cloud.add(new THREE.Points(geometry, new THREE.PointsMaterial({ size: 4, vertexColors: true })));
+    this.groups.cloud.add(new THREE.Points(geometry, new THREE.PointsMaterial({ size: 2, vertexColors: true })));
+    const index = this.meshIndex(up);
+    this.meshTriangles = index.length / 3;
+    if (index.length) {
+      const mesh = geometry.clone();
+      mesh.setIndex(index);
+      mesh.computeVertexNormals();
+      this.groups.cloud.add(new THREE.Mesh(mesh, new THREE.MeshStandardMaterial({
+        vertexColors: true, side: THREE.DoubleSide, roughness: 0.9, metalness: 0 })));
+    }
     this.redraw();
+  }
+
+  // The surface: Delaunay triangles of the points seen along `up` (the rock
+  // is a height field over the ground), without those spanning gaps.
+  meshIndex(up) {
+    const n = this.points.length / 3;
+    if (n < 3) return [];
+    const a = new THREE.Vector3(1, 0, 0);
+    if (Math.abs(a.dot(up)) > 0.9) a.set(0, 1, 0);
+    const e1 = a.sub(up.clone().multiplyScalar(a.dot(up))).normalize();
+    const e2 = new THREE.Vector3().crossVectors(up, e1);
+    const flat = new Float64Array(2 * n);
+    const v = new THREE.Vector3();
+    for (let i = 0; i < n; ++i) {
+      v.fromArray(this.points, i * 3);
+      flat[2 * i] = v.dot(e1);
+      flat[2 * i + 1] = v.dot(e2);
+    }
+    const tri = new Delaunator(flat).triangles;
+    const p = this.points;
+    const len = (i, j) => Math.hypot(p[3 * i] - p[3 * j], p[3 * i + 1] - p[3 * j + 1], p[3 * i + 2] - p[3 * j + 2]);
+    const longest = [];
+    for (let t = 0; t < tri.length; t += 3)
+      longest.push(Math.max(len(tri[t], tri[t + 1]), len(tri[t + 1], tri[t + 2]), len(tri[t + 2], tri[t])));
+    const median = [...longest].sort((x, y) => x - y)[Math.floor(longest.length / 2)] || 0;
+    const index = [];
+    for (let t = 0; t < tri.length; t += 3)
+      if (longest[t / 3] <= MAX_EDGE_OVER_MEDIAN * median) index.push(tri[t], tri[t + 1], tri[t + 2]);
+    return index;
   }
 
   // The picked plane's target: its normal as an arrow from the centroid
@@ -230,7 +281,7 @@ export class View3D {
     if (!plane) return;
     const n = new THREE.Vector3().fromArray(plane.normal).normalize();
     const c = new THREE.Vector3().fromArray(plane.centroid_mm);
-    this.groups.pose.add(new THREE.ArrowHelper(n, c, 90, PLANE_COLOURS[plane.rank % 8], 18, 10));
+    this.groups.pose.add(new THREE.ArrowHelper(n, c, 90, this.planeColour(plane.rank), 18, 10));
     this.redraw();
   }
 }

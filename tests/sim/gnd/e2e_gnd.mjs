@@ -2,7 +2,10 @@
 // the arm's five simulated CANopen drives (`petra sim-arm`, CAN over UDP on
 // loopback), `petra gnd serve` bridging it, headless Chromium driving the
 // page as an operator would: ROI, SELECT_ROI + EVALUATE, planes, products,
-// planned pose, ARM_GOTO, the arm reaching the plane, rejected commands.
+// planned pose, ARM_GOTO, the arm reaching the plane, rejected commands,
+// reloads during and after an evaluation (one 3D view, no script error), the
+// pictures in `petra eval`'s palette, and the station's archive holding every
+// packet the relay saw.
 // The downlink passes through a relay here that decodes GRIND_PLANE and
 // ARM_STATUS itself from the docs/icd.md layout (and checks the CRC): the
 // reference the page and the server are compared with.
@@ -112,7 +115,7 @@ async function startRelay(toPort, sink) {
   await new Promise((r) => s.bind(0, '127.0.0.1', r));
   s.on('message', (msg) => {
     s.send(msg, toPort, '127.0.0.1');
-    sink.push({ t: Date.now(), ...decodeRaw(msg) });
+    sink.push({ t: Date.now(), apid: msg.readUInt16BE(0) & 0x7FF, ...decodeRaw(msg) });
   });
   return s;
 }
@@ -155,7 +158,7 @@ async function main() {
   children.push(drives);
   const gnd = spawn(petra, ['gnd', 'serve', '--port', '0', '--key', path.join(work, 'petra.key'),
     '--cmd-port', String(cmdPort), '--tlm-port', String(tlmPort), '--left-image', path.join(scene, 'left.png'),
-    '--arm-mount', mount.join(',')], { stdio: ['ignore', 'pipe', 'inherit'] });
+    '--arm-mount', mount.join(','), '--archive', path.join(work, 'archive.db')], { stdio: ['ignore', 'pipe', 'inherit'] });
   children.push(gnd);
   const url = await new Promise((resolve, reject) => {
     let out = '';
@@ -227,6 +230,13 @@ async function main() {
     m.data.names.command === name && m.data.names.stage !== 'ACCEPTED');
   const selAck = await until('SELECT_ROI acknowledgement', () => finalAck('SELECT_ROI'), 10000);
   check(selAck.data.names.stage === 'COMPLETED', `SELECT_ROI ${selAck.data.names.stage} ${selAck.data.names.reason}`);
+  // The operator reloads while the evaluation runs: the page rebuilds from the
+  // server's recent messages, with one 3D view and no script error.
+  await until('EVALUATE sent by the page', () => telemetry.find((m) => m.event === 'sent' && m.data.command === 'EVALUATE'), 10000);
+  const evalRunning = !finalAck('EVALUATE');
+  await page.reload();
+  await until('the 3D view after the reload', () => page.evaluate(() => window.petra?.view3d === 'ready'), 10000);
+  check(true, `page reloaded ${evalRunning ? 'while the evaluation ran' : 'after the evaluation (it finished first)'}`);
   const sentSel = telemetry.find((m) => m.event === 'sent' && m.data.command === 'SELECT_ROI').data;
   const a = sentSel.args;
   check(a.x_px === sel.roi.x && a.y_px === sel.roi.y && a.w_px === sel.roi.w && a.h_px === sel.roi.h &&
@@ -258,9 +268,9 @@ async function main() {
   await until('plane rows', async () => (await page.$$('#plane-table tbody tr')).length === found, 5000);
   const rows = await page.$$eval('#plane-table tbody tr', (trs) => trs.map((tr) => [...tr.cells].map((td) => td.textContent)));
   for (const p of planes) {
-    const expect = [String(p.rank), `(${p.normal.map((x) => x.toFixed(3)).join(', ')})`,
+    const expect = [String(p.rank + 1), `(${p.normal.map((x) => x.toFixed(3)).join(', ')})`,
       `(${p.centroid_mm.map((x) => x.toFixed(1)).join(', ')})`, p.area_mm2.toFixed(0), p.flatness_rms_mm.toFixed(2), String(p.triangles)];
-    check(JSON.stringify(rows[p.rank]) === JSON.stringify(expect), `plane row ${p.rank} = raw telemetry ${JSON.stringify(expect)}`);
+    check(JSON.stringify(rows[p.rank]) === JSON.stringify(expect), `plane row ${p.rank + 1} (wire rank ${p.rank}) = raw telemetry ${JSON.stringify(expect)}`);
   }
 
   // 7. Products: disparity and overlay drawn at their size, the cloud in 3D
@@ -287,6 +297,30 @@ async function main() {
   check(cloud.points * 12 === (await (await fetch(`${url}api/product/point_cloud`)).arrayBuffer()).byteLength,
         `3D view holds the ${cloud.points} points of the POINT_CLOUD product`);
   check(cloud.colourCounts.every((n) => n > 20), `points coloured by plane: ${cloud.colourCounts.join(', ')} of ${cloud.points}`);
+  check(cloud.meshTriangles > cloud.points / 2, `the 3D view draws the surface mesh: ${cloud.meshTriangles} triangles over ${cloud.points} points`);
+  check(cloud.canvases === 1, `one WebGL view (${cloud.canvases} canvas in #view3d)`);
+  // One palette: the page's is the server's (tlm/palette.hpp); the disparity
+  // is drawn with its ramp, the legend names the planes 1..c in its colours.
+  const pal = await (await fetch(`${url}api/palette`)).json();
+  check(pal.planes.length === 8 && pal.disparity_ramp.length === 5 && pal.shadow !== pal.planes[1], `palette served: planes ${pal.planes.join(' ')}, shadow ${pal.shadow}`);
+  const dispPixels = await page.evaluate((ramp) => {
+    const cv = document.getElementById('disparity');
+    const d = cv.getContext('2d').getImageData(0, 0, cv.width, cv.height).data;
+    const stops = ramp.map((h) => [1, 3, 5].map((i) => parseInt(h.slice(i, i + 2), 16)));
+    let coloured = 0, far = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      if (Math.max(d[i], d[i + 1], d[i + 2]) - Math.min(d[i], d[i + 1], d[i + 2]) > 60) ++coloured;
+      if (d[i] === stops[0][0] && d[i + 1] === stops[0][1] && d[i + 2] === stops[0][2]) ++far;
+    }
+    return { coloured, far, total: d.length / 4 };
+  }, pal.disparity_ramp);
+  check(dispPixels.coloured > dispPixels.total / 3 && dispPixels.far > 0, `disparity drawn in the ramp: ${dispPixels.coloured} of ${dispPixels.total} px coloured, ${dispPixels.far} at the far end`);
+  const legend = await page.$$eval('#overlay-legend > span', (items) => items.map((i) => [i.textContent, i.firstChild.style.background]));
+  const rgb = (h) => `rgb(${[1, 3, 5].map((i) => parseInt(h.slice(i, i + 2), 16)).join(', ')})`;
+  check(planes.every((p) => legend.some(([t, c]) => t === `plane ${p.rank + 1}` && c === rgb(pal.planes[p.rank]))),
+        `overlay legend: ${legend.map(([t]) => t).join(', ')} in the palette's colours`);
+  const scale = await page.textContent('#disparity-far');
+  check(/px \(far\)$/.test(scale), `disparity colour bar labelled "${scale}" ... "${await page.textContent('#disparity-near')}"`);
   const view = await (await page.$('#view3d canvas')).boundingBox();
   await page.mouse.move(view.x + view.width / 2, view.y + view.height / 2);
   await page.mouse.down();
@@ -306,7 +340,7 @@ async function main() {
   // 9. Pick the best plane: the planned pose (ghost arm) ends on its centroid.
   const p0 = planes[0];
   await page.click('#plane-table tbody tr[data-rank="0"]');
-  await until('planned pose', async () => (await page.textContent('#arm-status')).startsWith('Planned plane 0'), 5000);
+  await until('planned pose', async () => (await page.textContent('#arm-status')).startsWith('Planned plane 1'), 5000);
   const plan = await page.evaluate(() => window.petra.plan);
   check(plan.ok && dist3(plan.contact.tip_mm, p0.centroid_mm) < 1e-6, `plan: contact tip on the centroid, joints ${JSON.stringify(plan.contact.joint_deg.map((x) => +x.toFixed(2)))} deg`);
   const planTip = (await page.evaluate(() => window.petra.view3dStats())).planTip;
@@ -337,7 +371,7 @@ async function main() {
   const distinct = tips.filter((t, i) => i === 0 || dist3(t, tips[i - 1]) > 1);
   check(statuses.length - nStatusBefore >= 8 && distinct.length >= 5, `the arm model moved through ${distinct.length} poses (${statuses.length - nStatusBefore} ARM_STATUS packets during the move)`);
   check(await page.evaluate(() => window.petra.events.some((e) => e.startsWith('ARM_REACHED'))), 'the page shows ARM_REACHED');
-  await until('the page reports the arm at plane 0', async () => (await page.textContent('#arm-status')).startsWith('Arm reached plane 0'), 3000);
+  await until('the page reports the arm at plane 1', async () => (await page.textContent('#arm-status')).startsWith('Arm reached plane 1'), 3000);
   await page.waitForTimeout(300);
   await page.locator('#products').screenshot({ path: path.join(shots, 'gnd_arm_3d.png') });
   await page.locator('#planes-panel').screenshot({ path: path.join(shots, 'gnd_arm.png') });
@@ -360,9 +394,35 @@ async function main() {
   await page.locator('#log').screenshot({ path: path.join(shots, 'gnd_log.png') });
   await page.screenshot({ path: path.join(shots, 'gnd_full.png'), fullPage: true });
 
+  // Opened again after the evaluation (the old race: the cloud arrived before
+  // three.js had loaded and a second WebGL view was made).
+  await page.reload();
+  const again = await until('the cloud in the 3D view after the reload', () => page.evaluate(() => {
+    const s = window.petra?.view3dStats();
+    return s && s.points > 0 && s.meshTriangles > 0 ? s : null;
+  }), 15000);
+  check(again.canvases === 1 && (await page.$$('#view3d canvas')).length === 1, `after a reload: one WebGL view, ${again.points} points, ${again.meshTriangles} triangles`);
+  await page.waitForTimeout(300);
+  await page.locator('#products').screenshot({ path: path.join(shots, 'gnd_products_reloaded.png') });
+
   const offsite = requests.filter((u) => !u.startsWith(url));
   check(offsite.length === 0, `all ${requests.length} page requests went to ${url} (${offsite.join(', ') || 'none elsewhere'})`);
   check(pageErrors.length === 0, `no script errors on the page (${pageErrors.join('; ') || 'none'})`);
+
+  // The archive: stop petra-fsw, then the station; every packet the relay
+  // passed on is in the station's archive (counts per APID equal).
+  fsw.kill('SIGTERM');
+  await new Promise((r) => setTimeout(r, 1500));
+  gnd.kill('SIGTERM');
+  await new Promise((r) => gnd.exitCode !== null ? r() : gnd.on('exit', r));
+  const counted = execFileSync(petra, ['archive', 'query', '--db', path.join(work, 'archive.db'), '--count'], { encoding: 'utf8' });
+  const archived = Object.fromEntries([...counted.matchAll(/apid +(\d+) +(\d+) packets/g)].map((m) => [Number(m[1]), Number(m[2])]));
+  const relayed = {};
+  for (const m of raw) relayed[m.apid] = (relayed[m.apid] || 0) + 1;
+  check(JSON.stringify(archived) === JSON.stringify(relayed), `archive holds every packet per APID: ${JSON.stringify(archived)} (relay ${JSON.stringify(relayed)})`);
+  const events = execFileSync(petra, ['archive', 'query', '--db', path.join(work, 'archive.db'), '--apid', 'EVENT', '--min-severity', 'WARNING'], { encoding: 'utf8' });
+  check(/CMD_REJECTED_BAD_TRANSITION/.test(events) && !/ INFO /.test(events), `archive query of WARNING events and above: ${events.trim().split('\n').length} lines, the SET_MODE rejection among them`);
+
   follower.abort();
   relay.close();
   log(`screenshots in ${shots}`);
