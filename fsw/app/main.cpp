@@ -1,4 +1,5 @@
-// petra-fsw --config FILE: the onboard service. Loads the configuration,
+// petra-fsw --config FILE: the onboard service (--memory-table: the generated
+// table of docs/memory.md). Loads the configuration,
 // opens the devices (camera, GPIO lines, the arm's CAN bus), allocates every
 // buffer, then runs the executive's loop until SIGINT or SIGTERM. Exit status 0 after a clean stop;
 // 1 with a one-line reason on stderr when initialisation fails.
@@ -9,6 +10,7 @@
 #include "fsw/arm/flight_arm.hpp"
 #include "fsw/executive.hpp"
 #include "fsw/flight_devices.hpp"
+#include "fsw/memory_table.hpp"
 #include "fsw/pipeline_factory.hpp"
 #include "hal/clock.hpp"
 #include "hal/socketcan.hpp"
@@ -21,8 +23,16 @@ void on_signal(int) {
   g_stop = 1;
 }
 
+// The generated table of docs/memory.md.
+int print_memory_table() {
+  static char table[8192];
+  (void)petra::fsw::format_memory_doc_table(table, sizeof(table));
+  (void)std::fputs(table, stdout);
+  return 0;
+}
+
 int usage() {
-  (void)std::fprintf(stderr, "usage: petra-fsw --config FILE\n");
+  (void)std::fprintf(stderr, "usage: petra-fsw --config FILE | --memory-table\n");
   return 2;
 }
 
@@ -33,6 +43,8 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--config") == 0 && i + 1 < argc)
       config_path = argv[++i];
+    else if (std::strcmp(argv[i], "--memory-table") == 0)
+      return print_memory_table();
     else if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0)
       return usage();
     else {
@@ -112,6 +124,11 @@ int main(int argc, char** argv) {
       devices.camera_description(), deps.job != nullptr ? deps.job->name() : "none",
       config->arm.enabled ? config->arm.can_interface.data() : "none",
       deps.estop != nullptr ? config->gpio.estop.line.data() : "none", exec.memory_bytes());
+  if (deps.job != nullptr) {
+    static char table[2048];  // the arena's share per stage (MiB), docs/memory.md
+    (void)deps.job->describe_memory(table, sizeof(table));
+    (void)std::fprintf(stderr, "petra-fsw: pipeline memory (MiB):\n%s", table);
+  }
   exec.run(&g_stop);
   exec.shutdown();
   devices.close();  // arm power off
