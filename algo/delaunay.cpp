@@ -406,6 +406,12 @@ std::size_t delaunay_scratch_bytes(std::size_t n) {
   return a > b ? a : b;
 }
 
+std::size_t delaunay_scratch_bytes(std::size_t n, std::size_t max_rows) {
+  const std::size_t a = delaunay_incremental_scratch_bytes(n),
+                    b = delaunay_raster_scratch_bytes(n, max_rows);
+  return a > b ? a : b;
+}
+
 Result<DelaunayStats> delaunay_triangulate_incremental(std::span<const IntPoint> points,
                                                        std::span<MeshTriangle> triangles,
                                                        Arena& scratch) {

@@ -46,6 +46,9 @@ constexpr std::size_t delaunay_max_triangles(std::size_t n) {
 }
 // Enough for either strategy.
 std::size_t delaunay_scratch_bytes(std::size_t n);
+// The same for points on at most max_rows distinct rows (a disparity map's
+// pixels: the ROI's height); the raster path's edge table grows with the rows.
+std::size_t delaunay_scratch_bytes(std::size_t n, std::size_t max_rows);
 
 // Raster-ordered input (rows of increasing y, x increasing within a row: the
 // order of a disparity map's valid pixels) takes the raster path
@@ -65,6 +68,7 @@ Result<DelaunayStats> delaunay_triangulate_raster(std::span<const IntPoint> poin
                                                   Arena& scratch);
 std::size_t delaunay_incremental_scratch_bytes(std::size_t n);
 std::size_t delaunay_raster_scratch_bytes(std::size_t n);
+std::size_t delaunay_raster_scratch_bytes(std::size_t n, std::size_t max_rows);
 // Shared input checks: at least 3 points, coordinates within +-2^20.
 Status check_delaunay_input(std::span<const IntPoint> points);
 

@@ -310,9 +310,13 @@ bool is_raster_ordered(std::span<const IntPoint> points) {
 }
 
 std::size_t delaunay_raster_scratch_bytes(std::size_t n) {
+  return delaunay_raster_scratch_bytes(n, n);  // worst case: one point a row
+}
+
+std::size_t delaunay_raster_scratch_bytes(std::size_t n, std::size_t max_rows) {
   return 4 * bytes_for<std::int32_t>(n + 1) +
          bytes_for<std::int64_t>(RasterBuilder::flip_capacity(n)) +
-         bytes_for<EdgeSlot>(RasterBuilder::table_capacity(n));  // worst case: one point a row
+         bytes_for<EdgeSlot>(RasterBuilder::table_capacity(max_rows < n ? max_rows : n));
 }
 
 Result<DelaunayStats> delaunay_triangulate_raster(std::span<const IntPoint> points,

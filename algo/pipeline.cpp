@@ -59,27 +59,41 @@ Status validate(const PipelineParams& p) {
   return {};
 }
 
-std::size_t Pipeline::init_bytes(const PipelineBudget& b) {
-  const std::size_t tables =
-      2 * Rectifier::table_entries(b.image_width, b.image_height) * sizeof(RemapEntry) + 64;
-  return tables + (b.graph_cut ? GraphCutMatcher::bytes_needed(graph_cut_budget(b)) : 0);
+std::size_t PipelineMemory::largest_step() const {
+  return std::max({range, match_dp, match_graph_cut, reconstruction + refinement});
 }
 
-std::size_t Pipeline::run_bytes(const PipelineBudget& b, const PipelineParams& p) {
+std::size_t PipelineMemory::run() const {
+  return rectified + masks_disparity + largest_step() + slack;
+}
+
+PipelineMemory Pipeline::memory(const PipelineBudget& b, const PipelineParams& p) {
   const std::size_t roi =
       static_cast<std::size_t>(b.max_roi_width) * static_cast<std::size_t>(b.max_roi_height);
   const std::size_t right_area = static_cast<std::size_t>(b.max_roi_width + b.max_disparities) *
                                  static_cast<std::size_t>(b.max_roi_height);
-  // Kept for the whole run: rectified images, masks, raw disparity.
-  const std::size_t kept = 2 * image_bytes(b) + roi + right_area + roi * sizeof(std::int16_t);
-  // One at a time: range search, fine matching, reconstruction.
-  const std::size_t range = disparity_range_scratch_bytes(
-      b.image_width, b.image_height, b.max_roi_width, b.max_roi_height, p.range);
-  const std::size_t match =
+  PipelineMemory m;
+  m.tables = 2 * Rectifier::table_entries(b.image_width, b.image_height) * sizeof(RemapEntry) + 64;
+  m.rectified = 2 * image_bytes(b);
+  m.masks_disparity = roi + right_area + roi * sizeof(std::int16_t);
+  m.range = disparity_range_scratch_bytes(b.image_width, b.image_height, b.max_roi_width,
+                                          b.max_roi_height, p.range);
+  m.match_dp =
       match_dp_scratch_bytes(MatchBudget{b.max_roi_width, b.max_roi_height, b.max_disparities});
-  const std::size_t recon = reconstruction_arena_bytes(recon_budget(b)) +
-                            grind_photometric_scratch_bytes(b.max_roi_width, b.max_roi_height);
-  return kept + std::max(range, std::max(match, recon)) + kSlack;
+  m.match_graph_cut =
+      b.graph_cut ? graph_cut_bands_bytes(graph_cut_budget(b), b.graph_cut_bands) : 0;
+  m.reconstruction = reconstruction_arena_bytes(recon_budget(b));
+  m.refinement = grind_photometric_scratch_bytes(b.max_roi_width, b.max_roi_height);
+  m.slack = kSlack;
+  return m;
+}
+
+std::size_t Pipeline::init_bytes(const PipelineBudget& b) {
+  return memory(b, PipelineParams{}).tables;
+}
+
+std::size_t Pipeline::run_bytes(const PipelineBudget& b, const PipelineParams& p) {
+  return memory(b, p).run();
 }
 
 Result<Pipeline> Pipeline::create(const StereoRig& rig, const PipelineBudget& budget,
@@ -102,8 +116,6 @@ Result<Pipeline> Pipeline::create(const StereoRig& rig, const PipelineBudget& bu
   auto rect = Rectifier::create(rig, *tl, *tr);
   if (!rect) return rect.error();
   Pipeline p;
-  // The graph cut's state lives for the Pipeline's life: carved once here.
-  if (budget.graph_cut) PETRA_TRY(p.graph_cut_.init(arena, graph_cut_budget(budget)));
   p.arena_ = &arena;
   p.run_mark_ = arena.mark();
   p.rectifier_ = *rect;
@@ -283,6 +295,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
   PETRA_TRY(checkpoint(clock, "match"));
   {
     StepTimer timer(clock, timings, "match");
+    const ArenaScope step(arena);  // matcher state and scratch end with the step
     StereoInput in;
     in.left = rl;
     in.right = rr;
@@ -294,7 +307,8 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
       gp.disp_min = mp.disp_min;
       gp.disp_max = mp.disp_max;
       gp.cancel = &clock;  // the caller's cancel is seen between expansions, not only steps
-      auto st = graph_cut_.match(in, roi, gp, disp);
+      // Its state for this ROI (or band) and range, released on return.
+      auto st = match_graph_cut_bands(in, roi, gp, budget_.graph_cut_bands, arena, disp);
       if (!st) return st.error();
       out.graph_cut = *st;
       auto refined = refine_subpixel(in, params_.subpixel, disp);

@@ -7,9 +7,11 @@
 // Memory: one caller arena. create() takes the remap tables from it (init);
 // every run() releases the arena back to that point and takes what the run
 // needs; outputs are views into the arena, valid until the next run().
-// Pipeline::arena_bytes(budget, params) is the exact bound to allocate at init.
+// Pipeline::arena_bytes(budget, params) is the exact bound to allocate at init;
+// Pipeline::memory() gives it per stage (docs/memory.md, `petra budget`).
 // The graph-cut matcher's state (GraphCutMatcher::bytes_needed, about 200 B
-// per ROI pixel) is taken at create() only when the budget asks for it.
+// per ROI pixel) is taken per run in the matching step's place, as the DP's
+// scratch is, and released before reconstruction: the two never coexist.
 // Time: per-step timings through the caller's clock (algo makes no OS calls).
 #pragma once
 
@@ -23,6 +25,7 @@
 #include "algo/grind_plane_photometric.hpp"
 #include "algo/match_dp.hpp"
 #include "algo/match_graphcut.hpp"
+#include "algo/match_graphcut_bands.hpp"
 #include "algo/reconstruction.hpp"
 #include "algo/rectify.hpp"
 #include "algo/shadow.hpp"
@@ -38,9 +41,12 @@ struct PipelineBudget {
   int max_roi_height = 480;
   int max_disparities = 160;   // fine matcher: disp_max - disp_min + 1
   std::size_t max_points = 0;  // 3-D points; 0 = one per ROI pixel
-  // Reserve the graph-cut matcher (MatchMethod::graph_cut) at create; the DP
-  // matcher is always available (the range search uses it).
+  // Room for the graph-cut matcher (MatchMethod::graph_cut) in the matching
+  // step; the DP matcher is always available (the range search uses it).
   bool graph_cut = false;
+  // The graph cut over bands of rows (algo/match_graphcut_bands): its memory
+  // grows with the ROI width times the band instead of the whole ROI.
+  GraphCutBands graph_cut_bands{};
 };
 Status validate(const PipelineBudget& b);
 
@@ -90,10 +96,29 @@ struct PipelineOutput {
   StepTimings timings;
 };
 
+// Arena bytes per stage for a budget (Pipeline::memory). Kept: the run's
+// buffers that live to its end; the four steps run one after another in the
+// space after them, so the run needs kept + the largest step.
+struct PipelineMemory {
+  std::size_t tables = 0;           // init: the two remap tables (4 B per image pixel each)
+  std::size_t rectified = 0;        // kept: the rectified pair (whole images)
+  std::size_t masks_disparity = 0;  // kept: shadow masks, raw disparity
+  std::size_t range = 0;            // step: coarse disparity-range search
+  std::size_t match_dp = 0;         // step: DP matcher scratch
+  std::size_t match_graph_cut = 0;  // step: graph-cut state (0 unless budget.graph_cut)
+  std::size_t reconstruction = 0;   // step: cloud, mesh, segmentation, planes
+  std::size_t refinement = 0;       // step (after reconstruction, which stays): photometric
+  std::size_t slack = 0;            // alignment padding
+  std::size_t largest_step() const;
+  std::size_t run() const;  // kept + largest step + slack
+  std::size_t total() const { return tables + run(); }
+};
+
 class Pipeline {
  public:
   Pipeline() = default;
 
+  static PipelineMemory memory(const PipelineBudget& budget, const PipelineParams& params);
   static std::size_t init_bytes(const PipelineBudget& budget);
   static std::size_t run_bytes(const PipelineBudget& budget, const PipelineParams& params);
   static std::size_t arena_bytes(const PipelineBudget& budget, const PipelineParams& params) {
@@ -124,7 +149,6 @@ class Pipeline {
   Arena* arena_ = nullptr;
   std::size_t run_mark_ = 0;
   Rectifier rectifier_;
-  GraphCutMatcher graph_cut_;  // initialised only when budget_.graph_cut
   PipelineBudget budget_;
   PipelineParams params_;
   std::size_t max_points_ = 0;

@@ -32,7 +32,9 @@ std::size_t persistent_bytes(const ReconstructionBudget& b) {
 std::size_t transient_bytes(const ReconstructionBudget& b) {
   const std::size_t n = b.max_points, t = max_triangles(b);
   const std::size_t filter = mean_filter_scratch_bytes(b.max_roi_width);
-  const std::size_t delaunay = bytes_for<IntPoint>(n) + delaunay_scratch_bytes(n);
+  const std::size_t delaunay =
+      bytes_for<IntPoint>(n) +
+      delaunay_scratch_bytes(n, static_cast<std::size_t>(b.max_roi_height));
   const std::size_t mesh = mesh_filter_scratch_bytes(t);
   const std::size_t roi =
       static_cast<std::size_t>(b.max_roi_width) * static_cast<std::size_t>(b.max_roi_height);

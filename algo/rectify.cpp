@@ -180,8 +180,13 @@ Result<Rect> map_outline(Rect r, int width, int height, Map map) {
 
 Result<Rect> Rectifier::roi_to_rectified(StereoSide side, Rect roi) const {
   if (width_ == 0) return Error::make(Errc::not_ready, "rectify: rectifier not initialised");
-  return map_outline(roi, width_, height_,
-                     [&](const Eigen::Vector2d& p) { return to_rectified(side, p); });
+  return petra::roi_to_rectified(camera(side), rect(side), roi, width_, height_);
+}
+
+Result<Rect> roi_to_rectified(const TsaiCamera& cam, const RectifiedCamera& rect, Rect roi,
+                              int width, int height) {
+  return map_outline(roi, width, height,
+                     [&](const Eigen::Vector2d& p) { return original_to_rectified(cam, rect, p); });
 }
 
 Result<Rect> Rectifier::roi_to_original(StereoSide side, Rect roi) const {

@@ -99,4 +99,8 @@ class Rectifier {
   int height_ = 0;
 };
 
+// Rectifier::roi_to_rectified without the tables (budget sizing at init).
+Result<Rect> roi_to_rectified(const TsaiCamera& cam, const RectifiedCamera& rect, Rect roi,
+                              int width, int height);
+
 }  // namespace petra

@@ -25,7 +25,12 @@
     "(detail)")                                                                                    \
   X(WRONG_MODE, 12, "command not allowed in the current mode (detail: mode)")                      \
   X(BAD_TRANSITION, 13, "requested mode cannot be entered from the current mode (detail: target)") \
-  X(BUSY, 14, "the pipeline worker is still finishing an aborted evaluation")
+  X(BUSY, 14, "the pipeline worker is still finishing an aborted evaluation")                      \
+  X(ROI_TOO_WIDE, 15, "SELECT_ROI w_px above the memory budget's ROI (detail: the limit, px)")     \
+  X(ROI_TOO_TALL, 16, "SELECT_ROI h_px above the memory budget's ROI (detail: the limit, px)")     \
+  X(ENVELOPE_TOO_WIDE, 17,                                                                         \
+    "SET_PARAM DISP_MIN_PX/DISP_MAX_PX: envelope wider than the memory budget (detail: the "       \
+    "limit, disparities = DISP_MAX_PX - DISP_MIN_PX + 1)")
 
 // Failures: an accepted command that could not complete.
 #define PETRA_FAIL_REASONS(X)                                                             \

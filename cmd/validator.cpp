@@ -14,6 +14,30 @@ Verdict reject(Verdict v, Reason r, std::uint16_t detail = 0) {
   return v;
 }
 
+// What the memory budget fixed at boot cannot hold is refused here, with the
+// limit as detail, never accepted and failed by the pipeline later.
+Verdict check_roi_budget(Verdict v, const SelectRoiArgs& roi, const ValidationContext& ctx) {
+  if (ctx.max_roi_width > 0 && roi.w_px > ctx.max_roi_width)
+    return reject(v, Reason::ROI_TOO_WIDE, static_cast<std::uint16_t>(ctx.max_roi_width));
+  if (ctx.max_roi_height > 0 && roi.h_px > ctx.max_roi_height)
+    return reject(v, Reason::ROI_TOO_TALL, static_cast<std::uint16_t>(ctx.max_roi_height));
+  return v;
+}
+
+Verdict check_envelope_budget(Verdict v, const SetParamArgs& set, const ValidationContext& ctx) {
+  if (ctx.max_disparities <= 0) return v;
+  double lo = ctx.disp_min_px, hi = ctx.disp_max_px;
+  if (set.param_id == static_cast<std::uint16_t>(ParamId::DISP_MIN_PX))
+    lo = set.value;
+  else if (set.param_id == static_cast<std::uint16_t>(ParamId::DISP_MAX_PX))
+    hi = set.value;
+  else
+    return v;
+  if (hi - lo + 1 > ctx.max_disparities)
+    return reject(v, Reason::ENVELOPE_TOO_WIDE, static_cast<std::uint16_t>(ctx.max_disparities));
+  return v;
+}
+
 // Checks that need more than one field or the context; returns NONE when fine.
 Verdict check_consistency(Verdict v, const ValidationContext& ctx) {
   if (const auto* roi = std::get_if<SelectRoiArgs>(&v.command.args)) {
@@ -23,10 +47,12 @@ Verdict check_consistency(Verdict v, const ValidationContext& ctx) {
         (roi->click_u_px < roi->x_px || roi->click_u_px >= roi->x_px + roi->w_px ||
          roi->click_v_px < roi->y_px || roi->click_v_px >= roi->y_px + roi->h_px))
       return reject(v, Reason::INVALID_ARGUMENT, 6);
+    return check_roi_budget(v, *roi, ctx);
   } else if (const auto* set = std::get_if<SetParamArgs>(&v.command.args)) {
     const ParamDesc* p = find_param(set->param_id);
     if (p == nullptr) return reject(v, Reason::INVALID_ARGUMENT, set->param_id);
     if (!param_value_valid(*p, set->value)) return reject(v, Reason::OUT_OF_RANGE, 1);
+    return check_envelope_budget(v, *set, ctx);
   } else if (const auto* get = std::get_if<GetParamArgs>(&v.command.args)) {
     if (find_param(get->param_id) == nullptr)
       return reject(v, Reason::INVALID_ARGUMENT, get->param_id);

@@ -21,6 +21,12 @@ struct ValidationContext {
   Mode mode = Mode::IDLE;
   int image_width = 0;  // the camera's frame size, for ROI checks
   int image_height = 0;
+  // The memory budget fixed at boot (0: no limit) and the envelope in force.
+  int max_roi_width = 0;  // px, original left image
+  int max_roi_height = 0;
+  int max_disparities = 0;
+  int disp_min_px = 0;
+  int disp_max_px = 0;
 };
 
 struct Verdict {

@@ -207,7 +207,12 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
     Budget& b = c.budget;
     PETRA_TRY(get_int(r, budget, "budget", "image_width", 16, 8192, b.image_width));
     PETRA_TRY(get_int(r, budget, "budget", "image_height", 16, 8192, b.image_height));
-    double arena_mb = static_cast<double>(b.arena_bytes >> 20);
+    PETRA_TRY(get_int(r, budget, "budget", "roi_width", 16, 8192, b.roi_width));
+    PETRA_TRY(get_int(r, budget, "budget", "roi_height", 16, 8192, b.roi_height));
+    if ((b.roi_width == 0) != (b.roi_height == 0))
+      return Error::make(Errc::missing_field,
+                         "config: budget.roi_width and budget.roi_height go together");
+    double arena_mb = 0;
     PETRA_TRY(r.number(budget, "budget", "arena_mb", 1, 4096, arena_mb));
     b.arena_bytes = static_cast<std::size_t>(arena_mb * 1048576.0);
     PETRA_TRY(get_int(r, budget, "budget", "tlm_queue_packets", 32, 65535, b.tlm_queue_packets));

@@ -19,7 +19,11 @@ using Host = std::array<char, 64>;
 struct Budget {
   int image_width = 1024;  // largest frame the camera may deliver
   int image_height = 768;
-  std::size_t arena_bytes = 64u << 20;  // pipeline arena (one evaluation)
+  // Largest ROI SELECT_ROI may ask (original px); 0: the pipeline's default
+  // (512 x 384), or the largest that fits arena_bytes when that is given.
+  int roi_width = 0;
+  int roi_height = 0;
+  std::size_t arena_bytes = 0;          // pipeline arena; 0: what the ROI budget needs
   std::size_t tlm_queue_packets = 256;  // downlink queue slots
   std::size_t worker_stack_bytes = 1u << 20;
   std::size_t cloud_points = 8192;  // point cloud product capacity

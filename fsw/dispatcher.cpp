@@ -53,6 +53,14 @@ void Executive::handle_datagram(std::span<const std::uint8_t> datagram) {
   ctx.mode = modes_.mode();
   ctx.image_width = deps_.camera->width();
   ctx.image_height = deps_.camera->height();
+  if (deps_.job != nullptr) {
+    const JobLimits lim = deps_.job->limits();
+    ctx.max_roi_width = lim.roi_width;
+    ctx.max_roi_height = lim.roi_height;
+    ctx.max_disparities = lim.disparities;
+  }
+  ctx.disp_min_px = static_cast<int>(params_.get_int(ParamId::DISP_MIN_PX));
+  ctx.disp_max_px = static_cast<int>(params_.get_int(ParamId::DISP_MAX_PX));
   const cmd::Verdict v = cmd::validate_command(datagram, ctx);
   cmd_.last_function_code = v.function_code;
   if (v.authenticated) {  // an authentic counter is used up, accepted or not

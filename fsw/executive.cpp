@@ -2,6 +2,7 @@
 
 #include <sys/mman.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstring>
@@ -35,7 +36,8 @@ tlm::TmTime Executive::now_tm() const {
   return tm_time(deps_.clock->realtime_ns());
 }
 
-Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
+Status Executive::allocate(const FswConfig& config, const PipelineBudget& pb,
+                           std::size_t arena_bytes) {
   const Budget& b = config.budget;
   const auto frame =
       static_cast<std::size_t>(b.image_width) * static_cast<std::size_t>(b.image_height);
@@ -47,6 +49,14 @@ Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
                       align_up(b.tlm_queue_packets * sizeof(std::uint16_t)) + align_up(rx_bytes) +
                       align_up(arena_bytes);
   for (std::size_t s : product_sizes) total += align_up(s);
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  const std::size_t machine =
+      pages > 0 && page > 0 ? static_cast<std::size_t>(pages) * static_cast<std::size_t>(page) : 0;
+  if (machine != 0 && total > machine)
+    return Error::make(Errc::capacity_exceeded,
+                       "init: the budget asks for %zu bytes, the machine has %zu (budget.arena_mb, "
+                       "budget.roi_width/roi_height)",
+                       total, machine);
 
   // The one allocation, at init; nothrow, so a failure is an error value.
   memory_.reset(new (std::nothrow) std::byte[total]);  // NOLINT(cppcoreguidelines-owning-memory)
@@ -76,7 +86,6 @@ Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
   products_.init(product_mem);
   std::byte* arena = take(arena_bytes);
   PETRA_ASSERT(at <= total);
-  const PipelineBudget pb{b.image_width, b.image_height, b.cloud_points, b.arena_bytes};
   return runner_.init(deps_.job, {arena, arena_bytes}, pb, has_rig_ ? &rig_ : nullptr,
                       b.worker_stack_bytes, &health_, deps_.clock);
 }
@@ -133,13 +142,19 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
     has_rig_ = true;
   }
 
-  const PipelineBudget pb{b.image_width, b.image_height, b.cloud_points, b.arena_bytes};
-  const std::size_t arena_bytes = deps.job != nullptr ? deps.job->arena_bytes(pb) : 0;
-  if (arena_bytes > b.arena_bytes)
+  PipelineBudget pb{b.image_width, b.image_height, b.cloud_points, b.arena_bytes};
+  pb.max_roi_width = b.roi_width;
+  pb.max_roi_height = b.roi_height;
+  pb.rig = has_rig_ ? &rig_ : nullptr;
+  // The arena is what the job needs for the budget, or budget.arena_mb when given.
+  const std::size_t need = deps.job != nullptr ? deps.job->arena_bytes(pb) : 0;
+  if (b.arena_bytes != 0 && need > b.arena_bytes)
     return Error::make(Errc::capacity_exceeded,
-                       "init: pipeline '%s' needs %zu arena bytes, budget.arena_mb gives %zu",
-                       deps.job->name(), arena_bytes, b.arena_bytes);
-  PETRA_TRY(allocate(config, deps.job != nullptr ? b.arena_bytes : 0));
+                       "init: pipeline '%s' needs %zu arena bytes for its ROI budget "
+                       "(budget.roi_width/roi_height), budget.arena_mb gives %zu",
+                       deps.job->name(), need, b.arena_bytes);
+  const std::size_t arena_bytes = b.arena_bytes != 0 ? b.arena_bytes : need;
+  PETRA_TRY(allocate(config, pb, deps.job != nullptr ? arena_bytes : 0));
 
   PETRA_TRY(uplink_.open(config.cmd_host.data(), config.cmd_port));
   uplink_.set_receive_buffer(1 << 18);  // a burst of commands waits for the next cycles

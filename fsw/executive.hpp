@@ -114,7 +114,7 @@ class Executive {
     int click_v_px = 0;
   };
 
-  Status allocate(const FswConfig& config, std::size_t arena_bytes);
+  Status allocate(const FswConfig& config, const PipelineBudget& pb, std::size_t arena_bytes);
   void store_counter();
   void update_periods();
 

@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 #include "cmd/param_defs.hpp"
+#include "fsw/memory_table.hpp"
 #include "tlm/palette.hpp"
 
 namespace petra::fsw {
@@ -18,6 +21,13 @@ namespace {
 // window; the smallest it shrinks to for a small arena.
 constexpr int kMaxRoiWidth = 640;
 constexpr int kMinRoiWidth = 64;
+// The flight default: the largest ROI the operator may select (original px).
+constexpr int kDefaultRoiWidth = 512;
+constexpr int kDefaultRoiHeight = 384;
+// The graph cut in bands of 128 rows (+ 16 above and below): about 200 B per
+// pixel of a 160-row band instead of the whole ROI (docs/graphcut.md "Bands").
+constexpr int kGraphCutBandRows = 128;
+constexpr int kGraphCutBandOverlap = 16;
 constexpr std::size_t kSlack = 4 * 64;
 
 std::uint64_t monotonic_ns(void*) {
@@ -166,33 +176,76 @@ Status make_products(const PipelineOutput& p, const RectifiedPair& pair, std::si
 
 namespace {
 
-petra::PipelineBudget roi_budget(int image_width, int image_height, int roi_width) {
+// The largest rectified ROI any w x h ROI of the original left image maps to,
+// over positions on a grid (1 px of slack for the steps between them). Without
+// a rig, w x h (runs then fail not_ready anyway).
+std::pair<int, int> rectified_bound(const StereoRig* rig, int image_w, int image_h, int w, int h) {
+  if (rig == nullptr) return {w, h};
+  auto geometry = rectify_geometry(*rig, rig->left.width, rig->left.height);
+  if (!geometry) return {image_w, image_h};
+  const int W = rig->left.width, H = rig->left.height;
+  w = std::min(w, W);
+  h = std::min(h, H);
+  int bw = 0, bh = 0;
+  const int step = std::max(16, std::min(w, h) / 8);
+  for (int y = 0;; y = std::min(y + step, H - h)) {
+    for (int x = 0;; x = std::min(x + step, W - w)) {
+      auto r = roi_to_rectified(rig->left, geometry->left, Rect{x, y, w, h}, W, H);
+      if (r) {
+        bw = std::max(bw, r->w);
+        bh = std::max(bh, r->h);
+      }
+      if (x == W - w) break;
+    }
+    if (y == H - h) break;
+  }
+  return {std::min(bw + 1, W), std::min(bh + 1, H)};
+}
+
+petra::PipelineBudget roi_budget(const PipelineBudget& budget, int roi_w, int roi_h) {
+  const int image_w = budget.rig != nullptr ? budget.rig->left.width : budget.max_width;
+  const int image_h = budget.rig != nullptr ? budget.rig->left.height : budget.max_height;
   petra::PipelineBudget b;
-  b.image_width = image_width;
-  b.image_height = image_height;
-  b.max_roi_width = std::min(roi_width, image_width);
-  b.max_roi_height = std::min(roi_width * 3 / 4, image_height);
-  b.graph_cut = true;  // reserved at init: MATCH_METHOD 1 needs no new memory
+  b.image_width = image_w;
+  b.image_height = image_h;
+  const auto [w, h] = rectified_bound(budget.rig, image_w, image_h, roi_w, roi_h);
+  b.max_roi_width = std::min(w, image_w);
+  b.max_roi_height = std::min(h, image_h);
+  b.graph_cut = true;  // room in the matching step: MATCH_METHOD 1 needs no new memory
+  b.graph_cut_bands = {kGraphCutBandRows, kGraphCutBandOverlap};
   const petra::PipelineParams p =
       FlightPipelineJob::pipeline_params(FlightPipelineJob::default_settings());
   b.max_disparities = p.range.search_max_px - p.range.search_min_px + 1;
   return b;
 }
 
-std::size_t need(const petra::PipelineBudget& b, std::size_t cloud_points) {
-  return Pipeline::arena_bytes(
-             b, FlightPipelineJob::pipeline_params(FlightPipelineJob::default_settings())) +
+}  // namespace
+
+std::size_t FlightPipelineJob::need_bytes(const petra::PipelineBudget& b,
+                                          std::size_t cloud_points) {
+  return Pipeline::arena_bytes(b, pipeline_params(default_settings())) +
          product_bytes(b.max_roi_width, b.max_roi_height, cloud_points);
 }
 
-}  // namespace
+FlightPipelineJob::Sizing FlightPipelineJob::sizing(const PipelineBudget& budget) {
+  auto make = [&](int w, int h) {
+    w = std::min(w, budget.max_width);
+    h = std::min(h, budget.max_height);
+    return Sizing{roi_budget(budget, w, h), w, h};
+  };
+  if (budget.max_roi_width > 0 && budget.max_roi_height > 0)
+    return make(budget.max_roi_width, budget.max_roi_height);
+  if (budget.arena_limit == 0) return make(kDefaultRoiWidth, kDefaultRoiHeight);
+  // An arena given without an ROI: the largest 4:3 ROI that fits it.
+  for (int w = kMaxRoiWidth; w > kMinRoiWidth; w -= 16) {
+    const Sizing s = make(w, w * 3 / 4);
+    if (need_bytes(s.pipeline, budget.max_cloud_points) <= budget.arena_limit) return s;
+  }
+  return make(kMinRoiWidth, kMinRoiWidth * 3 / 4);
+}
 
 petra::PipelineBudget FlightPipelineJob::pipeline_budget(const PipelineBudget& budget) {
-  for (int w = kMaxRoiWidth; w > kMinRoiWidth; w -= 16) {
-    const petra::PipelineBudget b = roi_budget(budget.max_width, budget.max_height, w);
-    if (budget.arena_limit == 0 || need(b, budget.max_cloud_points) <= budget.arena_limit) return b;
-  }
-  return roi_budget(budget.max_width, budget.max_height, kMinRoiWidth);
+  return sizing(budget).pipeline;
 }
 
 // The parameter table's defaults: the pipeline is built for them at init, so
@@ -212,7 +265,19 @@ petra::PipelineParams FlightPipelineJob::pipeline_params(const Settings& setting
 }
 
 std::size_t FlightPipelineJob::arena_bytes(const PipelineBudget& budget) const {
-  return need(pipeline_budget(budget), budget.max_cloud_points);
+  return need_bytes(pipeline_budget(budget), budget.max_cloud_points);
+}
+
+JobLimits FlightPipelineJob::limits() const {
+  return {roi_width_, roi_height_, budget_.max_disparities};
+}
+
+int FlightPipelineJob::describe_memory(char* buf, std::size_t size) const {
+  if (rig_ == nullptr) return std::snprintf(buf, size, "no calib.json: no pipeline memory\n");
+  const int n = format_memory_header(buf, size);
+  const std::size_t at = std::min(static_cast<std::size_t>(n), size);
+  return n + format_memory_row(buf + at, size - at, roi_width_, roi_height_, budget_,
+                               max_cloud_points_);
 }
 
 Status FlightPipelineJob::init(const PipelineBudget& budget, const StereoRig* rig, Arena& arena) {
@@ -227,11 +292,12 @@ Status FlightPipelineJob::init(const PipelineBudget& budget, const StereoRig* ri
                        "calib.json is for %dx%d images, budget.image_width/height is %dx%d",
                        rig->left.width, rig->left.height, budget.max_width, budget.max_height);
   // The ROI sized for the budget, the image for the rig (smaller or equal: less memory).
-  budget_ = pipeline_budget(budget);
-  budget_.image_width = rig->left.width;
-  budget_.image_height = rig->left.height;
-  budget_.max_roi_width = std::min(budget_.max_roi_width, rig->left.width);
-  budget_.max_roi_height = std::min(budget_.max_roi_height, rig->left.height);
+  PipelineBudget sized = budget;
+  sized.rig = rig;
+  const Sizing s = sizing(sized);
+  budget_ = s.pipeline;
+  roi_width_ = s.roi_width;
+  roi_height_ = s.roi_height;
   return create(default_settings());
 }
 

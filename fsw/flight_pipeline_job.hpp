@@ -9,9 +9,12 @@
 //     point counts, disparity range, step times in the fsw slots, and products built in the arena
 //     (disparity as 8-bit gray of the rectified ROI, an RGB overlay of the classes, the cloud in
 //     mm).
-// ROI size: the largest 4:3 rectified ROI (640 x 480 down to 64 x 48) whose
-// run fits the configured arena; larger ROIs are refused capacity_exceeded
-// naming both sizes (so a small budget.arena_mb still boots).
+// ROI size (original left image px, what SELECT_ROI carries): budget.roi_width
+// x roi_height, or else 512 x 384 (the flight default), or, when only
+// budget.arena_mb is given, the largest 4:3 ROI (640 x 480 down to 64 x 48)
+// whose run fits it. The pipeline is sized for the largest rectified ROI any
+// such ROI maps to anywhere in the image, so an ROI within limits() never
+// fails for its size later; the executive refuses larger ones at the command.
 // Parameters fixed at create (shadow fraction; DISP_MIN_PX..DISP_MAX_PX, the
 // envelope the disparity-range search looks in) come from the request: when
 // they differ from those in force the pipeline is rebuilt in the same place
@@ -39,9 +42,19 @@ class FlightPipelineJob final : public PipelineJob {
   Status run(const EvalRequest& request, Arena& arena, const std::atomic<bool>& cancel,
              EvalOutput& out) override;
 
-  // The pipeline's sizes for an executive budget: the largest rectified ROI
-  // (4:3, at most 640 x 480, at least 64 x 48) whose run fits arena_limit.
+  JobLimits limits() const override;
+  int describe_memory(char* buf, std::size_t size) const override;
+
+  // The pipeline's sizes for an executive budget and the ROI (original px) they admit.
+  struct Sizing {
+    petra::PipelineBudget pipeline;
+    int roi_width = 0;
+    int roi_height = 0;
+  };
+  static Sizing sizing(const PipelineBudget& budget);
   static petra::PipelineBudget pipeline_budget(const PipelineBudget& budget);
+  // Arena bytes of a pipeline budget: the pipeline's (Pipeline::memory) + the products.
+  static std::size_t need_bytes(const petra::PipelineBudget& b, std::size_t cloud_points);
   // What the pipeline is built for, from the parameter table's values.
   struct Settings {
     double shadow_fraction = 0;
@@ -60,6 +73,8 @@ class FlightPipelineJob final : public PipelineJob {
   std::size_t base_mark_ = 0;  // where the tables start
   std::size_t max_cloud_points_ = 0;
   petra::PipelineBudget budget_;
+  int roi_width_ = 0;  // limits(), original px
+  int roi_height_ = 0;
   Pipeline pipeline_;
   Settings settings_;
   bool ready_ = false;

@@ -40,6 +40,19 @@ struct PipelineBudget {
   int max_height = 0;
   std::size_t max_cloud_points = 0;
   std::size_t arena_limit = 0;  // bytes the arena will have (budget.arena_mb); 0: no limit
+  // Largest ROI the operator may select, original image px (budget.roi_width,
+  // roi_height); 0: the job's default, or the largest that fits arena_limit.
+  int max_roi_width = 0;
+  int max_roi_height = 0;
+  const StereoRig* rig = nullptr;  // sizes the rectified ROI; nullptr: no calib.json
+};
+
+// What a job can take, fixed at init; the executive refuses commands beyond
+// it (SELECT_ROI, SET_PARAM of the disparity envelope). 0: no limit.
+struct JobLimits {
+  int roi_width = 0;    // px, original left image
+  int roi_height = 0;   // px
+  int disparities = 0;  // DISP_MAX_PX - DISP_MIN_PX + 1
 };
 
 // One evaluation request: the pair, the operator's selection and the
@@ -101,6 +114,13 @@ class PipelineJob {
     (void)rig;
     (void)arena;
     return {};
+  }
+  // Valid after init(); read by the loop thread while a run goes on.
+  virtual JobLimits limits() const { return {}; }
+  // Its memory per stage as text (printed at boot); snprintf-like.
+  virtual int describe_memory(char* buf, std::size_t size) const {
+    if (size > 0) buf[0] = '\0';
+    return 0;
   }
   // Runs one evaluation on the worker thread. `out` starts cleared.
   virtual Status run(const EvalRequest& request, Arena& arena, const std::atomic<bool>& cancel,

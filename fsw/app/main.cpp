@@ -1,4 +1,5 @@
-// petra-fsw --config FILE: the onboard service. Loads the configuration,
+// petra-fsw --config FILE: the onboard service (--memory-table: the generated
+// table of docs/memory.md). Loads the configuration,
 // opens the devices (camera, GPIO lines, the arm's CAN bus), allocates every
 // buffer, then runs the executive's loop until SIGINT or SIGTERM. Exit status 0 after a clean stop
 // and for --help and --version; 1 with a one-line reason on stderr when initialisation fails;
@@ -10,6 +11,7 @@
 #include "fsw/arm/flight_arm.hpp"
 #include "fsw/executive.hpp"
 #include "fsw/flight_devices.hpp"
+#include "fsw/memory_table.hpp"
 #include "fsw/pipeline_factory.hpp"
 #include "hal/clock.hpp"
 #include "hal/socketcan.hpp"
@@ -26,7 +28,16 @@ void on_signal(int) {
 #define PETRA_VERSION "unknown"
 #endif
 
-constexpr const char* kUsage = "usage: petra-fsw --config FILE | --help | --version\n";
+constexpr const char* kUsage =
+    "usage: petra-fsw --config FILE | --memory-table | --help | --version\n";
+
+// The generated table of docs/memory.md.
+int print_memory_table() {
+  static char table[8192];
+  (void)petra::fsw::format_memory_doc_table(table, sizeof(table));
+  (void)std::fputs(table, stdout);
+  return 0;
+}
 
 int usage_error(const char* why, const char* arg) {
   (void)std::fprintf(stderr, "petra-fsw: %s%s%s%s\n%s", why, arg[0] ? " '" : "", arg,
@@ -38,8 +49,9 @@ int help() {
   (void)std::printf(
       "%s\nThe onboard service: loads the configuration (JSON, docs/icd.md \"petra-fsw "
       "configuration\"),\nopens the devices, allocates every buffer, then serves commands and "
-      "sends telemetry\nuntil SIGINT or SIGTERM.\n  --config FILE  the configuration\n"
-      "  --help        this text\n  --version     the version\n",
+      "sends telemetry\nuntil SIGINT or SIGTERM.\n  --config FILE   the configuration\n"
+      "  --memory-table  the per-stage memory table (docs/memory.md)\n"
+      "  --help          this text\n  --version       the version\n",
       kUsage);
   return 0;
 }
@@ -53,6 +65,8 @@ int main(int argc, char** argv) {
       config_path = argv[++i];
     } else if (std::strcmp(argv[i], "--config") == 0) {
       return usage_error("--config needs a file name", "");
+    } else if (std::strcmp(argv[i], "--memory-table") == 0) {
+      return print_memory_table();
     } else if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
       return help();
     } else if (std::strcmp(argv[i], "--version") == 0) {
@@ -134,6 +148,11 @@ int main(int argc, char** argv) {
       devices.camera_description(), deps.job != nullptr ? deps.job->name() : "none",
       config->arm.enabled ? config->arm.can_interface.data() : "none",
       deps.estop != nullptr ? config->gpio.estop.line.data() : "none", exec.memory_bytes());
+  if (deps.job != nullptr) {
+    static char table[2048];  // the arena's share per stage (MiB), docs/memory.md
+    (void)deps.job->describe_memory(table, sizeof(table));
+    (void)std::fprintf(stderr, "petra-fsw: pipeline memory (MiB):\n%s", table);
+  }
   exec.run(&g_stop);
   exec.shutdown();
   devices.close();  // arm power off

@@ -60,6 +60,9 @@ void add_stereo(CLI::App& app, Outcome& outcome) {
   cmd->add_option("--disp-min", o.disp_min, "smallest disparity, px (right x = left x - d)")
       ->required();
   cmd->add_option("--disp-max", o.disp_max, "largest disparity, px")->required();
+  cmd->add_option("--gc-band-rows", o.gc_band_rows,
+                  "gc: match in bands of this many rows (+16 above and below), as petra-fsw does; "
+                  "0: whole ROI");
   cmd->add_option("--roi", o.roi, "x,y,w,h in the (original) left image; default: whole image");
   cmd->add_option("--calib", o.calib, "calib.json: rectify the pair first");
   cmd->add_option("--shadow-fraction", o.shadow_fraction,

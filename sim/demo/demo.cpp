@@ -260,7 +260,7 @@ int run(const Options& o, std::FILE* out) {
     cfg << R"({"uplink":{"host":"127.0.0.1","port":)" << cmd_port
         << R"(,"key_file":"petra.key"},"downlink":{"host":"127.0.0.1","port":)" << tlm_port
         << R"(},"budget":{"image_width":)" << left->width << R"(,"image_height":)" << left->height
-        << R"(,"arena_mb":512},"camera":{"kind":"file","dir":"pairs"})";
+        << R"(},"camera":{"kind":"file","dir":"pairs"})";  // the flight default budget
     if (!scene->calib.empty()) cfg << R"(,"calib":")" << scene->calib.string() << "\"";
     cfg << "}\n";
     if (auto s = io::write_text_file((dir / "fsw.json").string(), cfg.str()); !s)

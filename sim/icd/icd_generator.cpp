@@ -116,7 +116,7 @@ std::string markdown_section() {
   PETRA_REJECT_REASONS(PETRA_REASON_ROW)
   PETRA_FAIL_REASONS(PETRA_REASON_ROW)
 #undef PETRA_REASON_ROW
-  o << "\nCodes 1-14 come with a REJECTED ack (nothing changed); 32 and above with a FAILED ack\n"
+  o << "\nCodes 1-31 come with a REJECTED ack (nothing changed); 32 and above with a FAILED ack\n"
     << "after ACCEPTED.\n\n";
 
   o << "### Telemetry packets\n\n";

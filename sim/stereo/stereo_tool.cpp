@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "algo/calib_json.hpp"
+#include "algo/match_graphcut_bands.hpp"
 #include "algo/rectify.hpp"
 #include "algo/shadow.hpp"
 #include "sim/eval/disparity_image.hpp"
@@ -123,11 +124,10 @@ Result<StereoToolReport> run_stereo_tool(const StereoToolOptions& o) {
     params.disp_min = o.disp_min;
     params.disp_max = o.disp_max;
     const GraphCutBudget budget{roi.w, roi.h, count};
-    std::vector<std::byte> block(GraphCutMatcher::bytes_needed(budget));
+    const GraphCutBands bands{o.gc_band_rows, 16};
+    std::vector<std::byte> block(graph_cut_bands_bytes(budget, bands));
     Arena arena(block);
-    GraphCutMatcher matcher;
-    PETRA_TRY(matcher.init(arena, budget));
-    auto graph = matcher.match(in, roi, params, map);
+    auto graph = match_graph_cut_bands(in, roi, params, bands, arena, map);
     if (!graph) return graph.error();
     report.graph = *graph;
     report.matched = graph->matched_pixels;

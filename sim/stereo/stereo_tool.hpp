@@ -19,8 +19,9 @@ struct StereoToolOptions {
   std::string method = "dp";
   int disp_min = 0;
   int disp_max = 0;
-  std::string roi;    // "x,y,w,h" in the original left image; empty = whole image
-  std::string calib;  // calib.json; empty = the pair is already rectified
+  int gc_band_rows = 0;  // --method gc: bands of this many rows (+16 above and below); 0: whole
+  std::string roi;       // "x,y,w,h" in the original left image; empty = whole image
+  std::string calib;     // calib.json; empty = the pair is already rectified
   double shadow_fraction = 0.0;
   bool fill = false;
   bool edge_constraint = true;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "algo/match_graphcut.hpp"
+#include "algo/match_graphcut_bands.hpp"
 #include "sim/eval/disparity_image.hpp"
 #include "sim/eval/middlebury.hpp"
 #include "tests/bench/bench_middlebury.hpp"
@@ -63,7 +64,14 @@ struct Matcher {
 void BM_GraphCut(benchmark::State& state, const char* name) {
   const MiddleburyData& d = scene(name);
   const int w = d.left.width, h = d.left.height;
-  Matcher mt({w, h, d.scene->disp_max + 1});
+  // PETRA_GC_BAND_ROWS=N: in bands of N rows (+16 above and below), as petra-fsw does.
+  const char* band_env = std::getenv("PETRA_GC_BAND_ROWS");
+  const petra::GraphCutBands bands{band_env != nullptr ? std::atoi(band_env) : 0, 16};
+  const petra::GraphCutBudget budget{w, h, d.scene->disp_max + 1};
+  Matcher mt(budget);
+  std::vector<std::byte> band_block(bands.rows > 0 ? petra::graph_cut_bands_bytes(budget, bands)
+                                                   : 0);
+  petra::Arena band_arena(band_block);
   std::vector<std::int16_t> q4(static_cast<std::size_t>(w) * h);
   petra::DisparityMap out{petra::ImageView<std::int16_t>(q4.data(), w, h), {}};
   petra::GraphCutParams p;
@@ -72,7 +80,9 @@ void BM_GraphCut(benchmark::State& state, const char* name) {
   const petra::StereoInput in{d.left.view(), d.right.view()};
   petra::GraphCutReport r;
   for (auto _ : state) {
-    auto rep = mt.m.match(in, {0, 0, w, h}, p, out);
+    auto rep = bands.rows > 0
+                   ? petra::match_graph_cut_bands(in, {0, 0, w, h}, p, bands, band_arena, out)
+                   : mt.m.match(in, {0, 0, w, h}, p, out);
     if (!rep) {
       state.SkipWithError(rep.error().message);
       return;
@@ -86,7 +96,8 @@ void BM_GraphCut(benchmark::State& state, const char* name) {
   state.counters["K"] = r.occlusion_k;
   state.counters["energy"] = static_cast<double>(r.energy);
   state.counters["nodes"] = static_cast<double>(r.graph_nodes);
-  state.counters["MB"] = static_cast<double>(mt.block.size()) / 1e6;
+  state.counters["MB"] =
+      static_cast<double>(bands.rows > 0 ? band_block.size() : mt.block.size()) / 1e6;
 }
 
 #ifdef PETRA_HAVE_OPENCV

@@ -198,6 +198,45 @@ TEST_F(Validator, InconsistentArgumentsAreInvalid) {
             Reason::OUT_OF_RANGE);
 }
 
+// The memory budget fixed at boot: an ROI or envelope beyond it is refused
+// with the limit as detail; within it (or with no budget) it passes.
+TEST_F(Validator, BeyondTheMemoryBudgetIsRefusedWithTheLimit) {
+  ValidationContext c = ctx();
+  c.max_roi_width = 199;
+  c.max_roi_height = 150;
+  c.max_disparities = 257;
+  c.disp_min_px = 64;
+  c.disp_max_px = 320;
+  Verdict v = validate_command(packet(roi_command(11)), c);  // 200 x 150
+  EXPECT_EQ(v.reason, Reason::ROI_TOO_WIDE);
+  EXPECT_EQ(v.detail, 199);
+  c.max_roi_width = 200;
+  c.max_roi_height = 149;
+  v = validate_command(packet(roi_command(11)), c);
+  EXPECT_EQ(v.reason, Reason::ROI_TOO_TALL);
+  EXPECT_EQ(v.detail, 149);
+  c.max_roi_height = 150;
+  EXPECT_TRUE(validate_command(packet(roi_command(11)), c).ok());
+
+  SetParamArgs s;
+  s.param_id = static_cast<std::uint16_t>(ParamId::DISP_MAX_PX);
+  s.value = 321;  // 64..321: 258 disparities
+  v = validate_command(packet(Command{FunctionCode::SET_PARAM, 11, s}), c);
+  EXPECT_EQ(v.reason, Reason::ENVELOPE_TOO_WIDE);
+  EXPECT_EQ(v.detail, 257);
+  s.value = 320;
+  EXPECT_TRUE(validate_command(packet(Command{FunctionCode::SET_PARAM, 11, s}), c).ok());
+  s.param_id = static_cast<std::uint16_t>(ParamId::DISP_MIN_PX);
+  s.value = 63;
+  EXPECT_EQ(validate_command(packet(Command{FunctionCode::SET_PARAM, 11, s}), c).reason,
+            Reason::ENVELOPE_TOO_WIDE);
+  s.value = 100;  // narrower: fine
+  EXPECT_TRUE(validate_command(packet(Command{FunctionCode::SET_PARAM, 11, s}), c).ok());
+  c.max_disparities = 0;  // no budget: any envelope
+  s.value = 0;
+  EXPECT_TRUE(validate_command(packet(Command{FunctionCode::SET_PARAM, 11, s}), c).ok());
+}
+
 TEST_F(Validator, CommandsOutsideTheirModesAreWrongMode) {
   ValidationContext c = ctx();
   c.mode = Mode::SAFE;

@@ -135,7 +135,7 @@ TEST(ExecutiveArm, TheFullChainOnASimulatedSceneEndsOnTheChosenPlane) {
   std::filesystem::copy_file(dir / "scene/right.pgm", dir / "camera/right_000.pgm",
                              std::filesystem::copy_options::overwrite_existing);
   rig.h.pipeline = fsw::flight_pipeline();
-  rig.h.budget = R"({"image_width":1024,"image_height":768,"arena_mb":512})";
+  rig.h.budget = R"({"image_width":1024,"image_height":768})";  // the flight default
   ASSERT_TRUE(rig.boot());
   const Rect roi = scene->truth.roi;
   const auto sel = rig.h.make(FunctionCode::SELECT_ROI,

@@ -55,6 +55,7 @@ class FlightJob : public ::testing::Test {
     left_ = std::move(*left);
     right_ = std::move(*right);
     budget_ = {left_.width, left_.height, 8192};
+    budget_.rig = &rig_;  // as the executive gives it: sizes the rectified ROI
     request_.left = left_.view();
     request_.right = right_.view();
     request_.rig = &rig_;
@@ -159,6 +160,34 @@ TEST_F(FlightJob, GraphCutFindsTheSameFacesWithoutHeap) {
   ASSERT_TRUE(job_.run(request_, arena_, cancel_, again).ok());
   EXPECT_EQ(scope.allocations(), 0u);
   EXPECT_LE(arena_.high_water(), arena_.capacity());
+}
+
+// The flight default budget runs its largest ROI (512 x 384, the default
+// envelope) with both matchers in the arena it asked for, allocating nothing
+// after a first (DP) run; its limits() are what the executive refuses beyond.
+TEST_F(FlightJob, TheLargestRoiOfTheDefaultBudgetRunsBothMatchersWithoutHeap) {
+  ASSERT_TRUE(job_.init(budget_, &rig_, arena_).ok());
+  const fsw::JobLimits lim = job_.limits();
+  ASSERT_EQ(lim.roi_width, 512);
+  ASSERT_EQ(lim.roi_height, 384);
+  EXPECT_EQ(lim.disparities, request_.disp_max_px - request_.disp_min_px + 1);
+  const std::size_t after_init = arena_.mark();
+  const Rect& t = request_.roi;
+  request_.roi = Rect{std::clamp(t.x + t.w / 2 - 256, 0, left_.width - 512),
+                      std::clamp(t.y + t.h / 2 - 192, 0, left_.height - 384), 512, 384};
+  fsw::EvalOutput warm;
+  ASSERT_TRUE(job_.run(request_, arena_, cancel_, warm).ok());
+  for (int method : {0, 1}) {
+    request_.match_method = method;
+    petra::test::HeapScope scope;
+    arena_.release_to(after_init);
+    fsw::EvalOutput out;
+    const Status s = job_.run(request_, arena_, cancel_, out);
+    ASSERT_TRUE(s.ok()) << "method " << method << ": " << s.error().message;
+    EXPECT_FALSE(out.planes.empty()) << "method " << method;
+    EXPECT_EQ(scope.allocations(), 0u) << "method " << method;
+    EXPECT_LE(arena_.high_water(), arena_.capacity());
+  }
 }
 
 TEST_F(FlightJob, WithoutCalibrationItBootsAndSaysWhyItCannotRun) {

@@ -110,7 +110,7 @@ ln -sf $A/scene/right.pgm $A/pairs/right.pgm
 cat > $A/fsw.json << EOF
 {"uplink": {"host": "127.0.0.1", "port": $CMD_PORT, "key_file": "petra.key"},
  "downlink": {"host": "127.0.0.1", "port": $TLM_PORT},
- "budget": {"image_width": ${W:-1024}, "image_height": ${H:-768}, "arena_mb": 512},
+ "budget": {"image_width": ${W:-1024}, "image_height": ${H:-768}},
  "camera": {"kind": "file", "dir": "pairs"},
  $CALIB_LINE
  "arm": {"can_interface": "vcan0"},
