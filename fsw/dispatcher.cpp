@@ -62,6 +62,10 @@ void Executive::handle_datagram(std::span<const std::uint8_t> datagram) {
   if (!v.ok()) {
     ++cmd_.rejected;
     cmd_.last_reason = v.reason;
+    if (!throttle_.admit(v.reason)) {  // no key needed to cause it: no event or ack each time
+      ++cmd_.unreported;
+      return;
+    }
     // The counter is reported once the HMAC verified (authentic, even if stale).
     const bool mac_ok = v.authenticated || v.reason == Reason::REPLAY;
     const std::uint32_t counter = mac_ok ? v.command.counter : 0;
@@ -91,6 +95,8 @@ void Executive::dispatch(const cmd::Command& c) {
       const std::uint32_t last = cmd_.last_counter;
       cmd_ = CommandCounters{};
       cmd_.last_counter = last;  // the replay guard is not a statistic
+      kernel_drops_base_ = uplink_.kernel_drops();
+      reported_kernel_drops_ = 0;
       const std::uint32_t cycles = loop_.cycles;
       const std::uint32_t frames = loop_.frames;
       const std::uint32_t evaluations = loop_.evaluations;

@@ -1,9 +1,10 @@
-// petra-fsw --config FILE: the onboard service. Loads the configuration,
+// petra-fsw --config FILE [--counter-floor N]: the onboard service. Loads the configuration,
 // opens the devices (camera, GPIO lines, the arm's CAN bus), allocates every
 // buffer, then runs the executive's loop until SIGINT or SIGTERM. Exit status 0 after a clean stop;
 // 1 with a one-line reason on stderr when initialisation fails.
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "fsw/arm/flight_arm.hpp"
@@ -22,7 +23,10 @@ void on_signal(int) {
 }
 
 int usage() {
-  (void)std::fprintf(stderr, "usage: petra-fsw --config FILE\n");
+  (void)std::fprintf(stderr,
+                     "usage: petra-fsw --config FILE [--counter-floor N]\n"
+                     "  --counter-floor N  commands need a counter above N; the way past a missing\n"
+                     "                     or corrupt counter file (docs/ops.md \"Command counter\")\n");
   return 2;
 }
 
@@ -30,12 +34,20 @@ int usage() {
 
 int main(int argc, char** argv) {
   const char* config_path = nullptr;
+  long long floor = -1;
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--config") == 0 && i + 1 < argc)
+    if (std::strcmp(argv[i], "--config") == 0 && i + 1 < argc) {
       config_path = argv[++i];
-    else if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0)
+    } else if (std::strcmp(argv[i], "--counter-floor") == 0 && i + 1 < argc) {
+      char* end = nullptr;
+      floor = std::strtoll(argv[++i], &end, 10);
+      if (*end != '\0' || floor < 0 || floor > 4294967295LL) {
+        (void)std::fprintf(stderr, "petra-fsw: --counter-floor: expected 0..4294967295\n");
+        return usage();
+      }
+    } else if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
       return usage();
-    else {
+    } else {
       (void)std::fprintf(stderr, "petra-fsw: unknown argument '%s'\n", argv[i]);
       return usage();
     }
@@ -47,6 +59,7 @@ int main(int argc, char** argv) {
     (void)std::fprintf(stderr, "petra-fsw: %s\n", config.error().message);
     return 1;
   }
+  if (floor >= 0) config->counter_floor = floor;
   static petra::hal::SystemClock clock;
   static petra::fsw::FlightDevices devices;
   if (auto s = devices.open(*config); !s) {

@@ -175,8 +175,8 @@ void GroundStation::receive_loop() {
   std::vector<std::uint8_t> buf(70000);
   while (running_) {
     auto n = downlink_.receive_wait(buf, 100);
-    if (!n || *n == 0) continue;
-    auto p = tlm::decode_tm(std::span(buf).first(std::min(*n, buf.size())));
+    if (!n || !n->got) continue;
+    auto p = tlm::decode_tm(std::span(buf).first(std::min(n->size, buf.size())));
     if (!p) {
       ++bad_packets_;
       hub_.publish("bad_packet", "{\"error\":" + json_string(p.error().message) + "}");
