@@ -45,20 +45,22 @@ void Executive::handler_rejects(const cmd::Command& c, Reason reason, std::uint1
   ack(fc_of(c), c.counter, AckStage::REJECTED, reason, detail);
 }
 
-void Executive::handle_datagram(std::span<const std::uint8_t> datagram) {
-  ++cmd_.received;
+cmd::ValidationContext Executive::validation_context() const {
   cmd::ValidationContext ctx;
   ctx.key = &key_;
   ctx.last_counter = cmd_.last_counter;
   ctx.mode = modes_.mode();
   ctx.image_width = deps_.camera->width();
   ctx.image_height = deps_.camera->height();
-  const cmd::Verdict v = cmd::validate_command(datagram, ctx);
+  return ctx;
+}
+
+void Executive::handle_datagram(std::span<const std::uint8_t> datagram) {
+  ++cmd_.received;
+  const cmd::Verdict v = cmd::validate_command(datagram, validation_context());
   cmd_.last_function_code = v.function_code;
-  if (v.authenticated) {  // an authentic counter is used up, accepted or not
-    cmd_.last_counter = v.command.counter;
-    store_counter();
-  }
+  // An authentic counter is used up, accepted or not; reserve_counters() stored it already.
+  if (v.authenticated) cmd_.last_counter = v.command.counter;
   if (!v.ok()) {
     ++cmd_.rejected;
     cmd_.last_reason = v.reason;

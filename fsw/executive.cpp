@@ -14,6 +14,7 @@ namespace petra::fsw {
 namespace {
 constexpr std::int64_t kMs = 1000000;
 constexpr std::size_t kQueueReserve = 16;  // slots products leave free for events and HK
+constexpr std::size_t kRxSlotBytes = cmd::kMaxCommandBytes + 1;
 
 std::size_t align_up(std::size_t n) {
   return (n + 63) / 64 * 64;
@@ -42,10 +43,12 @@ Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
   const auto product_sizes =
       ProductStreamer::bytes_needed(b.image_width, b.image_height, b.cloud_points);
   const std::size_t queue_bytes = tlm::TlmQueue::bytes_for(b.tlm_queue_packets);
-  const std::size_t rx_bytes = cmd::kMaxCommandBytes + 1;  // one more: oversize shows as TOO_LONG
+  // One slot per datagram of a cycle's drain; one byte more: oversize shows as TOO_LONG.
+  const std::size_t rx_bytes = config.commands_per_cycle * kRxSlotBytes;
+  const std::size_t rx_sizes_bytes = config.commands_per_cycle * sizeof(std::size_t);
   std::size_t total = 2 * align_up(frame) + align_up(queue_bytes) +
                       align_up(b.tlm_queue_packets * sizeof(std::uint16_t)) + align_up(rx_bytes) +
-                      align_up(arena_bytes);
+                      align_up(rx_sizes_bytes) + align_up(arena_bytes);
   for (std::size_t s : product_sizes) total += align_up(s);
 
   // The one allocation, at init; nothrow, so a failure is an error value.
@@ -70,6 +73,7 @@ Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
       reinterpret_cast<std::uint16_t*>(take(b.tlm_queue_packets * sizeof(std::uint16_t)));
   queue_.init({queue_mem, queue_bytes}, {lengths, b.tlm_queue_packets});
   rx_ = {reinterpret_cast<std::uint8_t*>(take(rx_bytes)), rx_bytes};
+  rx_sizes_ = {reinterpret_cast<std::size_t*>(take(rx_sizes_bytes)), config.commands_per_cycle};
   std::array<std::span<std::uint8_t>, kProductKinds> product_mem{};
   for (std::size_t k = 0; k < kProductKinds; ++k)
     product_mem[k] = {reinterpret_cast<std::uint8_t*>(take(product_sizes[k])), product_sizes[k]};
@@ -119,9 +123,9 @@ Status Executive::open_counter() {
   return counter_store_.store(last);
 }
 
-void Executive::store_counter() {
+void Executive::store_counter(std::uint32_t counter) {
   if (!counter_store_.is_bound()) return;
-  const Status s = counter_store_.store(cmd_.last_counter);
+  const Status s = counter_store_.store(counter);
   if (!s && !counter_store_failed_) {
     counter_store_failed_ = true;  // one event, not one per command
     events_.raise(EventId::COUNTER_STORE_FAILED, static_cast<std::int32_t>(s.code()));
@@ -263,13 +267,31 @@ void Executive::run(const volatile std::sig_atomic_t* stop) {
 void Executive::service_uplink() {
   // Bounded: what is left waits in the socket for the next cycles. An empty or
   // short datagram is one more bad packet (TOO_SHORT), never the end of the drain.
-  for (std::uint32_t i = 0; i < config_.commands_per_cycle; ++i) {
-    auto n = uplink_.receive(rx_);
+  std::uint32_t count = 0;
+  for (; count < config_.commands_per_cycle; ++count) {
+    const std::span<std::uint8_t> slot = rx_.subspan(count * kRxSlotBytes, kRxSlotBytes);
+    auto n = uplink_.receive(slot);
     if (!n || !n->got) break;
-    const std::size_t size = n->size < rx_.size() ? n->size : rx_.size();
-    handle_datagram(rx_.first(size));
+    rx_sizes_[count] = n->size < slot.size() ? n->size : slot.size();
   }
+  if (count > 0) reserve_counters(count);
+  for (std::uint32_t i = 0; i < count; ++i)
+    handle_datagram(rx_.subspan(i * kRxSlotBytes, rx_sizes_[i]));
   report_uplink_losses();
+}
+
+// Before any of the cycle's commands runs, the counter the last authentic one
+// will leave is made durable: one store (two fsyncs) per cycle, not per
+// command. A power cut before the cycle ends loses the cycle's commands that
+// did not run yet (their counters are used up), never lets one run twice.
+void Executive::reserve_counters(std::uint32_t count) {
+  cmd::ValidationContext ctx = validation_context();
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const cmd::Verdict v =
+        cmd::validate_command(rx_.subspan(i * kRxSlotBytes, rx_sizes_[i]), ctx);
+    if (v.authenticated) ctx.last_counter = v.command.counter;  // as handle_datagram will
+  }
+  if (ctx.last_counter != cmd_.last_counter) store_counter(ctx.last_counter);
 }
 
 void Executive::report_uplink_losses() {

@@ -119,7 +119,9 @@ class Executive {
 
   Status allocate(const FswConfig& config, std::size_t arena_bytes);
   Status open_counter();
-  void store_counter();
+  void store_counter(std::uint32_t counter);
+  void reserve_counters(std::uint32_t count);
+  cmd::ValidationContext validation_context() const;
   void update_periods();
 
   // Rate groups.
@@ -176,7 +178,8 @@ class Executive {
   std::size_t memory_bytes_ = 0;
   Gray8View left_;
   Gray8View right_;
-  std::span<std::uint8_t> rx_;
+  std::span<std::uint8_t> rx_;         // commands_per_cycle slots of kMaxCommandBytes + 1
+  std::span<std::size_t> rx_sizes_;    // the datagram size in each slot
   bool has_frame_ = false;
   std::uint32_t frame_seq_ = 0;
 

@@ -35,7 +35,7 @@ int seconds_per_phase() {
 template <class Make>
 std::thread flood(std::uint16_t port, int rate, std::atomic<bool>& stop, std::atomic<long>& sent,
                   Make make) {
-  return std::thread([port, rate, &stop, &sent, make] {
+  return std::thread([port, rate, &stop, &sent, make]() mutable {
     hal::UdpLink link;
     if (!link.open("127.0.0.1", 0) || !link.set_peer("127.0.0.1", port)) return;
     const auto period = std::chrono::nanoseconds(1000000000L / rate);
@@ -62,6 +62,10 @@ void run_loop(ExecutiveHarness& h, int seconds, Each each_cycle) {
     std::this_thread::sleep_until(next);
   }
 }
+
+constexpr std::size_t kEventBytes =
+    tlm::kTmHeaderBytes + tlm::Event::wire_bytes() + tlm::kTmCrcBytes;
+constexpr std::size_t kAckBytes = tlm::kTmHeaderBytes + tlm::Ack::wire_bytes() + tlm::kTmCrcBytes;
 
 bool is_rejection_report(const tlm::TmPacket& p) {
   if (const auto* a = std::get_if<tlm::Ack>(&p.body))
@@ -144,12 +148,13 @@ TEST(UplinkFloodFigures, SignedCommandsGetThroughEmptyDatagramsAndRejectionRepor
   const auto& c2 = h.exec().command_counters();
   std::printf(
       "[ figures  ] phase 2, %.1f s: %ld random datagrams (%.0f/s); rejection reports %zu packets, "
-      "%zu bytes (%.0f B/s), %.1f %% of the %zu telemetry bytes; unthrottled they would be %ld "
-      "events + %ld acks; kernel drops %u\n",
+      "%zu bytes (%.0f B/s), %.1f %% of the %zu telemetry bytes; one event and one ack each "
+      "would be %.0f B/s; kernel drops %u\n",
       elapsed, randoms.load(), static_cast<double>(randoms.load()) / seconds, report_packets,
       report_bytes, static_cast<double>(report_bytes) / elapsed,
       100.0 * static_cast<double>(report_bytes) / static_cast<double>(all_bytes), all_bytes,
-      randoms.load(), randoms.load(), c2.kernel_drops);
+      static_cast<double>(randoms.load()) * static_cast<double>(kEventBytes + kAckBytes) / elapsed,
+      c2.kernel_drops);
 }
 
 }  // namespace
