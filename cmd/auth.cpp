@@ -74,6 +74,15 @@ Mac compute_mac(const AuthKey& key, std::span<const std::uint8_t> message) {
   return mac;
 }
 
+KeyId key_id(const AuthKey& key) {
+  static constexpr char kLabel[] = "petra uplink key id";
+  const Mac mac = compute_mac(
+      key, std::span(reinterpret_cast<const std::uint8_t*>(kLabel), sizeof(kLabel) - 1));
+  KeyId id{};
+  for (std::size_t i = 0; i < id.size(); ++i) id[i] = mac[i];
+  return id;
+}
+
 bool verify_mac(const AuthKey& key, std::span<const std::uint8_t> message,
                 std::span<const std::uint8_t> mac) {
   if (mac.size() != kMacBytes) return false;

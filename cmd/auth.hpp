@@ -29,6 +29,12 @@ Result<AuthKey> load_key_file(const char* path);
 Result<AuthKey> parse_key_hex(std::span<const char> text);
 
 Mac compute_mac(const AuthKey& key, std::span<const std::uint8_t> message);
+// A key's public name: the first 8 bytes of HMAC(key, "petra uplink key id").
+// The counter file carries it, so a new key is recognised (and gets a new
+// counter window) without revealing anything about the key.
+using KeyId = std::array<std::uint8_t, 8>;
+KeyId key_id(const AuthKey& key);
+
 // Constant-time comparison.
 bool verify_mac(const AuthKey& key, std::span<const std::uint8_t> message,
                 std::span<const std::uint8_t> mac);

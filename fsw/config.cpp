@@ -187,6 +187,7 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
   PETRA_TRY(get_int(r, up, "uplink", "port", 0, 65535, c.cmd_port));
   PETRA_TRY(r.text(up, "uplink", "key_file", c.key_file, true, true));
   PETRA_TRY(r.text(up, "uplink", "counter_file", c.counter_file, false, true));
+  PETRA_TRY(get_int(r, up, "uplink", "counter_floor", 0, 4294967295.0, c.counter_floor));
   if (down != 0) {
     PETRA_TRY(r.text(down, "downlink", "host", c.tlm_host, false, false));
     PETRA_TRY(get_int(r, down, "downlink", "port", 1, 65535, c.tlm_port));

@@ -49,7 +49,13 @@ struct FswConfig {
   Host tlm_host{};  // telemetry destination
   std::uint16_t tlm_port = 47101;
   Path key_file{};      // uplink HMAC key (64 hex digits); required
-  Path counter_file{};  // last accepted command counter, kept across reboots; optional
+  // Last accepted command counter, kept across reboots and power cuts; always
+  // kept: empty means beside the key, KEY_FILE.fsw-counter (docs/ops.md).
+  Path counter_file{};
+  // The operator's way past a missing or corrupt counter file (petra-fsw
+  // --counter-floor N, or uplink.counter_floor): commands need a counter above
+  // N. -1: none given, and such a file stops the start.
+  std::int64_t counter_floor = -1;
   Path param_file{};    // parameter defaults; optional
   Path calib_file{};    // calib.json for the pipeline; optional
   CameraKind camera_kind = CameraKind::file;
@@ -58,7 +64,7 @@ struct FswConfig {
   hal::GpioSection gpio;        // section "gpio": e-stop, arm power, trigger; absent = none wired
   Path watchdog_device{};       // e.g. /dev/watchdog; optional (none on development hosts)
   std::uint32_t cycle_ms = 10;  // minor frame
-  std::uint32_t commands_per_cycle = 8;  // uplink datagrams serviced per cycle at most
+  std::uint32_t commands_per_cycle = 32;  // uplink datagrams drained per cycle at most
   std::uint32_t health_period_ms = 500;
   bool lock_memory = false;  // mlockall after init (needs CAP_IPC_LOCK)
   Budget budget;

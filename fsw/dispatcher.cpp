@@ -45,8 +45,7 @@ void Executive::handler_rejects(const cmd::Command& c, Reason reason, std::uint1
   ack(fc_of(c), c.counter, AckStage::REJECTED, reason, detail);
 }
 
-void Executive::handle_datagram(std::span<const std::uint8_t> datagram) {
-  ++cmd_.received;
+cmd::ValidationContext Executive::validation_context() const {
   cmd::ValidationContext ctx;
   ctx.key = &key_;
   ctx.last_counter = cmd_.last_counter;
@@ -61,15 +60,22 @@ void Executive::handle_datagram(std::span<const std::uint8_t> datagram) {
   }
   ctx.disp_min_px = static_cast<int>(params_.get_int(ParamId::DISP_MIN_PX));
   ctx.disp_max_px = static_cast<int>(params_.get_int(ParamId::DISP_MAX_PX));
-  const cmd::Verdict v = cmd::validate_command(datagram, ctx);
+  return ctx;
+}
+
+void Executive::handle_datagram(std::span<const std::uint8_t> datagram) {
+  ++cmd_.received;
+  const cmd::Verdict v = cmd::validate_command(datagram, validation_context());
   cmd_.last_function_code = v.function_code;
-  if (v.authenticated) {  // an authentic counter is used up, accepted or not
-    cmd_.last_counter = v.command.counter;
-    store_counter();
-  }
+  // An authentic counter is used up, accepted or not; reserve_counters() stored it already.
+  if (v.authenticated) cmd_.last_counter = v.command.counter;
   if (!v.ok()) {
     ++cmd_.rejected;
     cmd_.last_reason = v.reason;
+    if (!throttle_.admit(v.reason)) {  // no key needed to cause it: no event or ack each time
+      ++cmd_.unreported;
+      return;
+    }
     // The counter is reported once the HMAC verified (authentic, even if stale).
     const bool mac_ok = v.authenticated || v.reason == Reason::REPLAY;
     const std::uint32_t counter = mac_ok ? v.command.counter : 0;
@@ -99,6 +105,8 @@ void Executive::dispatch(const cmd::Command& c) {
       const std::uint32_t last = cmd_.last_counter;
       cmd_ = CommandCounters{};
       cmd_.last_counter = last;  // the replay guard is not a statistic
+      kernel_drops_base_ = uplink_.kernel_drops();
+      reported_kernel_drops_ = 0;
       const std::uint32_t cycles = loop_.cycles;
       const std::uint32_t frames = loop_.frames;
       const std::uint32_t evaluations = loop_.evaluations;

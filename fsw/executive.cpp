@@ -15,6 +15,7 @@ namespace petra::fsw {
 namespace {
 constexpr std::int64_t kMs = 1000000;
 constexpr std::size_t kQueueReserve = 16;  // slots products leave free for events and HK
+constexpr std::size_t kRxSlotBytes = cmd::kMaxCommandBytes + 1;
 
 std::size_t align_up(std::size_t n) {
   return (n + 63) / 64 * 64;
@@ -44,10 +45,12 @@ Status Executive::allocate(const FswConfig& config, const PipelineBudget& pb,
   const auto product_sizes =
       ProductStreamer::bytes_needed(b.image_width, b.image_height, b.cloud_points);
   const std::size_t queue_bytes = tlm::TlmQueue::bytes_for(b.tlm_queue_packets);
-  const std::size_t rx_bytes = cmd::kMaxCommandBytes + 1;  // one more: oversize shows as TOO_LONG
+  // One slot per datagram of a cycle's drain; one byte more: oversize shows as TOO_LONG.
+  const std::size_t rx_bytes = config.commands_per_cycle * kRxSlotBytes;
+  const std::size_t rx_sizes_bytes = config.commands_per_cycle * sizeof(std::size_t);
   std::size_t total = 2 * align_up(frame) + align_up(queue_bytes) +
                       align_up(b.tlm_queue_packets * sizeof(std::uint16_t)) + align_up(rx_bytes) +
-                      align_up(arena_bytes);
+                      align_up(rx_sizes_bytes) + align_up(arena_bytes);
   for (std::size_t s : product_sizes) total += align_up(s);
   const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
   const std::size_t machine =
@@ -80,6 +83,7 @@ Status Executive::allocate(const FswConfig& config, const PipelineBudget& pb,
       reinterpret_cast<std::uint16_t*>(take(b.tlm_queue_packets * sizeof(std::uint16_t)));
   queue_.init({queue_mem, queue_bytes}, {lengths, b.tlm_queue_packets});
   rx_ = {reinterpret_cast<std::uint8_t*>(take(rx_bytes)), rx_bytes};
+  rx_sizes_ = {reinterpret_cast<std::size_t*>(take(rx_sizes_bytes)), config.commands_per_cycle};
   std::array<std::span<std::uint8_t>, kProductKinds> product_mem{};
   for (std::size_t k = 0; k < kProductKinds; ++k)
     product_mem[k] = {reinterpret_cast<std::uint8_t*>(take(product_sizes[k])), product_sizes[k]};
@@ -90,9 +94,47 @@ Status Executive::allocate(const FswConfig& config, const PipelineBudget& pb,
                       b.worker_stack_bytes, &health_, deps_.clock);
 }
 
-void Executive::store_counter() {
-  if (!counter_store_.is_open()) return;
-  const Status s = counter_store_.store(cmd_.last_counter);
+// The replay guard cannot be left out: the counter is always kept (beside the
+// key unless the configuration names a file), and a missing or unreadable file
+// stops the start until the operator gives a floor (docs/ops.md "Counter").
+Status Executive::open_counter() {
+  const FswConfig& c = config_;
+  char path[cmd::CounterStore::kPathBytes];
+  if (c.counter_file[0] != '\0')
+    (void)std::snprintf(path, sizeof(path), "%s", c.counter_file.data());
+  else
+    (void)std::snprintf(path, sizeof(path), "%s.fsw-counter", c.key_file.data());
+  PETRA_TRY(counter_store_.bind(path, cmd::key_id(key_)));
+  auto stored = counter_store_.load();
+  const bool usable = stored.ok() && stored->exists;
+  if (!usable && c.counter_floor < 0) {
+    (void)std::fprintf(stderr,
+                       "petra-fsw: counter file %s %s: a command accepted before could be "
+                       "replayed, so petra-fsw does not start. If the key is new, or you know "
+                       "the last counter the ground sent (N), start once with --counter-floor N "
+                       "(docs/ops.md \"Command counter\").\n",
+                       path, stored.ok() ? "is missing" : stored.error().message);
+    return Error::make(Errc::missing_field, "uplink counter %s: start with --counter-floor N",
+                       stored.ok() ? "file missing" : "file unreadable");
+  }
+  std::uint32_t last = usable ? stored->counter : 0;
+  if (usable && !stored->same_key) {  // re-keyed: the old key's commands no longer verify
+    previous_key_counter_ = stored->counter;
+    last = 0;
+  }
+  if (c.counter_floor > static_cast<std::int64_t>(last)) last = static_cast<std::uint32_t>(c.counter_floor);
+  if (last == 0xFFFFFFFFu)
+    (void)std::fprintf(stderr,
+                       "petra-fsw: the uplink key's counter is exhausted (4294967295): every "
+                       "command is a REPLAY until a new key (petra keygen, docs/ops.md)\n");
+  cmd_.last_counter = last;
+  // Written now: the file exists, is this key's, and the folder is writable.
+  return counter_store_.store(last);
+}
+
+void Executive::store_counter(std::uint32_t counter) {
+  if (!counter_store_.is_bound()) return;
+  const Status s = counter_store_.store(counter);
   if (!s && !counter_store_failed_) {
     counter_store_failed_ = true;  // one event, not one per command
     events_.raise(EventId::COUNTER_STORE_FAILED, static_cast<std::int32_t>(s.code()));
@@ -115,11 +157,7 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
   auto key = cmd::load_key_file(config.key_file.data());
   if (!key) return key.error();
   key_ = *key;
-  if (config.counter_file[0] != '\0') {
-    auto last = counter_store_.open(config.counter_file.data());
-    if (!last) return last.error();
-    cmd_.last_counter = *last;
-  }
+  PETRA_TRY(open_counter());
 
   int params_loaded = 0;
   if (config.param_file[0] != '\0') {
@@ -172,6 +210,8 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
 
   events_.raise(EventId::BOOT_COMPLETE, static_cast<std::int32_t>(memory_bytes_),
                 static_cast<std::int32_t>(runner_.arena_capacity()), params_loaded);
+  if (previous_key_counter_ >= 0)
+    events_.raise(EventId::UPLINK_NEW_KEY, static_cast<std::int32_t>(previous_key_counter_));
   modes_.request(Mode::IDLE, 0);
   initialised_ = true;
   return {};
@@ -240,11 +280,45 @@ void Executive::run(const volatile std::sig_atomic_t* stop) {
 }
 
 void Executive::service_uplink() {
-  for (std::uint32_t i = 0; i < config_.commands_per_cycle; ++i) {
-    auto n = uplink_.receive(rx_);
-    if (!n || *n == 0) return;
-    const std::size_t size = *n < rx_.size() ? *n : rx_.size();
-    handle_datagram(rx_.first(size));
+  // Bounded: what is left waits in the socket for the next cycles. An empty or
+  // short datagram is one more bad packet (TOO_SHORT), never the end of the drain.
+  std::uint32_t count = 0;
+  for (; count < config_.commands_per_cycle; ++count) {
+    const std::span<std::uint8_t> slot = rx_.subspan(count * kRxSlotBytes, kRxSlotBytes);
+    auto n = uplink_.receive(slot);
+    if (!n || !n->got) break;
+    rx_sizes_[count] = n->size < slot.size() ? n->size : slot.size();
+  }
+  if (count > 0) reserve_counters(count);
+  for (std::uint32_t i = 0; i < count; ++i)
+    handle_datagram(rx_.subspan(i * kRxSlotBytes, rx_sizes_[i]));
+  report_uplink_losses();
+}
+
+// Before any of the cycle's commands runs, the counter the last authentic one
+// will leave is made durable: one store (two fsyncs) per cycle, not per
+// command. A power cut before the cycle ends loses the cycle's commands that
+// did not run yet (their counters are used up), never lets one run twice.
+void Executive::reserve_counters(std::uint32_t count) {
+  cmd::ValidationContext ctx = validation_context();
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const cmd::Verdict v =
+        cmd::validate_command(rx_.subspan(i * kRxSlotBytes, rx_sizes_[i]), ctx);
+    if (v.authenticated) ctx.last_counter = v.command.counter;  // as handle_datagram will
+  }
+  if (ctx.last_counter != cmd_.last_counter) store_counter(ctx.last_counter);
+}
+
+void Executive::report_uplink_losses() {
+  cmd_.kernel_drops = uplink_.kernel_drops() - kernel_drops_base_;
+  const bool ended =
+      throttle_.end_window(deps_.clock->monotonic_ns(), [this](Reason r, std::uint32_t n) {
+        events_.raise(EventId::CMD_REJECTS_UNREPORTED, static_cast<std::int32_t>(r),
+                      static_cast<std::int32_t>(n), RejectionThrottle::kWindowMs);
+      });
+  if (ended && cmd_.kernel_drops != reported_kernel_drops_) {  // at most one event a window
+    reported_kernel_drops_ = cmd_.kernel_drops;
+    events_.raise(EventId::CMD_KERNEL_DROPS, static_cast<std::int32_t>(cmd_.kernel_drops));
   }
 }
 
@@ -305,6 +379,8 @@ void Executive::send_housekeeping() {
   hk.last_counter = cmd_.last_counter;
   hk.last_function_code = cmd_.last_function_code;
   hk.last_reason = static_cast<std::uint8_t>(cmd_.last_reason);
+  hk.cmd_unreported = cmd_.unreported;
+  hk.cmd_kernel_drops = cmd_.kernel_drops;
   hk.tlm_sent = loop_.tlm_sent;
   hk.tlm_dropped = queue_.dropped();
   hk.tlm_send_errors = loop_.tlm_send_errors;

@@ -21,13 +21,14 @@
 #include "cmd/validator.hpp"
 #include "fsw/arm_port.hpp"
 #include "fsw/config.hpp"
-#include "fsw/counter_store.hpp"
+#include "cmd/counter_store.hpp"
 #include "fsw/event_log.hpp"
 #include "fsw/health.hpp"
 #include "fsw/mode_manager.hpp"
 #include "fsw/param_table.hpp"
 #include "fsw/pipeline_runner.hpp"
 #include "fsw/product_streamer.hpp"
+#include "fsw/rejection_throttle.hpp"
 #include "hal/clock.hpp"
 #include "hal/digital_input.hpp"
 #include "hal/stereo_camera.hpp"
@@ -52,6 +53,8 @@ struct CommandCounters {
   std::uint32_t completed = 0;
   std::uint32_t failed = 0;
   std::uint32_t last_counter = 0;
+  std::uint32_t unreported = 0;    // throttled rejections (RejectionThrottle)
+  std::uint32_t kernel_drops = 0;  // datagrams the kernel dropped on the command port
   std::uint8_t last_function_code = 0;
   Reason last_reason = Reason::NONE;
 };
@@ -115,11 +118,15 @@ class Executive {
   };
 
   Status allocate(const FswConfig& config, const PipelineBudget& pb, std::size_t arena_bytes);
-  void store_counter();
+  Status open_counter();
+  void store_counter(std::uint32_t counter);
+  void reserve_counters(std::uint32_t count);
+  cmd::ValidationContext validation_context() const;
   void update_periods();
 
   // Rate groups.
   void service_uplink();
+  void report_uplink_losses();
   void poll_pipeline();
   void poll_arm();
   void pump_products();
@@ -164,13 +171,15 @@ class Executive {
   hal::UdpLink uplink_;
   hal::UdpLink downlink_;
   hal::LinuxWatchdog watchdog_;
-  CounterStore counter_store_;
+  cmd::CounterStore counter_store_;
+  RejectionThrottle throttle_;
 
   std::unique_ptr<std::byte[]> memory_;  // every buffer, allocated once in init()
   std::size_t memory_bytes_ = 0;
   Gray8View left_;
   Gray8View right_;
-  std::span<std::uint8_t> rx_;
+  std::span<std::uint8_t> rx_;         // commands_per_cycle slots of kMaxCommandBytes + 1
+  std::span<std::size_t> rx_sizes_;    // the datagram size in each slot
   bool has_frame_ = false;
   std::uint32_t frame_seq_ = 0;
 
@@ -190,8 +199,11 @@ class Executive {
   std::int64_t boot_ns_ = 0;
   std::int64_t last_overrun_event_ns_ = 0;
   bool counter_store_failed_ = false;
+  std::int64_t previous_key_counter_ = -1;  // >= 0: re-keyed at init (UPLINK_NEW_KEY)
   bool estop_latched_ = false;
   std::uint32_t reported_drops_ = 0;
+  std::uint32_t kernel_drops_base_ = 0;      // the socket's count at the last counter reset
+  std::uint32_t reported_kernel_drops_ = 0;  // as of the last CMD_KERNEL_DROPS event
   bool initialised_ = false;
 };
 

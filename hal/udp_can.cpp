@@ -110,10 +110,11 @@ Result<bool> UdpCanPort::receive(CanFrame& out, int timeout_ms) {
   for (int pass = 0; pass < 64; ++pass) {
     auto n = timeout_ms > 0 && pass == 0 ? link_.receive_wait(buf, timeout_ms) : link_.receive(buf);
     if (!n) return n.error();
-    if (*n == 0) return false;
-    auto f = decode_udp_can(
-        std::span<const std::uint8_t>(buf.data(), *n > buf.size() ? buf.size() : *n));
-    if (*n > buf.size() || !f) {
+    if (!n->got) return false;  // nothing waiting; an empty datagram is malformed
+    const std::size_t size = n->size;
+    auto f =
+        decode_udp_can(std::span<const std::uint8_t>(buf.data(), size > buf.size() ? buf.size() : size));
+    if (size > buf.size() || !f) {
       ++health_.rx_dropped;
       continue;
     }

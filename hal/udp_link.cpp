@@ -34,6 +34,9 @@ Status UdpLink::open(const char* host, std::uint16_t port) {
   if (!addr) return addr.error();
   fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (fd_ < 0) return Error::make(Errc::io_error, "udp: socket: %s", std::strerror(errno));
+  kernel_drops_ = 0;
+  const int on = 1;  // the kernel's drop count arrives with each datagram
+  (void)::setsockopt(fd_, SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof(on));
   sockaddr_in sa{};
   sa.sin_family = AF_INET;
   sa.sin_port = htons(port);
@@ -65,23 +68,33 @@ void UdpLink::set_receive_buffer(int bytes) {
   if (fd_ >= 0) ::setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &bytes, sizeof(bytes));
 }
 
-Result<std::size_t> UdpLink::receive(std::span<std::uint8_t> buf) {
+Result<Received> UdpLink::receive(std::span<std::uint8_t> buf) {
   if (fd_ < 0) return Error::make(Errc::not_ready, "udp: not open");
-  const ssize_t n = ::recv(fd_, buf.data(), buf.size(), MSG_DONTWAIT | MSG_TRUNC);
+  iovec iov{buf.data(), buf.size()};
+  alignas(cmsghdr) std::uint8_t control[CMSG_SPACE(sizeof(std::uint32_t))];
+  msghdr msg{};
+  msg.msg_iov = &iov;
+  msg.msg_iovlen = 1;
+  msg.msg_control = control;
+  msg.msg_controllen = sizeof(control);
+  const ssize_t n = ::recvmsg(fd_, &msg, MSG_DONTWAIT | MSG_TRUNC);
   if (n < 0) {
-    if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) return std::size_t{0};
+    if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) return Received{};
     return Error::make(Errc::io_error, "udp: recv: %s", std::strerror(errno));
   }
-  return static_cast<std::size_t>(n);
+  for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c != nullptr; c = CMSG_NXTHDR(&msg, c))
+    if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL)
+      std::memcpy(&kernel_drops_, CMSG_DATA(c), sizeof(kernel_drops_));
+  return Received{true, static_cast<std::size_t>(n)};
 }
 
-Result<std::size_t> UdpLink::receive_wait(std::span<std::uint8_t> buf, int timeout_ms) {
+Result<Received> UdpLink::receive_wait(std::span<std::uint8_t> buf, int timeout_ms) {
   if (fd_ < 0) return Error::make(Errc::not_ready, "udp: not open");
   pollfd p{fd_, POLLIN, 0};
   const int r = ::poll(&p, 1, timeout_ms);
   if (r < 0 && errno != EINTR)
     return Error::make(Errc::io_error, "udp: poll: %s", std::strerror(errno));
-  if (r <= 0) return std::size_t{0};
+  if (r <= 0) return Received{};
   return receive(buf);
 }
 

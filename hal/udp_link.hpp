@@ -1,7 +1,9 @@
 // A non-blocking UDP endpoint for CCSDS packets: bound to a local port for
 // commands, sending to one peer for telemetry. Numeric IPv4 addresses (or
 // "localhost") only, so no resolver (and no heap) is involved. Sending never
-// blocks: a full socket buffer is reported as would_block.
+// blocks: a full socket buffer is reported as would_block. Receiving tells
+// "nothing waiting" from an empty datagram, and counts the datagrams the kernel
+// dropped because the receive buffer was full (SO_RXQ_OVFL).
 #pragma once
 
 #include <netinet/in.h>
@@ -15,6 +17,14 @@
 namespace petra::hal {
 
 enum class SendResult : std::uint8_t { sent, would_block, error };
+
+// One receive: `got` false when nothing was waiting (or the wait timed out);
+// otherwise `size` is the datagram's true size, 0 for an empty datagram, more
+// than the buffer when it was truncated.
+struct Received {
+  bool got = false;
+  std::size_t size = 0;
+};
 
 class UdpLink {
  public:
@@ -31,12 +41,15 @@ class UdpLink {
   void set_send_buffer(int bytes);
   void set_receive_buffer(int bytes);
 
-  // One datagram into buf; returns its true size (which may exceed buf.size():
-  // then it was truncated), or 0 when nothing is waiting.
-  Result<std::size_t> receive(std::span<std::uint8_t> buf);
+  // One datagram into buf, never blocking.
+  Result<Received> receive(std::span<std::uint8_t> buf);
   SendResult send(std::span<const std::uint8_t> datagram);
   // Receive, waiting at most timeout_ms (ground tools).
-  Result<std::size_t> receive_wait(std::span<std::uint8_t> buf, int timeout_ms);
+  Result<Received> receive_wait(std::span<std::uint8_t> buf, int timeout_ms);
+  // Datagrams the kernel dropped on this socket (full receive buffer) since it
+  // was opened, as Linux reports it with each datagram (the count when that
+  // datagram was queued: drops show with the next datagram received).
+  std::uint32_t kernel_drops() const { return kernel_drops_; }
 
   std::uint16_t local_port() const;
   bool is_open() const { return fd_ >= 0; }
@@ -46,6 +59,7 @@ class UdpLink {
   int fd_ = -1;
   sockaddr_in peer_{};
   bool has_peer_ = false;
+  std::uint32_t kernel_drops_ = 0;
 };
 
 // Parses a numeric IPv4 address or "localhost".

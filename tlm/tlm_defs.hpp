@@ -30,12 +30,16 @@
   F(u32, max_cycle_us, 1, "us", 0, PETRA_U32_MAX, "longest cycle since the counters were reset") \
   F(u32, cmd_received, 1, "", 0, PETRA_U32_MAX, "datagrams received on the command port")        \
   F(u32, cmd_accepted, 1, "", 0, PETRA_U32_MAX, "commands that passed validation")               \
-  F(u32, cmd_rejected, 1, "", 0, PETRA_U32_MAX, "commands rejected (one REJECTED ack each)")     \
+  F(u32, cmd_rejected, 1, "", 0, PETRA_U32_MAX, "datagrams rejected (see cmd_unreported)")      \
   F(u32, cmd_completed, 1, "", 0, PETRA_U32_MAX, "accepted commands that completed")             \
   F(u32, cmd_failed, 1, "", 0, PETRA_U32_MAX, "accepted commands that failed")                   \
   F(u32, last_counter, 1, "", 0, PETRA_U32_MAX, "last authenticated command counter")            \
   F(u8, last_function_code, 1, "", 0, 255, "function code of the last command seen")             \
   F(u8, last_reason, 1, "enum", 0, 255, "reason of the last rejection or failure")               \
+  F(u32, cmd_unreported, 1, "", 0, PETRA_U32_MAX,                                                \
+    "rejections without their own event and ack (throttled: CMD_REJECTS_UNREPORTED)")            \
+  F(u32, cmd_kernel_drops, 1, "", 0, PETRA_U32_MAX,                                              \
+    "command datagrams the kernel dropped: receive buffer full (SO_RXQ_OVFL)")                   \
   F(u32, tlm_sent, 1, "", 0, PETRA_U32_MAX, "telemetry packets sent")                            \
   F(u32, tlm_dropped, 1, "", 0, PETRA_U32_MAX, "telemetry packets dropped: queue full")          \
   F(u32, tlm_send_errors, 1, "", 0, PETRA_U32_MAX, "telemetry packets the socket refused")       \

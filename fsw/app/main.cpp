@@ -1,11 +1,12 @@
-// petra-fsw --config FILE: the onboard service (--memory-table: the generated
-// table of docs/memory.md). Loads the configuration,
+// petra-fsw --config FILE [--counter-floor N]: the onboard service (--memory-table: the
+// generated table of docs/memory.md). Loads the configuration,
 // opens the devices (camera, GPIO lines, the arm's CAN bus), allocates every
 // buffer, then runs the executive's loop until SIGINT or SIGTERM. Exit status 0 after a clean stop
 // and for --help and --version; 1 with a one-line reason on stderr when initialisation fails;
 // 2 for a usage error ("petra-fsw: ..." and the usage line on stderr).
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "fsw/arm/flight_arm.hpp"
@@ -29,7 +30,7 @@ void on_signal(int) {
 #endif
 
 constexpr const char* kUsage =
-    "usage: petra-fsw --config FILE | --memory-table | --help | --version\n";
+    "usage: petra-fsw --config FILE [--counter-floor N] | --memory-table | --help | --version\n";
 
 // The generated table of docs/memory.md.
 int print_memory_table() {
@@ -50,6 +51,8 @@ int help() {
       "%s\nThe onboard service: loads the configuration (JSON, docs/icd.md \"petra-fsw "
       "configuration\"),\nopens the devices, allocates every buffer, then serves commands and "
       "sends telemetry\nuntil SIGINT or SIGTERM.\n  --config FILE   the configuration\n"
+      "  --counter-floor N  commands need a counter above N: the way past a missing or\n"
+      "                  corrupt counter file (docs/ops.md \"Command counter\")\n"
       "  --memory-table  the per-stage memory table (docs/memory.md)\n"
       "  --help          this text\n  --version       the version\n",
       kUsage);
@@ -60,11 +63,17 @@ int help() {
 
 int main(int argc, char** argv) {
   const char* config_path = nullptr;
+  long long floor = -1;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--config") == 0 && i + 1 < argc) {
       config_path = argv[++i];
     } else if (std::strcmp(argv[i], "--config") == 0) {
       return usage_error("--config needs a file name", "");
+    } else if (std::strcmp(argv[i], "--counter-floor") == 0 && i + 1 < argc) {
+      char* end = nullptr;
+      floor = std::strtoll(argv[++i], &end, 10);
+      if (*end != '\0' || floor < 0 || floor > 4294967295LL)
+        return usage_error("--counter-floor: expected 0..4294967295, got", argv[i]);
     } else if (std::strcmp(argv[i], "--memory-table") == 0) {
       return print_memory_table();
     } else if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
@@ -83,6 +92,7 @@ int main(int argc, char** argv) {
     (void)std::fprintf(stderr, "petra-fsw: %s\n", config.error().message);
     return 1;
   }
+  if (floor >= 0) config->counter_floor = floor;
   static petra::hal::SystemClock clock;
   static petra::fsw::FlightDevices devices;
   if (auto s = devices.open(*config); !s) {

@@ -94,8 +94,8 @@ void add_cmd(CLI::App& app, Outcome& outcome) {
     bool final_seen = false;
     while (!final_seen && std::chrono::steady_clock::now() < deadline) {
       auto got = tlm.receive_wait(buf, 50);
-      if (!got || *got == 0) continue;
-      auto p = tlm::decode_tm(std::span(buf).first(std::min(*got, buf.size())));
+      if (!got || !got->got) continue;
+      auto p = tlm::decode_tm(std::span(buf).first(std::min(got->size, buf.size())));
       if (!p) continue;
       const auto* ack = std::get_if<tlm::Ack>(&p->body);
       if (ack == nullptr || ack->counter != command->counter) continue;

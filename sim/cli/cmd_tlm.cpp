@@ -50,14 +50,14 @@ void add_tlm(CLI::App& app, Outcome& outcome) {
         outcome.exit_code = fail("tlm", n.error().message);
         return;
       }
-      if (*n == 0) {
+      if (!n->got) {
         if (!follow &&
             std::chrono::steady_clock::now() - idle_since > std::chrono::milliseconds(timeout_ms))
           return;
         continue;
       }
       idle_since = std::chrono::steady_clock::now();
-      auto p = tlm::decode_tm(std::span(buf).first(std::min(*n, buf.size())));
+      auto p = tlm::decode_tm(std::span(buf).first(std::min(n->size, buf.size())));
       if (!p) {
         std::fprintf(stderr, "petra tlm: dropped a packet: %s\n", p.error().message);
         continue;

@@ -21,6 +21,7 @@
 #include "cmd/param_defs.hpp"
 #include "hal/udp_link.hpp"
 #include "sim/demo/demo_report.hpp"
+#include "sim/ground/key_file.hpp"
 #include "sim/ground/product_assembler.hpp"
 #include "sim/ground/tlm_format.hpp"
 #include "sim/io/image_io.hpp"
@@ -245,12 +246,9 @@ int run(const Options& o, std::FILE* out) {
   if (sodium_init() < 0) return fail("libsodium failed to initialise");
   cmd::AuthKey key;
   randombytes_buf(key.bytes.data(), key.bytes.size());
-  {
-    char hex[65];
-    sodium_bin2hex(hex, sizeof(hex), key.bytes.data(), key.bytes.size());
-    if (auto s = io::write_text_file((dir / "petra.key").string(), std::string(hex) + "\n"); !s)
-      return fail(s.error().message);
-  }
+  // Mode 0600, with its flight counter beside it (petra-fsw refuses a key without one).
+  if (auto k = ground::write_new_key((dir / "petra.key").string(), key, true); !k)
+    return fail(k.error().message);
   const std::uint16_t cmd_port = free_port();
   const std::uint16_t tlm_port = free_port();
   hal::UdpLink tlm;
@@ -298,8 +296,8 @@ int run(const Options& o, std::FILE* out) {
     const auto until = Clock::now() + std::chrono::milliseconds(ms);
     while (Clock::now() < until) {
       auto n = tlm.receive_wait(buf, 20);
-      if (!n || *n == 0) continue;
-      auto p = tlm::decode_tm(std::span(buf).first(std::min(*n, buf.size())));
+      if (!n || !n->got) continue;
+      auto p = tlm::decode_tm(std::span(buf).first(std::min(n->size, buf.size())));
       if (!p) continue;
       if (const auto* e = std::get_if<tlm::Event>(&p->body)) {
         if (e->event_id == static_cast<std::uint16_t>(EventId::BOOT_COMPLETE)) booted = true;

@@ -193,11 +193,11 @@ void GroundStation::receive_loop() {
   std::vector<std::uint8_t> buf(70000);
   while (running_) {
     auto n = downlink_.receive_wait(buf, 100);
-    if (!n || *n == 0) {
+    if (!n || !n->got) {
       archive({}, nullptr);  // a quiet link: what came is on disk
       continue;
     }
-    const auto raw = std::span(buf).first(std::min(*n, buf.size()));
+    const auto raw = std::span(buf).first(std::min(n->size, buf.size()));
     auto p = tlm::decode_tm(raw);
     if (!p) {
       ++bad_packets_;

@@ -47,6 +47,8 @@ class ExecutiveHarness {
     write_pgm((dir_ / "camera/left_000.pgm").string(), kWidth, kHeight, 0);
     write_pgm((dir_ / "camera/right_000.pgm").string(), kWidth, kHeight, 5);
     std::ofstream(dir_ / "key.hex") << kKeyHex << "\n";
+    // A new key's counter file, as `petra keygen` writes it (kept when the folder is reused).
+    if (!std::filesystem::exists(dir_ / "counter.txt")) std::ofstream(dir_ / "counter.txt") << "0\n";
     EXPECT_TRUE(ground_.open("127.0.0.1", 0).ok());
     extra_ = std::move(extra_config);
   }
@@ -58,7 +60,9 @@ class ExecutiveHarness {
   // Writes the configuration and boots the executive.
   Status boot() {
     const std::string cfg =
-        R"({"uplink":{"host":"127.0.0.1","port":0,"key_file":"key.hex","counter_file":"counter.txt"},
+        R"({"uplink":{"host":"127.0.0.1","port":0,"key_file":"key.hex")" +
+        (counter_file.empty() ? std::string() : R"(,"counter_file":")" + counter_file + "\"") +
+        uplink_extra + R"(},
       "downlink":{"host":"127.0.0.1","port":)" +
         std::to_string(ground_.local_port()) + R"(},"loop":)" + loop + R"(,
       "budget":)" +
@@ -85,7 +89,7 @@ class ExecutiveHarness {
   }
 
   std::vector<std::uint8_t> packet(const cmd::Command& c) const {
-    cmd::AuthKey key = *cmd::parse_key_hex(std::span<const char>(kKeyHex, 64));
+    cmd::AuthKey key = *cmd::parse_key_hex(std::span<const char>(key_hex_.data(), 64));
     std::vector<std::uint8_t> out(cmd::kMaxCommandBytes);
     auto n = cmd::encode_command_packet(c, 0, key, out);
     EXPECT_TRUE(n.ok());
@@ -94,6 +98,12 @@ class ExecutiveHarness {
   }
   cmd::Command make(cmd::FunctionCode code, cmd::Args args) { return {code, ++counter, args}; }
   cmd::Command make(cmd::FunctionCode code) { return make(code, cmd::default_args(code)); }
+
+  // A new uplink key (64 hex digits) for the next boot and for signing.
+  void set_key(const std::string& hex) {
+    key_hex_ = hex;
+    std::ofstream(dir_ / "key.hex") << hex << "\n";
+  }
 
   void send_raw(const std::vector<std::uint8_t>& bytes) { sender_.send(bytes); }
   void send(const cmd::Command& c) { send_raw(packet(c)); }
@@ -119,8 +129,8 @@ class ExecutiveHarness {
     std::uint8_t buf[2048];
     for (;;) {
       auto n = ground_.receive(buf);
-      if (!n || *n == 0) return;
-      auto p = tlm::decode_tm(std::span<const std::uint8_t>(buf, *n));
+      if (!n || !n->got) return;
+      auto p = tlm::decode_tm(std::span<const std::uint8_t>(buf, n->size));
       EXPECT_TRUE(p.ok()) << p.error().message;
       if (p.ok()) received.push_back(*p);
     }
@@ -163,6 +173,8 @@ class ExecutiveHarness {
   std::uint32_t counter = 0;
   std::size_t queue_packets = 256;
   std::string loop = R"({"cycle_ms":10})";
+  std::string counter_file = "counter.txt";  // "": the configuration names none (beside the key)
+  std::string uplink_extra;                   // more "uplink" members, e.g. R"(,"counter_floor":0)"
   std::vector<tlm::TmPacket> received;
   hal::UdpLink ground_;  // telemetry receiver
 
@@ -175,6 +187,7 @@ class ExecutiveHarness {
   bool keep_dir_ = false;
   std::string extra_;
   std::filesystem::path dir_;
+  std::string key_hex_ = kKeyHex;
   hal::SystemClock clock_;
   hal::FileStereoCamera camera_;
   fsw::Executive exec_;

@@ -53,18 +53,19 @@ TEST(ExecutiveMemory, ThousandCommandsOfEveryKindAllocateNothingAfterInit) {
     usleep(1000);
   }
   std::uint8_t sink[2048];
-  while (*h.ground_.receive(sink) > 0) {
+  while (h.ground_.receive(sink)->got) {
   }
   const long rss_before = resident_kb();
 
   std::size_t telemetry = 0;
   std::size_t accepted = 0;
   std::size_t rejected = 0;
+  std::size_t unreported = 0;  // throttled rejections: counted, no ack (RejectionThrottle)
   // Counts telemetry and acknowledgements without allocating (decode_tm is heap-free).
   auto drain = [&] {
-    for (auto n = h.ground_.receive(sink); n.ok() && *n > 0; n = h.ground_.receive(sink)) {
+    for (auto n = h.ground_.receive(sink); n.ok() && n->got; n = h.ground_.receive(sink)) {
       ++telemetry;
-      auto pk = tlm::decode_tm(std::span<const std::uint8_t>(sink, *n));
+      auto pk = tlm::decode_tm(std::span<const std::uint8_t>(sink, n->size));
       if (!pk) continue;
       if (const auto* a = std::get_if<tlm::Ack>(&pk->body)) {
         if (a->stage == static_cast<std::uint8_t>(AckStage::ACCEPTED)) ++accepted;
@@ -76,7 +77,10 @@ TEST(ExecutiveMemory, ThousandCommandsOfEveryKindAllocateNothingAfterInit) {
     HeapScope scope;
     for (std::size_t i = cmd::command_table().size(); i < packets.size(); ++i) {
       h.send_raw(packets[i]);
+      const std::uint32_t before = h.exec().command_counters().unreported;
       h.exec().run_cycle();
+      const std::uint32_t after = h.exec().command_counters().unreported;
+      unreported += after >= before ? after - before : after;  // RESET_COUNTERS zeroes it
       drain();
       if (i % 64 == 0) usleep(500);  // let the worker finish evaluations now and then
     }
@@ -88,10 +92,12 @@ TEST(ExecutiveMemory, ThousandCommandsOfEveryKindAllocateNothingAfterInit) {
     EXPECT_EQ(scope.allocations(), 0u);
   }
   const long rss_after = resident_kb();
-  // Every command got exactly one ACCEPTED or REJECTED acknowledgement
-  // (the counters themselves are zeroed by each RESET_COUNTERS in the mix).
+  // Every command got exactly one ACCEPTED or REJECTED acknowledgement, or was
+  // counted as a throttled rejection (the counters themselves are zeroed by
+  // each RESET_COUNTERS in the mix).
   const std::size_t sent = packets.size() - cmd::command_table().size();
-  EXPECT_EQ(accepted + rejected, sent);
+  EXPECT_EQ(accepted + rejected + unreported, sent);
+  EXPECT_GT(unreported, 0u);
   EXPECT_GT(accepted, sent / 2);
   EXPECT_GT(rejected, sent / 10);  // corrupted rounds, wrong modes, BUSY
   EXPECT_GT(h.job.runs.load(), 1);
@@ -99,10 +105,10 @@ TEST(ExecutiveMemory, ThousandCommandsOfEveryKindAllocateNothingAfterInit) {
   // Flat: every buffer was touched at init. 64 kB of slack for the test's own stack and libc.
   EXPECT_LE(rss_after - rss_before, 64) << "RSS " << rss_before << " kB -> " << rss_after << " kB";
   std::printf(
-      "[ figures  ] %zu commands, %zu accepted, %zu rejected, %d evaluations, %zu telemetry "
-      "packets, "
+      "[ figures  ] %zu commands, %zu accepted, %zu rejected (+%zu throttled), %d evaluations, "
+      "%zu telemetry packets, "
       "RSS %ld -> %ld kB, %zu bytes allocated at init\n",
-      sent, accepted, rejected, h.job.runs.load(), telemetry, rss_before, rss_after,
+      sent, accepted, rejected, unreported, h.job.runs.load(), telemetry, rss_before, rss_after,
       h.exec().memory_bytes());
 }
 

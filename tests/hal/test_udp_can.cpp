@@ -145,5 +145,26 @@ TEST(UdpCanPort, AMalformedDatagramIsCountedAndSkipped) {
   EXPECT_EQ(b.health().frames_received, 1u);
 }
 
+TEST(UdpCanPort, AnEmptyDatagramIsCountedAndDoesNotEndTheWait) {
+  const std::uint16_t pa = free_port(), pb = free_port();
+  UdpCanPort b;
+  ASSERT_TRUE(b.open({pb, pa}).ok());
+  UdpLink raw;
+  ASSERT_TRUE(raw.open("127.0.0.1", pa).ok());
+  ASSERT_TRUE(raw.set_peer("127.0.0.1", pb).ok());
+  ASSERT_EQ(raw.send({}), SendResult::sent);
+  CanFrame f;
+  f.id = 0x702;
+  f.len = 1;
+  std::array<std::uint8_t, kUdpCanDatagramBytes> d{};
+  encode_udp_can(f, d);
+  ASSERT_EQ(raw.send(d), SendResult::sent);
+  CanFrame got;
+  auto r = b.receive(got, 200);
+  ASSERT_TRUE(r.ok() && *r);
+  EXPECT_EQ(got.id, 0x702u);
+  EXPECT_EQ(b.health().rx_dropped, 1u);
+}
+
 }  // namespace
 }  // namespace petra::hal

@@ -112,7 +112,7 @@ TEST(FswLoopback, PetraCmdAndPetraTlmTalkToTheFlightProcess) {
       0);
   const auto [cmd_port, tlm_port] = two_free_udp_ports();
   std::ofstream(dir / "fsw.json") << R"({"uplink":{"host":"127.0.0.1","port":)" << cmd_port
-                                  << R"(,"key_file":"uplink.key","counter_file":"fsw_counter"},
+                                  << R"(,"key_file":"uplink.key"},
     "downlink":{"host":"127.0.0.1","port":)"
                                   << tlm_port << R"(},
     "loop":{"cycle_ms":10},"budget":{"image_width":320,"image_height":240,"arena_mb":4,"tlm_queue_packets":256},

@@ -81,8 +81,7 @@ if [ ! -x /hil/bin/petra ] || [ ! -x /hil/bin/petra-fsw ]; then
   return 0 2> /dev/null || exit 0
 fi
 
-head -c 32 /dev/urandom | od -An -tx1 | tr -d ' \n' > $KEY
-echo >> $KEY
+petra keygen --force --out $KEY > /dev/null  # with its flight counter, KEY.fsw-counter
 
 # --- the arm, the e-stop and the CAN bus --------------------------------------------------
 # A simulated scene the pipeline evaluates (the demo's seed, rendered by pack.sh on the
