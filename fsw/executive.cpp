@@ -73,7 +73,7 @@ Status Executive::allocate(const FswConfig& config, std::size_t arena_bytes) {
   std::array<std::span<std::uint8_t>, kProductKinds> product_mem{};
   for (std::size_t k = 0; k < kProductKinds; ++k)
     product_mem[k] = {reinterpret_cast<std::uint8_t*>(take(product_sizes[k])), product_sizes[k]};
-  products_.init(product_mem);
+  products_.init(product_mem, &events_);
   std::byte* arena = take(arena_bytes);
   PETRA_ASSERT(at <= total);
   const PipelineBudget pb{b.image_width, b.image_height, b.cloud_points, b.arena_bytes};

@@ -46,7 +46,10 @@
   X(ARM_CAN_BUS, 28, WARNING, "arm CAN bus {0}: 0 active, 1 warning, 2 passive, 3 off")       \
   X(ARM_BAD_FRAME, 29, WARNING, "arm drive {0}: malformed CAN frame, COB-ID {1}, ignored")    \
   X(ARM_STOPPED, 30, INFO, "arm quick stop: drives ramped down, holding")                     \
-  X(ESTOP_ASSERTED, 31, ERROR, "e-stop input asserted: arm quick stop, SAFE")
+  X(ESTOP_ASSERTED, 31, ERROR, "e-stop input asserted: arm quick stop, SAFE")                \
+  X(PRODUCT_REFUSED, 32, WARNING,                                                             \
+    "product {0} of id {1} refused: {2} (1 product {0} of id {3} still streaming, 2 too "     \
+    "large for its buffer, 3 empty)")
 
 // Each rejection reason has its own event, id 0x100 + reason code:
 // "command {0:fc} rejected: <reason> (detail {1}, counter {2})", severity WARNING.
