@@ -269,6 +269,8 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
       }
       c.arm.has_mount = true;
     }
+    PETRA_TRY(get_int(r, arm, "arm", "heartbeat_timeout_ms", 200, 60000,
+                      c.arm.heartbeat_timeout_ms));
   }
   PETRA_TRY(r.text(0, "", "calib", c.calib_file, false, true));
   PETRA_TRY(r.text(0, "", "params", c.param_file, false, true));

@@ -38,6 +38,9 @@ struct ArmConfig {
   std::array<char, 16> can_interface{};
   bool has_mount = false;
   std::array<double, 4> mount{};  // base x, y, z (mm, world) and yaw (deg about world z)
+  // "heartbeat_timeout_ms" (optional, 200..60000): heartbeat consumer time both
+  // ways; absent (0) keeps the flight defaults (fsw/arm/arm_service.hpp).
+  std::uint16_t heartbeat_timeout_ms = 0;
 };
 
 // Where stereo pairs come from: a folder of PGM pairs or V4L2 cameras.

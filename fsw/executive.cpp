@@ -87,7 +87,7 @@ Status Executive::allocate(const FswConfig& config, const PipelineBudget& pb,
   std::array<std::span<std::uint8_t>, kProductKinds> product_mem{};
   for (std::size_t k = 0; k < kProductKinds; ++k)
     product_mem[k] = {reinterpret_cast<std::uint8_t*>(take(product_sizes[k])), product_sizes[k]};
-  products_.init(product_mem);
+  products_.init(product_mem, &events_);
   std::byte* arena = take(arena_bytes);
   PETRA_ASSERT(at <= total);
   return runner_.init(deps_.job, {arena, arena_bytes}, pb, has_rig_ ? &rig_ : nullptr,

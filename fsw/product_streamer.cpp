@@ -9,8 +9,35 @@ namespace {
 constexpr std::size_t kChunk = PETRA_PRODUCT_DATA_BYTES;
 }
 
-void ProductStreamer::init(std::array<std::span<std::uint8_t>, kProductKinds> memory) {
+void ProductStreamer::init(std::array<std::span<std::uint8_t>, kProductKinds> memory,
+                           EventLog* events) {
   for (std::size_t k = 0; k < kProductKinds; ++k) streams_[k] = Stream{memory[k]};
+  events_ = events;
+}
+
+bool ProductStreamer::refuse(ProductKind kind, std::uint32_t id, Refusal why,
+                             std::uint32_t busy_id) {
+  ++products_refused_;
+  if (events_ != nullptr)
+    events_->raise(EventId::PRODUCT_REFUSED, static_cast<std::int32_t>(kind),
+                   static_cast<std::int32_t>(id), static_cast<std::int32_t>(why),
+                   static_cast<std::int32_t>(busy_id));
+  return false;
+}
+
+ProductStreamer::Stream* ProductStreamer::free_stream(ProductKind kind, std::uint32_t id) {
+  Stream& s = streams_[static_cast<std::size_t>(kind) - 1];
+  if (!s.active) return &s;
+  (void)refuse(kind, id, Refusal::STREAMING, s.id);
+  return nullptr;
+}
+
+void ProductStreamer::finish(Stream& s) {
+  s.active = false;
+  ++products_sent_;
+  if (events_ != nullptr)
+    events_->raise(EventId::PRODUCT_SENT, static_cast<std::int32_t>((&s - streams_.data()) + 1),
+                   static_cast<std::int32_t>(s.id), s.chunks, static_cast<std::int32_t>(s.size));
 }
 
 std::array<std::size_t, kProductKinds> ProductStreamer::bytes_needed(int max_width, int max_height,
@@ -21,14 +48,18 @@ std::array<std::size_t, kProductKinds> ProductStreamer::bytes_needed(int max_wid
 
 bool ProductStreamer::stage_image(ProductKind kind, std::uint32_t id,
                                   ImageView<const std::uint8_t> image, int channels, int step) {
-  Stream& s = streams_[static_cast<std::size_t>(kind) - 1];
-  if (step < 1 || channels < 1) return false;
+  if (step < 1 || channels < 1) return refuse(kind, id, Refusal::EMPTY);
+  Stream* free = free_stream(kind, id);
+  if (free == nullptr) return false;
+  Stream& s = *free;
   const int pixels_w = image.width() / channels;
   const int w = (pixels_w + step - 1) / step;
   const int h = (image.height() + step - 1) / step;
   const auto bytes = static_cast<std::size_t>(w) * static_cast<std::size_t>(h) *
                      static_cast<std::size_t>(channels);
-  if (bytes == 0 || bytes > s.buffer.size() || bytes > 0xFFFFu * kChunk) return false;
+  if (bytes == 0) return refuse(kind, id, Refusal::EMPTY);
+  if (bytes > s.buffer.size() || bytes > 0xFFFFu * kChunk)
+    return refuse(kind, id, Refusal::TOO_LARGE);
   std::size_t o = 0;
   for (int y = 0; y < image.height(); y += step) {
     const std::uint8_t* row = image.row(y);
@@ -48,11 +79,14 @@ bool ProductStreamer::stage_image(ProductKind kind, std::uint32_t id,
 
 bool ProductStreamer::stage_cloud(std::uint32_t id, std::span<const float> xyz,
                                   std::size_t max_points) {
-  Stream& s = streams_[static_cast<std::size_t>(ProductKind::POINT_CLOUD) - 1];
+  Stream* free = free_stream(ProductKind::POINT_CLOUD, id);
+  if (free == nullptr) return false;
+  Stream& s = *free;
   const std::size_t points = xyz.size() / 3;
   std::size_t keep = points < max_points ? points : max_points;
-  if (keep > s.buffer.size() / 12) keep = s.buffer.size() / 12;
-  if (keep == 0 || keep > 0xFFFF) return false;
+  if (keep > s.buffer.size() / 12) keep = s.buffer.size() / 12;  // subsampled to fit
+  if (keep > 0xFFFF) keep = 0xFFFF;
+  if (keep == 0) return refuse(ProductKind::POINT_CLOUD, id, Refusal::EMPTY);
   std::size_t o = 0;
   for (std::size_t i = 0; i < keep; ++i) {
     const std::size_t src = i * points / keep;  // uniform subsampling
@@ -109,7 +143,7 @@ void ProductStreamer::pump(tlm::TlmQueue& queue, tlm::TmTime time, std::size_t m
       flags = wire::SeqFlags::last;
     if (!queue.push(p, time, flags)) return;
     ++chunks_sent_;
-    if (++s->next_chunk == s->chunks) s->active = false;
+    if (++s->next_chunk == s->chunks) finish(*s);
   }
 }
 

@@ -2,7 +2,10 @@
 // thumbnails, point cloud) as PRODUCT packets of 1024 data bytes, a few per
 // cycle and only while the downlink queue has room beyond a reserve, so a
 // large product never crowds out events and housekeeping. Each kind has its
-// own buffer sized at init; staging a kind again replaces what was left of it.
+// own buffer sized at init. A product of a kind still streaming is refused
+// with PRODUCT_REFUSED (the one on its way is never cut short); one that does
+// not fit its buffer too. PRODUCT_SENT is raised when a product's last chunk
+// is queued.
 #pragma once
 
 #include <array>
@@ -11,6 +14,7 @@
 #include <span>
 
 #include "algo/core/image_view.hpp"
+#include "fsw/event_log.hpp"
 #include "tlm/tlm_queue.hpp"
 
 namespace petra::fsw {
@@ -26,14 +30,17 @@ inline constexpr std::size_t kProductKinds = 4;
 
 class ProductStreamer {
  public:
-  // memory[k]: buffer of kind k+1 (bytes_needed below).
-  void init(std::array<std::span<std::uint8_t>, kProductKinds> memory);
+  // memory[k]: buffer of kind k+1 (bytes_needed below). events: where
+  // PRODUCT_SENT and PRODUCT_REFUSED go (none when null).
+  void init(std::array<std::span<std::uint8_t>, kProductKinds> memory,
+            EventLog* events = nullptr);
 
   // Buffer sizes for a budget.
   static std::array<std::size_t, kProductKinds> bytes_needed(int max_width, int max_height,
                                                              std::size_t cloud_points);
 
-  // Copies an image subsampled by `step` (gray: channels 1, rgb: 3).
+  // Copies an image subsampled by `step` (gray: channels 1, rgb: 3). False
+  // (and PRODUCT_REFUSED) when that kind is still streaming or it does not fit.
   bool stage_image(ProductKind kind, std::uint32_t id, ImageView<const std::uint8_t> image,
                    int channels, int step);
   // Copies up to max_points points (uniformly subsampled) as big-endian f32.
@@ -44,6 +51,8 @@ class ProductStreamer {
   bool idle() const;
   void cancel_all();
   std::uint32_t chunks_sent() const { return chunks_sent_; }
+  std::uint32_t products_sent() const { return products_sent_; }
+  std::uint32_t products_refused() const { return products_refused_; }
 
  private:
   struct Stream {
@@ -57,9 +66,18 @@ class ProductStreamer {
     std::uint16_t next_chunk = 0;
     bool active = false;
   };
+  enum class Refusal : std::int32_t { STREAMING = 1, TOO_LARGE = 2, EMPTY = 3 };
+  // The stream of `kind`, or null (and PRODUCT_REFUSED) when it is busy.
+  Stream* free_stream(ProductKind kind, std::uint32_t id);
+  bool refuse(ProductKind kind, std::uint32_t id, Refusal why, std::uint32_t busy_id = 0);
+  void finish(Stream& s);
+
   std::array<Stream, kProductKinds> streams_{};
+  EventLog* events_ = nullptr;
   std::size_t rr_ = 0;  // round robin between kinds
   std::uint32_t chunks_sent_ = 0;
+  std::uint32_t products_sent_ = 0;
+  std::uint32_t products_refused_ = 0;
 };
 
 }  // namespace petra::fsw

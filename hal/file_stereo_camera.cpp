@@ -68,19 +68,28 @@ Status FileStereoCamera::open(const char* dir) {
   }
   next_ = 0;
   sequence_ = 0;
+  skipped_ = 0;
   return {};
 }
 
 Result<FrameMeta> FileStereoCamera::acquire(Gray8View left, Gray8View right) {
   if (pairs_.empty()) return Error::make(Errc::not_ready, "file camera: not open");
-  const Pair& p = pairs_[next_];
-  FrameMeta meta;
-  meta.source_index = static_cast<std::uint32_t>(next_);
-  PETRA_TRY(reader_.read(p.left.data(), left));
-  meta.left_time_ns = realtime_ns();
-  PETRA_TRY(reader_.read(p.right.data(), right));
-  meta.right_time_ns = meta.left_time_ns;  // one instant: files carry no capture time
+  // The next call takes the next pair whatever this one gives: a corrupt pair
+  // fails once per cycle through the folder, never every call.
+  const std::size_t index = next_;
+  const Pair& p = pairs_[index];
   next_ = (next_ + 1) % pairs_.size();
+  FrameMeta meta;
+  meta.source_index = static_cast<std::uint32_t>(index);
+  Status s = reader_.read(p.left.data(), left);
+  meta.left_time_ns = realtime_ns();
+  if (s) s = reader_.read(p.right.data(), right);
+  if (!s) {
+    ++skipped_;
+    return Error::make(s.code(), "pair %zu of %zu skipped: %s", index + 1, pairs_.size(),
+                       s.error().message);
+  }
+  meta.right_time_ns = meta.left_time_ns;  // one instant: files carry no capture time
   meta.sequence = ++sequence_;
   return meta;
 }

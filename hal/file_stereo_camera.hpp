@@ -2,7 +2,9 @@
 // anywhere: every file named left<suffix>.pgm with a right<suffix>.pgm beside
 // it is one pair (left.pgm/right.pgm, left_001.pgm/right_001.pgm, ...), taken
 // in name order and cycled. open() scans the folder (init); acquire() reads
-// with a fixed buffer and allocates nothing.
+// with a fixed buffer and allocates nothing. A pair that fails to read (a
+// corrupt or vanished file) is an error for that call and is skipped: the
+// next call reads the next pair (the executive raises CAMERA_FAULT and retries).
 #pragma once
 
 #include <array>
@@ -25,6 +27,8 @@ class FileStereoCamera final : public StereoCamera {
   int width() const override { return size_.width; }
   int height() const override { return size_.height; }
   std::size_t pairs() const { return pairs_.size(); }
+  // Pairs that failed to read and were skipped since open().
+  std::uint32_t skipped() const { return skipped_; }
   Result<FrameMeta> acquire(Gray8View left, Gray8View right) override;
 
  private:
@@ -36,6 +40,7 @@ class FileStereoCamera final : public StereoCamera {
   PgmReader reader_;
   PgmSize size_;
   std::uint32_t sequence_ = 0;
+  std::uint32_t skipped_ = 0;
   std::size_t next_ = 0;
 };
 

@@ -1,7 +1,8 @@
 // The downlink queue: a ring of fixed-size packet slots over memory given at
-// init. Pushing encodes the packet in place, stamps the APID's own sequence
-// count and never blocks: when every slot is taken the packet is dropped and
-// counted (housekeeping reports the drops). Single-threaded (the loop).
+// init. Pushing takes the APID's next sequence count, encodes the packet in
+// place and never blocks: when every slot is taken the packet is dropped and
+// counted (housekeeping reports the drops). A dropped packet has used its
+// count, so the ground sees the loss as a gap on that APID. Single-threaded.
 #pragma once
 
 #include <array>
@@ -21,15 +22,16 @@ class TlmQueue {
   // storage: bytes_for(n) bytes; lengths: n entries. Both outlive the queue.
   void init(std::span<std::uint8_t> storage, std::span<std::uint16_t> lengths);
 
-  // Encodes `packet` at the tail. False (and one more drop) when full.
+  // Encodes `packet` at the tail. False (and one more drop, its sequence count
+  // spent) when full.
   template <class T>
   bool push(const T& packet, TmTime time, wire::SeqFlags flags = wire::SeqFlags::unsegmented) {
+    const std::uint16_t seq = next_seq(static_cast<std::uint16_t>(ApidOf<T>::value));
     if (full()) {
       ++dropped_;
       return false;
     }
-    const std::uint16_t apid = static_cast<std::uint16_t>(ApidOf<T>::value);
-    const std::size_t n = encode_tm(packet, next_seq(apid), flags, time, slot(tail_));
+    const std::size_t n = encode_tm(packet, seq, flags, time, slot(tail_));
     commit(n);
     return true;
   }

@@ -131,6 +131,7 @@ int main(int argc, char** argv) {
       return 1;
     }
     petra::fsw::arm::ArmServiceConfig arm_config;
+    arm_config.heartbeat_timeout_ms = config->arm.heartbeat_timeout_ms;
     if (config->arm.has_mount) {
       const auto& m = config->arm.mount;
       arm_config.geometry.world_from_base =

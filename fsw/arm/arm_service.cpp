@@ -92,6 +92,9 @@ Status validate_config(const ArmServiceConfig& c) {
   }
   if (c.settle_timeout_ms <= 0)
     return Error::make(Errc::non_positive, "arm: settle timeout must be > 0 ms");
+  if (c.heartbeat_timeout_ms != 0 && c.heartbeat_timeout_ms < kMinHeartbeatTimeoutMs)
+    return Error::make(Errc::out_of_range, "arm: heartbeat timeout %u ms below %u ms",
+                       c.heartbeat_timeout_ms, kMinHeartbeatTimeoutMs);
   return ok_status();
 }
 
@@ -99,7 +102,12 @@ Status ArmService::configure(const ArmServiceConfig& config, hal::CanPort& port)
   PETRA_TRY(validate_config(config));
   auto drives = canopen::arm_drive_configs(canopen::joint_ranges_from(config.limits));
   if (!drives) return drives.error();
-  PETRA_TRY(master_.configure(*drives, config.timing, port));
+  canopen::LinkTiming timing = config.timing;
+  if (config.heartbeat_timeout_ms != 0) {
+    for (canopen::DriveConfig& d : *drives) d.heartbeat_timeout_ms = config.heartbeat_timeout_ms;
+    timing.drive_watches_master_ms = config.heartbeat_timeout_ms;
+  }
+  PETRA_TRY(master_.configure(*drives, timing, port));
   config_ = config;
   state_ = ArmState::off;
   goal_ = Goal::none;

@@ -28,6 +28,9 @@ namespace petra::fsw::arm {
 
 using petra::arm::JointVector;
 
+// Two heartbeat producer periods (100 ms): the shortest consumer time allowed.
+inline constexpr std::uint16_t kMinHeartbeatTimeoutMs = 200;
+
 struct ArmServiceConfig {
   petra::arm::ArmGeometry geometry = petra::arm::rover_arm_geometry();
   petra::arm::JointLimits limits = petra::arm::default_joint_limits();
@@ -39,6 +42,11 @@ struct ArmServiceConfig {
   double reach_tolerance_mm = 1.0;  // verification of the reached pose
   double axis_tolerance_deg = 0.5;
   std::int64_t settle_timeout_ms = 3000;  // last set-point to "target reached"
+  // Heartbeat consumer time, both ways (master watching each drive, each drive
+  // watching the master); 0 keeps the flight defaults (DriveConfig and
+  // LinkTiming: 350 and 500 ms). Tests on a shared host raise it so that a
+  // stalled process is not taken for a lost drive.
+  std::uint16_t heartbeat_timeout_ms = 0;
 };
 Status validate_config(const ArmServiceConfig& config);
 

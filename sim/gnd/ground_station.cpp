@@ -170,6 +170,7 @@ void GroundStation::keep_product(ground::Product p) {
 }
 
 void GroundStation::publish_packet(const tlm::TmPacket& p) {
+  const std::uint32_t missing = seqs_.observe(p);  // a lost packet shows in the line
   if (const auto* chunk = std::get_if<tlm::Product>(&p.body)) {
     if (auto done = assembler_.add(*chunk)) keep_product(std::move(*done));
     return;
@@ -184,8 +185,8 @@ void GroundStation::publish_packet(const tlm::TmPacket& p) {
     }
     extra = ",\"skeleton\":" + arm_model_.skeleton_json(q);
   }
-  hub_.publish("tlm", "{\"tlm\":" + ground::format_json(p) +
-                          ",\"line\":" + json_string(ground::format_line(p)) +
+  hub_.publish("tlm", "{\"tlm\":" + ground::format_json(p, missing) +
+                          ",\"line\":" + json_string(ground::format_line(p, missing)) +
                           ",\"names\":" + names_of(p) + extra + "}");
 }
 

@@ -27,6 +27,7 @@
 #include "sim/gnd/event_hub.hpp"
 #include "sim/ground/product_assembler.hpp"
 #include "sim/ground/tlm_archive.hpp"
+#include "sim/ground/seq_tracker.hpp"
 
 namespace petra::gnd {
 
@@ -82,6 +83,7 @@ class GroundStation {
   std::mutex send_mutex_;
   EventHub hub_;
   ground::ProductAssembler assembler_;
+  ground::SeqTracker seqs_;  // receive thread only
   mutable std::mutex products_mutex_;
   std::map<std::uint8_t, ground::Product> products_;
   ArmModel arm_model_;

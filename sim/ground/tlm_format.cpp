@@ -124,11 +124,12 @@ std::string event_text(const tlm::Event& e) {
   return out;
 }
 
-std::string format_line(const tlm::TmPacket& p) {
+std::string format_line(const tlm::TmPacket& p, std::uint32_t missing_before) {
   std::ostringstream o;
   char t[40];
   std::snprintf(t, sizeof(t), "%u.%06u", p.header.time.seconds, p.header.time.micros);
   o << t << " " << packet_name(p.header.primary.apid) << " #" << p.header.primary.seq_count << " ";
+  if (missing_before > 0) o << "(GAP: " << missing_before << " missing before) ";
   std::visit(
       [&](const auto& b) {
         using B = std::decay_t<decltype(b)>;
@@ -187,11 +188,12 @@ std::string format_line(const tlm::TmPacket& p) {
   return o.str();
 }
 
-std::string format_json(const tlm::TmPacket& p) {
+std::string format_json(const tlm::TmPacket& p, std::uint32_t missing_before) {
   std::ostringstream o;
   o << "{\"apid\":" << p.header.primary.apid << ",\"packet\":\""
-    << packet_name(p.header.primary.apid) << "\",\"seq\":" << p.header.primary.seq_count
-    << ",\"seq_flags\":" << static_cast<unsigned>(p.header.primary.seq_flags)
+    << packet_name(p.header.primary.apid) << "\",\"seq\":" << p.header.primary.seq_count;
+  if (missing_before > 0) o << ",\"missing_before\":" << missing_before;
+  o << ",\"seq_flags\":" << static_cast<unsigned>(p.header.primary.seq_flags)
     << ",\"time\":" << p.header.time.seconds << ".";
   char us[8];
   std::snprintf(us, sizeof(us), "%06u", p.header.time.micros);

@@ -10,10 +10,13 @@
 
 namespace petra::ground {
 
-std::string format_line(const tlm::TmPacket& p);
+// missing_before: packets of this APID lost just before this one (SeqTracker);
+// shown only when non-zero.
+std::string format_line(const tlm::TmPacket& p, std::uint32_t missing_before = 0);
 // One JSON object: {"apid":..,"packet":"NAME","seq":..,"time":..,"fields":{...}}
-// (PRODUCT data bytes as a hex string).
-std::string format_json(const tlm::TmPacket& p);
+// (PRODUCT data bytes as a hex string), plus "missing_before":N after "seq"
+// when packets of this APID were lost just before this one.
+std::string format_json(const tlm::TmPacket& p, std::uint32_t missing_before = 0);
 // An event's text with its arguments filled in (a rejection's detail named).
 std::string event_text(const tlm::Event& e);
 // A refusal's detail in the operator's words: "field planes", "in mode SAFE",

@@ -111,7 +111,10 @@ TEST(KinematicsKdl, StowPoseIsTheFoldedZ) {
   // At (0, 0, 145, 35, 0) deg: upper arm forward, forearm folded back and down,
   // hand forward again, tool pointing down. Checked against KDL, not against us.
   const ArmGeometry g;
-  KDL::ChainFkSolverPos_recursive solver(kdl_chain(g));
+  // The solver keeps a reference to its chain: the chain must outlive it (a
+  // temporary here dangles; -O2 turned that into JntToCart returning -4).
+  const KDL::Chain chain = kdl_chain(g);
+  KDL::ChainFkSolverPos_recursive solver(chain);
   KDL::JntArray q_kdl(5);
   const JointVector q = stow_pose();
   for (int j = 0; j < kJointCount; ++j) q_kdl(j) = q[j];
@@ -125,6 +128,9 @@ TEST(KinematicsKdl, StowPoseIsTheFoldedZ) {
 }
 #else
 TEST(KinematicsKdl, ForwardKinematicsMatchesKdlOn10000RandomJointVectors) {
+  GTEST_SKIP() << "skipped: Orocos KDL not available in this build (cross build)";
+}
+TEST(KinematicsKdl, StowPoseIsTheFoldedZ) {
   GTEST_SKIP() << "skipped: Orocos KDL not available in this build (cross build)";
 }
 #endif

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <deque>
+#include <fstream>
 
 #include "tests/fsw/executive_harness.hpp"
 
@@ -111,6 +112,39 @@ TEST(ExecutiveCameraFaults, ALostDeviceIsNotRetried) {
   EXPECT_EQ(rig.h.acks_for(eval.counter).back().reason,
             static_cast<std::uint8_t>(Reason::CAMERA_ERROR));
   EXPECT_EQ(rig.h.exec().loop_counters().evaluations, 0u);
+}
+
+// Sends ACQUIRE and returns its final acknowledgement stage.
+AckStage acquire(ExecutiveHarness& h) {
+  const auto c = h.make(FunctionCode::ACQUIRE);
+  h.send(c);
+  EXPECT_TRUE(h.cycle_until([&] {
+    return h.has_ack(c.counter, AckStage::COMPLETED) || h.has_ack(c.counter, AckStage::FAILED);
+  }));
+  return static_cast<AckStage>(h.acks_for(c.counter).back().stage);
+}
+
+TEST(ExecutiveCameraFaults, TheFileCameraMovesPastACorruptPairWithAnEvent) {
+  ExecutiveHarness h;  // its file camera: pair 000, then these two
+  const auto cam = h.dir() / "camera";
+  test::write_pgm((cam / "left_001.pgm").string(), ExecutiveHarness::kWidth,
+                  ExecutiveHarness::kHeight, 1);
+  std::ofstream(cam / "right_001.pgm", std::ios::binary)
+      << "P5\n" << ExecutiveHarness::kWidth << " " << ExecutiveHarness::kHeight << "\n255\nabc";
+  test::write_pgm((cam / "left_002.pgm").string(), ExecutiveHarness::kWidth,
+                  ExecutiveHarness::kHeight, 2);
+  test::write_pgm((cam / "right_002.pgm").string(), ExecutiveHarness::kWidth,
+                  ExecutiveHarness::kHeight, 7);
+  ASSERT_TRUE(h.boot().ok());
+  // Three passes over the folder: each pass meets the corrupt pair once.
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(acquire(h), AckStage::COMPLETED) << "ACQUIRE " << i;
+  int faults = 0;
+  for (const auto& e : h.all<tlm::Event>())
+    faults += e.event_id == static_cast<std::uint16_t>(EventId::CAMERA_FAULT) &&
+              e.args[0] == static_cast<std::int32_t>(Errc::parse_error);
+  // Pairs 000, 002, 000, 002, ...: pair 001 is met (and reported) every other command.
+  EXPECT_EQ(faults, 3);
+  EXPECT_EQ(h.exec().loop_counters().frames, 6u);
 }
 
 }  // namespace

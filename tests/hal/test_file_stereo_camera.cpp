@@ -72,6 +72,45 @@ TEST(FileStereoCamera, RefusesBadFoldersAndFilesNamingThem) {
   EXPECT_NE(std::string(s.error().message).find("P5"), std::string::npos);
 }
 
+TEST(FileStereoCamera, MovesPastACorruptPairInsteadOfStickingOnIt) {
+  TempDir d;
+  pgm(d.path / "left_001.pgm", 8, 4, 10);
+  pgm(d.path / "right_001.pgm", 8, 4, 11);
+  pgm(d.path / "left_002.pgm", 8, 4, 20);
+  // A valid header (open() accepts it) over too few pixels: corrupt.
+  std::ofstream(d.path / "right_002.pgm", std::ios::binary) << "P5\n8 4\n255\nabc";
+  pgm(d.path / "left_003.pgm", 8, 4, 30);
+  pgm(d.path / "right_003.pgm", 8, 4, 31);
+  FileStereoCamera cam;
+  ASSERT_TRUE(cam.open(d.path.c_str()).ok());
+  std::vector<std::uint8_t> l(32), r(32);
+  const auto acquire = [&] {
+    return cam.acquire(Gray8View(l.data(), 8, 4), Gray8View(r.data(), 8, 4));
+  };
+  // Two passes over the folder: pair 2 fails each time, pairs 3 and 1 follow it.
+  for (int pass = 0; pass < 2; ++pass) {
+    auto m = acquire();
+    ASSERT_TRUE(m.ok()) << m.error().message;
+    EXPECT_EQ(l[0], 10);
+    {
+      petra::test::HeapScope scope;
+      m = acquire();
+      EXPECT_EQ(scope.allocations(), 0u);
+    }
+    ASSERT_FALSE(m.ok());
+    EXPECT_EQ(m.code(), Errc::parse_error);
+    EXPECT_NE(std::string(m.error().message).find("pair 2 of 3 skipped"), std::string::npos)
+        << m.error().message;
+    EXPECT_NE(std::string(m.error().message).find("right_002.pgm"), std::string::npos);
+    m = acquire();
+    ASSERT_TRUE(m.ok()) << m.error().message;
+    EXPECT_EQ(m->source_index, 2u);
+    EXPECT_EQ(l[0], 30);
+    EXPECT_EQ(r[0], 31);
+  }
+  EXPECT_EQ(cam.skipped(), 2u);
+}
+
 TEST(PgmReader, TruncatedFileIsAnErrorNotACrash) {
   TempDir d;
   std::ofstream(d.path / "t.pgm", std::ios::binary) << "P5\n8 4\n255\nabc";

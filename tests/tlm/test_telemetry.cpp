@@ -74,7 +74,11 @@ TEST(TlmQueue, CountsDropsWhenFullAndKeepsPerApidSequenceCounts) {
   EXPECT_EQ(seqs[0], 0);  // EVENT 0
   EXPECT_EQ(seqs[1], 0);  // ACK 0
   EXPECT_EQ(seqs[2], 1);  // EVENT 1
-  EXPECT_EQ(seqs[3], 2);  // EVENT 2 (the dropped one took no count)
+  EXPECT_EQ(seqs[3], 2);  // EVENT 2
+  // The dropped EVENT spent count 3: the next one is 4, a gap the ground sees.
+  EXPECT_TRUE(q.push(e, {}));
+  EXPECT_EQ(wire::read_primary_header(q.front()).seq_count, 4);
+  q.pop();
   EXPECT_TRUE(q.empty());
 }
 

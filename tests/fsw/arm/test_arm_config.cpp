@@ -29,6 +29,10 @@ TEST(ArmConfig, InterfaceAndMountAreRead) {
   c = parse(R"(,"arm":{"can_interface":"can0"})");
   ASSERT_TRUE(c.ok());
   EXPECT_FALSE(c->arm.has_mount);
+  EXPECT_EQ(c->arm.heartbeat_timeout_ms, 0);  // the flight defaults
+  c = parse(R"(,"arm":{"can_interface":"can0","heartbeat_timeout_ms":5000})");
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_EQ(c->arm.heartbeat_timeout_ms, 5000);
 }
 
 TEST(ArmConfig, ErrorsNameTheField) {
@@ -42,6 +46,10 @@ TEST(ArmConfig, ErrorsNameTheField) {
       {R"(,"arm":{"can_interface":"can0","mount":[1,2,"x",4]})", "arm.mount[2]"},
       {R"(,"arm":{"can_interface":"can0","mount":[1,2,3,1e9]})", "arm.mount[3]"},
       {R"(,"arm":"can0")", "arm"},
+      {R"(,"arm":{"can_interface":"can0","heartbeat_timeout_ms":100})", "arm.heartbeat_timeout_ms"},
+      {R"(,"arm":{"can_interface":"can0","heartbeat_timeout_ms":1e6})", "arm.heartbeat_timeout_ms"},
+      {R"(,"arm":{"can_interface":"can0","heartbeat_timeout_ms":300.5})",
+       "arm.heartbeat_timeout_ms"},
   };
   for (const auto& c : cases) {
     auto r = parse(c.arm);
