@@ -46,12 +46,12 @@
   X(ARM_CAN_BUS, 28, WARNING, "arm CAN bus {0}: 0 active, 1 warning, 2 passive, 3 off")       \
   X(ARM_BAD_FRAME, 29, WARNING, "arm drive {0}: malformed CAN frame, COB-ID {1}, ignored")    \
   X(ARM_STOPPED, 30, INFO, "arm quick stop: drives ramped down, holding")                     \
-  X(ESTOP_ASSERTED, 31, ERROR, "e-stop input asserted: arm quick stop, SAFE")               \
+  X(ESTOP_ASSERTED, 31, ERROR, "e-stop input asserted: arm quick stop, SAFE")                 \
   X(CMD_REJECTS_UNREPORTED, 32, WARNING,                                                      \
     "{1} more datagrams rejected for {0:reason} in the last {2} ms: counted, not reported "   \
     "one by one")                                                                             \
   X(UPLINK_NEW_KEY, 33, WARNING,                                                              \
-    "new uplink key: command counter window restarted (the old key's last counter was {0})") \
+    "new uplink key: command counter window restarted (the old key's last counter was {0})")  \
   X(CMD_KERNEL_DROPS, 34, WARNING,                                                            \
     "command port: {0} datagrams dropped by the kernel (receive buffer full) so far")
 

@@ -23,10 +23,11 @@ void on_signal(int) {
 }
 
 int usage() {
-  (void)std::fprintf(stderr,
-                     "usage: petra-fsw --config FILE [--counter-floor N]\n"
-                     "  --counter-floor N  commands need a counter above N; the way past a missing\n"
-                     "                     or corrupt counter file (docs/ops.md \"Command counter\")\n");
+  (void)std::fprintf(
+      stderr,
+      "usage: petra-fsw --config FILE [--counter-floor N]\n"
+      "  --counter-floor N  commands need a counter above N; the way past a missing\n"
+      "                     or corrupt counter file (docs/ops.md \"Command counter\")\n");
   return 2;
 }
 
