@@ -89,19 +89,21 @@ Status CounterStore::write_tmp(const char* text, std::size_t size) {
 
 Status CounterStore::sync_folder() {
   const int fd = ops_->open(dir_.data(), O_RDONLY | O_DIRECTORY, 0);
-  if (fd < 0) return Error::make(Errc::io_error, "counter file folder %s: cannot open", dir_.data());
+  if (fd < 0)
+    return Error::make(Errc::io_error, "counter file folder %s: cannot open", dir_.data());
   const bool synced = ops_->fsync(fd) == 0;  // the rename itself survives a power cut
   (void)ops_->close(fd);
-  if (!synced) return Error::make(Errc::io_error, "counter file folder %s: fsync failed", dir_.data());
+  if (!synced)
+    return Error::make(Errc::io_error, "counter file folder %s: fsync failed", dir_.data());
   return {};
 }
 
 Status CounterStore::store(std::uint32_t counter) {
   if (ops_ == nullptr) return Error::make(Errc::not_ready, "counter file: not bound");
   char text[kLineBytes + 1];
-  const int n = std::snprintf(text, sizeof(text), "%010u %02x%02x%02x%02x%02x%02x%02x%02x\n",
-                              counter, key_[0], key_[1], key_[2], key_[3], key_[4], key_[5],
-                              key_[6], key_[7]);
+  const int n =
+      std::snprintf(text, sizeof(text), "%010u %02x%02x%02x%02x%02x%02x%02x%02x\n", counter,
+                    key_[0], key_[1], key_[2], key_[3], key_[4], key_[5], key_[6], key_[7]);
   PETRA_TRY(write_tmp(text, static_cast<std::size_t>(n)));
   if (ops_->rename(tmp_.data(), path_.data()) != 0)
     return Error::make(Errc::io_error, "counter file %s: rename failed", path_.data());

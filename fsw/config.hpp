@@ -51,7 +51,7 @@ struct FswConfig {
   std::uint16_t cmd_port = 47100;
   Host tlm_host{};  // telemetry destination
   std::uint16_t tlm_port = 47101;
-  Path key_file{};      // uplink HMAC key (64 hex digits); required
+  Path key_file{};  // uplink HMAC key (64 hex digits); required
   // Last accepted command counter, kept across reboots and power cuts; always
   // kept: empty means beside the key, KEY_FILE.fsw-counter (docs/ops.md).
   Path counter_file{};
@@ -59,8 +59,8 @@ struct FswConfig {
   // --counter-floor N, or uplink.counter_floor): commands need a counter above
   // N. -1: none given, and such a file stops the start.
   std::int64_t counter_floor = -1;
-  Path param_file{};    // parameter defaults; optional
-  Path calib_file{};    // calib.json for the pipeline; optional
+  Path param_file{};  // parameter defaults; optional
+  Path calib_file{};  // calib.json for the pipeline; optional
   CameraKind camera_kind = CameraKind::file;
   Path camera_dir{};            // kind "file": the folder of pairs
   hal::V4l2CameraSection v4l2;  // kind "v4l2" (docs/hal.md "Device configuration")

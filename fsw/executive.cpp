@@ -122,7 +122,8 @@ Status Executive::open_counter() {
     previous_key_counter_ = stored->counter;
     last = 0;
   }
-  if (c.counter_floor > static_cast<std::int64_t>(last)) last = static_cast<std::uint32_t>(c.counter_floor);
+  if (c.counter_floor > static_cast<std::int64_t>(last))
+    last = static_cast<std::uint32_t>(c.counter_floor);
   if (last == 0xFFFFFFFFu)
     (void)std::fprintf(stderr,
                        "petra-fsw: the uplink key's counter is exhausted (4294967295): every "
@@ -302,8 +303,7 @@ void Executive::service_uplink() {
 void Executive::reserve_counters(std::uint32_t count) {
   cmd::ValidationContext ctx = validation_context();
   for (std::uint32_t i = 0; i < count; ++i) {
-    const cmd::Verdict v =
-        cmd::validate_command(rx_.subspan(i * kRxSlotBytes, rx_sizes_[i]), ctx);
+    const cmd::Verdict v = cmd::validate_command(rx_.subspan(i * kRxSlotBytes, rx_sizes_[i]), ctx);
     if (v.authenticated) ctx.last_counter = v.command.counter;  // as handle_datagram will
   }
   if (ctx.last_counter != cmd_.last_counter) store_counter(ctx.last_counter);

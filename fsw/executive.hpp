@@ -18,10 +18,10 @@
 
 #include "algo/camera_model.hpp"
 #include "cmd/auth.hpp"
+#include "cmd/counter_store.hpp"
 #include "cmd/validator.hpp"
 #include "fsw/arm_port.hpp"
 #include "fsw/config.hpp"
-#include "cmd/counter_store.hpp"
 #include "fsw/event_log.hpp"
 #include "fsw/health.hpp"
 #include "fsw/mode_manager.hpp"
@@ -178,8 +178,8 @@ class Executive {
   std::size_t memory_bytes_ = 0;
   Gray8View left_;
   Gray8View right_;
-  std::span<std::uint8_t> rx_;         // commands_per_cycle slots of kMaxCommandBytes + 1
-  std::span<std::size_t> rx_sizes_;    // the datagram size in each slot
+  std::span<std::uint8_t> rx_;       // commands_per_cycle slots of kMaxCommandBytes + 1
+  std::span<std::size_t> rx_sizes_;  // the datagram size in each slot
   bool has_frame_ = false;
   std::uint32_t frame_seq_ = 0;
 

@@ -112,8 +112,8 @@ Result<bool> UdpCanPort::receive(CanFrame& out, int timeout_ms) {
     if (!n) return n.error();
     if (!n->got) return false;  // nothing waiting; an empty datagram is malformed
     const std::size_t size = n->size;
-    auto f =
-        decode_udp_can(std::span<const std::uint8_t>(buf.data(), size > buf.size() ? buf.size() : size));
+    auto f = decode_udp_can(
+        std::span<const std::uint8_t>(buf.data(), size > buf.size() ? buf.size() : size));
     if (size > buf.size() || !f) {
       ++health_.rx_dropped;
       continue;

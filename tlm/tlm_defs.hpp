@@ -30,7 +30,7 @@
   F(u32, max_cycle_us, 1, "us", 0, PETRA_U32_MAX, "longest cycle since the counters were reset") \
   F(u32, cmd_received, 1, "", 0, PETRA_U32_MAX, "datagrams received on the command port")        \
   F(u32, cmd_accepted, 1, "", 0, PETRA_U32_MAX, "commands that passed validation")               \
-  F(u32, cmd_rejected, 1, "", 0, PETRA_U32_MAX, "datagrams rejected (see cmd_unreported)")      \
+  F(u32, cmd_rejected, 1, "", 0, PETRA_U32_MAX, "datagrams rejected (see cmd_unreported)")       \
   F(u32, cmd_completed, 1, "", 0, PETRA_U32_MAX, "accepted commands that completed")             \
   F(u32, cmd_failed, 1, "", 0, PETRA_U32_MAX, "accepted commands that failed")                   \
   F(u32, last_counter, 1, "", 0, PETRA_U32_MAX, "last authenticated command counter")            \

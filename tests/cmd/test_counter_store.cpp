@@ -166,7 +166,8 @@ TEST(CounterStore, APowerCutAtEveryStepNeverLetsAnAcceptedCounterBack) {
     EXPECT_EQ(r.replays, 0);
     EXPECT_EQ(r.unreadable, 0);
   }
-  EXPECT_EQ(cuts, 3 * 8);  // 8 calls per update: open, write, fsync, close, rename, open, fsync, close
+  EXPECT_EQ(cuts,
+            3 * 8);  // 8 calls per update: open, write, fsync, close, rename, open, fsync, close
 }
 
 TEST(CounterStore, TheCrashModelCatchesAWriterWhoseFsyncKeepsNothing) {

@@ -48,7 +48,8 @@ class ExecutiveHarness {
     write_pgm((dir_ / "camera/right_000.pgm").string(), kWidth, kHeight, 5);
     std::ofstream(dir_ / "key.hex") << kKeyHex << "\n";
     // A new key's counter file, as `petra keygen` writes it (kept when the folder is reused).
-    if (!std::filesystem::exists(dir_ / "counter.txt")) std::ofstream(dir_ / "counter.txt") << "0\n";
+    if (!std::filesystem::exists(dir_ / "counter.txt"))
+      std::ofstream(dir_ / "counter.txt") << "0\n";
     EXPECT_TRUE(ground_.open("127.0.0.1", 0).ok());
     extra_ = std::move(extra_config);
   }
@@ -174,7 +175,7 @@ class ExecutiveHarness {
   std::size_t queue_packets = 256;
   std::string loop = R"({"cycle_ms":10})";
   std::string counter_file = "counter.txt";  // "": the configuration names none (beside the key)
-  std::string uplink_extra;                   // more "uplink" members, e.g. R"(,"counter_floor":0)"
+  std::string uplink_extra;                  // more "uplink" members, e.g. R"(,"counter_floor":0)"
   std::vector<tlm::TmPacket> received;
   hal::UdpLink ground_;  // telemetry receiver
 

@@ -162,5 +162,23 @@ TEST(Config, AFilePathTooLongForItsFolderIsRefused) {
   fs::remove_all(root);
 }
 
+TEST(Config, TheCounterFloorIsOptionalAndBounded) {
+  auto plain = parse(kMinimal);
+  ASSERT_TRUE(plain.ok());
+  EXPECT_EQ(plain->counter_floor, -1);      // none: a missing counter file stops the start
+  EXPECT_EQ(plain->counter_file[0], '\0');  // none named: beside the key
+  EXPECT_EQ(plain->commands_per_cycle, 32u);
+  auto floor =
+      parse(R"({"uplink":{"key_file":"k","counter_floor":4294967295},"camera":{"dir":"d"}})");
+  ASSERT_TRUE(floor.ok()) << floor.error().message;
+  EXPECT_EQ(floor->counter_floor, 4294967295);
+  for (const char* bad : {"-1", "4294967296", "1.5", "\"7\""}) {
+    auto r = parse(std::string(R"({"uplink":{"key_file":"k","counter_floor":)") + bad +
+                   R"(},"camera":{"dir":"d"}})");
+    ASSERT_FALSE(r.ok()) << bad;
+    EXPECT_NE(std::string(r.error().message).find("uplink.counter_floor"), std::string::npos);
+  }
+}
+
 }  // namespace
 }  // namespace petra::fsw

@@ -13,8 +13,8 @@
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
-#include <random>
 #include <map>
+#include <random>
 #include <thread>
 
 #include "tests/fsw/executive_harness.hpp"
@@ -85,7 +85,8 @@ TEST(UplinkFloodFigures, SignedCommandsGetThroughEmptyDatagramsAndRejectionRepor
   // Phase 1: 300 empty datagrams/s, a signed NOOP every 250 ms.
   std::atomic<bool> stop{false};
   std::atomic<long> empties{0};
-  std::thread t1 = flood(port, 300, stop, empties, [](long) { return std::vector<std::uint8_t>{}; });
+  std::thread t1 =
+      flood(port, 300, stop, empties, [](long) { return std::vector<std::uint8_t>{}; });
   std::map<std::uint32_t, Clock::time_point> sent_at;
   std::map<std::uint32_t, double> latency_ms;
   auto next_noop = Clock::now();

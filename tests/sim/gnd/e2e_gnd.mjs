@@ -142,7 +142,8 @@ async function main() {
   const raw = [];
   const relay = await startRelay(tlmPort, raw);
   const mount = [300, 100, 100, 90];
-  const config = { uplink: { host: '127.0.0.1', port: cmdPort, key_file: 'petra.key' },
+  // counter_floor 0: a new key, so petra-fsw may start without its counter file (docs/ops.md).
+  const config = { uplink: { host: '127.0.0.1', port: cmdPort, key_file: 'petra.key', counter_floor: 0 },
                    downlink: { host: '127.0.0.1', port: relay.address().port },
                    budget: { image_width: size.width, image_height: size.height, arena_mb: 512 },
                    camera: { kind: 'file', dir: 'pairs' },
