@@ -14,9 +14,9 @@ struct Rgb8 {
 };
 
 inline constexpr int kPlaneCount = 8;
-inline constexpr Rgb8 kPlanes[kPlaneCount] = {
-    {230, 40, 40}, {40, 110, 240}, {250, 200, 0},  {200, 60, 220},
-    {0, 200, 200}, {255, 120, 0},  {120, 220, 60}, {255, 255, 255}};
+inline constexpr Rgb8 kPlanes[kPlaneCount] = {{230, 40, 40},  {40, 110, 240}, {250, 200, 0},
+                                              {200, 60, 220}, {0, 200, 200},  {255, 120, 0},
+                                              {120, 220, 60}, {255, 255, 255}};
 inline constexpr Rgb8 kGround{110, 140, 70};
 inline constexpr Rgb8 kRock{215, 200, 170};
 inline constexpr Rgb8 kShadow{70, 30, 90};

@@ -22,7 +22,6 @@ const char* command_name(std::uint8_t code) {
   return d != nullptr ? d->name : "?";
 }
 
-// Names the page shows beside the numbers of a packet.
 std::string names_of(const tlm::TmPacket& p) {
   std::ostringstream o;
   o << "{";
@@ -67,6 +66,10 @@ std::string args_json(const cmd::Command& c) {
 }
 
 }  // namespace
+
+std::string packet_names_json(const tlm::TmPacket& p) {
+  return names_of(p);
+}
 
 Status GroundStation::start(const StationOptions& options) {
   options_ = options;

@@ -43,6 +43,9 @@ struct StationOptions {
   std::string archive_path;  // optional: every packet received kept there (tlm_archive.hpp)
 };
 
+// Names the page shows beside the numbers of a packet (the "names" of a "tlm" message).
+std::string packet_names_json(const tlm::TmPacket& p);
+
 class GroundStation {
  public:
   GroundStation() = default;
@@ -62,6 +65,7 @@ class GroundStation {
   std::optional<ground::Product> product(std::uint8_t kind) const;
 
   EventHub& hub() { return hub_; }
+  const std::string& archive_path() const { return options_.archive_path; }
   const ArmModel& arm_model() const { return arm_model_; }
   // Measured joints of the latest ARM_STATUS (the stowed pose before one).
   std::array<double, arm::kJointCount> arm_joints_deg() const;

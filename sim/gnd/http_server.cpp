@@ -13,6 +13,7 @@
 #include "cmd/commands.hpp"
 #include "sim/gnd/command_request.hpp"
 #include "sim/gnd/json_text.hpp"
+#include "sim/gnd/telemetry_history.hpp"
 #include "tlm/palette.hpp"
 
 namespace petra::gnd {
@@ -127,6 +128,21 @@ struct HttpServer::Impl {
 
     server.Get("/api/info", [](const httplib::Request&, httplib::Response& res) {
       res.set_content(info_json(), "application/json");
+    });
+    server.Get("/api/dictionary", [](const httplib::Request&, httplib::Response& res) {
+      res.set_content(dictionary_json(), "application/json");
+    });
+    server.Get("/api/history", [this](const httplib::Request& req, httplib::Response& res) {
+      HistoryRequest r;
+      r.packet = req.get_param_value("packet");
+      r.field = req.get_param_value("field");
+      r.start_ms = std::strtod(req.get_param_value("start").c_str(), nullptr);
+      r.end_ms = std::strtod(req.get_param_value("end").c_str(), nullptr);
+      if (req.has_param("min_severity"))
+        r.min_severity = std::atoi(req.get_param_value("min_severity").c_str());
+      auto body = history_json(station.archive_path(), r);
+      if (!body) return answer_error(res, 400, body.error().message);
+      res.set_content(*body, "application/json");
     });
     server.Get("/api/palette", [](const httplib::Request&, httplib::Response& res) {
       res.set_content(palette_json(), "application/json");

@@ -3,6 +3,9 @@
 //   GET  /                      static page (web dir); /vendor/ npm-built assets
 //   GET  /api/info              command definitions (names, fields, ranges, units)
 //   GET  /api/palette           the picture colours (tlm/palette.hpp), see palette_json()
+//   GET  /api/dictionary        every telemetry point (telemetry_history.hpp, for Open MCT)
+//   GET  /api/history?packet=P[&field=F]&start=MS&end=MS[&min_severity=N]
+//                               a point's or a packet kind's history from the archive
 //   GET  /api/events            server-sent events (see ground_station.hpp)
 //   POST /api/command           {"command": NAME, "args": {...}} -> {"counter": n}
 //                               or HTTP 400 {"error": "<field>: <problem>"}

@@ -20,4 +20,7 @@ mkdir -p vendor/delaunator vendor/robust-predicates
 cp node_modules/delaunator/index.js node_modules/delaunator/LICENSE vendor/delaunator/
 cp -r node_modules/robust-predicates/index.js node_modules/robust-predicates/esm \
   node_modules/robust-predicates/LICENSE vendor/robust-predicates/
+# Open MCT (operator panels, /openmct.html): its built distribution.
+cp -r node_modules/openmct/dist vendor/openmct
+cp node_modules/openmct/LICENSE.md vendor/openmct/
 echo "npm packages in $out/node_modules, page assets in $out/vendor"

@@ -54,8 +54,8 @@ double unix_now_s() {
 Result<std::unique_ptr<TlmArchive>> TlmArchive::open(const std::string& path) {
   std::unique_ptr<TlmArchive> a(new TlmArchive());
   a->path_ = path;
-  if (sqlite3_open_v2(path.c_str(), &a->db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE,
-                      nullptr) != SQLITE_OK) {
+  if (sqlite3_open_v2(path.c_str(), &a->db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) !=
+      SQLITE_OK) {
     const std::string why = a->db_ != nullptr ? sqlite3_errmsg(a->db_) : "out of memory";
     return Error::make(Errc::io_error, "archive %s: %s", path.c_str(), why.c_str());
   }
@@ -127,8 +127,8 @@ Status TlmArchive::flush() {
 Status TlmArchive::prepare_select(const ArchiveQuery& q, const char* columns, const char* tail,
                                   sqlite3_stmt** stmt) {
   const std::string time = q.by_receive_time ? "receive_s" : "scet_s";
-  std::string sql = std::string("SELECT ") + columns + " FROM packets WHERE " + time +
-                    " BETWEEN ?1 AND ?2";
+  std::string sql =
+      std::string("SELECT ") + columns + " FROM packets WHERE " + time + " BETWEEN ?1 AND ?2";
   if (q.apid >= 0) sql += " AND apid = ?3";
   if (q.min_severity >= 0) sql += " AND severity >= ?4";
   sql += tail;
@@ -185,8 +185,8 @@ Result<std::map<int, long>> TlmArchive::count_by_apid(const ArchiveQuery& q) {
 Status TlmArchive::export_csv(const ArchiveQuery& q, std::FILE* out) {
   std::fprintf(out, "receive_s,scet_s,apid,packet,seq,severity,decoded\n");
   return query(q, [out](const ArchivedPacket& p) {
-    std::fprintf(out, "%.6f,%.6f,%d,%s,%d,%s,%s\n", p.receive_s, p.scet_s, p.apid,
-                 p.packet.c_str(), p.seq, p.severity < 0 ? "" : std::to_string(p.severity).c_str(),
+    std::fprintf(out, "%.6f,%.6f,%d,%s,%d,%s,%s\n", p.receive_s, p.scet_s, p.apid, p.packet.c_str(),
+                 p.seq, p.severity < 0 ? "" : std::to_string(p.severity).c_str(),
                  csv_field(p.decoded).c_str());
   });
 }

@@ -42,11 +42,11 @@ struct ArchivedPacket {
   double receive_s = 0;  // ground clock, UNIX seconds
   double scet_s = 0;     // spacecraft time, seconds.micros
   int apid = 0;
-  std::string packet;    // name: HK, EVENT, ...
+  std::string packet;  // name: HK, EVENT, ...
   int seq = 0;
-  int severity = -1;     // EVENT only
+  int severity = -1;  // EVENT only
   std::vector<std::uint8_t> raw;
-  std::string decoded;   // JSON
+  std::string decoded;  // JSON
 };
 
 class TlmArchive {

@@ -73,7 +73,8 @@ void expect_line(const Outcome& r, int status, const std::string& prefix, const 
 TEST_F(CliConventions, UsageErrorsExit2NamingTheCommand) {
   expect_line(petra(""), 2, "petra: ", "subcommand");
   expect_line(petra("fly"), 2, "petra: ", "unknown command 'fly' (see petra --help)");
-  expect_line(petra("eval --calib c.json"), 2, "petra eval: ", "is required (see petra eval --help)");
+  expect_line(petra("eval --calib c.json"), 2,
+              "petra eval: ", "is required (see petra eval --help)");
   expect_line(petra("info --calib c.json --bogus 1"), 2, "petra info: ", "--bogus");
   expect_line(petra("stereo --left a --right b --disp-min x --disp-max 5 --out o.pfm"), 2,
               "petra stereo: ", "--disp-min");
@@ -118,8 +119,8 @@ TEST_F(CliConventions, PetraFswRefusesAnUnknownConfigurationKeyByName) {
 TEST_F(CliConventions, PetraFswConfigFileErrorsSayWhy) {
   const Outcome r = fsw("--config " + (dir_ / "absent.json").string());
   expect_line(r, 1, "petra-fsw: ", "absent.json: cannot open (No such file or directory)");
-  expect_line(fsw("--config " + dir_.string()), 1, "petra-fsw: ",
-              dir_.string() + ": cannot read (Is a directory)");
+  expect_line(fsw("--config " + dir_.string()), 1,
+              "petra-fsw: ", dir_.string() + ": cannot read (Is a directory)");
 }
 
 // Was an uncaught std::filesystem::filesystem_error: abort, exit 134.
@@ -134,23 +135,25 @@ TEST_F(CliConventions, DemoIntoAnUnwritablePlaceFailsWithTheReason) {
 }
 
 TEST_F(CliConventions, FileErrorsNameTheFileAndTheReason) {
-  expect_line(petra("info --calib " + (dir_ / "absent.json").string()), 1, "petra info: ",
-              "absent.json: No such file or directory");
+  expect_line(petra("info --calib " + (dir_ / "absent.json").string()), 1,
+              "petra info: ", "absent.json: No such file or directory");
   // A directory given as calib.json (was "file too large").
-  expect_line(petra("info --calib " + dir_.string()), 1, "petra info: ",
-              dir_.string() + ": is a directory, not a file");
-  expect_line(petra("stereo --left " + (dir_ / "l.png").string() + " --right r.png --disp-min 0 "
+  expect_line(petra("info --calib " + dir_.string()), 1,
+              "petra info: ", dir_.string() + ": is a directory, not a file");
+  expect_line(petra("stereo --left " + (dir_ / "l.png").string() +
+                    " --right r.png --disp-min 0 "
                     "--disp-max 9 --out o.pfm"),
               1, "petra stereo: ", "l.png: No such file or directory");
-  expect_line(petra("cmd --key " + (dir_ / "absent.key").string() + " NOOP"), 1, "petra cmd: ",
-              "absent.key: No such file or directory");
+  expect_line(petra("cmd --key " + (dir_ / "absent.key").string() + " NOOP"), 1,
+              "petra cmd: ", "absent.key: No such file or directory");
 }
 
 // The matcher's own name stays out of an operator's message.
 TEST_F(CliConventions, AnEmptyDisparityRangeIsNamedByItsOptions) {
-  const Outcome r = petra("stereo --left a.png --right b.png --disp-min 10 --disp-max 5 --out o.pfm");
-  expect_line(r, 1, "petra stereo: ",
-              "--disp-min 10 is above --disp-max 5: the disparity range is empty");
+  const Outcome r =
+      petra("stereo --left a.png --right b.png --disp-min 10 --disp-max 5 --out o.pfm");
+  expect_line(
+      r, 1, "petra stereo: ", "--disp-min 10 is above --disp-max 5: the disparity range is empty");
   EXPECT_EQ(r.err.find("match_dp"), std::string::npos) << r.err;
 }
 
@@ -163,10 +166,10 @@ TEST_F(CliConventions, CmdRequiresEveryFieldBeforeSending) {
   expect_line(petra("cmd SELECT_ROI x_px=10 y_px=10 w_px=50 h_px=50 planes=2 click_u_px=5 "
                     "click_v_px=20"),
               1, "petra cmd: ", "outside the ROI");
-  expect_line(petra("cmd SET_PARAM param_id=999 value=1"), 1, "petra cmd: ",
-              "SET_PARAM.param_id = 999: no such parameter");
-  expect_line(petra("cmd ARM_GOTO plane_rank=0 plane_rank=1 standoff_mm=50"), 1, "petra cmd: ",
-              "given twice");
+  expect_line(petra("cmd SET_PARAM param_id=999 value=1"), 1,
+              "petra cmd: ", "SET_PARAM.param_id = 999: no such parameter");
+  expect_line(petra("cmd ARM_GOTO plane_rank=0 plane_rank=1 standoff_mm=50"), 1,
+              "petra cmd: ", "given twice");
   expect_line(petra("cmd EVALUATE"), 1, "petra cmd: ", "EVALUATE: missing acquire");
 }
 

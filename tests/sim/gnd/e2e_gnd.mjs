@@ -413,6 +413,48 @@ async function main() {
   check(offsite.length === 0, `all ${requests.length} page requests went to ${url} (${offsite.join(', ') || 'none elsewhere'})`);
   check(pageErrors.length === 0, `no script errors on the page (${pageErrors.join('; ') || 'none'})`);
 
+  // Open MCT with the Petra plugin: the dictionary's points, history from the
+  // archive (HK plot against spacecraft time), the event list filtered by severity.
+  const mct = await context.newPage();
+  const mctErrors = [];
+  mct.on('pageerror', (e) => mctErrors.push(String(e)));
+  await mct.goto(`${url}openmct.html#/browse/petra:root/petra:HK/petra:HK.uptime_s`);
+  await until('Open MCT started', () => mct.evaluate(() => window.openmctReady === true), 20000);
+  const mctAsked = Date.now();
+  const history = await mct.evaluate(async () => {
+    const id = (key) => ({ namespace: 'petra', key });
+    const now = Date.now();
+    const hk = await openmct.objects.get(id('HK.uptime_s'));
+    const points = await openmct.telemetry.request(hk, { start: now - 3600e3, end: now + 60e3 });
+    const events = await openmct.objects.get(id('events'));
+    const warnings = await openmct.telemetry.request(events, { start: now - 3600e3, end: now + 60e3,
+      filters: { severity: { equals: ['WARNING', 'ERROR', 'FATAL'] } } });
+    const all = await openmct.telemetry.request(events, { start: now - 3600e3, end: now + 60e3 });
+    const acks = await openmct.telemetry.request(await openmct.objects.get(id('commands')), { start: now - 3600e3, end: now + 60e3 });
+    const root = await openmct.composition.get(await openmct.objects.get(id('root'))).load();
+    return { hk: points.length, increasing: points.every((p, i) => i === 0 || p.value >= points[i - 1].value),
+             warnings: warnings.map((e) => e.severity), all: all.length, acks: acks.map((a) => `${a.command} ${a.stage}`),
+             folders: root.length };
+  });
+  // The archive commits at least every 0.5 s: what the relay passed on a second
+  // before the request is in the history.
+  const hkRelayed = raw.filter((m) => m.apid === 0x010).length;
+  const hkCommitted = raw.filter((m) => m.apid === 0x010 && m.t <= mctAsked - 1000).length;
+  check(history.hk >= hkCommitted && history.hk <= hkRelayed && history.hk > 10 && history.increasing,
+        `Open MCT: ${history.hk} HK uptime_s points from the archive (relay: ${hkCommitted} a second before, ${hkRelayed} in all), uptime never decreasing`);
+  check(history.warnings.length > 0 && history.warnings.every((s) => s !== 'INFO') && history.all > history.warnings.length,
+        `Open MCT event list: ${history.warnings.length} of ${history.all} events at WARNING or above with the severity filter`);
+  check(history.acks.includes('EVALUATE COMPLETED') && history.acks.includes('SET_MODE REJECTED'),
+        `Open MCT command history: ${history.acks.length} acknowledgements (EVALUATE COMPLETED, SET_MODE REJECTED among them)`);
+  check(history.folders >= 9, `Open MCT tree: ${history.folders} items under Petra (tables and one folder per packet)`);
+  await mct.waitForTimeout(2000);
+  await mct.screenshot({ path: path.join(shots, 'gnd_openmct_hk_plot.png') });
+  await mct.goto(`${url}openmct.html#/browse/petra:root/petra:events`);
+  await mct.waitForTimeout(2000);
+  await mct.screenshot({ path: path.join(shots, 'gnd_openmct_events.png') });
+  check(mctErrors.length === 0, `no script errors in Open MCT (${mctErrors.join('; ') || 'none'})`);
+  await mct.close();
+
   // The archive: stop petra-fsw, then the station; every packet the relay
   // passed on is in the station's archive (counts per APID equal).
   fsw.kill('SIGTERM');

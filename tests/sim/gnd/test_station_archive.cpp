@@ -49,8 +49,8 @@ void send_pass(GroundStation& station, std::uint16_t port, int first, int last,
 }
 
 TEST(StationArchive, APassOf10000PacketsSurvivesARestartComplete) {
-  const fs::path dir = fs::temp_directory_path() / ("petra_station_archive_" +
-                                                    std::to_string(getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("petra_station_archive_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ofstream(dir / "petra.key") << std::string(64, 'a') << "\n";
@@ -90,16 +90,20 @@ TEST(StationArchive, APassOf10000PacketsSurvivesARestartComplete) {
 
   const auto t1 = Clock::now();
   long rows = 0, same = 0;
-  ASSERT_TRUE((*archive)->query({}, [&](const ground::ArchivedPacket& p) {
-                          same += p.raw == ground::testing::pass_packet(static_cast<int>(rows));
-                          ++rows;
-                        }).ok());
+  ASSERT_TRUE((*archive)
+                  ->query({},
+                          [&](const ground::ArchivedPacket& p) {
+                            same += p.raw == ground::testing::pass_packet(static_cast<int>(rows));
+                            ++rows;
+                          })
+                  .ok());
   const double query_ms = std::chrono::duration<double, std::milli>(Clock::now() - t1).count();
   EXPECT_EQ(rows, kPass);
   EXPECT_EQ(same, kPass) << "raw bytes as received, in receive order";
-  std::printf("archive: %d packets stored in %.2f s of sending (paced), counted per APID in "
-              "%.1f ms, all read back in %.1f ms\n",
-              kPass, insert_s, count_ms, query_ms);
+  std::printf(
+      "archive: %d packets stored in %.2f s of sending (paced), counted per APID in "
+      "%.1f ms, all read back in %.1f ms\n",
+      kPass, insert_s, count_ms, query_ms);
   fs::remove_all(dir);
 }
 

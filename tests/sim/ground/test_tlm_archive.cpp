@@ -53,13 +53,15 @@ TEST_F(TlmArchiveTest, KeepsEveryPacketRawAndDecodedAcrossReopening) {
   for (const auto& [apid, n] : *counts) EXPECT_EQ(n, 200) << "apid " << apid;
 
   int k = 0;
-  ASSERT_TRUE((*a)->query({}, [&](const ArchivedPacket& p) {
-                    EXPECT_EQ(p.raw, testing::pass_packet(k)) << k;  // byte for byte
-                    EXPECT_DOUBLE_EQ(p.receive_s, 2e9 + k);
-                    EXPECT_NEAR(p.scet_s, 1000 + k * 0.01, 1e-6);
-                    EXPECT_EQ(p.decoded.find("{\"apid\":" + std::to_string(p.apid)), 0u);
-                    ++k;
-                  }).ok());
+  ASSERT_TRUE((*a)->query({},
+                          [&](const ArchivedPacket& p) {
+                            EXPECT_EQ(p.raw, testing::pass_packet(k)) << k;  // byte for byte
+                            EXPECT_DOUBLE_EQ(p.receive_s, 2e9 + k);
+                            EXPECT_NEAR(p.scet_s, 1000 + k * 0.01, 1e-6);
+                            EXPECT_EQ(p.decoded.find("{\"apid\":" + std::to_string(p.apid)), 0u);
+                            ++k;
+                          })
+                  .ok());
   EXPECT_EQ(k, 1200);
 }
 
