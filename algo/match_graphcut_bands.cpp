@@ -52,13 +52,28 @@ Result<GraphCutReport> match_graph_cut_bands(const StereoInput& in, Rect roi,
   auto buf = arena.allocate_uninitialised<std::int16_t>(
       static_cast<std::size_t>(roi.w) * static_cast<std::size_t>(band_h), "graphcut band map");
   if (!buf) return buf.error();
+  // One automatic K for the whole ROI (the row-weighted mean of the bands'),
+  // so every band weighs occlusion and smoothness alike.
+  GraphCutParams p = params;
+  if (p.occlusion_k == kGraphCutAuto) {
+    double sum = 0;
+    int rows = 0;
+    for (int y0 = 0; y0 < roi.h; y0 += bands.rows) {
+      const int h = std::min(roi.h - y0, bands.rows);
+      auto k = matcher.automatic_occlusion_k(in, Rect{roi.x, roi.y + y0, roi.w, h}, params);
+      if (!k) continue;  // no pixel with enough disparities: it does not vote
+      sum += static_cast<double>(*k) * h;
+      rows += h;
+    }
+    if (rows > 0) p.occlusion_k = static_cast<std::int32_t>(sum / rows + 0.5);
+  }
   GraphCutReport total;
   for (int y0 = 0; y0 < roi.h; y0 += bands.rows) {
     const int y1 = std::min(roi.h, y0 + bands.rows);
     const int e0 = std::max(0, y0 - bands.overlap), e1 = std::min(roi.h, y1 + bands.overlap);
     const Rect band{roi.x, roi.y + e0, roi.w, e1 - e0};
     DisparityMap part{ImageView<std::int16_t>(buf->data(), roi.w, band.h), band};
-    auto r = matcher.match(in, band, params, part);
+    auto r = matcher.match(in, band, p, part);
     if (!r) return r.error();
     for (int y = y0; y < y1; ++y)
       std::memcpy(out.q4.row(y), part.q4.row(y - e0), static_cast<std::size_t>(roi.w) * 2);
