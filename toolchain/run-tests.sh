@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # The README's test command: install what is missing, then build and run every
-# test: the host `dev` build (all tests, warnings as errors), the hardware-in-the-loop
-# bench (sim/hil: Debian's kernel under qemu with vcan, gpio-sim, vivid and vimc;
-# docs/hil.md) and the aarch64 cross build (unit tests under qemu user emulation).
-# Exit non-zero on any failure. PETRA_SKIP_HIL=1 skips the bench (reported as skipped).
+# test: the host `check` build (optimised as flown, -O2 -DNDEBUG, under ASan and
+# UBSan with no recovery, warnings as errors; every host test, the fuzz targets'
+# bounded campaigns included), the hardware-in-the-loop bench on that build
+# (sim/hil: Debian's kernel under qemu with vcan, gpio-sim, vivid and vimc;
+# docs/hil.md) and the aarch64 cross build (-O3, unit tests under qemu user
+# emulation). Exit non-zero on any failure. PETRA_SKIP_HIL=1 skips the bench
+# (reported as skipped).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$(date +%s)
@@ -23,11 +26,17 @@ if [ "${PETRA_SKIP_HIL:-0}" != 1 ]; then
   hil_setup=$!
 fi
 
-stamp "host build (dev)"
-cmake --preset dev >/dev/null
-cmake --build build/dev -j "$jobs"
-stamp "host tests"
-ctest --preset dev -j "$jobs" -LE hil
+# A sanitizer report fails the test that made it (-fno-sanitize-recover), with
+# its stack, symbolized from the -g1 line tables.
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
+
+stamp "host build (check: -O2, ASan + UBSan)"
+cmake --preset check >/dev/null
+cmake --build build/check -j "$jobs"
+stamp "host tests (check)"
+ctest --preset check -j "$jobs" -LE hil
+# Each fuzz target's campaign: its number of executions.
+grep -h "executions in" build/check/Testing/Temporary/LastTest.log || true
 
 stamp "hardware-in-the-loop bench"
 if [ "$hil_setup" != none ] && ! wait "$hil_setup"; then
@@ -36,7 +45,7 @@ if [ "$hil_setup" != none ] && ! wait "$hil_setup"; then
   exit 1
 fi
 # --verbose: the bench's PASS/FAIL line per check goes to this command's output.
-ctest --preset dev -L hil --verbose
+ctest --preset check -L hil --verbose
 
 stamp "aarch64 cross build, unit tests under qemu-aarch64-static"
 cmake --preset aarch64 >/dev/null
