@@ -18,7 +18,7 @@
 //   4. repeat 2-3 until |(A,B,C,D) - (A',B',C',D')| < epsilon; the loop
 //      runs on a regular sample of at most kSegmentSamples points (each pass
 //      costs per point), then one k-means and refit on every point.
-// Final labels: ground within max(3 RMS, 3 sigma_Z, 2 mm) of the plane, rock above
+// Final labels: ground within max(3 RMS, 2 mm) of the plane, rock above
 // (never more than the k-means midpoint). Then the result is checked: the rock must stand out (its
 // cluster centre at least min_rock_height_mm and min_rock_height_rms ground RMS above the plane), the ground must be a plane as
 // rough as the noise model says (RMS <= max_rms_sigmas * sigma), a real share of the points, with

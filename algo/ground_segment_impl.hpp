@@ -302,15 +302,14 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
   PETRA_ASSERT(have_fit);
 
   // Final labels about the final plane: ground is the band of noise around
-  // it (3 RMS, 3 sigma_Z, at least min_ground_band_mm), everything above is
-  // rock. The k-means midpoint found the plane; as a label it would give the
+  // it (3 measured RMS, at least min_ground_band_mm), everything above is
+  // rock (a wider band from the noise model took the foot of steep faces). The k-means midpoint found the plane; as a label it would give the
   // lower half of the rock's faces to the ground.
   std::size_t ng = 0, nr_ = 0, band_total = 0, band_ground = 0, below = 0;
   const double below_mm = std::max(params.min_rock_height_mm, to_double(inlier_band));
   const S deep = -S(below_mm);
   S sum_r(0);
-  S split = max_s(max_s(S(params.ground_band_rms) * fit.rms, S(3 * out.sigma_z_mm)),
-                  S(params.min_ground_band_mm));
+  S split = max_s(S(params.ground_band_rms) * fit.rms, S(params.min_ground_band_mm));
   if (rock_centre / S(2) < split) split = rock_centre / S(2);
   for (std::size_t i = 0; i < n; ++i) {
     const S d = plane.distance(xyz[i]);
