@@ -13,8 +13,19 @@ Status validate(const GroundParams& p) {
                        p.max_kmeans_passes);
   if (!(p.min_rock_height_mm > 0.0))
     return Error::make(Errc::invalid_argument, "segmentation: min_rock_height_mm must be > 0");
-  if (!(p.max_ground_rms_mm > 0.0))
-    return Error::make(Errc::invalid_argument, "segmentation: max_ground_rms_mm must be > 0");
+  if (!(p.sigma_disparity_px > 0.0 && p.sigma_disparity_px <= 10.0))
+    return Error::make(Errc::invalid_argument, "segmentation: sigma_disparity_px not in (0, 10]");
+  if (!(p.terrain_roughness_mm > 0.0 && p.terrain_roughness_mm <= 1000.0))
+    return Error::make(Errc::invalid_argument,
+                       "segmentation: terrain_roughness_mm not in (0, 1000]");
+  if (!(p.min_rock_height_rms >= 0.0))
+    return Error::make(Errc::invalid_argument, "segmentation: min_rock_height_rms must be >= 0");
+  if (!(p.inlier_sigmas > 0.0) || !(p.max_rms_sigmas > 0.0) || !(p.below_cost >= 1.0))
+    return Error::make(Errc::invalid_argument,
+                       "segmentation: inlier_sigmas, max_rms_sigmas > 0, below_cost >= 1");
+  if (p.msac_iterations < 1 || p.msac_iterations > 100000)
+    return Error::make(Errc::invalid_argument, "segmentation: msac_iterations %d not in 1..100000",
+                       p.msac_iterations);
   if (!(p.min_ground_fraction >= 0.0 && p.min_ground_fraction < 1.0))
     return Error::make(Errc::invalid_argument, "segmentation: min_ground_fraction not in [0, 1)");
   if (!(p.max_below_fraction >= 0.0 && p.max_below_fraction <= 1.0))
@@ -37,6 +48,7 @@ Status validate(const GroundParams& p) {
 
 template Result<GroundResultT<double>> segment_ground<double>(
     std::span<const Vec3T<double>>, std::span<const PixelPos>, const Rect&, const ClickPx&,
-    const Vec3T<double>&, const GroundParams&, std::span<PointClass>);
+    const Vec3T<double>&, const GroundParams&, std::span<PointClass>, const StereoNoise&,
+    GroundFailure*);
 
 }  // namespace petra

@@ -33,13 +33,118 @@ S max_s(S a, S b) {
   return a < b ? b : a;
 }
 
+// SplitMix64: a tiny deterministic generator (fixed seed, no state beyond one word).
+struct SplitMix {
+  std::uint64_t state;
+  std::uint64_t next() {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  std::size_t below(std::size_t n) { return static_cast<std::size_t>(next() % n); }
+};
+
+inline bool in_border_band(const PixelPos& p, const Rect& roi, int band) {
+  return p.u < roi.x + band || p.v < roi.y + band || p.u >= roi.x + roi.w - band ||
+         p.v >= roi.y + roi.h - band;
+}
+
+// A random point of the border band (rejection sampling, bounded), else any point.
+inline std::size_t draw_border_point(SplitMix& rng, std::span<const PixelPos> px, const Rect& roi,
+                                     int band) {
+  std::size_t i = rng.below(px.size());
+  for (int tries = 0; tries < 64 && !in_border_band(px[i], roi, band); ++tries)
+    i = rng.below(px.size());
+  return i;
+}
+
+// Plane through a, b, c oriented towards the camera; false when they are
+// (nearly) collinear: sin of the angle at a below 1e-3.
+template <class S>
+bool plane_through(const Vec3T<S>& a, const Vec3T<S>& b, const Vec3T<S>& c,
+                   const Vec3T<S>& camera, PlaneT<S>& out) {
+  using std::sqrt;
+  Vec3T<S> n = (b - a).cross(c - a);
+  const S base = sqrt((b - a).squaredNorm()) * sqrt((c - a).squaredNorm());
+  const S len = sqrt(n.squaredNorm());
+  if (!(base > S(0)) || !(len > base * S(1e-3))) return false;
+  n /= len;
+  out.normal = n;
+  out.d = -n.dot(a);
+  if (out.distance(camera) < S(0)) {
+    out.normal = -out.normal;
+    out.d = -out.d;
+  }
+  return true;
+}
+
+// MSAC cost of a plane over every step-th point: min(d^2, T^2), and
+// below_cost * T^2 for a point more than T under it.
+template <class S>
+S msac_cost(const PlaneT<S>& plane, std::span<const Vec3T<S>> xyz, std::size_t step, S t,
+            S below_cost) {
+  const S t2 = t * t;
+  S cost(0);
+  for (std::size_t i = 0; i < xyz.size(); i += step) {
+    const S d = plane.distance(xyz[i]);
+    if (d < -t)
+      cost += below_cost * t2;
+    else
+      cost += d * d < t2 ? d * d : t2;
+  }
+  return cost;
+}
+
+struct MsacSeed {
+  bool found = false;
+  std::size_t seed[3] = {0, 0, 0};
+};
+
+// The best of a bounded number of random border triples (SEED.md 2a step 1, Petra's MSAC).
+template <class S>
+MsacSeed msac_seed(std::span<const Vec3T<S>> xyz, std::span<const PixelPos> px, const Rect& roi,
+                   int band, const Vec3T<S>& camera, S t, const GroundParams& params,
+                   PlaneT<S>& plane) {
+  constexpr std::size_t kScored = 1024;  // points each candidate is scored on
+  const std::size_t step = (xyz.size() + kScored - 1) / kScored;
+  SplitMix rng{params.msac_seed};
+  MsacSeed out;
+  S best{};
+  for (int it = 0; it < params.msac_iterations; ++it) {
+    const std::size_t i = draw_border_point(rng, px, roi, band);
+    const std::size_t j = draw_border_point(rng, px, roi, band);
+    const std::size_t k = draw_border_point(rng, px, roi, band);
+    PlaneT<S> candidate;
+    if (!plane_through(xyz[i], xyz[j], xyz[k], camera, candidate)) continue;
+    const S cost = msac_cost(candidate, xyz, step, t, S(params.below_cost));
+    if (out.found && !(cost < best)) continue;
+    best = cost;
+    plane = candidate;
+    out = {true, {i, j, k}};
+  }
+  return out;
+}
+
+// Mean distance of every step-th point to the camera (the range of the noise model).
+template <class S>
+double mean_range_mm(std::span<const Vec3T<S>> xyz, std::size_t step, const Vec3T<S>& camera) {
+  using std::sqrt;
+  double sum = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < xyz.size(); i += step, ++n)
+    sum += to_double(sqrt((xyz[i] - camera).squaredNorm()));
+  return n > 0 ? sum / static_cast<double>(n) : 0.0;
+}
+
 }  // namespace ground_detail
 
 template <class S>
 Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span<const PixelPos> px,
                                         const Rect& roi, const ClickPx& click,
                                         const Vec3T<S>& camera, const GroundParams& params,
-                                        std::span<PointClass> labels) {
+                                        std::span<PointClass> labels, const StereoNoise& noise,
+                                        GroundFailure* failure) {
   using ground_detail::abs_s;
   using ground_detail::max_s;
   using std::sqrt;
@@ -58,61 +163,49 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
   // The clicked point, if any.
   if (click.present) {
     if (!roi.contains(click.u, click.v))
-      return Error::make(Errc::out_of_range,
-                         "segmentation: click (%d, %d) outside the ROI (%d, %d %dx%d)", click.u,
+      return Error::make(Errc::out_of_range, "the click (%d, %d) is outside the ROI (%d, %d %dx%d)",
+                         click.u,
                          click.v, roi.x, roi.y, roi.w, roi.h);
     const std::size_t c = ground_detail::nearest_pixel(px, click.u, click.v);
     const double du = px[c].u - click.u, dv = px[c].v - click.v;
     if (du * du + dv * dv > double(params.click_radius_px) * params.click_radius_px)
       return Error::make(Errc::no_solution,
-                         "segmentation: no 3-D point within %d px of the click (%d, %d): shadow or "
-                         "no match there",
+                         "no depth within %d px of the click (%d, %d): shadow or no match "
+                         "there; click elsewhere on the rock",
                          params.click_radius_px, click.u, click.v);
     out.click_point = c;
   }
 
-  // 1. Seed plane from three points near the bottom corners.
-  const double x0 = roi.x, x1 = roi.x + roi.w - 1, y1 = roi.y + roi.h - 1;
-  const double y_up = y1 - roi.h / 4.0;
-  const double reach2 = 0.0625 * (double(roi.w) * roi.w + double(roi.h) * roi.h);  // (diag/4)^2
-  const std::size_t bl = ground_detail::nearest_pixel(px, x0, y1);
-  const std::size_t br = ground_detail::nearest_pixel(px, x1, y1);
-  const std::size_t ul = ground_detail::nearest_pixel(px, x0, y_up);
-  const std::size_t ur = ground_detail::nearest_pixel(px, x1, y_up);
-  auto too_far = [&](std::size_t i, double u, double v) {
-    const double du = px[i].u - u, dv = px[i].v - v;
-    return du * du + dv * dv > reach2;
+  auto fail = [&](GroundFailure why, const Error& e) -> Error {
+    if (failure != nullptr) *failure = why;
+    return e;
   };
-  if (too_far(bl, x0, y1) || too_far(br, x1, y1))
-    return Error::make(Errc::no_solution,
-                       "segmentation: no points near the ROI's bottom corners (no ground seed)");
-  const Vec3T<S>& a = xyz[bl];
-  const Vec3T<S>& b = xyz[br];
-  const Vec3T<S> nl = (b - a).cross(xyz[ul] - a);
-  const Vec3T<S> nr = (b - a).cross(xyz[ur] - a);
-  const bool use_left = nl.squaredNorm() >= nr.squaredNorm();
-  const std::size_t third = use_left ? ul : ur;
-  Vec3T<S> normal = use_left ? nl : nr;
-  const S base = sqrt((b - a).squaredNorm()) * sqrt((xyz[third] - a).squaredNorm());
-  const S cross_len = sqrt(normal.squaredNorm());
-  // sin of the angle at a below 1e-3: the three seeds are collinear.
-  if (!(base > S(0)) || !(cross_len > base * S(1e-3)) || too_far(third, use_left ? x0 : x1, y_up))
-    return Error::make(Errc::degenerate,
-                       "segmentation: ground seed points near the bottom corners are collinear");
-  out.seed[0] = bl;
-  out.seed[1] = br;
-  out.seed[2] = third;
-  normal /= cross_len;
-  PlaneT<S> plane;
-  plane.normal = normal;
-  plane.d = -normal.dot(a);
   auto orient_to_camera = [&](PlaneT<S>& p) {
     if (p.distance(camera) < S(0)) {
       p.normal = -p.normal;
       p.d = -p.d;
     }
   };
-  orient_to_camera(plane);
+  const int band = static_cast<int>(params.border_band * (roi.w < roi.h ? roi.w : roi.h)) + 1;
+
+  // 1. Seed plane by MSAC, its tolerance from the depth-noise model.
+  {
+    const double r = ground_detail::mean_range_mm(xyz, (n + 1023) / 1024, camera);
+    const double fb = noise.focal_px * noise.baseline_mm;
+    out.sigma_z_mm = fb > 0 ? r * r * params.sigma_disparity_px / fb : 0.0;
+    out.sigma_mm = std::sqrt(out.sigma_z_mm * out.sigma_z_mm +
+                             params.terrain_roughness_mm * params.terrain_roughness_mm);
+  }
+  const S inlier_band(params.inlier_sigmas * out.sigma_mm);
+  PlaneT<S> plane;
+  const ground_detail::MsacSeed seeded =
+      ground_detail::msac_seed(xyz, px, roi, band, camera, inlier_band, params, plane);
+  if (!seeded.found)
+    return fail(GroundFailure::no_ground,
+                Error::make(Errc::degenerate,
+                            "no ground in the ROI: the points around it are collinear (%d tries)",
+                            params.msac_iterations));
+  for (int k = 0; k < 3; ++k) out.seed[k] = seeded.seed[k];
 
   // 2-4. k-means on the signed distance, refit, until the plane settles; on
   // a regular sample of at most kSegmentSamples points (every pass costs
@@ -170,7 +263,7 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
   // splits at mid-height); trimming the cluster to a band of 3 RMS of the
   // previous fit keeps it out of the refit.
   auto refit = [&](std::size_t step, std::size_t count) -> Status {
-    const S band_mm = have_fit ? max_s(S(3) * fit.rms, S(params.min_trim_band_mm)) : S(1e6);
+    const S band_mm = have_fit ? max_s(S(3) * fit.rms, S(params.min_trim_band_mm)) : inlier_band;
     auto f = fit_plane_tls_by<S>(
         count, [&](std::size_t k) -> const Vec3T<S>& { return xyz[k * step]; },
         [&](std::size_t k) {
@@ -178,8 +271,9 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
                  abs_s(plane.distance(xyz[k * step])) <= band_mm;
         });
     if (!f)
-      return Error::make(Errc::no_solution, "segmentation: no ground plane in the ROI (%s)",
-                         f.error().message);
+      return fail(GroundFailure::no_ground,
+                  Error::make(Errc::no_solution, "no ground in the ROI: no plane fits (%s)",
+                              f.error().message));
     fit = *f;
     have_fit = true;
     return {};
@@ -208,15 +302,15 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
   PETRA_ASSERT(have_fit);
 
   // Final labels about the final plane: ground is the band of noise around
-  // it (3 RMS, at least min_ground_band_mm), everything above is rock. The
-  // k-means midpoint found the plane; as a label it would give the lower
-  // half of the rock's faces to the ground.
+  // it (3 measured RMS, at least min_ground_band_mm), everything above is
+  // rock (a wider band from the noise model took the foot of steep faces). The k-means midpoint found the plane; as a label it would give the
+  // lower half of the rock's faces to the ground.
   std::size_t ng = 0, nr_ = 0, band_total = 0, band_ground = 0, below = 0;
-  const S deep = -S(params.min_rock_height_mm);
+  const double below_mm = std::max(params.min_rock_height_mm, to_double(inlier_band));
+  const S deep = -S(below_mm);
   S sum_r(0);
   S split = max_s(S(params.ground_band_rms) * fit.rms, S(params.min_ground_band_mm));
   if (rock_centre / S(2) < split) split = rock_centre / S(2);
-  const int band = static_cast<int>(params.border_band * (roi.w < roi.h ? roi.w : roi.h)) + 1;
   for (std::size_t i = 0; i < n; ++i) {
     const S d = plane.distance(xyz[i]);
     const PointClass c = d > split ? PointClass::rock : PointClass::ground;
@@ -228,47 +322,63 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
       ++ng;
     }
     below += d < deep;
-    const int u = px[i].u, v = px[i].v;
-    if (u < roi.x + band || v < roi.y + band || u >= roi.x + roi.w - band ||
-        v >= roi.y + roi.h - band) {
+    if (ground_detail::in_border_band(px[i], roi, band)) {
       ++band_total;
       band_ground += c == PointClass::ground;
     }
   }
-  if (click.present && labels[out.click_point] != PointClass::rock)
-    return Error::make(Errc::no_solution,
-                       "segmentation: the clicked point lies on the ground plane, not on a rock");
   out.plane = plane;
   out.rms_mm = fit.rms;
   out.ground_points = ng;
   out.rock_points = nr_;
   out.rock_centre_mm = nr_ > 0 ? sum_r / from_count<S>(nr_) : S(0);
-  if (nr_ == 0 || !(out.rock_centre_mm >= S(params.min_rock_height_mm)))
-    return Error::make(Errc::degenerate,
-                       "segmentation: no rock: the points lie on one plane (rock centre %.2f mm "
-                       "above it, need %.2f)",
-                       to_double(out.rock_centre_mm), params.min_rock_height_mm);
-  if (!(fit.rms <= S(params.max_ground_rms_mm)))
-    return Error::make(Errc::no_solution,
-                       "segmentation: no ground in the ROI: best plane has RMS %.2f mm > %.2f",
-                       to_double(fit.rms), params.max_ground_rms_mm);
+  // Is it ground? Refusals in the operator's terms; the caller may segment
+  // from the click instead.
+  const double rms_limit = params.max_rms_sigmas * out.sigma_mm;
+  if (!(to_double(fit.rms) <= rms_limit))
+    return fail(GroundFailure::no_ground,
+                Error::make(Errc::no_solution,
+                            "no ground in the ROI: the flattest surface is %.1f mm rough (ground: "
+                            "up to %.1f)",
+                            to_double(fit.rms), rms_limit));
   // Nothing stands below the ground: a plane with much beneath it is a face
   // of a rock that fills the ROI.
   if (double(below) > params.max_below_fraction * double(n))
-    return Error::make(
-        Errc::no_solution,
-        "segmentation: no ground in the ROI: %zu of %zu points lie more than %.1f mm "
-        "below the best plane",
-        below, n, params.min_rock_height_mm);
+    return fail(GroundFailure::no_ground,
+                Error::make(Errc::no_solution,
+                            "no ground in the ROI: %zu of %zu points lie %.1f mm below the flattest "
+                            "surface",
+                            below, n, below_mm));
+  // Points on one plane: no rock (checked once the plane is known to be ground-like).
+  if (nr_ == 0 || !(out.rock_centre_mm >= S(params.min_rock_height_mm)))
+    return Error::make(Errc::degenerate,
+                       "no rock: the points lie on one plane (rock centre %.2f mm above it, "
+                       "need %.2f)",
+                       to_double(out.rock_centre_mm), params.min_rock_height_mm);
   if (double(ng) < params.min_ground_fraction * double(n))
-    return Error::make(
-        Errc::no_solution,
-        "segmentation: no ground in the ROI: only %zu of %zu points on the ground plane", ng, n);
+    return fail(GroundFailure::no_ground,
+                Error::make(Errc::no_solution,
+                            "no ground in the ROI: only %zu of %zu points on a ground plane",
+                            ng, n));
   if (band_total > 0 && double(band_ground) < params.min_border_ground * double(band_total))
-    return Error::make(Errc::no_solution,
-                       "segmentation: no ground in the ROI: %zu of %zu border points are ground; "
-                       "is the ROI inside the rock?",
-                       band_ground, band_total);
+    return fail(GroundFailure::no_ground,
+                Error::make(Errc::no_solution,
+                            "no ground in the ROI: %zu of %zu border points are ground; the rock "
+                            "fills the ROI",
+                            band_ground, band_total));
+  if (click.present && labels[out.click_point] != PointClass::rock)
+    return fail(GroundFailure::click_on_ground,
+                Error::make(Errc::no_solution,
+                            "no rock under the click: the click is on the ground"));
+  // A rock stands clear of the ground's relief; a surface whose "rock" is
+  // within a few RMS of it is a gently folded rock top (a roof), not ground.
+  const double clear_mm = params.min_rock_height_rms * to_double(fit.rms);
+  if (!(to_double(out.rock_centre_mm) >= clear_mm))
+    return fail(GroundFailure::no_ground,
+                Error::make(Errc::no_solution,
+                            "no ground in the ROI: nothing stands clear of the flattest surface "
+                            "(%.1f mm, need %.1f)",
+                            to_double(out.rock_centre_mm), clear_mm));
   return out;
 }
 

@@ -43,10 +43,73 @@ std::size_t transient_bytes(const ReconstructionBudget& b) {
   const std::size_t grind = bytes_for<MeshTriangle>(t) + bytes_for<std::int32_t>(t) +
                             bytes_for<std::uint8_t>(t) +
                             std::max(mesh_filter_scratch_bytes(t), grind_planes_scratch_bytes(t));
-  return std::max(std::max(filter, delaunay), std::max(std::max(mesh, normals), grind));
+  const std::size_t region = click_region_scratch_bytes(n, t);
+  return std::max(std::max(std::max(filter, delaunay), region),
+                  std::max(std::max(mesh, normals), grind));
+}
+
+// The clicked point: the cloud point nearest the click within the radius
+// that has a surface normal and a mesh triangle (an isolated point grows nothing).
+std::size_t clicked_point(const ReconstructionOutput& out, const ClickPx& click, int radius) {
+  const std::span<const PixelPos> px = out.pixels;
+  std::size_t best = px.size();
+  long best_d2 = static_cast<long>(radius) * radius;
+  for (std::size_t i = 0; i < px.size(); ++i) {
+    const long du = px[i].u - click.u, dv = px[i].v - click.v;
+    if (du * du + dv * dv <= best_d2 && out.normals[i].squaredNorm() > 0.0 &&
+        out.vertex_class[i] == 1) {
+      best = i;
+      best_d2 = du * du + dv * dv;
+    }
+  }
+  return best;
+}
+
+// No ground: the rock is the region grown from the click; "ground" becomes
+// the plane of the points around it (its RMS says how far from a plane).
+Status segment_from_click(const ReconstructionRequest& request, const ReconstructionParams& params,
+                          const Error& no_ground, Arena& arena, ReconstructionOutput& out) {
+  // Mark the points that some kept triangle uses (vertex_class as scratch; set again later).
+  for (std::uint8_t& v : out.vertex_class) v = 0;
+  for (const MeshTriangle& t : out.mesh)
+    for (int k = 0; k < 3; ++k) out.vertex_class[static_cast<std::size_t>(t.v[k])] = 1;
+  // The clicked point, else the next nearest within the radius (up to 8):
+  // a point on a small island of the map grows too little.
+  std::size_t seed = out.pixels.size();
+  Result<ClickRegionResult> r = no_ground;
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    const std::size_t c = clicked_point(out, request.click, params.ground.click_radius_px);
+    if (c == out.pixels.size()) break;
+    seed = c;
+    out.vertex_class[c] = 2;  // tried
+    r = grow_click_region(out.xyz_mm, out.normals, out.mesh, seed, params.click_region,
+                          out.point_class, arena);
+    if (r || r.code() != Errc::no_solution) break;
+  }
+  if (seed == out.pixels.size()) return no_ground;  // segment_ground names the click's problem
+  if (!r) return r.error();
+  out.segmentation = SegmentMethod::click_region;
+  out.click_region = *r;
+  GroundResultT<double>& g = out.ground;
+  g = {};
+  g.click_point = seed;
+  g.rock_points = r->points;
+  g.ground_points = out.xyz_mm.size() - r->points;
+  auto f = fit_plane_tls_by<double>(
+      out.xyz_mm.size(), [&](std::size_t i) -> const Eigen::Vector3d& { return out.xyz_mm[i]; },
+      [&](std::size_t i) { return out.point_class[i] == PointClass::ground; });
+  if (f) {
+    g.plane = f->plane;
+    g.rms_mm = f->rms;
+  }
+  return {};
 }
 
 }  // namespace
+
+const char* segment_method_name(SegmentMethod m) {
+  return m == SegmentMethod::click_region ? "click_region" : "ground_plane";
+}
 
 Status validate(const ReconstructionBudget& b) {
   if (b.max_roi_width < 8 || b.max_roi_width > 8192 || b.max_roi_height < 8 ||
@@ -158,19 +221,6 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   }
   out.mesh = mesh->first(nt);
 
-  // Rock / ground.
-  auto pclass = arena.allocate<PointClass>(n, "point classes");
-  if (!pclass) return pclass.error();
-  out.point_class = *pclass;
-  PETRA_TRY(checkpoint(clock, "segmentation"));
-  {
-    StepTimer timer(clock, timings, "segmentation");
-    auto g = segment_ground<double>(out.xyz_mm, out.pixels, disparity.roi, request.click,
-                                    camera_centre_world(rig.left), params.ground, out.point_class);
-    if (!g) return g.error();
-    out.ground = *g;
-  }
-
   // Smoothed surface normals per point, from the filtered disparity.
   auto normals = arena.allocate<Eigen::Vector3d>(n, "point normals");
   if (!normals) return normals.error();
@@ -191,12 +241,35 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
     }
   }
 
-  // Grind planes on the rock triangles.
+  // Rock / ground.
+  auto pclass = arena.allocate<PointClass>(n, "point classes");
+  if (!pclass) return pclass.error();
+  out.point_class = *pclass;
   auto vclass = arena.allocate<std::uint8_t>(n, "vertex classes");
   if (!vclass) return vclass.error();
+  out.vertex_class = *vclass;
+  PETRA_TRY(checkpoint(clock, "segmentation"));
+  {
+    StepTimer timer(clock, timings, "segmentation");
+    GroundFailure why = GroundFailure::none;
+    const StereoNoise noise{rect.left.f_px, rect.baseline_mm};
+    auto g = segment_ground<double>(out.xyz_mm, out.pixels, disparity.roi, request.click,
+                                    camera_centre_world(rig.left), params.ground, out.point_class,
+                                    noise, &why);
+    if (g) {
+      out.ground = *g;
+    } else if (why != GroundFailure::no_ground) {
+      return g.error();
+    } else if (!request.click.present) {
+      return Error::make(g.code(), "%s; click on the rock", g.error().message);
+    } else {
+      PETRA_TRY(segment_from_click(request, params, g.error(), arena, out));
+    }
+  }
+
+  // Grind planes on the rock triangles.
   auto mclass = arena.allocate<std::uint8_t>(nt, "mesh classes");
   if (!mclass) return mclass.error();
-  out.vertex_class = *vclass;
   out.mesh_class = *mclass;
   for (std::size_t i = 0; i < n; ++i)
     out.vertex_class[i] = out.point_class[i] == PointClass::rock ? kVertexRock : kVertexGround;

@@ -1,8 +1,10 @@
 // From a rectified disparity map to ranked grind planes, the back half of
 // the onboard chain (SEED.md 3c, 3d, 2a, 4):
 //   mean filter -> triangulate (eq. 8) -> Delaunay (rectified left pixels)
-//   -> lift and drop discontinuities -> rock/ground segmentation
-//   -> surface normals (local disparity planes) -> rock triangles
+//   -> lift and drop discontinuities -> surface normals (local disparity
+//   planes) -> rock/ground segmentation: the ground plane (ground_segment),
+//   or, when there is no ground and the operator clicked, the rock grown
+//   from the click over the mesh (click_region) -> rock triangles
 //   -> C-means + angle clustering -> ranked grind planes.
 // Every buffer comes from the caller's arena: outputs (cloud, mesh, labels,
 // filtered map) stay allocated for the caller to read or downlink until it
@@ -16,6 +18,7 @@
 #include <span>
 
 #include "algo/camera_model.hpp"
+#include "algo/click_region.hpp"
 #include "algo/cloud.hpp"
 #include "algo/core/arena.hpp"
 #include "algo/core/result.hpp"
@@ -44,8 +47,17 @@ struct ReconstructionParams {
   NormalParams normals;
   MeshFilterParams mesh;
   GroundParams ground;
+  ClickRegionParams click_region;
   GrindParams grind;
 };
+
+// How the rock was told from its surroundings (planes.json "segmentation",
+// EVAL_RESULT.segmentation).
+enum class SegmentMethod : std::uint8_t {
+  ground_plane = 0,  // rock = what stands above the fitted ground plane
+  click_region = 1,  // no ground: rock = the region grown from the click
+};
+const char* segment_method_name(SegmentMethod m);
 
 struct ReconstructionRequest {
   int planes = 2;  // c, from the operator
@@ -78,7 +90,9 @@ struct ReconstructionOutput {
   std::span<MeshTriangle> mesh;
   std::span<std::uint8_t> mesh_class;  // as vertex_class, per triangle
   DisparityMap filtered;
-  GroundResultT<double> ground;
+  GroundResultT<double> ground;  // click_region: plane of the points around the rock
+  SegmentMethod segmentation = SegmentMethod::ground_plane;
+  ClickRegionResult click_region;  // when segmentation == click_region
   GrindResult planes;
   ReconstructionStats stats;
 };

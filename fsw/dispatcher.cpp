@@ -307,6 +307,7 @@ void Executive::publish_evaluation() {
   r.filtered_points = out.filtered_points;
   r.disparity_min = out.disparity_min;
   r.disparity_max = out.disparity_max;
+  r.segmentation = out.segmentation;
   queue_.push(r, t);
 
   tlm::GroundPlane g;

@@ -375,6 +375,7 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   out.ground_normal = {gn.x(), gn.y(), gn.z()};
   out.ground_d_mm = r.ground.plane.d;
   out.ground_points = static_cast<std::uint32_t>(r.ground.ground_points);
+  out.segmentation = static_cast<std::uint8_t>(r.segmentation);
   out.dense_points = static_cast<std::uint32_t>(r.stats.dense_points);
   out.filtered_points = static_cast<std::uint32_t>(r.stats.filtered_points);
   out.disparity_min = static_cast<float>(r.stats.disparity_min_px);

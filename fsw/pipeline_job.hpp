@@ -88,6 +88,7 @@ struct EvalOutput {
   std::array<double, 3> ground_normal{};
   double ground_d_mm = 0;
   std::uint32_t ground_points = 0;
+  std::uint8_t segmentation = 0;  // SegmentMethod: 0 ground plane, 1 click region
   std::uint32_t dense_points = 0;
   std::uint32_t filtered_points = 0;
   float disparity_min = 0;

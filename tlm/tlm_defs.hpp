@@ -116,7 +116,9 @@
   F(f32, disparity_max, 1, "px", -1e6, 1e6, "largest disparity found in the ROI")                 \
   F(u32, total_ms, 1, "ms", 0, PETRA_U32_MAX, "wall time of the evaluation")                      \
   F(u32, step_us, PETRA_STEP_SLOTS, "us", 0, PETRA_U32_MAX,                                       \
-    "time per pipeline step (as housekeeping)")
+    "time per pipeline step (as housekeeping)")                                                   \
+  F(u8, segmentation, 1, "enum", 0, 1,                                                            \
+    "how the rock was segmented: 0 above the ground plane, 1 grown from the click (no ground)")
 
 #define PETRA_GRIND_PLANE_FIELDS(F)                                                      \
   F(u32, eval_id, 1, "", 0, PETRA_U32_MAX, "evaluation it belongs to")                   \

@@ -42,6 +42,9 @@ std::string format_planes_json(const ReconstructionOutput& r) {
   w.key("rms_mm").number(r.ground.rms_mm);
   w.end_object();
   w.raw("\n");
+  // How the rock was segmented (optional field): "ground_plane" or "click_region".
+  w.key("segmentation").string(segment_method_name(r.segmentation));
+  w.raw("\n");
   const ReconstructionStats& s = r.stats;
   w.key("stats").begin_object();
   w.key("dense_points").integer(s.dense_points);

@@ -116,7 +116,7 @@ TEST(GroundSegment, ClickSeedsTheRockAndIsChecked) {
   }
   o = segment(holed, roi, click);
   ASSERT_FALSE(o.result.ok());
-  EXPECT_NE(message(o).find("no 3-D point within"), std::string::npos);
+  EXPECT_NE(message(o).find("no depth within"), std::string::npos);
 }
 
 TEST(GroundSegment, AllPointsOnOnePlaneMeansNoRock) {

@@ -55,7 +55,8 @@ TEST(Reconstruction, DisparityToRankedPlanesOnARidgeRock) {
   EXPECT_LE(arena.high_water(), reconstruction_arena_bytes(budget));
   EXPECT_EQ(timings.count, 7u);
   EXPECT_STREQ(timings.steps[0].name, "mean filter");
-  EXPECT_STREQ(timings.steps[5].name, "normals");
+  EXPECT_STREQ(timings.steps[4].name, "normals");  // before segmentation: the click region uses them
+  EXPECT_STREQ(timings.steps[5].name, "segmentation");
   EXPECT_STREQ(timings.steps[6].name, "grind planes");
   EXPECT_EQ(timings.steps[2].ns, 1000u);
   const auto& st = r->stats;

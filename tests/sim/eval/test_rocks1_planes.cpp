@@ -1,0 +1,224 @@
+// Real data: the Middlebury 2006 Rocks1 pair (../shared/data/real-rocks/rocks1,
+// rocks stacked in a box, no flat ground in most ROIs). For operator ROIs
+// around single rocks with a click on each, every plane Petra reports must lie
+// on the real surface: the ground-truth points (disp1.png, Z = f B / (d + 137))
+// under its footprint (within the grinder's radius of its centroid, measured in
+// the plane) fit a plane within 3 deg of Petra's normal and 3 mm of its plane.
+// Run with the DP matcher, with the truth disparity replayed, and with the
+// right image's gain changed by 15 % and noise added.
+// Met today (EveryRoiGivesPlanesFromTheClick, DP and truth map): no refusal;
+// with no ground in these ROIs the rock is grown from the click and gives
+// planes. With the right view's gain changed the green rock is still refused. Not met yet
+// (DISABLED_EveryPlaneLiesOnTheRealSurface, the issue's target, left in to be
+// switched on): the planes' fit to the real surface, 2.0-10.8 deg and up to
+// 3.4 mm for the planes on the faces, and one plane of the grey rock's
+// curved underside 75-89 deg off (docs/performance.md, "Rocks1").
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "algo/calib_json.hpp"
+#include "algo/pipeline.hpp"
+#include "algo/plane_fit.hpp"
+#include "sim/io/image_io.hpp"
+
+namespace petra {
+namespace {
+
+const std::string kDir = "../shared/data/real-rocks/rocks1/";
+// PROVENANCE.txt: half size, f = 1870 px, B = 160 mm, d offset 137 px, left camera = world.
+constexpr double kF = 1870, kB = 160, kOffset = 137, kCx = 319, kCy = 277.5;
+constexpr double kFootprintRadiusMm = 10;  // grinder diameter 20 mm (GrindParams)
+
+struct Data {
+  io::GrayImage left, right, truth;
+  StereoRig rig;
+  bool ok = false;
+};
+
+const Data& data() {
+  static const Data d = [] {
+    Data x;
+    if (!std::filesystem::exists(kDir + "view1.png")) return x;
+    auto l = io::read_gray_image(kDir + "view1.png");
+    auto r = io::read_gray_image(kDir + "view5.png");
+    auto t = io::read_gray_image(kDir + "disp1.png");
+    auto text = io::read_text_file(kDir + "calib.json");
+    if (!l || !r || !t || !text) return x;
+    auto rig = parse_calib_json(*text);
+    if (!rig) return x;
+    x = {std::move(*l), std::move(*r), std::move(*t), *rig, true};
+    return x;
+  }();
+  return d;
+}
+
+struct RoiCase {
+  const char* name;
+  Rect roi;
+  int click_u, click_v;
+};
+
+// Single rocks, ROI as an operator would drag it, click on the rock.
+const RoiCase kCases[] = {
+    {"white rock, top right", {425, 110, 205, 180}, 525, 200},
+    {"grey rock, centre", {305, 258, 215, 100}, 420, 295},
+    {"green rock, left", {35, 238, 280, 150}, 150, 285},
+};
+
+// Ground-truth surface point of a left pixel (mm, world = left camera); false: unknown.
+bool truth_point(const io::GrayImage& t, int u, int v, Eigen::Vector3d& p) {
+  const int value = t.view()(u, v);
+  if (value == 0) return false;
+  const double z = kF * kB / (value / 2.0 + kOffset);
+  p = {(u - kCx) * z / kF, (v - kCy) * z / kF, z};
+  return true;
+}
+
+// The truth disparity in the rectified ROI box (as `petra eval --disparity`).
+std::vector<std::int16_t> truth_map(const Pipeline& p, const Rect& box) {
+  const Data& d = data();
+  std::vector<std::int16_t> q(static_cast<std::size_t>(box.w) * box.h, kInvalidDisparity);
+  for (int y = 0; y < box.h; ++y)
+    for (int x = 0; x < box.w; ++x) {
+      auto o = p.rectifier().to_original(StereoSide::left, {box.x + x, box.y + y});
+      if (!o) continue;
+      const int u = static_cast<int>(std::lround(o->x())), v = static_cast<int>(std::lround(o->y()));
+      if (u < 0 || v < 0 || u >= d.truth.width || v >= d.truth.height) continue;
+      const int value = d.truth.view()(u, v);
+      if (value == 0) continue;
+      auto r = p.rectifier().to_rectified(StereoSide::right, {o->x() - value / 2.0, o->y()});
+      if (!r) continue;
+      q[static_cast<std::size_t>(y) * box.w + x] = disparity_q4(box.x + x - r->x());
+    }
+  return q;
+}
+
+enum class Source { dp, truth, dp_gain };
+
+struct PlaneCheck {
+  double angle_deg = 0, offset_mm = 0;
+  std::size_t points = 0;
+};
+
+PlaneCheck check_plane(const GrindPlane& g) {
+  const io::GrayImage& t = data().truth;
+  std::vector<Eigen::Vector3d> under;
+  for (int v = 0; v < t.height; ++v)
+    for (int u = 0; u < t.width; ++u) {
+      Eigen::Vector3d p;
+      if (!truth_point(t, u, v, p)) continue;
+      const Eigen::Vector3d r = p - g.centroid_mm;
+      const double along = r.dot(g.normal);
+      if ((r - along * g.normal).norm() <= kFootprintRadiusMm && std::abs(along) < 50)
+        under.push_back(p);
+    }
+  PlaneCheck c;
+  c.points = under.size();
+  auto fit = fit_plane_tls_by<double>(
+      under.size(), [&](std::size_t i) -> const Eigen::Vector3d& { return under[i]; },
+      [](std::size_t) { return true; });
+  if (!fit) return {180, 1e9, under.size()};
+  const Eigen::Vector3d n = fit->plane.normal;
+  c.angle_deg = std::atan2(n.cross(g.normal).norm(), std::abs(n.dot(g.normal))) * 180 / M_PI;
+  c.offset_mm = std::max(std::abs(fit->plane.distance(g.centroid_mm)),
+                         std::abs(g.normal.dot(fit->centroid - g.centroid_mm)));
+  return c;
+}
+
+io::GrayImage changed_gain(const io::GrayImage& img) {
+  io::GrayImage out = img;
+  std::mt19937 rng(21);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      const double g = 1.15 * img.view()(x, y) + noise(rng);
+      out.view()(x, y) = static_cast<std::uint8_t>(std::clamp(std::lround(g), 0L, 255L));
+    }
+  return out;
+}
+
+void run_case(const RoiCase& c, Source source, bool surface_check) {
+  const Data& d = data();
+  PipelineParams params;
+  PipelineBudget b;
+  b.image_width = d.left.width;
+  b.image_height = d.left.height;
+  b.max_roi_width = 320;
+  b.max_roi_height = 320;
+  b.max_disparities = params.range.search_max_px - params.range.search_min_px + 1;
+  std::vector<std::byte> block(Pipeline::arena_bytes(b, params));
+  Arena arena(block);
+  auto p = Pipeline::create(d.rig, b, params, arena);
+  ASSERT_TRUE(p.ok()) << p.error().message;
+  PipelineRequest req;
+  req.roi = c.roi;
+  req.has_click = true;
+  req.click_u = c.click_u;
+  req.click_v = c.click_v;
+  req.planes = 2;
+  const StepClock clock{};
+  Result<PipelineOutput> out = Error::make(Errc::not_ready, "not run");
+  std::vector<std::int16_t> given;
+  static const io::GrayImage gained = changed_gain(d.right);
+  if (source == Source::truth) {
+    auto box = p->rectifier().roi_to_rectified(StereoSide::left, c.roi);
+    ASSERT_TRUE(box.ok());
+    given = truth_map(*p, *box);
+    const ConstDisparityMap map(ImageView<const std::int16_t>(given.data(), box->w, box->h), *box);
+    out = p->run_with_disparity(d.left.view(), map, req, clock);
+  } else {
+    out = p->run(d.left.view(), (source == Source::dp ? d.right : gained).view(), req, clock);
+  }
+  ASSERT_TRUE(out.ok()) << c.name << ": " << out.error().message;
+  const ReconstructionOutput& r = out->result;
+  ASSERT_GE(r.planes.accepted, 1) << c.name;
+  // Rocks stacked in a box: no ground around these rocks.
+  EXPECT_EQ(r.segmentation, SegmentMethod::click_region) << c.name;
+  EXPECT_GT(r.click_region.points, 1000u) << c.name;
+  if (!surface_check) return;
+  for (int k = 0; k < r.planes.accepted; ++k) {
+    const GrindPlane& g = r.planes.planes[k];
+    const PlaneCheck pc = check_plane(g);
+    std::printf("%-22s %-10s plane %d (%s): %zu truth points, %.2f deg, %.2f mm\n", c.name,
+                source == Source::dp ? "dp" : (source == Source::truth ? "truth" : "dp+gain"), k,
+                segment_method_name(r.segmentation), pc.points, pc.angle_deg, pc.offset_mm);
+    EXPECT_GE(pc.points, 50u) << c.name << " plane " << k;
+    EXPECT_LE(pc.angle_deg, 3.0) << c.name << " plane " << k;
+    EXPECT_LE(pc.offset_mm, 3.0) << c.name << " plane " << k;
+  }
+}
+
+class Rocks1 : public ::testing::TestWithParam<Source> {
+ protected:
+  void SetUp() override {
+    if (!data().ok) GTEST_SKIP() << "no Rocks1 data at " << kDir << " (run from the repo root)";
+  }
+};
+
+TEST_P(Rocks1, EveryRoiGivesPlanesFromTheClick) {
+  // Not met with the right view's gain changed: the green rock is refused ("the rock under the
+  // click is too small (1 points, need 200)"), the DP map there being islands; in the DISABLED test.
+  if (GetParam() == Source::dp_gain) GTEST_SKIP() << "not met yet: see DISABLED_EveryPlane...";
+  for (const RoiCase& c : kCases) run_case(c, GetParam(), false);
+}
+
+TEST_P(Rocks1, DISABLED_EveryPlaneLiesOnTheRealSurface) {
+  for (const RoiCase& c : kCases) run_case(c, GetParam(), true);
+}
+
+INSTANTIATE_TEST_SUITE_P(Sources, Rocks1,
+                         ::testing::Values(Source::dp, Source::truth, Source::dp_gain),
+                         [](const auto& param_info) {
+                           return std::string(param_info.param == Source::dp      ? "DpMatcher"
+                                              : param_info.param == Source::truth ? "TruthDisparity"
+                                                                            : "DpRightGain15Noise2");
+                         });
+
+}  // namespace
+}  // namespace petra
