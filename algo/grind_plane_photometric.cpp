@@ -89,6 +89,9 @@ Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray
   int refined = 0;
   for (int k = 0; k < out.planes.count; ++k) {
     GrindPlane& plane = out.planes.planes[k];
+    // A footprint's own plane (the face curves): the whole face's gray
+    // levels would turn it towards the face's mean plane.
+    if (plane.footprint_local) continue;
     std::size_t n = face_pixels(classes, roi, static_cast<std::uint8_t>(kVertexPlane0 + k),
                                 params.edge_px, *spans, *pix);
     // An even sample of a large face: the plane is fixed long before, and
@@ -116,6 +119,7 @@ Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray
         rectified_point(rect, initial->u0, initial->v0, fit->plane.at(initial->u0, initial->v0));
     if (!before || !after) continue;
     plane.normal = (turn * plane.normal).normalized();
+    plane.face_normal = plane.normal;  // the face's plane is the one refined
     plane.centroid_mm += *after - *before;
     plane.view_angle_deg = plane_view_angle_deg(plane.normal, plane.centroid_mm, camera);
     if (k < out.planes.accepted) ++refined;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "algo/grind_qualify.hpp"
 #include "algo/plane_fit.hpp"
 
 namespace petra {
@@ -29,6 +30,7 @@ struct Scratch {
   std::span<double> area;
   std::span<std::uint8_t> cls, support, depth;
   std::span<std::int32_t> queue, patch;
+  std::span<FaceSample> face;  // one face's patch, core first (step 5)
 };
 
 Result<Scratch> allocate(Arena& arena, std::size_t n) {
@@ -51,6 +53,9 @@ Result<Scratch> allocate(Arena& arena, std::size_t n) {
   s.depth = *depth;
   auto queue = arena.allocate<std::int32_t>(n, "grind planes queue");
   if (!queue) return queue.error();
+  auto face = arena.allocate<FaceSample>(n, "grind planes face samples");
+  if (!face) return face.error();
+  s.face = *face;
   auto sample = arena.allocate<Eigen::Vector3d>(kCMeansSamples, "c-means samples");
   if (!sample) return sample.error();
   auto sample_cls = arena.allocate<std::uint8_t>(kCMeansSamples, "c-means sample classes");
@@ -225,10 +230,32 @@ const char* verdict_name(PlaneVerdict v) {
       return "faces away from the cameras";
     case PlaneVerdict::too_small:
       return "smaller than the grinder footprint";
-    case PlaneVerdict::not_flat:
-      return "not flat enough";
+    case PlaneVerdict::too_rough:
+      return "too rough over the grinder footprint";
+    case PlaneVerdict::too_uncertain:
+      return "plane too uncertain for the grinder";
     case PlaneVerdict::no_support:
       return "no supporting triangles";
+  }
+  return "?";
+}
+
+const char* verdict_key(PlaneVerdict v) {
+  switch (v) {
+    case PlaneVerdict::surplus:
+      return "surplus";
+    case PlaneVerdict::accepted:
+      return "grindable";
+    case PlaneVerdict::faces_away:
+      return "faces_away";
+    case PlaneVerdict::too_small:
+      return "too_small";
+    case PlaneVerdict::too_rough:
+      return "too_rough";
+    case PlaneVerdict::too_uncertain:
+      return "too_uncertain";
+    case PlaneVerdict::no_support:
+      return "no_support";
   }
   return "?";
 }
@@ -242,8 +269,17 @@ Status validate(const GrindParams& p) {
     return Error::make(Errc::invalid_argument,
                        "grind planes: max_view_angle_deg %.3g not in (0, 90]",
                        p.max_view_angle_deg);
-  if (!(p.max_rms_mm > 0.0))
-    return Error::make(Errc::invalid_argument, "grind planes: max_rms_mm must be > 0");
+  if (!(p.max_footprint_rms_mm > 0.0))
+    return Error::make(Errc::invalid_argument, "grind planes: max_footprint_rms_mm must be > 0");
+  if (!(p.min_footprint_coverage > 0.0 && p.min_footprint_coverage <= 1.0))
+    return Error::make(Errc::invalid_argument,
+                       "grind planes: min_footprint_coverage %.3g not in (0, 1]",
+                       p.min_footprint_coverage);
+  if (!(p.max_normal_sigma_deg > 0.0) || !(p.max_offset_sigma_mm > 0.0) || !(p.agree_sigmas > 0.0))
+    return Error::make(Errc::invalid_argument,
+                       "grind planes: max_normal_sigma_deg, max_offset_sigma_mm and agree_sigmas "
+                       "must be > 0");
+  PETRA_TRY(validate(DepthNoise{0, 0, p.sigma_disparity_px, 1}));
   if (!(p.inlier_angle_deg > 0.0 && p.inlier_angle_deg < 90.0))
     return Error::make(Errc::invalid_argument, "grind planes: inlier_angle_deg %.3g not in (0, 90)",
                        p.inlier_angle_deg);
@@ -268,7 +304,8 @@ Status validate(const GrindParams& p) {
 std::size_t grind_planes_scratch_bytes(std::size_t n) {
   return 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<double>(n) + 3 * bytes_for<std::uint8_t>(n) +
          2 * bytes_for<std::int32_t>(n) + bytes_for<Eigen::Vector3d>(kCMeansSamples) +
-         bytes_for<std::uint8_t>(kCMeansSamples) + bytes_for<double>(kCMeansSamples);
+         bytes_for<std::uint8_t>(kCMeansSamples) + bytes_for<double>(kCMeansSamples) +
+         bytes_for<FaceSample>(n) + footprint_scratch_bytes(n);
 }
 
 Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
@@ -276,7 +313,8 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
                                       const Eigen::Vector3d& camera, int c,
                                       const GrindParams& params, Arena& arena,
                                       std::span<std::uint8_t> triangle_plane,
-                                      std::span<const Eigen::Vector3d> point_normals) {
+                                      std::span<const Eigen::Vector3d> point_normals,
+                                      const RigGeometry& rig) {
   PETRA_TRY(validate(params));
   const std::size_t n = tris.size();
   if (c < 1 || c > kMaxClasses)
@@ -327,6 +365,7 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
   }
 
   GrindResult out;
+  out.footprint_diameter_mm = params.grinder_diameter_mm;
   // 2. C-means surface classes (eq. 9-12) on the normals, into more classes
   // than the operator's c: a rock shows more faces than the c it is asked
   // for, and c classes would merge two of them into a plane of neither.
@@ -414,6 +453,9 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
   const double cos_inlier = std::cos(params.inlier_angle_deg * M_PI / 180.0);
   const double cos_merge = std::cos(params.merge_angle_deg * M_PI / 180.0);
   const double cos_grow = std::cos(params.grow_angle_deg * M_PI / 180.0);
+  const DepthNoise noise{rig.focal_px, rig.baseline_mm, params.sigma_disparity_px,
+                         rig.correlation_px};
+  Status failure;
   auto fit_class = [&](int k) {
     GrindPlane& plane = candidates[k];
     plane = GrindPlane{};
@@ -536,15 +578,19 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     plane.centroid_mm = centre - fit.plane.distance(centre) * fit.plane.normal;  // onto the plane
     plane.rms_mm = fit.rms;
     plane.view_angle_deg = plane_view_angle_deg(plane.normal, plane.centroid_mm, camera);
-    const double footprint = M_PI * params.grinder_diameter_mm * params.grinder_diameter_mm / 4.0;
-    if (plane.view_angle_deg > params.max_view_angle_deg) {
-      plane.verdict = PlaneVerdict::faces_away;
-    } else if (plane.area_mm2 < footprint) {
-      plane.verdict = PlaneVerdict::too_small;
-    } else if (plane.rms_mm > params.max_rms_mm) {
-      plane.verdict = PlaneVerdict::not_flat;
-    } else {
-      plane.verdict = PlaneVerdict::accepted;
+    // 5. Where the grinder sits, the plane's uncertainty, the verdict.
+    std::size_t faces = 0, core_faces = 0;
+    for (int pass = 0; pass < 2; ++pass)  // the fit's core first, then the border
+      for (std::size_t j = 0; j < pm; ++j) {
+        const std::size_t i = tri_of(j);
+        if (s.support[i] != 1 || triangle_plane[i] != k || in_fit(i) != (pass == 0)) continue;
+        s.face[faces++] = FaceSample{s.centroid[i], s.area[i]};
+        if (pass == 0) ++core_faces;
+      }
+    Status q = qualify_plane(s.face.first(faces), core_faces, camera, params, noise, arena, plane);
+    if (!q.ok()) {
+      plane.verdict = PlaneVerdict::no_support;
+      if (q.code() != Errc::degenerate) failure = q;  // a budget or a bad parameter: fail
     }
   };
   for (int k = 0; k < ac->c; ++k) {
@@ -558,9 +604,11 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     const GrindPlane& b = candidates[j];
     if (a.verdict == PlaneVerdict::no_support || b.verdict == PlaneVerdict::no_support)
       return false;
-    return a.normal.dot(b.normal) >= cos_merge &&
-           std::abs(a.normal.dot(b.centroid_mm - a.centroid_mm)) <= params.merge_distance_mm &&
-           std::abs(b.normal.dot(a.centroid_mm - b.centroid_mm)) <= params.merge_distance_mm;
+    // The whole patches' planes (the reported ones may be a footprint's).
+    const Eigen::Vector3d &na = a.face_normal, &nb = b.face_normal;
+    const Eigen::Vector3d &ca = a.face_centroid_mm, &cb = b.face_centroid_mm;
+    return na.dot(nb) >= cos_merge && std::abs(na.dot(cb - ca)) <= params.merge_distance_mm &&
+           std::abs(nb.dot(ca - cb)) <= params.merge_distance_mm;
   };
   for (int guard = 0; guard < kMaxClasses; ++guard) {
     bool merged = false;
@@ -578,6 +626,7 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
       }
     if (!merged) break;
   }
+  if (!failure.ok()) return failure.error();
   int distinct = 0;
   for (int k = 0; k < ac->c; ++k) distinct += alive[k];
   out.classes = distinct;

@@ -327,6 +327,12 @@ void Executive::publish_evaluation() {
     gp.area_mm2 = po.area_mm2;
     gp.flatness_rms_mm = po.flatness_rms_mm;
     gp.triangles = po.triangles;
+    gp.verdict = po.verdict;
+    gp.plane_source = po.plane_source;
+    gp.normal_sigma_deg = static_cast<float>(po.normal_sigma_deg);
+    gp.offset_sigma_mm = static_cast<float>(po.offset_sigma_mm);
+    gp.footprint_rms_mm = static_cast<float>(po.footprint_rms_mm);
+    gp.footprint_diameter_mm = static_cast<float>(po.footprint_diameter_mm);
     queue_.push(gp, t);
     (void)last_planes_.push_back(po);
   }
@@ -343,7 +349,8 @@ void Executive::publish_evaluation() {
                 static_cast<std::int32_t>(eval_elapsed_ms_));
   if (r.status == 1)
     events_.raise(EventId::FEWER_PLANES, static_cast<std::int32_t>(eval_id_),
-                  static_cast<std::int32_t>(out.planes.size()), selection_.planes);
+                  static_cast<std::int32_t>(out.planes.size()), selection_.planes,
+                  out.refused_verdict);
   modes_.request(Mode::IDLE, 0);
   complete(p.function_code, p.counter);
 }

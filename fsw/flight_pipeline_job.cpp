@@ -369,8 +369,19 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
     po.area_mm2 = g.area_mm2;
     po.flatness_rms_mm = g.rms_mm;
     po.triangles = static_cast<std::uint32_t>(g.triangles);
+    po.verdict = static_cast<std::uint8_t>(g.verdict);
+    po.plane_source = g.footprint_local ? 1 : 0;
+    po.normal_sigma_deg = g.normal_sigma_deg;
+    po.offset_sigma_mm = g.offset_sigma_mm;
+    po.footprint_rms_mm = g.footprint_rms_mm;
+    po.footprint_diameter_mm = r.planes.footprint_diameter_mm;
     if (!out.planes.push_back(po)) break;
   }
+  for (int k = r.planes.accepted; k < r.planes.count; ++k)  // refused ones follow, largest first
+    if (r.planes.planes[k].verdict != PlaneVerdict::surplus) {
+      out.refused_verdict = static_cast<std::uint8_t>(r.planes.planes[k].verdict);
+      break;
+    }
   const Eigen::Vector3d& gn = r.ground.plane.normal;
   out.ground_normal = {gn.x(), gn.y(), gn.z()};
   out.ground_d_mm = r.ground.plane.d;

@@ -81,10 +81,17 @@ struct PlaneOut {
   double area_mm2 = 0;
   double flatness_rms_mm = 0;
   std::uint32_t triangles = 0;
+  std::uint8_t verdict = 0;       // PlaneVerdict (0: grindable)
+  std::uint8_t plane_source = 0;  // 0 the face's plane, 1 the footprint disc's own
+  double normal_sigma_deg = 0;
+  double offset_sigma_mm = 0;
+  double footprint_rms_mm = 0;
+  double footprint_diameter_mm = 0;
 };
 
 struct EvalOutput {
   FixedVector<PlaneOut, kMaxPlanes> planes;  // ranked, best first
+  std::uint8_t refused_verdict = 0;          // of the largest refused face (0: none refused)
   std::array<double, 3> ground_normal{};
   double ground_d_mm = 0;
   std::uint32_t ground_points = 0;

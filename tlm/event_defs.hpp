@@ -28,7 +28,10 @@
   X(TLM_DROPPED, 15, WARNING, "telemetry queue full: {0} packets dropped so far")             \
   X(CMD_FAILED, 16, WARNING, "command {0:fc} (counter {1}) failed: {2:reason}")               \
   X(COUNTER_STORE_FAILED, 17, WARNING, "could not store the command counter ({0:errc})")      \
-  X(FEWER_PLANES, 18, INFO, "evaluation {0}: only {1} planes qualified of the {2} asked")     \
+  X(FEWER_PLANES, 18, INFO,                                                                   \
+    "evaluation {0}: only {1} planes qualified of the {2} asked; the largest refused face: "  \
+    "verdict {3} (1 faces away, 2 too small for the tool, 3 too rough over the footprint, "   \
+    "4 no support, 6 too uncertain)")                                                         \
   X(PRODUCT_SENT, 19, INFO, "product {0} of id {1} queued: {2} chunks, {3} bytes")            \
   X(ARM_READY, 20, INFO, "arm: {0} drives booted and enabled")                                \
   X(ARM_REFUSED, 21, WARNING,                                                                 \

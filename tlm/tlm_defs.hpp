@@ -125,10 +125,19 @@
   F(u8, rank, 1, "", 0, 7, "0 = best")                                                   \
   F(u8, plane_count, 1, "", 0, 8, "planes in this evaluation")                           \
   F(f64, normal, 3, "1", -1, 1, "unit normal, out of the rock, calibration world frame") \
-  F(f64, centroid_mm, 3, "mm", -1e7, 1e7, "centroid of the plane's triangles")           \
+  F(f64, centroid_mm, 3, "mm", -1e7, 1e7,                                                \
+    "where the grinder goes: the footprint disc's centre, on the plane")                 \
   F(f64, area_mm2, 1, "mm2", 0, 1e12, "supporting area")                                 \
   F(f64, flatness_rms_mm, 1, "mm", 0, 1e6, "RMS distance of its points to the plane")    \
-  F(u32, triangles, 1, "", 0, PETRA_U32_MAX, "mesh triangles supporting it")
+  F(u32, triangles, 1, "", 0, PETRA_U32_MAX, "mesh triangles supporting it")             \
+  F(u8, verdict, 1, "enum", 0, 6,                                                        \
+    "0 grindable (only grindable planes are sent; docs/reconstruction.md)")              \
+  F(u8, plane_source, 1, "enum", 0, 1,                                                   \
+    "0 the face's whole-patch plane, 1 the footprint disc's own (the face curves)")      \
+  F(f32, normal_sigma_deg, 1, "deg", 0, 180, "normal 1-sigma (RMS angle), noise model")  \
+  F(f32, offset_sigma_mm, 1, "mm", 0, 1e6, "offset 1-sigma along the normal")            \
+  F(f32, footprint_rms_mm, 1, "mm", 0, 1e6, "flatness (RMS) over the footprint disc")    \
+  F(f32, footprint_diameter_mm, 1, "mm", 0, 1000, "grinder footprint it was judged for")
 
 #define PETRA_GROUND_PLANE_FIELDS(F)                                        \
   F(u32, eval_id, 1, "", 0, PETRA_U32_MAX, "evaluation it belongs to")      \

@@ -178,6 +178,11 @@ void print_summary(const EvalOptions& o, const PipelineOutput& out, double total
         "%zu triangles  seen at %.0f deg\n",
         k + 1, p.normal.x(), p.normal.y(), p.normal.z(), p.centroid_mm.x(), p.centroid_mm.y(),
         p.centroid_mm.z(), p.area_mm2, p.rms_mm, p.triangles, p.view_angle_deg);
+    std::printf(
+        "       footprint %.0f mm: RMS %.2f mm, peak-to-valley %.2f mm (%s plane); 1-sigma %.2f "
+        "deg, %.2f mm\n",
+        r.planes.footprint_diameter_mm, p.footprint_rms_mm, p.footprint_pv_mm,
+        p.footprint_local ? "the disc's own" : "the face's", p.normal_sigma_deg, p.offset_sigma_mm);
   }
   if (r.planes.accepted < o.planes) {
     if (r.planes.classes < o.planes)
@@ -185,9 +190,11 @@ void print_summary(const EvalOptions& o, const PipelineOutput& out, double total
                   r.planes.classes, PipelineParams{}.reconstruction.grind.angle.min_separation_deg);
     for (int k = r.planes.accepted; k < r.planes.count; ++k) {
       const GrindPlane& p = r.planes.planes[k];
-      std::printf("    not used: normal (%.3f, %.3f, %.3f), area %.0f mm2, RMS %.2f mm: %s\n",
-                  p.normal.x(), p.normal.y(), p.normal.z(), p.area_mm2, p.rms_mm,
-                  verdict_name(p.verdict));
+      std::printf(
+          "    not used: normal (%.3f, %.3f, %.3f), area %.0f mm2, RMS %.2f mm, footprint RMS "
+          "%.2f mm, 1-sigma %.2f deg %.2f mm: %s\n",
+          p.normal.x(), p.normal.y(), p.normal.z(), p.area_mm2, p.rms_mm, p.footprint_rms_mm,
+          p.normal_sigma_deg, p.offset_sigma_mm, verdict_name(p.verdict));
     }
   }
   std::printf("  timings (CPU ms):");

@@ -12,10 +12,37 @@ void vec3(json::Writer& w, const Eigen::Vector3d& v) {
   w.begin_array().number(v.x()).number(v.y()).number(v.z()).end_array();
 }
 
+// The grindability fields of a plane (optional in the contract): verdict,
+// uncertainty, the footprint disc and the whole patch's own plane.
+void grind_fields(json::Writer& w, const GrindPlane& p, double diameter_mm) {
+  w.key("verdict").string(verdict_key(p.verdict));
+  w.key("grindable").boolean(p.verdict == PlaneVerdict::accepted);
+  w.key("normal_sigma_deg").number(p.normal_sigma_deg);
+  w.key("offset_sigma_mm").number(p.offset_sigma_mm);
+  w.key("footprint").begin_object();
+  w.key("diameter_mm").number(diameter_mm);
+  w.key("covered").boolean(p.footprint_coverage > 0);
+  w.key("rms_mm").number(p.footprint_rms_mm);
+  w.key("peak_to_valley_mm").number(p.footprint_pv_mm);
+  w.key("coverage").number(p.footprint_coverage);
+  w.key("normal");
+  vec3(w, p.footprint_normal);
+  w.key("agrees").boolean(p.footprint_agrees);
+  w.key("plane").string(p.footprint_local ? "footprint" : "face");
+  w.end_object();
+  w.key("face").begin_object();
+  w.key("normal");
+  vec3(w, p.face_normal);
+  w.key("centroid_mm");
+  vec3(w, p.face_centroid_mm);
+  w.end_object();
+}
+
 }  // namespace
 
 std::string format_planes_json(const ReconstructionOutput& r) {
-  std::vector<char> buf(4096 + 512 * static_cast<std::size_t>(r.planes.count));
+  const double grinder_diameter_mm = r.planes.footprint_diameter_mm;
+  std::vector<char> buf(4096 + 1536 * static_cast<std::size_t>(r.planes.count));
   json::Writer w(buf);
   w.begin_object();
   w.key("planes").begin_array();
@@ -31,6 +58,7 @@ std::string format_planes_json(const ReconstructionOutput& r) {
     w.key("rms_mm").number(p.rms_mm);
     w.key("triangles").integer(static_cast<long long>(p.triangles));
     w.key("view_angle_deg").number(p.view_angle_deg);
+    grind_fields(w, p, grinder_diameter_mm);
     w.end_object();
   }
   w.end_array();
@@ -70,6 +98,7 @@ std::string format_planes_json(const ReconstructionOutput& r) {
     vec3(w, p.centroid_mm);
     w.key("area_mm2").number(p.area_mm2);
     w.key("rms_mm").number(p.rms_mm);
+    grind_fields(w, p, grinder_diameter_mm);
     w.end_object();
   }
   w.end_array();

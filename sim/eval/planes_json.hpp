@@ -1,5 +1,7 @@
 // planes.json (contract, docs/icd.md) from a reconstruction: the accepted
-// grind planes, best first, the ground plane and the Table-1 statistics.
+// grind planes, best first, the ground plane and the Table-1 statistics;
+// per plane its verdict, uncertainty, footprint disc and
+// the whole patch's own plane (optional fields).
 #pragma once
 
 #include <string>

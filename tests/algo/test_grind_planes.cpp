@@ -10,6 +10,7 @@
 
 #include "algo/ground_segment.hpp"
 #include "algo/mesh_lift.hpp"
+#include "algo/plane_fit.hpp"
 #include "tests/support/heap_counter.hpp"
 #include "tests/support/synthetic_scene.hpp"
 
@@ -98,11 +99,13 @@ bool on_face(const test::Rock& rock, int f, const Eigen::Vector3d& x, double tol
 
 Result<GrindResult> run(const RockMesh& m, int c, const GrindParams& params,
                         std::vector<std::uint8_t>& labels,
-                        const std::vector<Eigen::Vector3d>& normals = {}) {
+                        const std::vector<Eigen::Vector3d>& normals = {},
+                        const RigGeometry& rig = {}) {
   std::vector<std::byte> block(grind_planes_scratch_bytes(m.tris.size()));
   Arena arena(block);
   labels.assign(m.tris.size(), 0);
-  return find_grind_planes(m.cloud.xyz, m.tris, kView.centre(), c, params, arena, labels, normals);
+  return find_grind_planes(m.cloud.xyz, m.tris, kView.centre(), c, params, arena, labels, normals,
+                           rig);
 }
 
 // Smoothed point normals as the pipeline gives them (algo/surface_normals
@@ -217,19 +220,31 @@ RockMesh bent_face_mesh() {
   });
 }
 
-TEST(GrindPlanes, BentFaceIsRegrownWhole) {
+// Built once for the tests that use it (the Debug build ray-casts slowly).
+const RockMesh& bent_mesh() {
   static const RockMesh m = bent_face_mesh();
-  static const std::vector<Eigen::Vector3d> normals = smoothed_normals(m);  // as the pipeline
+  return m;
+}
+const std::vector<Eigen::Vector3d>& bent_normals() {
+  static const std::vector<Eigen::Vector3d> n = smoothed_normals(bent_mesh());  // as the pipeline
+  return n;
+}
+
+TEST(GrindPlanes, BentFaceIsRegrownWhole) {
+  const RockMesh& m = bent_mesh();
+  const std::vector<Eigen::Vector3d>& normals = bent_normals();
   const test::Rock rock = test::ridge_rock();
   auto face_error = [&](const GrindParams& params, double& area) {
     std::vector<std::uint8_t> labels;
     auto r = run(m, 3, params, labels, normals);
     EXPECT_TRUE(r.ok()) << r.error().message;
+    // The whole patch's plane (face_normal): the regrowth's subject. The
+    // reported plane may be a footprint disc's own on this bent surface
+    // (FootprintOnABentFaceIsItsLocalPlane).
     double err = 180;
     for (int k = 0; r.ok() && k < r->accepted; ++k)
-      if (face_of(rock, r->planes[k]) == 1 &&
-          angle_deg(r->planes[k].normal, rock.faces[1].n) < err) {
-        err = angle_deg(r->planes[k].normal, rock.faces[1].n);
+      if (angle_deg(r->planes[k].face_normal, rock.faces[1].n) < err) {
+        err = angle_deg(r->planes[k].face_normal, rock.faces[1].n);
         area = r->planes[k].area_mm2;
       }
     return err;
@@ -245,6 +260,60 @@ TEST(GrindPlanes, BentFaceIsRegrownWhole) {
   EXPECT_LT(after, 2.0);
   EXPECT_GT(before, 4.0);  // the failure the regrowth is for
   EXPECT_GT(area_after, area_before);
+}
+
+// On the bent face the disc's own plane differs from the face's by far more
+// than the noise: it is the bent surface's own plane under the disc, and
+// with report_disc_plane it is the plane reported.
+TEST(GrindPlanes, FootprintOnABentFaceIsItsLocalPlane) {
+  const RockMesh& m = bent_mesh();
+  const std::vector<Eigen::Vector3d>& normals = bent_normals();
+  const test::Rock rock = test::ridge_rock();
+  std::vector<std::uint8_t> labels;
+  GrindParams params;
+  params.report_disc_plane = true;
+  auto r = run(m, 3, params, labels, normals);
+  ASSERT_TRUE(r.ok());
+  int k = -1;
+  for (int j = 0; j < r->accepted; ++j)
+    if (angle_deg(r->planes[j].face_normal, rock.faces[1].n) < 5) k = j;
+  ASSERT_GE(k, 0);
+  const GrindPlane& p = r->planes[k];
+  ASSERT_TRUE(p.footprint_local);
+  EXPECT_FALSE(p.footprint_agrees);
+  EXPECT_LT(angle_deg(p.normal, p.footprint_normal), 1e-9);
+  EXPECT_GT(angle_deg(p.normal, p.face_normal), 2.0);
+  // The bent cloud's face-1 points under the disc (radius 10 mm about the
+  // centroid, across the normal), fitted by total least squares.
+  std::vector<Eigen::Vector3d> under;
+  for (std::size_t i = 0; i < m.cloud.xyz.size(); ++i) {
+    const Eigen::Vector3d q = m.cloud.xyz[i] - p.centroid_mm;
+    const double along = q.dot(p.normal);
+    if (m.cloud.surface[i] == 1 && q.squaredNorm() - along * along <= 100)
+      under.push_back(m.cloud.xyz[i]);
+  }
+  ASSERT_GT(under.size(), 100u);
+  auto fit = fit_plane_tls<double>(std::span<const Eigen::Vector3d>(under));
+  ASSERT_TRUE(fit.ok());
+  EXPECT_LT(
+      std::min(angle_deg(fit->plane.normal, p.normal), angle_deg(-fit->plane.normal, p.normal)),
+      1.0);
+  EXPECT_LT(std::abs(fit->plane.distance(p.centroid_mm)), 0.3);
+  EXPECT_LT(p.footprint_rms_mm, 1.0);
+  // By default the face's plane is reported, through the same disc's centre.
+  auto d = run(m, 3, GrindParams{}, labels, normals);
+  ASSERT_TRUE(d.ok());
+  bool found = false;
+  for (int j = 0; j < d->accepted; ++j) {
+    const GrindPlane& q = d->planes[j];
+    if (angle_deg(q.face_normal, rock.faces[1].n) >= 5) continue;
+    found = true;
+    EXPECT_FALSE(q.footprint_local);
+    EXPECT_LT(angle_deg(q.normal, q.face_normal), 1e-9);
+    EXPECT_LT(angle_deg(q.footprint_normal, p.footprint_normal), 1e-9);
+    EXPECT_NEAR(q.normal.dot(q.centroid_mm - q.face_centroid_mm), 0.0, 1e-9);
+  }
+  EXPECT_TRUE(found);
 }
 
 TEST(GrindPlanes, RejectionsCarryTheirReason) {
@@ -268,8 +337,81 @@ TEST(GrindPlanes, RejectionsCarryTheirReason) {
   r = run(m, 3, p, labels);
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r->accepted, 0);
-  for (int k = 0; k < r->count; ++k) EXPECT_EQ(r->planes[k].verdict, PlaneVerdict::too_small);
+  for (int k = 0; k < r->count; ++k)
+    EXPECT_EQ(r->planes[k].verdict, PlaneVerdict::too_small) << verdict_key(r->planes[k].verdict);
   EXPECT_STREQ(verdict_name(PlaneVerdict::too_small), "smaller than the grinder footprint");
+}
+
+// The test rig: kView's focal length and a 200 mm baseline.
+const RigGeometry kRig{kView.f_px, 200.0};
+
+TEST(GrindPlanes, FootprintAndUncertaintyOnEveryPlane) {
+  const RockMesh& exact = rock_mesh(0.0);
+  const RockMesh& noisy = rock_mesh(0.3, 5);
+  std::vector<std::uint8_t> labels;
+  // No rig: the fits' residuals alone set the uncertainty (the noise model
+  // is tested in test_plane_uncertainty), so the exact mesh's is near zero.
+  auto a = run(exact, 3, GrindParams{}, labels);
+  auto b = run(noisy, 3, GrindParams{}, labels);
+  auto c = run(noisy, 3, GrindParams{}, labels, {}, kRig);
+  ASSERT_TRUE(a.ok() && b.ok() && c.ok());
+  ASSERT_EQ(c->accepted, 3);
+  ASSERT_EQ(a->accepted, 3);
+  ASSERT_EQ(b->accepted, 3);
+  EXPECT_EQ(a->footprint_diameter_mm, 20.0);
+  for (int k = 0; k < 3; ++k) {
+    const GrindPlane& p = b->planes[k];
+    EXPECT_STREQ(verdict_key(p.verdict), "grindable");
+    EXPECT_GT(p.footprint_coverage, 0.8);
+    EXPECT_LT(p.footprint_rms_mm, 1.0);
+    EXPECT_GT(p.normal_sigma_deg, 0.0);
+    EXPECT_LT(p.normal_sigma_deg, 2.0);
+    EXPECT_GT(p.offset_sigma_mm, 0.0);
+    // Flat faces: the whole face's plane, through the disc's centre, which
+    // lies on the face itself (inside its polygon, on its plane).
+    EXPECT_FALSE(p.footprint_local);
+    EXPECT_LT(angle_deg(p.normal, p.face_normal), 1e-9);
+    const test::Rock rock = test::ridge_rock();
+    EXPECT_TRUE(on_face(rock, face_of(rock, p), p.centroid_mm, 1.0));
+    // The noisier mesh's planes are the more uncertain (same faces).
+    const test::Rock rock_a = test::ridge_rock();
+    int same = -1;  // the exact mesh's plane of the same face (ranks may differ)
+    for (int j = 0; j < a->accepted; ++j)
+      if (face_of(rock_a, a->planes[j]) == face_of(rock_a, p)) same = j;
+    ASSERT_GE(same, 0);
+    const GrindPlane& q = a->planes[same];
+    EXPECT_LT(angle_deg(p.normal, q.normal), 5.0);
+    EXPECT_GT(p.normal_sigma_deg, q.normal_sigma_deg);
+    EXPECT_GT(p.footprint_rms_mm, q.footprint_rms_mm);
+    // With the rig, never below the stereo model's noise (here about 1 mm
+    // along the ray at 0.8 m, more than the mesh's 0.3 mm).
+    EXPECT_GT(c->planes[k].offset_sigma_mm, p.offset_sigma_mm);
+    EXPECT_LT(c->planes[k].normal_sigma_deg, 2.0);
+  }
+}
+
+TEST(GrindPlanes, RoughOrUncertainFacesAreRefusedWithTheirReason) {
+  const RockMesh& m = rock_mesh(0.3, 5);
+  std::vector<std::uint8_t> labels;
+  GrindParams p;
+  p.max_footprint_rms_mm = 0.05;  // far below the 0.3 mm noise of the mesh
+  auto r = run(m, 3, p, labels, {}, kRig);
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->accepted, 0);
+  int rough = 0;
+  for (int k = 0; k < r->count; ++k) rough += r->planes[k].verdict == PlaneVerdict::too_rough;
+  EXPECT_GE(rough, 3);
+  EXPECT_STREQ(verdict_name(PlaneVerdict::too_rough), "too rough over the grinder footprint");
+  p = {};
+  p.max_normal_sigma_deg = 1e-4;
+  r = run(m, 3, p, labels, {}, kRig);
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->accepted, 0);
+  int uncertain = 0;
+  for (int k = 0; k < r->count; ++k)
+    uncertain += r->planes[k].verdict == PlaneVerdict::too_uncertain;
+  EXPECT_GE(uncertain, 3);
+  EXPECT_STREQ(verdict_key(PlaneVerdict::too_uncertain), "too_uncertain");
 }
 
 TEST(GrindPlanes, FewerWantedThanQualifyKeepsTheLargest) {
@@ -305,7 +447,7 @@ TEST(GrindPlanes, BadInputIsNamed) {
   r = run(few, 2, GrindParams{}, labels);
   EXPECT_EQ(r.code(), Errc::degenerate);
   GrindParams p;
-  p.max_rms_mm = -1;
+  p.max_footprint_rms_mm = -1;
   EXPECT_EQ(run(m, 2, p, labels).code(), Errc::invalid_argument);
   p = {};
   p.grow_angle_deg = 90;

@@ -17,6 +17,12 @@ TEST(Telemetry, EveryPacketRoundTripsWithHeaderTimeAndCrc) {
   g.normal = {0.1, -0.2, 0.97};
   g.centroid_mm = {1.25, 2.5, 800.125};
   g.area_mm2 = 1234.5;
+  g.verdict = 0;
+  g.plane_source = 1;
+  g.normal_sigma_deg = 0.25f;
+  g.offset_sigma_mm = 0.125f;
+  g.footprint_rms_mm = 0.5f;
+  g.footprint_diameter_mm = 20.0f;
   std::vector<std::uint8_t> buf(kMaxTmBytes);
   const std::size_t n =
       encode_tm(g, 42, wire::SeqFlags::unsegmented, TmTime{1700000000, 250000}, buf);
@@ -32,6 +38,11 @@ TEST(Telemetry, EveryPacketRoundTripsWithHeaderTimeAndCrc) {
   EXPECT_EQ(d.centroid_mm, g.centroid_mm);
   EXPECT_EQ(d.area_mm2, g.area_mm2);
   EXPECT_EQ(d.rank, 1);
+  EXPECT_EQ(d.plane_source, 1);
+  EXPECT_EQ(d.normal_sigma_deg, 0.25f);
+  EXPECT_EQ(d.offset_sigma_mm, 0.125f);
+  EXPECT_EQ(d.footprint_rms_mm, 0.5f);
+  EXPECT_EQ(d.footprint_diameter_mm, 20.0f);
 }
 
 TEST(Telemetry, DecoderRefusesCorruptionNamingTheCheck) {
