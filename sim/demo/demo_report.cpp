@@ -92,7 +92,7 @@ bool same_planes(const std::string& a, const std::string& b) {
   for (std::size_t i = 0; i < pa->planes.size(); ++i) {
     const auto& x = pa->planes[i];
     const auto& y = pb->planes[i];
-    if (x.normal != y.normal || x.centroid_mm != y.centroid_mm || x.area_mm2 != y.area_mm2 ||
+    if (x.normal != y.normal || x.grind_point() != y.grind_point() || x.area_mm2 != y.area_mm2 ||
         x.rms_mm != y.rms_mm || x.triangles != y.triangles)
       return false;
   }

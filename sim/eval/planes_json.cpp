@@ -52,7 +52,11 @@ std::string format_planes_json(const ReconstructionOutput& r) {
     w.begin_object();
     w.key("normal");
     vec3(w, p.normal);
+    // centroid_mm keeps its contract meaning (the face's area centroid);
+    // grind_point_mm is where the grinder goes (the footprint disc's centre).
     w.key("centroid_mm");
+    vec3(w, p.face_centroid_mm);
+    w.key("grind_point_mm");
     vec3(w, p.centroid_mm);
     w.key("area_mm2").number(p.area_mm2);
     w.key("rms_mm").number(p.rms_mm);
@@ -94,7 +98,11 @@ std::string format_planes_json(const ReconstructionOutput& r) {
     w.key("reason").string(verdict_name(p.verdict));
     w.key("normal");
     vec3(w, p.normal);
+    // centroid_mm keeps its contract meaning (the face's area centroid);
+    // grind_point_mm is where the grinder goes (the footprint disc's centre).
     w.key("centroid_mm");
+    vec3(w, p.face_centroid_mm);
+    w.key("grind_point_mm");
     vec3(w, p.centroid_mm);
     w.key("area_mm2").number(p.area_mm2);
     w.key("rms_mm").number(p.rms_mm);

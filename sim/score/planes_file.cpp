@@ -44,6 +44,11 @@ Result<PlanesFile> parse_planes_json(std::string_view text, const char* name) {
     auto cv = f.vec3(*c, p + ".centroid_mm");
     if (!cv) return cv.error();
     plane.centroid_mm = *cv;
+    if (const std::uint32_t g = f.optional_member(list[k], "grind_point_mm")) {
+      auto gv = f.vec3(g, p + ".grind_point_mm");
+      if (!gv) return gv.error();
+      plane.grind_point_mm = *gv;
+    }
     PETRA_TRY(optional_number(f, list[k], "area_mm2", p + ".area_mm2", plane.area_mm2));
     PETRA_TRY(optional_number(f, list[k], "rms_mm", p + ".rms_mm", plane.rms_mm));
     if (const std::uint32_t t = f.optional_member(list[k], "triangles")) {

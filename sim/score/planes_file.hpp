@@ -16,6 +16,11 @@ namespace petra::sim {
 struct OutputPlane {
   Eigen::Vector3d normal;  // unit, out of the rock
   Eigen::Vector3d centroid_mm;
+  // Where the grinder goes (optional field; the face's centroid when absent).
+  std::optional<Eigen::Vector3d> grind_point_mm;
+  const Eigen::Vector3d& grind_point() const {
+    return grind_point_mm ? *grind_point_mm : centroid_mm;
+  }
   double area_mm2 = 0;
   double rms_mm = 0;
   long long triangles = 0;
