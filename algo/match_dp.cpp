@@ -10,6 +10,7 @@
 #include "algo/dp_select_row.hpp"
 #include "algo/edge_pairs.hpp"
 #include "algo/match_cost.hpp"
+#include "algo/match_photometric.hpp"
 #include "algo/scanline_dp.hpp"
 #include "algo/vector_clones.hpp"
 
@@ -447,6 +448,15 @@ Rect right_search_area(Rect roi, int disp_min, int disp_max, int image_width) {
 
 namespace {
 
+// The right view's Canny thresholds on its own scale: a gradient g there is
+// g * gain on the left's (algo/match_photometric), so the same edges pass.
+CannyParams right_canny(CannyParams c, const match::GrayMap& map) {
+  const auto scaled = [&](int t) { return std::max(1, (t * 256 + map.gain_q8 / 2) / map.gain_q8); };
+  c.low = scaled(c.low);
+  c.high = std::max(c.low, scaled(c.high));
+  return c;
+}
+
 // The whole matcher for one lane count (kLanes = Dp, or 0 for any), so every
 // row kernel runs with a compile-time lane count. kPathLanes: the lanes of
 // the path costs S (D rounded up to 16, or 0 for any), which may be fewer
@@ -481,6 +491,13 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     return Error::make(Errc::degenerate, "match_dp: all %ld pixels of the ROI are shadow",
                        st.roi_pixels);
 
+  // The right view's gray levels on the left's scale (the cameras' gain and
+  // offset), for the intensity term and the right view's edge thresholds;
+  // census does not depend on them.
+  const match::GrayMap gray_map =
+      p.normalise_gray ? match::gray_map_for_roi(in.left, in.right, roi, p.disp_min, p.disp_max)
+                       : match::identity_gray_map();
+
   // Step 1: Canny in both views.
   std::span<std::uint8_t> edges_left, edges_right;
   PETRA_TRY(take(arena, static_cast<std::size_t>(w) * h, "left edge map", edges_left));
@@ -498,7 +515,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
                        "match_dp: ROI is textureless (%ld edge pixels, need %ld): nothing to match",
                        st.left_edges, need_edges);
   if (p.edge_constraint) {
-    auto s = canny(in.right, band, p.canny, arena, er);
+    auto s = canny(in.right, band, right_canny(p.canny, gray_map), arena, er);
     if (!s) return s.error();
     st.right_edges = s->edge_pixels;
   }
@@ -581,6 +598,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     reverse_copy(t1.data(), nrp, cri.data());
     reverse_copy(t2.data(), nrp, cro.data());
     match::gray_row(in.right, y, xr_hi - nrp + 1, nrp, t1.data());
+    match::apply_gray_map(gray_map, t1.data(), nrp, t1.data());
     reverse_copy(t1.data(), nrp, gr.data());
     const int yc = std::clamp(y, 0, H - 1);
     // Right samples: kRawMax outside the image or the range, kRawNeutral in

@@ -84,6 +84,9 @@ struct MatchDpParams {
   int uniqueness_pct = 5;
   int max_mean_cost = 10;  // ceiling of the mean raw cost (0..24) in the window
   bool median = true;
+  // The right view's gray levels mapped to the left's statistics before the
+  // intensity term (algo/match_photometric); off only to measure its effect.
+  bool normalise_gray = true;
 };
 
 struct MatchDpStats {
