@@ -448,15 +448,6 @@ Rect right_search_area(Rect roi, int disp_min, int disp_max, int image_width) {
 
 namespace {
 
-// The right view's Canny thresholds on its own scale: a gradient g there is
-// g * gain on the left's (algo/match_photometric), so the same edges pass.
-CannyParams right_canny(CannyParams c, const match::GrayMap& map) {
-  const auto scaled = [&](int t) { return std::max(1, (t * 256 + map.gain_q8 / 2) / map.gain_q8); };
-  c.low = scaled(c.low);
-  c.high = std::max(c.low, scaled(c.high));
-  return c;
-}
-
 // The whole matcher for one lane count (kLanes = Dp, or 0 for any), so every
 // row kernel runs with a compile-time lane count. kPathLanes: the lanes of
 // the path costs S (D rounded up to 16, or 0 for any), which may be fewer
@@ -492,8 +483,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
                        st.roi_pixels);
 
   // The right view's gray levels on the left's scale (the cameras' gain and
-  // offset), for the intensity term and the right view's edge thresholds;
-  // census does not depend on them.
+  // offset), for the intensity term; census does not depend on them.
   const match::GrayMap gray_map =
       p.normalise_gray ? match::gray_map_for_roi(in.left, in.right, roi, p.disp_min, p.disp_max)
                        : match::identity_gray_map();
@@ -515,7 +505,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
                        "match_dp: ROI is textureless (%ld edge pixels, need %ld): nothing to match",
                        st.left_edges, need_edges);
   if (p.edge_constraint) {
-    auto s = canny(in.right, band, right_canny(p.canny, gray_map), arena, er);
+    auto s = canny(in.right, band, p.canny, arena, er);
     if (!s) return s.error();
     st.right_edges = s->edge_pixels;
   }

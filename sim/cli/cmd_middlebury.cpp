@@ -25,7 +25,7 @@ struct MiddleburyOptions {
   std::string data = "../shared/data";  // run from the project directory
   std::string scene;
   bool no_edges = false;
-  bool no_normalise = false;
+  bool normalise = false;
   std::string perturb;  // "gain,offset,sigma[,seed[,vignetting]]"
 };
 
@@ -51,7 +51,7 @@ int run(const MiddleburyOptions& o) {
     p.disp_min = 0;
     p.disp_max = s.disp_max;
     p.edge_constraint = !o.no_edges;
-    p.normalise_gray = !o.no_normalise;
+    p.normalise_gray = o.normalise;
     const auto t0 = std::chrono::steady_clock::now();
     auto run = eval::run_match_dp(data->left.view(), data->right.view(),
                                   Rect{0, 0, data->left.width, data->left.height}, p);
@@ -79,8 +79,8 @@ void add_middlebury(CLI::App& app, Outcome& outcome) {
   cmd->add_option("--scene", o.scene,
                   "one scene (tsukuba, venus, sawtooth, map, teddy, cones, Aloe, Baby1, Rocks1)");
   cmd->add_flag("--no-edges", o.no_edges, "skip the edge constraint (for comparisons)");
-  cmd->add_flag("--no-normalise", o.no_normalise,
-                "skip the right view's gray-level normalisation (for comparisons)");
+  cmd->add_flag("--normalise", o.normalise,
+                "map the right view's gray levels to the left's first (algo/match_photometric)");
   cmd->add_option("--perturb", o.perturb,
                   "change the right view before matching: gain,offset,sigma[,seed[,vignetting]] "
                   "(e.g. 0.82,12,2: another camera's gain and offset, noise sigma 2)");
