@@ -10,6 +10,7 @@
 #include "algo/dp_select_row.hpp"
 #include "algo/edge_pairs.hpp"
 #include "algo/match_cost.hpp"
+#include "algo/match_photometric.hpp"
 #include "algo/scanline_dp.hpp"
 #include "algo/vector_clones.hpp"
 
@@ -481,6 +482,12 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     return Error::make(Errc::degenerate, "match_dp: all %ld pixels of the ROI are shadow",
                        st.roi_pixels);
 
+  // The right view's gray levels on the left's scale (the cameras' gain and
+  // offset), for the intensity term; census does not depend on them.
+  const match::GrayMap gray_map =
+      p.normalise_gray ? match::gray_map_for_roi(in.left, in.right, roi, p.disp_min, p.disp_max)
+                       : match::identity_gray_map();
+
   // Step 1: Canny in both views.
   std::span<std::uint8_t> edges_left, edges_right;
   PETRA_TRY(take(arena, static_cast<std::size_t>(w) * h, "left edge map", edges_left));
@@ -581,6 +588,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
     reverse_copy(t1.data(), nrp, cri.data());
     reverse_copy(t2.data(), nrp, cro.data());
     match::gray_row(in.right, y, xr_hi - nrp + 1, nrp, t1.data());
+    match::apply_gray_map(gray_map, t1.data(), nrp, t1.data());
     reverse_copy(t1.data(), nrp, gr.data());
     const int yc = std::clamp(y, 0, H - 1);
     // Right samples: kRawMax outside the image or the range, kRawNeutral in

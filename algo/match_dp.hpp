@@ -84,6 +84,11 @@ struct MatchDpParams {
   int uniqueness_pct = 5;
   int max_mean_cost = 10;  // ceiling of the mean raw cost (0..24) in the window
   bool median = true;
+  // The right view's gray levels mapped to the left's statistics before the
+  // intensity term (algo/match_photometric). Off by default: on, it moved one
+  // face of the simulator's clean scene 10 from 1.03 to 4.63 deg
+  // (docs/performance.md, "Camera differences").
+  bool normalise_gray = false;
 };
 
 struct MatchDpStats {

@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "algo/match_graphcut.hpp"
+#include "algo/match_photometric.hpp"
 
 namespace petra {
 
@@ -211,12 +212,19 @@ void GraphCutMatcher::prepare(const StereoInput& in, Rect roi, const GraphCutPar
   clip2_ = 2 * params.data_clip;
   prune_ = params.prune;
   const int threshold = params.edge_threshold;
+  // The right view's gray levels on the left's scale (camera gain and offset).
+  const match::GrayMap same = match::identity_gray_map();
+  const match::GrayMap to_left =
+      params.normalise_gray
+          ? match::gray_map_for_roi(left, right, roi, params.disp_min, params.disp_max)
+          : same;
   for (int y = 0; y < h_; ++y) {
     const int gy = roi.y + y;
     for (int x = 0; x < w_; ++x) {
       const int p = y * w_ + x;
-      left_[p] = gc::half_pixel_sample(left, roi.x + x, gy);
-      left_flags_[p] = gc::edge_flags(left, roi.x + x, gy, x + 1 < w_, y + 1 < h_, threshold);
+      left_[p] = gc::half_pixel_sample(left, same.level, roi.x + x, gy);
+      left_flags_[p] =
+          gc::edge_flags(left, same.level, roi.x + x, gy, x + 1 < w_, y + 1 < h_, threshold);
       if (in.left_shadow != nullptr && in.left_shadow->is_shadow(roi.x + x, gy)) {
         left_flags_[p] |= kUnusable;
       }
@@ -224,8 +232,9 @@ void GraphCutMatcher::prepare(const StereoInput& in, Rect roi, const GraphCutPar
     for (int xs = 0; xs < strip_w_; ++xs) {
       const int q = y * strip_w_ + xs;
       const int gx = strip_x0_ + xs;
-      right_[q] = gc::half_pixel_sample(right, gx, gy);
-      right_flags_[q] = gc::edge_flags(right, gx, gy, xs + 1 < strip_w_, y + 1 < h_, threshold);
+      right_[q] = gc::half_pixel_sample(right, to_left.level, gx, gy);
+      right_flags_[q] =
+          gc::edge_flags(right, to_left.level, gx, gy, xs + 1 < strip_w_, y + 1 < h_, threshold);
       if (in.right_shadow != nullptr && in.right_shadow->is_shadow(gx, gy)) {
         right_flags_[q] |= kUnusable;
       }

@@ -108,6 +108,9 @@ struct GraphCutParams {
   std::int32_t lambda2 = kGraphCutAuto;      // >= 0; default lambda
   int edge_threshold = 8;                    // gray levels, 1..255
   int data_clip = 30;                        // gray levels, 1..90
+  // The right view's gray levels mapped to the left's statistics before the
+  // data term (algo/match_photometric); off by default like the DP's.
+  bool normalise_gray = false;
   // The labelling the expansions start from (docs/graphcut.md, "Start").
   GraphCutStart start = GraphCutStart::dp;
   // Parameters of the DP start (its disparity range is this one's).

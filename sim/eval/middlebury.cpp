@@ -20,7 +20,10 @@ constexpr MiddleburyScene kScenes[] = {
     {"cones", "middlebury/cones", "im2.png", "im6.png", "disp2.png", "disp6.png", 4, 59},
     {"Aloe", "middlebury2006/Aloe", "view1.png", "view5.png", "disp1.png", "disp5.png", 2, 111},
     {"Baby1", "middlebury2006/Baby1", "view1.png", "view5.png", "disp1.png", "disp5.png", 2, 79},
+    // Real rocks (real-rocks/rocks1/PROVENANCE.txt): truth 27.5 .. 85 px.
+    {"Rocks1", "real-rocks/rocks1", "view1.png", "view5.png", "disp1.png", "disp5.png", 2, 89},
 };
+constexpr std::size_t kMiddleburyCount = 8;  // the rest are the real-rock scenes
 
 Result<io::FloatImage> load_gt(const std::string& path, int scale) {
   auto g = io::read_gray_image(path);
@@ -52,7 +55,11 @@ Bad1 bad1(ImageView<const float> d, const MiddleburyData& m) {
 }  // namespace
 
 std::span<const MiddleburyScene> middlebury_scenes() {
-  return kScenes;
+  return std::span<const MiddleburyScene>(kScenes).first(kMiddleburyCount);
+}
+
+std::span<const MiddleburyScene> real_rock_scenes() {
+  return std::span<const MiddleburyScene>(kScenes).subspan(kMiddleburyCount);
 }
 
 const MiddleburyScene* find_middlebury_scene(const std::string& name) {

@@ -35,6 +35,10 @@ struct MiddleburyScene {
 
 // The eight scenes of shared/data (middlebury/ and middlebury2006/).
 std::span<const MiddleburyScene> middlebury_scenes();
+// Real-rock pairs with ground truth on the same convention (real-rocks/:
+// Rocks1, Middlebury 2006 half size).
+std::span<const MiddleburyScene> real_rock_scenes();
+// Any of the above by name.
 const MiddleburyScene* find_middlebury_scene(const std::string& name);
 
 struct MiddleburyData {

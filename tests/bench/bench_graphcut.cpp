@@ -45,6 +45,10 @@ void apply_env_overrides(petra::GraphCutParams& p) {
     p.start = static_cast<petra::GraphCutStart>(std::atoi(c));
   if (const char* c = std::getenv("PETRA_GC_GUIDED")) p.guided_cycles = std::atoi(c);
   if (const char* c = std::getenv("PETRA_GC_RADIUS")) p.guided_radius = std::atoi(c);
+  if (const char* c = std::getenv("PETRA_GC_NORMALISE")) {
+    p.normalise_gray = std::atoi(c) != 0;
+    p.dp_start.normalise_gray = p.normalise_gray;
+  }
 }
 
 // One matcher with its arena, sized at "init" for a budget.
@@ -162,18 +166,21 @@ void BM_GraphCutRoi(benchmark::State& state) {
   state.counters["MB"] = static_cast<double>(mt.block.size()) / 1e6;
 }
 
-const bool registered = [] {
-  for (const auto& s : petra::eval::middlebury_scenes()) {
-    benchmark::RegisterBenchmark((std::string("GraphCut/") + s.name).c_str(), BM_GraphCut, s.name)
-        ->Unit(benchmark::kMillisecond)
-        ->MeasureProcessCPUTime()
-        ->Iterations(1);
+void register_scene(const petra::eval::MiddleburyScene& s) {
+  benchmark::RegisterBenchmark((std::string("GraphCut/") + s.name).c_str(), BM_GraphCut, s.name)
+      ->Unit(benchmark::kMillisecond)
+      ->MeasureProcessCPUTime()
+      ->Iterations(1);
 #ifdef PETRA_HAVE_OPENCV
-    benchmark::RegisterBenchmark((std::string("Sgbm/") + s.name).c_str(), BM_Sgbm, s.name)
-        ->Unit(benchmark::kMillisecond)
-        ->MeasureProcessCPUTime();
+  benchmark::RegisterBenchmark((std::string("Sgbm/") + s.name).c_str(), BM_Sgbm, s.name)
+      ->Unit(benchmark::kMillisecond)
+      ->MeasureProcessCPUTime();
 #endif
-  }
+}
+
+const bool registered = [] {
+  for (const auto& s : petra::eval::middlebury_scenes()) register_scene(s);
+  for (const auto& s : petra::eval::real_rock_scenes()) register_scene(s);
   benchmark::RegisterBenchmark("GraphCutRoi", BM_GraphCutRoi)
       ->Args({160, 42})
       ->Args({80, 42})

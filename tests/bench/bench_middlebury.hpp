@@ -2,7 +2,10 @@
 // Middlebury scenes of ../shared/data loaded once per process, their bad-1
 // figures as benchmark counters, and OpenCV's StereoSGBM with the peer's
 // settings of shared/data/README.md, so that both reports compare against
-// the same peer.
+// the same peer. PETRA_PERTURB_RIGHT="gain,offset,sigma[,seed[,vignetting]]"
+// changes every right view as it is loaded (sim/eval/middlebury_perturb.hpp),
+// e.g. PETRA_PERTURB_RIGHT=0.82,12,2 for the camera difference of
+// docs/performance.md ("Camera differences").
 #pragma once
 
 #include <benchmark/benchmark.h>
@@ -14,6 +17,7 @@
 #include <string>
 
 #include "sim/eval/middlebury.hpp"
+#include "sim/eval/middlebury_perturb.hpp"
 
 #ifdef PETRA_HAVE_OPENCV
 #include <opencv2/calib3d.hpp>
@@ -39,6 +43,14 @@ inline const eval::MiddleburyData& middlebury_scene(const std::string& name, con
   if (!d) {
     std::fprintf(stderr, "%s: %s\n", tool, d.error().message);
     std::exit(1);
+  }
+  if (const char* text = std::getenv("PETRA_PERTURB_RIGHT")) {
+    auto p = eval::parse_perturbation(text);
+    if (!p) {
+      std::fprintf(stderr, "%s: PETRA_PERTURB_RIGHT: %s\n", tool, p.error().message);
+      std::exit(1);
+    }
+    eval::perturb(d->right, *p);
   }
   cache.push_back(std::move(*d));
   return cache.back();

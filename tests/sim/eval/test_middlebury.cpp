@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "sim/eval/middlebury_perturb.hpp"
 #include "sim/eval/run_match_dp.hpp"
 
 namespace petra::eval {
@@ -173,6 +174,78 @@ TEST(Middlebury, DpMatcherAccuracyOnTheEightScenes) {
   // At or below OpenCV SGBM on at least four scenes (README figures; the
   // same-run comparison is in bench_stereo).
   EXPECT_GE(better_than_sgbm, 4);
+}
+
+TEST(Middlebury, PerturbationIsReproducibleAndChecked) {
+  MiddleburyData a = load("venus"), b = load("venus");
+  ASSERT_NE(a.scene, nullptr);
+  perturb(a.right, kCameraDifference);
+  perturb(b.right, kCameraDifference);
+  EXPECT_EQ(a.right.pixels, b.right.pixels);  // same seed, same image
+  const MiddleburyData o = load("venus");
+  double mean_o = 0, mean_a = 0;
+  for (std::size_t i = 0; i < o.right.pixels.size(); ++i) {
+    mean_o += o.right.pixels[i];
+    mean_a += a.right.pixels[i];
+  }
+  const double n = static_cast<double>(o.right.pixels.size());
+  EXPECT_NEAR(mean_a / n, 0.82 * mean_o / n + 12.0, 0.5);  // gain and offset applied
+  EXPECT_FALSE(parse_perturbation("0.82,12").ok());        // sigma missing
+  EXPECT_FALSE(parse_perturbation("0,12,2").ok());         // gain out of range
+  EXPECT_FALSE(parse_perturbation("1,0,2,1,1.5").ok());    // vignetting out of range
+  auto p = parse_perturbation("0.82,12,2,7,0.3");
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(p->seed, 7u);
+  EXPECT_DOUBLE_EQ(p->vignetting, 0.3);
+}
+
+// filled bad-1 nonocc of the DP matcher on `name`, the right view changed by
+// `change` (none when inactive).
+double dp_filled_nonocc(const char* name, const Perturbation& change, bool normalise) {
+  MiddleburyData d = load(name);
+  EXPECT_NE(d.scene, nullptr);
+  if (d.scene == nullptr) return 100.0;
+  if (change.active()) perturb(d.right, change);
+  MatchDpParams p;
+  p.disp_max = d.scene->disp_max;
+  p.normalise_gray = normalise;
+  auto run = run_match_dp(d.left.view(), d.right.view(), {0, 0, d.left.width, d.left.height}, p);
+  EXPECT_TRUE(run.ok()) << name;
+  if (!run.ok()) return 100.0;
+  auto s = score_middlebury(run->disparity.view(), d);
+  return s.ok() ? s->filled.nonocc : 100.0;
+}
+
+// The right camera with another gain (0.82) and offset (+12 gray levels):
+// with the gray-level normalisation (algo/match_photometric) the DP matcher
+// stays within 1 point of its figure on the original pair (measured: +0.02
+// to +0.36 on the nine pairs, docs/performance.md "Camera differences").
+// Without it Baby1 loses several points, so the bound can fail.
+TEST(Middlebury, DpMatcherIsInsensitiveToTheRightCamerasGainAndOffset) {
+  const Perturbation gain_offset{0.82, 12.0, 0.0, 0.0, 1};
+  for (const char* name : {"Baby1", "venus", "Rocks1"}) {
+    const double clean = dp_filled_nonocc(name, Perturbation{}, true);
+    const double changed = dp_filled_nonocc(name, gain_offset, true);
+    std::printf("%-7s filled nonocc: original %.2f, gain 0.82 offset 12: %.2f\n", name, clean,
+                changed);
+    EXPECT_LE(changed, clean + 1.0) << name;
+  }
+  const double unnormalised = dp_filled_nonocc("Baby1", gain_offset, false);
+  std::printf("Baby1   without the normalisation: %.2f\n", unnormalised);
+  EXPECT_GT(unnormalised, dp_filled_nonocc("Baby1", Perturbation{}, false) + 2.0)
+      << "the change no longer tests anything";
+}
+
+// The whole camera difference, noise sigma 2 included, on the real
+// rocks: within its 2-point bound (measured +0.83). Noise is what the
+// normalisation does not remove: Baby1 (+4.9), venus (+2.5) and tsukuba
+// (+2.2) exceed the bound (docs/performance.md, not met).
+TEST(Middlebury, DpMatcherOnRocks1WithTheRightCameraChanged) {
+  const double clean = dp_filled_nonocc("Rocks1", Perturbation{}, true);
+  const double changed = dp_filled_nonocc("Rocks1", kCameraDifference, true);
+  std::printf("Rocks1  filled nonocc: original %.2f, gain 0.82 offset 12 noise 2: %.2f\n", clean,
+              changed);
+  EXPECT_LE(changed, clean + 2.0);
 }
 
 }  // namespace
