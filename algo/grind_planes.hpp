@@ -87,8 +87,9 @@ struct GrindParams {
   double min_footprint_coverage = 0.8;  // of the disc's area, by the face's triangles
   double max_normal_sigma_deg = 3.0;    // uncertainty limits of a grindable plane
   double max_offset_sigma_mm = 1.0;
-  double sigma_disparity_px = 0.3;  // matcher's disparity noise (the depth-noise model)
-  double agree_sigmas = 3.0;        // disc plane vs face plane: the same within this
+  double sigma_disparity_px =
+      kDisparitySigmaPx;      // matcher's disparity noise (the depth-noise model)
+  double agree_sigmas = 3.0;  // disc plane vs face plane: the same within this
   // Report a disc's own plane where it disagrees with the face's (a face
   // curving at the tool's scale). Off: measured on the clean scene set, the
   // matcher's correlated errors tilt 20 mm discs of planar faces by up to

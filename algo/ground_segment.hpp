@@ -20,14 +20,14 @@
 //      costs per point), then one k-means and refit on every point.
 // Final labels: ground within max(3 RMS, 2 mm) of the plane, rock above
 // (never more than the k-means midpoint). Then the result is checked: the rock must stand out (its
-// cluster centre at least min_rock_height_mm and min_rock_height_rms ground RMS above the plane), the ground must be a plane as
-// rough as the noise model says (RMS <= max_rms_sigmas * sigma), a real share of the points, with
-// almost nothing more than T below it, and hold most of the ROI's border band. A failed check
-// sets *failure (GroundFailure) so the caller can segment from the click instead (click_region).
-// Inputs: positions (world, mm) and rectified pixels of the cloud, the ROI and optional click in
-// rectified pixels, the left camera centre (world, mm), the rig's depth noise. Output: labels into
-// a caller span (one per point) and the ground plane. No heap, no scratch: every pass streams over
-// the caller's arrays.
+// cluster centre at least min_rock_height_mm and min_rock_height_rms ground RMS above the plane),
+// the ground must be a plane as rough as the noise model says (RMS <= max_rms_sigmas * sigma), a
+// real share of the points, with almost nothing more than T below it, and hold most of the ROI's
+// border band. A failed check sets *failure (GroundFailure) so the caller can segment from the
+// click instead (click_region). Inputs: positions (world, mm) and rectified pixels of the cloud,
+// the ROI and optional click in rectified pixels, the left camera centre (world, mm), the rig's
+// depth noise. Output: labels into a caller span (one per point) and the ground plane. No heap, no
+// scratch: every pass streams over the caller's arrays.
 #pragma once
 
 #include <cstddef>
@@ -39,6 +39,7 @@
 #include "algo/core/result.hpp"
 #include "algo/fixed_point.hpp"
 #include "algo/plane_fit.hpp"
+#include "algo/plane_uncertainty.hpp"
 
 namespace petra {
 
@@ -47,19 +48,19 @@ namespace petra {
 inline constexpr std::size_t kSegmentSamples = 4096;
 
 struct GroundParams {
-  double epsilon = 1e-4;             // plane-vector change that ends the iteration
-  int max_iterations = 50;           // outer (refit) iterations
-  int max_kmeans_passes = 50;        // inner k-means passes per iteration
-  double min_rock_height_mm = 3.0;   // rock cluster centre above the plane
-  double min_rock_height_rms = 4.0;  // ... and above this many ground RMS
-  double sigma_disparity_px = 0.3;   // matching noise of the disparity (sigma_d)
-  double terrain_roughness_mm = 2.0; // RMS relief of natural ground about its plane
-  double inlier_sigmas = 2.5;        // MSAC inlier band T, in sigma
-  double max_rms_sigmas = 2.0;       // ground RMS limit, in sigma
-  double below_cost = 2.0;           // MSAC cost of a point under the plane, in T^2
-  int msac_iterations = 256;         // triples tried (bounded, deterministic)
+  double epsilon = 1e-4;                            // plane-vector change that ends the iteration
+  int max_iterations = 50;                          // outer (refit) iterations
+  int max_kmeans_passes = 50;                       // inner k-means passes per iteration
+  double min_rock_height_mm = 3.0;                  // rock cluster centre above the plane
+  double min_rock_height_rms = 4.0;                 // ... and above this many ground RMS
+  double sigma_disparity_px = kDisparitySigmaPx;    // matching noise of the disparity (sigma_d)
+  double terrain_roughness_mm = 2.0;                // RMS relief of natural ground about its plane
+  double inlier_sigmas = 2.5;                       // MSAC inlier band T, in sigma
+  double max_rms_sigmas = 2.0;                      // ground RMS limit, in sigma
+  double below_cost = 2.0;                          // MSAC cost of a point under the plane, in T^2
+  int msac_iterations = 256;                        // triples tried (bounded, deterministic)
   std::uint64_t msac_seed = 0x9E3779B97F4A7C15ull;  // fixed: same input, same plane
-  double min_ground_fraction = 0.1;  // of all points
+  double min_ground_fraction = 0.1;                 // of all points
   double max_below_fraction = 0.05;  // points deeper than min_rock_height_mm below the ground
   double min_trim_band_mm = 0.5;     // floor of the refit's band (3 RMS of the last fit)
   double ground_band_rms = 3.0;      // final labels: ground within this many RMS of the plane
@@ -92,8 +93,8 @@ struct ClickPx {
 
 template <class S>
 struct GroundResultT {
-  PlaneT<S> plane;  // normal towards the cameras: rock has positive distance
-  S rms_mm{};       // of the ground cluster about the plane
+  PlaneT<S> plane;        // normal towards the cameras: rock has positive distance
+  S rms_mm{};             // of the ground cluster about the plane
   double sigma_mm = 0;    // expected ground scatter: sqrt(sigma_Z^2 + roughness^2)
   double sigma_z_mm = 0;  // stereo depth noise at the ROI's mean range
   S rock_centre_mm{};

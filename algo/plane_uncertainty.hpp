@@ -27,6 +27,10 @@
 
 namespace petra {
 
+// The matcher's disparity noise (sigma_d) after the mean filter, px: the one
+// default of the depth-noise model, for the ground tolerance and the planes.
+inline constexpr double kDisparitySigmaPx = 0.3;
+
 // The rig's depth noise. A zero focal length or baseline: unknown rig (the
 // fit's residuals alone set the uncertainty).
 struct DepthNoise {
