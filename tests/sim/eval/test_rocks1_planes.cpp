@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -202,10 +203,11 @@ class Rocks1 : public ::testing::TestWithParam<Source> {
 };
 
 TEST_P(Rocks1, EveryRoiGivesPlanesFromTheClick) {
-  // Not met with the right view's gain changed: the green rock is refused ("the rock under the
-  // click is too small (1 points, need 200)"), the DP map there being islands; in the DISABLED test.
-  if (GetParam() == Source::dp_gain) GTEST_SKIP() << "not met yet: see DISABLED_EveryPlane...";
-  for (const RoiCase& c : kCases) run_case(c, GetParam(), false);
+  // With the right view's gain changed the green rock (the last case) is still refused ("the
+  // rock under the click is too small"), the DP map there being islands: measured and reported
+  // in docs/performance.md, not asserted here; the other two must give planes.
+  const bool gain = GetParam() == Source::dp_gain;
+  for (const RoiCase& c : std::span(kCases).first(gain ? 2 : 3)) run_case(c, GetParam(), false);
 }
 
 TEST_P(Rocks1, DISABLED_EveryPlaneLiesOnTheRealSurface) {
