@@ -36,7 +36,7 @@ namespace {
 struct EvalOptions {
   std::string calib, left, right, roi, click, method = "dp", out, disparity;
   int planes = 0;
-  std::size_t points = 0;  // 0: the pipeline's default for the ROI
+  std::size_t points = 0;  // 0: one per ROI pixel
   double shadow_fraction = PipelineParams{}.shadow_fraction;
 };
 
@@ -261,7 +261,10 @@ int run(const EvalOptions& o) {
   budget.max_roi_height = std::clamp(rroi->h, 16, left->height);
   budget.max_disparities = params.range.search_max_px - params.range.search_min_px + 1;
   budget.graph_cut = req.method == MatchMethod::graph_cut;
-  budget.max_points = o.points;
+  // One point per ROI pixel unless asked (--points: e.g. the flight budget's).
+  budget.max_points = o.points > 0 ? o.points
+                                   : static_cast<std::size_t>(budget.max_roi_width) *
+                                         static_cast<std::size_t>(budget.max_roi_height);
   const Status valid = validate(params);
   if (!valid.ok()) return fail("eval", valid.error().message);
   std::vector<std::byte> block(Pipeline::arena_bytes(budget, params));
@@ -334,8 +337,8 @@ void add_eval(CLI::App& app, Outcome& outcome) {
       "--disparity", o.disparity,
       "replay this rectified left-view PFM instead of matching (e.g. disparity_truth.pfm)");
   cmd->add_option("--points", o.points,
-                  "3-D points budget (default: one per 2x2 ROI pixels; more valid disparities "
-                  "are taken on a pixel stride)");
+                  "3-D points budget (default: one per ROI pixel; petra-fsw's: its boot line); "
+                  "more valid disparities are taken on a pixel stride");
   cmd->add_option("--out", o.out, "output directory")->required();
   cmd->callback([&outcome] {
     try {
