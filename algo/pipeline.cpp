@@ -9,12 +9,6 @@ namespace {
 
 constexpr std::size_t kSlack = 64 * 16;  // alignment padding of the run's allocations
 
-std::size_t points_of(const PipelineBudget& b) {
-  return b.max_points > 0 ? b.max_points
-                          : static_cast<std::size_t>(b.max_roi_width) *
-                                static_cast<std::size_t>(b.max_roi_height);
-}
-
 ReconstructionBudget recon_budget(const PipelineBudget& b) {
   return ReconstructionBudget{b.max_roi_width, b.max_roi_height, points_of(b)};
 }
@@ -28,6 +22,12 @@ std::size_t image_bytes(const PipelineBudget& b) {
 }
 
 }  // namespace
+
+std::size_t points_of(const PipelineBudget& b) {
+  return b.max_points > 0 ? b.max_points
+                          : static_cast<std::size_t>((b.max_roi_width + 1) / 2) *
+                                static_cast<std::size_t>((b.max_roi_height + 1) / 2);
+}
 
 Status validate(const PipelineBudget& b) {
   if (b.image_width < 16 || b.image_width > kRemapMaxSide || b.image_height < 16 ||

@@ -40,7 +40,9 @@ struct PipelineBudget {
   int max_roi_width = 640;  // px, ROI in the rectified left image
   int max_roi_height = 480;
   int max_disparities = 160;   // fine matcher: disp_max - disp_min + 1
-  std::size_t max_points = 0;  // 3-D points; 0 = one per ROI pixel
+  // 3-D points; 0 = one per 2 x 2 ROI pixels (more valid disparities: a
+  // stride of 2 or more, ReconstructionStats::point_stride).
+  std::size_t max_points = 0;
   // Room for the graph-cut matcher (MatchMethod::graph_cut) in the matching
   // step; the DP matcher is always available (the range search uses it).
   bool graph_cut = false;
@@ -49,6 +51,7 @@ struct PipelineBudget {
   GraphCutBands graph_cut_bands{};
 };
 Status validate(const PipelineBudget& b);
+std::size_t points_of(const PipelineBudget& b);  // the 3-D points budget
 
 struct PipelineParams {
   // Expected shadow share of the ROI (SEED.md 1), [0, 1). Only the darkest

@@ -16,6 +16,10 @@ std::size_t bytes_for(std::size_t n) {
   return n * sizeof(T) + alignof(T);
 }
 
+std::size_t roi_px(const ReconstructionBudget& b) {
+  return static_cast<std::size_t>(b.max_roi_width) * static_cast<std::size_t>(b.max_roi_height);
+}
+
 std::size_t max_triangles(const ReconstructionBudget& b) {
   return delaunay_max_triangles(b.max_points);
 }
@@ -31,7 +35,8 @@ std::size_t persistent_bytes(const ReconstructionBudget& b) {
 
 std::size_t transient_bytes(const ReconstructionBudget& b) {
   const std::size_t n = b.max_points, t = max_triangles(b);
-  const std::size_t filter = mean_filter_scratch_bytes(b.max_roi_width);
+  const std::size_t filter =
+      std::max(mean_filter_scratch_bytes(b.max_roi_width), bytes_for<std::int16_t>(roi_px(b)));
   const std::size_t delaunay =
       bytes_for<IntPoint>(n) +
       delaunay_scratch_bytes(n, static_cast<std::size_t>(b.max_roi_height));
@@ -103,6 +108,27 @@ Status segment_from_click(const ReconstructionRequest& request, const Reconstruc
     g.rms_mm = f->rms;
   }
   return {};
+}
+
+// The smallest pixel stride (in both directions, from the ROI's corner) on
+// which the map's valid disparities fit `capacity` points.
+int point_stride(ImageView<const std::int16_t> q4, std::size_t capacity) {
+  for (int s = 1;; ++s) {
+    std::size_t count = 0;
+    for (int y = 0; y < q4.height(); y += s)
+      for (int x = 0; x < q4.width(); x += s) count += is_valid_disparity(q4(x, y)) ? 1 : 0;
+    if (count <= capacity) return s;
+  }
+}
+
+// `map` with the disparities off the stride grid invalid, into `out`.
+ConstDisparityMap on_stride(ConstDisparityMap map, int s, std::span<std::int16_t> out) {
+  const int w = map.q4.width(), h = map.q4.height();
+  ImageView<std::int16_t> v(out.data(), w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      v(x, y) = (x % s == 0 && y % s == 0) ? map.q4(x, y) : kInvalidDisparity;
+  return {ImageView<const std::int16_t>(out.data(), w, h), map.roi};
 }
 
 }  // namespace
@@ -182,7 +208,18 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   PETRA_TRY(checkpoint(clock, "triangulate"));
   {
     StepTimer timer(clock, timings, "triangulate");
-    auto t = triangulate_disparity(rig, rect, out.filtered, *xyz, *px);
+    // Above the points budget: a regular subset of the pixels (the normals
+    // and the products keep the whole filtered map).
+    ConstDisparityMap input = out.filtered;
+    ArenaScope scope(arena);
+    st.point_stride = point_stride(input.q4, n_max);
+    if (st.point_stride > 1) {
+      auto thinned = arena.allocate<std::int16_t>(
+          static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "disparity on the stride");
+      if (!thinned) return thinned.error();
+      input = on_stride(input, st.point_stride, *thinned);
+    }
+    auto t = triangulate_disparity(rig, rect, input, *xyz, *px);
     if (!t) return t.error();
     n = t->points;
     st.triangulated = t->points;

@@ -37,7 +37,7 @@ namespace petra {
 struct ReconstructionBudget {
   int max_roi_width = 512;         // px, of the disparity map
   int max_roi_height = 512;        // px
-  std::size_t max_points = 65536;  // valid disparities after the mean filter
+  std::size_t max_points = 65536;  // 3-D points; more valid disparities: taken on a pixel stride
 };
 Status validate(const ReconstructionBudget& b);
 std::size_t reconstruction_arena_bytes(const ReconstructionBudget& b);
@@ -73,6 +73,7 @@ struct ReconstructionStats {
   double disparity_min_px = 0, disparity_max_px = 0;  // of the input map
   long dense_points = 0;                              // valid disparities in (paper: 23465)
   long filtered_points = 0;                           // after the mean filter (paper: 21382)
+  int point_stride = 1;  // 3-D points on every s-th pixel and row: more valid than max_points
   std::size_t triangulated = 0, triangulation_rejected = 0;
   std::size_t delaunay_triangles = 0, duplicates = 0;
   MeshFilterStats mesh;

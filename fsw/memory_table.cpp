@@ -29,9 +29,7 @@ int format_memory_row(char* buf, std::size_t size, int roi_w, int roi_h,
                       const petra::PipelineBudget& b, std::size_t cloud_points) {
   const PipelineMemory m = Pipeline::memory(
       b, FlightPipelineJob::pipeline_params(FlightPipelineJob::default_settings()));
-  const std::size_t points = b.max_points > 0 ? b.max_points
-                                              : static_cast<std::size_t>(b.max_roi_width) *
-                                                    static_cast<std::size_t>(b.max_roi_height);
+  const std::size_t points = points_of(b);
   const std::size_t arena = FlightPipelineJob::need_bytes(b, cloud_points);
   const std::size_t products = arena - m.total();
   return std::snprintf(buf, size,

@@ -36,6 +36,7 @@ namespace {
 struct EvalOptions {
   std::string calib, left, right, roi, click, method = "dp", out, disparity;
   int planes = 0;
+  std::size_t points = 0;  // 0: one per ROI pixel
   double shadow_fraction = PipelineParams{}.shadow_fraction;
 };
 
@@ -160,8 +161,9 @@ void print_summary(const EvalOptions& o, const PipelineOutput& out, double total
   std::printf("  dense points           %ld of %ld ROI px   (before the mean filter)\n",
               s.dense_points, static_cast<long>(q.w) * q.h);
   std::printf("  filtered points        %ld\n", s.filtered_points);
-  std::printf("  3-D points, triangles  %zu, %zu kept of %zu   (removed: %zu long, %zu oblique)\n",
-              s.triangulated, s.mesh.kept, s.delaunay_triangles, s.mesh.removed_long,
+  std::printf("  3-D points, triangles  %zu (pixel stride %d), %zu kept of %zu   (removed: %zu long, "
+              "%zu oblique)\n",
+              s.triangulated, s.point_stride, s.mesh.kept, s.delaunay_triangles, s.mesh.removed_long,
               s.mesh.removed_grazing);
   const Eigen::Vector3d& gn = r.ground.plane.normal;
   std::printf("  ground plane           n (%.4f, %.4f, %.4f), d %.2f mm, RMS %.2f mm, %zu points\n",
@@ -266,6 +268,10 @@ int run(const EvalOptions& o) {
   budget.max_roi_height = std::clamp(rroi->h, 16, left->height);
   budget.max_disparities = params.range.search_max_px - params.range.search_min_px + 1;
   budget.graph_cut = req.method == MatchMethod::graph_cut;
+  // One point per ROI pixel unless asked (--points: e.g. the flight budget's).
+  budget.max_points = o.points > 0 ? o.points
+                                   : static_cast<std::size_t>(budget.max_roi_width) *
+                                         static_cast<std::size_t>(budget.max_roi_height);
   const Status valid = validate(params);
   if (!valid.ok()) return fail("eval", valid.error().message);
   std::vector<std::byte> block(Pipeline::arena_bytes(budget, params));
@@ -337,6 +343,9 @@ void add_eval(CLI::App& app, Outcome& outcome) {
   cmd->add_option(
       "--disparity", o.disparity,
       "replay this rectified left-view PFM instead of matching (e.g. disparity_truth.pfm)");
+  cmd->add_option("--points", o.points,
+                  "3-D points budget (default: one per ROI pixel; petra-fsw's: its boot line); "
+                  "more valid disparities are taken on a pixel stride");
   cmd->add_option("--out", o.out, "output directory")->required();
   cmd->callback([&outcome] {
     try {

@@ -84,6 +84,7 @@ std::string format_planes_json(const ReconstructionOutput& r) {
   w.key("disparity_min").number(s.disparity_min_px);
   w.key("disparity_max").number(s.disparity_max_px);
   w.key("points_3d").integer(static_cast<long long>(s.triangulated));
+  w.key("point_stride").integer(s.point_stride);
   w.key("triangles").integer(static_cast<long long>(s.mesh.kept));
   w.key("rock_triangles").integer(static_cast<long long>(s.rock_triangles));
   w.key("ground_points").integer(static_cast<long long>(r.ground.ground_points));
