@@ -49,6 +49,7 @@ Status validate(const PipelineParams& p) {
     return Error::make(Errc::invalid_argument, "pipeline: shadow_fraction %.3g not in [0, 1)",
                        p.shadow_fraction);
   PETRA_TRY(validate(p.range));
+  PETRA_TRY(validate(p.calib_check));
   PETRA_TRY(validate(p.subpixel));
   PETRA_TRY(validate(p.photometric));
   PETRA_TRY(validate(p.reconstruction.filter));
@@ -79,7 +80,8 @@ std::size_t Pipeline::run_bytes(const PipelineBudget& b, const PipelineParams& p
       match_dp_scratch_bytes(MatchBudget{b.max_roi_width, b.max_roi_height, b.max_disparities});
   const std::size_t recon = reconstruction_arena_bytes(recon_budget(b)) +
                             grind_photometric_scratch_bytes(b.max_roi_width, b.max_roi_height);
-  return kept + std::max(range, std::max(match, recon)) + kSlack;
+  const std::size_t calib = calib_check_scratch_bytes(p.calib_check);
+  return kept + std::max({range, match, recon, calib}) + kSlack;
 }
 
 Result<Pipeline> Pipeline::create(const StereoRig& rig, const PipelineBudget& budget,
@@ -234,6 +236,14 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
     return Error::make(Errc::capacity_exceeded,
                        "pipeline: disparity range %d..%d px exceeds the budget of %d disparities",
                        out.range.min_px, out.range.max_px, budget_.max_disparities);
+  // Row alignment of the rectified pair over the range just found.
+  {
+    StepTimer timer(clock, timings, "calibration check");
+    auto c = check_calibration(rl, rr, roi, right_rectified, out.range.min_px, out.range.max_px,
+                               params_.calib_check, arena);
+    if (!c) return c.error();
+    out.calibration = *c;
+  }
   MatchDpParams mp = params_.match;
   mp.disp_min = out.range.min_px;
   mp.disp_max = out.range.max_px;

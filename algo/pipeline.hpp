@@ -2,6 +2,7 @@
 // ranked grind planes (SEED.md 0-4), as one object the executive (fsw) and
 // the ground tool (`petra eval`) both drive:
 //   rectify (ROI and search area) -> disparity range (coarse match)
+//   -> calibration check (row offset of matched corners; algo/calib_check)
 //   -> shadow masks -> match (dp or graph cut) -> reconstruct (mean filter, triangulate,
 //   Delaunay, mesh filter, segmentation, grind planes; algo/reconstruction).
 // Memory: one caller arena. create() takes the remap tables from it (init);
@@ -15,6 +16,7 @@
 
 #include <cstddef>
 
+#include "algo/calib_check.hpp"
 #include "algo/camera_model.hpp"
 #include "algo/core/arena.hpp"
 #include "algo/core/result.hpp"
@@ -50,9 +52,10 @@ struct PipelineParams {
   // (docs/reconstruction.md has the scene-set figures for 0..8 %).
   double shadow_fraction = 0.01;
   RangeSearchParams range;
-  MatchDpParams match;       // disp_min/max are set per run by the range search
-  GraphCutParams graph_cut;  // disp_min/max likewise
-  SubpixelParams subpixel;   // refines the graph cut's whole-pixel labels
+  CalibCheckParams calib_check;  // row alignment of the rectified pair, after the range search
+  MatchDpParams match;           // disp_min/max are set per run by the range search
+  GraphCutParams graph_cut;      // disp_min/max likewise
+  SubpixelParams subpixel;       // refines the graph cut's whole-pixel labels
   ReconstructionParams reconstruction;
   // Each ranked grind plane refined on the gray levels of both images
   // (algo/plane_photometric), whichever matcher: on steep, weakly lit faces
@@ -81,7 +84,8 @@ struct PipelineOutput {
   ShadowMask left_shadow;         // over roi_rectified
   ShadowThreshold shadow_left, shadow_right;
   DisparityRange range;
-  ConstDisparityMap disparity;           // matcher output before the mean filter
+  CalibCheck calibration;       // present when the pair was matched (not on a replayed map)
+  ConstDisparityMap disparity;  // matcher output before the mean filter
   MatchMethod method = MatchMethod::dp;  // the matcher that made `disparity`
   MatchDpStats match;                    // method dp
   GraphCutReport graph_cut;              // method graph_cut
