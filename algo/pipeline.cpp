@@ -201,6 +201,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
     return Error::make(Errc::invalid_argument, "pipeline: right image %dx%d, calibration %dx%d",
                        right.width(), right.height(), W, H);
   PipelineOutput out;
+  last_calibration_ = {};
   StepTimings& timings = out.timings;
   PETRA_TRY(prepare(left, req, out));
   const Rect roi = out.roi_rectified;
@@ -242,7 +243,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
     auto c = check_calibration(rl, rr, roi, right_rectified, out.range.min_px, out.range.max_px,
                                params_.calib_check, arena);
     if (!c) return c.error();
-    out.calibration = *c;
+    out.calibration = last_calibration_ = *c;
   }
   MatchDpParams mp = params_.match;
   mp.disp_min = out.range.min_px;

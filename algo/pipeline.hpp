@@ -118,6 +118,9 @@ class Pipeline {
   Result<PipelineOutput> run_with_disparity(ConstGray8View left, ConstDisparityMap disparity,
                                             const PipelineRequest& request, const StepClock& clock);
 
+  // The last run's calibration check, kept when a later step refuses the run
+  // (a drifted pair is often why); not present before a matched run.
+  const CalibCheck& last_calibration() const { return last_calibration_; }
   const Rectifier& rectifier() const { return rectifier_; }
   const PipelineBudget& budget() const { return budget_; }
   const PipelineParams& params() const { return params_; }
@@ -132,6 +135,7 @@ class Pipeline {
   PipelineBudget budget_;
   PipelineParams params_;
   std::size_t max_points_ = 0;
+  CalibCheck last_calibration_;
 };
 
 }  // namespace petra

@@ -306,7 +306,10 @@ int run(const EvalOptions& o) {
                                 *droi);
     out = pipeline->run_with_disparity(left->view(), map, req, clock);
   }
-  if (!out) return fail("eval", out.error().message);
+  if (!out) {
+    print_calibration(pipeline->last_calibration());  // a drifted pair may be why
+    return fail("eval", out.error().message);
+  }
 
   std::error_code ec;
   fs::create_directories(o.out, ec);
