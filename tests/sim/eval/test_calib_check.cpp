@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sim/eval/middlebury.hpp"
+#include "sim/eval/planes_json.hpp"
 #include "sim/io/image_io.hpp"
 
 namespace petra {
@@ -91,6 +92,18 @@ TEST(CalibCheck, FlatImagesGiveUnknownAndBadInputIsRefused) {
   EXPECT_FALSE(check_calibration(flat.view(), flat.view(), all, all, 0, 4, bad, s.arena).ok());
   Arena tiny;
   EXPECT_FALSE(check_calibration(flat.view(), flat.view(), all, all, 0, 4, {}, tiny).ok());
+}
+
+TEST(CalibCheck, PlanesJsonCarriesTheCheckOnlyWhenPresent) {
+  CalibCheck c;
+  EXPECT_EQ(eval::format_planes_json({}, &c).find("calibration"), std::string::npos);
+  c.present = true;
+  c.vertical_offset_px = 0.8;
+  c.features = 42;
+  c.verdict = CalibVerdict::drifted;
+  const std::string j = eval::format_planes_json({}, &c);
+  EXPECT_NE(j.find("\"calibration\":{\"vertical_offset_px\":0.8"), std::string::npos) << j;
+  EXPECT_NE(j.find("\"features\":42,\"verdict\":\"drifted\""), std::string::npos) << j;
 }
 
 }  // namespace
