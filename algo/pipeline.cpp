@@ -49,6 +49,7 @@ Status validate(const PipelineParams& p) {
     return Error::make(Errc::invalid_argument, "pipeline: shadow_fraction %.3g not in [0, 1)",
                        p.shadow_fraction);
   PETRA_TRY(validate(p.range));
+  PETRA_TRY(validate(p.calib_check));
   PETRA_TRY(validate(p.subpixel));
   PETRA_TRY(validate(p.photometric));
   PETRA_TRY(validate(p.reconstruction.filter));
@@ -60,7 +61,7 @@ Status validate(const PipelineParams& p) {
 }
 
 std::size_t PipelineMemory::largest_step() const {
-  return std::max({range, match_dp, match_graph_cut, reconstruction + refinement});
+  return std::max({range, calib_check, match_dp, match_graph_cut, reconstruction + refinement});
 }
 
 std::size_t PipelineMemory::run() const {
@@ -84,6 +85,7 @@ PipelineMemory Pipeline::memory(const PipelineBudget& b, const PipelineParams& p
       b.graph_cut ? graph_cut_bands_bytes(graph_cut_budget(b), b.graph_cut_bands) : 0;
   m.reconstruction = reconstruction_arena_bytes(recon_budget(b));
   m.refinement = grind_photometric_scratch_bytes(b.max_roi_width, b.max_roi_height);
+  m.calib_check = calib_check_scratch_bytes(p.calib_check);
   m.slack = kSlack;
   return m;
 }
@@ -211,6 +213,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
     return Error::make(Errc::invalid_argument, "pipeline: right image %dx%d, calibration %dx%d",
                        right.width(), right.height(), W, H);
   PipelineOutput out;
+  last_calibration_ = {};
   StepTimings& timings = out.timings;
   PETRA_TRY(prepare(left, req, out));
   const Rect roi = out.roi_rectified;
@@ -246,6 +249,14 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
     return Error::make(Errc::capacity_exceeded,
                        "pipeline: disparity range %d..%d px exceeds the budget of %d disparities",
                        out.range.min_px, out.range.max_px, budget_.max_disparities);
+  // Row alignment of the rectified pair over the range just found.
+  {
+    StepTimer timer(clock, timings, "calibration check");
+    auto c = check_calibration(rl, rr, roi, right_rectified, out.range.min_px, out.range.max_px,
+                               params_.calib_check, arena);
+    if (!c) return c.error();
+    out.calibration = last_calibration_ = *c;
+  }
   MatchDpParams mp = params_.match;
   mp.disp_min = out.range.min_px;
   mp.disp_max = out.range.max_px;

@@ -2,6 +2,7 @@
 // ranked grind planes (SEED.md 0-4), as one object the executive (fsw) and
 // the ground tool (`petra eval`) both drive:
 //   rectify (ROI and search area) -> disparity range (coarse match)
+//   -> calibration check (row offset of matched corners; algo/calib_check)
 //   -> shadow masks -> match (dp or graph cut) -> reconstruct (mean filter, triangulate,
 //   Delaunay, mesh filter, segmentation, grind planes; algo/reconstruction).
 // Memory: one caller arena. create() takes the remap tables from it (init);
@@ -17,6 +18,7 @@
 
 #include <cstddef>
 
+#include "algo/calib_check.hpp"
 #include "algo/camera_model.hpp"
 #include "algo/core/arena.hpp"
 #include "algo/core/result.hpp"
@@ -39,7 +41,7 @@ struct PipelineBudget {
   int image_height = 768;
   int max_roi_width = 640;  // px, ROI in the rectified left image
   int max_roi_height = 480;
-  int max_disparities = 160;   // fine matcher: disp_max - disp_min + 1
+  int max_disparities = 160;  // fine matcher: disp_max - disp_min + 1
   // 3-D points; 0 = one per 2 x 2 ROI pixels (more valid disparities: a
   // stride of 2 or more, ReconstructionStats::point_stride).
   std::size_t max_points = 0;
@@ -59,9 +61,10 @@ struct PipelineParams {
   // (docs/reconstruction.md has the scene-set figures for 0..8 %).
   double shadow_fraction = 0.01;
   RangeSearchParams range;
-  MatchDpParams match;       // disp_min/max are set per run by the range search
-  GraphCutParams graph_cut;  // disp_min/max likewise
-  SubpixelParams subpixel;   // refines the graph cut's whole-pixel labels
+  CalibCheckParams calib_check;  // row alignment of the rectified pair, after the range search
+  MatchDpParams match;           // disp_min/max are set per run by the range search
+  GraphCutParams graph_cut;      // disp_min/max likewise
+  SubpixelParams subpixel;       // refines the graph cut's whole-pixel labels
   ReconstructionParams reconstruction;
   // Each ranked grind plane refined on the gray levels of both images
   // (algo/plane_photometric), whichever matcher: on steep, weakly lit faces
@@ -90,7 +93,8 @@ struct PipelineOutput {
   ShadowMask left_shadow;         // over roi_rectified
   ShadowThreshold shadow_left, shadow_right;
   DisparityRange range;
-  ConstDisparityMap disparity;           // matcher output before the mean filter
+  CalibCheck calibration;       // present when the pair was matched (not on a replayed map)
+  ConstDisparityMap disparity;  // matcher output before the mean filter
   MatchMethod method = MatchMethod::dp;  // the matcher that made `disparity`
   MatchDpStats match;                    // method dp
   GraphCutReport graph_cut;              // method graph_cut
@@ -107,6 +111,7 @@ struct PipelineMemory {
   std::size_t rectified = 0;        // kept: the rectified pair (whole images)
   std::size_t masks_disparity = 0;  // kept: shadow masks, raw disparity
   std::size_t range = 0;            // step: coarse disparity-range search
+  std::size_t calib_check = 0;      // step: the pair's vertical offset (algo/calib_check)
   std::size_t match_dp = 0;         // step: DP matcher scratch
   std::size_t match_graph_cut = 0;  // step: graph-cut state (0 unless budget.graph_cut)
   std::size_t reconstruction = 0;   // step: cloud, mesh, segmentation, planes
@@ -142,6 +147,9 @@ class Pipeline {
   Result<PipelineOutput> run_with_disparity(ConstGray8View left, ConstDisparityMap disparity,
                                             const PipelineRequest& request, const StepClock& clock);
 
+  // The last run's calibration check, kept when a later step refuses the run
+  // (a drifted pair is often why); not present before a matched run.
+  const CalibCheck& last_calibration() const { return last_calibration_; }
   const Rectifier& rectifier() const { return rectifier_; }
   const PipelineBudget& budget() const { return budget_; }
   const PipelineParams& params() const { return params_; }
@@ -155,6 +163,7 @@ class Pipeline {
   PipelineBudget budget_;
   PipelineParams params_;
   std::size_t max_points_ = 0;
+  CalibCheck last_calibration_;
 };
 
 }  // namespace petra

@@ -308,6 +308,10 @@ void Executive::publish_evaluation() {
   r.disparity_min = out.disparity_min;
   r.disparity_max = out.disparity_max;
   r.segmentation = out.segmentation;
+  r.calib_vertical_offset_px = out.calib_vertical_offset_px;
+  r.calib_spread_px = out.calib_spread_px;
+  r.calib_features = out.calib_features;
+  r.calib_verdict = out.calib_verdict;
   queue_.push(r, t);
 
   tlm::GroundPlane g;

@@ -50,6 +50,7 @@ Step slot_of(const char* name) {
       {"delaunay", Step::RECONSTRUCT},    {"mesh filter", Step::RECONSTRUCT},
       {"segmentation", Step::SEGMENT},    {"normals", Step::PLANES},
       {"grind planes", Step::PLANES},     {"plane refinement", Step::PLANES},
+      {"calibration check", Step::MATCH},
   };
   for (const Map& m : kMap)
     if (std::strcmp(m.name, name) == 0) return m.step;
@@ -387,6 +388,10 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   out.ground_d_mm = r.ground.plane.d;
   out.ground_points = static_cast<std::uint32_t>(r.ground.ground_points);
   out.segmentation = static_cast<std::uint8_t>(r.segmentation);
+  out.calib_vertical_offset_px = static_cast<float>(p.calibration.vertical_offset_px);
+  out.calib_spread_px = static_cast<float>(p.calibration.spread_px);
+  out.calib_features = static_cast<std::uint16_t>(p.calibration.features);
+  out.calib_verdict = static_cast<std::uint8_t>(p.calibration.verdict);
   out.dense_points = static_cast<std::uint32_t>(r.stats.dense_points);
   out.filtered_points = static_cast<std::uint32_t>(r.stats.filtered_points);
   out.disparity_min = static_cast<float>(r.stats.disparity_min_px);

@@ -20,9 +20,10 @@ int format_memory_header(char* buf, std::size_t size) {
   return std::snprintf(
       buf, size,
       "| ROI (px) | rectified (px) | disparities | points | triangles | remap tables | rectified "
-      "pair | masks + disparity | range search | DP | graph cut | reconstruction | refinement | "
+      "pair | masks + disparity | range search | calibration check | DP | graph cut | "
+      "reconstruction | refinement | "
       "products | arena (MiB) |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
 }
 
 int format_memory_row(char* buf, std::size_t size, int roi_w, int roi_h,
@@ -32,14 +33,14 @@ int format_memory_row(char* buf, std::size_t size, int roi_w, int roi_h,
   const std::size_t points = points_of(b);
   const std::size_t arena = FlightPipelineJob::need_bytes(b, cloud_points);
   const std::size_t products = arena - m.total();
-  return std::snprintf(buf, size,
-                       "| %d x %d | %d x %d | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | "
-                       "%.2f | %.2f | %.2f | %.2f | **%.2f** |\n",
-                       roi_w, roi_h, b.max_roi_width, b.max_roi_height, b.max_disparities, points,
-                       delaunay_max_triangles(points), mib(m.tables), mib(m.rectified),
-                       mib(m.masks_disparity), mib(m.range), mib(m.match_dp),
-                       mib(m.match_graph_cut), mib(m.reconstruction), mib(m.refinement),
-                       mib(products), mib(arena));
+  return std::snprintf(
+      buf, size,
+      "| %d x %d | %d x %d | %d | %zu | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | "
+      "%.2f | %.2f | %.2f | %.2f | **%.2f** |\n",
+      roi_w, roi_h, b.max_roi_width, b.max_roi_height, b.max_disparities, points,
+      delaunay_max_triangles(points), mib(m.tables), mib(m.rectified), mib(m.masks_disparity),
+      mib(m.range), mib(m.calib_check), mib(m.match_dp), mib(m.match_graph_cut),
+      mib(m.reconstruction), mib(m.refinement), mib(products), mib(arena));
 }
 
 int format_memory_doc_table(char* buf, std::size_t size) {

@@ -95,7 +95,11 @@ struct EvalOutput {
   std::array<double, 3> ground_normal{};
   double ground_d_mm = 0;
   std::uint32_t ground_points = 0;
-  std::uint8_t segmentation = 0;  // SegmentMethod: 0 ground plane, 1 click region
+  std::uint8_t segmentation = 0;       // SegmentMethod: 0 ground plane, 1 click region
+  float calib_vertical_offset_px = 0;  // calibration check (algo/calib_check)
+  float calib_spread_px = 0;
+  std::uint16_t calib_features = 0;
+  std::uint8_t calib_verdict = 0;  // CalibVerdict: 0 unknown, 1 ok, 2 drifted
   std::uint32_t dense_points = 0;
   std::uint32_t filtered_points = 0;
   float disparity_min = 0;

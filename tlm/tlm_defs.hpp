@@ -118,7 +118,12 @@
   F(u32, step_us, PETRA_STEP_SLOTS, "us", 0, PETRA_U32_MAX,                                       \
     "time per pipeline step (as housekeeping)")                                                   \
   F(u8, segmentation, 1, "enum", 0, 1,                                                            \
-    "how the rock was segmented: 0 above the ground plane, 1 grown from the click (no ground)")
+    "how the rock was segmented: 0 above the ground plane, 1 grown from the click (no ground)")   \
+  F(f32, calib_vertical_offset_px, 1, "px", -100, 100,                                            \
+    "calibration check: median row offset of matched features, right minus left")                 \
+  F(f32, calib_spread_px, 1, "px", 0, 100, "calibration check: 1.4826 x MAD of the row offsets")  \
+  F(u16, calib_features, 1, "", 0, 4096, "calibration check: matched features kept")              \
+  F(u8, calib_verdict, 1, "enum", 0, 2, "calibration check: 0 unknown, 1 ok, 2 drifted")
 
 #define PETRA_GRIND_PLANE_FIELDS(F)                                                      \
   F(u32, eval_id, 1, "", 0, PETRA_U32_MAX, "evaluation it belongs to")                   \

@@ -126,6 +126,19 @@ double ms(std::uint64_t ns) {
   return static_cast<double>(ns) / 1e6;
 }
 
+// The calibration check in the operator's terms: a drifted pair says so.
+void print_calibration(const CalibCheck& c) {
+  if (!c.present) return;
+  std::printf(
+      "  calibration check      rows differ by %+.2f px (spread %.2f px, %d features): %s\n",
+      c.vertical_offset_px, c.spread_px, c.features, to_string(c.verdict));
+  if (c.verdict == CalibVerdict::drifted)
+    std::printf("  the pair's rows differ by %.1f px: calibration has drifted\n",
+                std::fabs(c.vertical_offset_px));
+  else if (c.verdict == CalibVerdict::unknown)
+    std::printf("  too few features matched (%d) to check the calibration\n", c.features);
+}
+
 void print_summary(const EvalOptions& o, const PipelineOutput& out, double total_ms) {
   const ReconstructionOutput& r = out.result;
   const ReconstructionStats& s = r.stats;
@@ -140,6 +153,7 @@ void print_summary(const EvalOptions& o, const PipelineOutput& out, double total
         "  disparity range        %.1f .. %.1f px   (search %d..%d px, coarse 1/%d: %ld matches)\n",
         s.disparity_min_px, s.disparity_max_px, out.range.min_px, out.range.max_px,
         out.range.factor, out.range.coarse_matches);
+    print_calibration(out.calibration);
     if (out.method == MatchMethod::graph_cut) {
       const GraphCutReport& g = out.graph_cut;
       std::printf(
@@ -305,13 +319,17 @@ int run(const EvalOptions& o) {
                                 *droi);
     out = pipeline->run_with_disparity(left->view(), map, req, clock);
   }
-  if (!out) return fail("eval", out.error().message);
+  if (!out) {
+    print_calibration(pipeline->last_calibration());  // a drifted pair may be why
+    return fail("eval", out.error().message);
+  }
 
   std::error_code ec;
   fs::create_directories(o.out, ec);
   if (ec) return fail("eval", ("cannot create " + o.out + ": " + ec.message()).c_str());
   const std::string dir = o.out + "/";
-  Status s = io::write_text_file(dir + "planes.json", eval::format_planes_json(out->result));
+  Status s = io::write_text_file(dir + "planes.json",
+                                 eval::format_planes_json(out->result, &out->calibration));
   if (s.ok()) s = eval::write_ply(dir + "cloud.ply", out->result, out->left_rectified, false);
   if (s.ok()) s = eval::write_ply(dir + "mesh.ply", out->result, out->left_rectified, true);
   if (s.ok()) s = io::write_png(dir + "disparity.png", eval::disparity_picture(out->disparity));

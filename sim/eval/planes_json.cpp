@@ -40,7 +40,7 @@ void grind_fields(json::Writer& w, const GrindPlane& p, double diameter_mm) {
 
 }  // namespace
 
-std::string format_planes_json(const ReconstructionOutput& r) {
+std::string format_planes_json(const ReconstructionOutput& r, const CalibCheck* calibration) {
   const double grinder_diameter_mm = r.planes.footprint_diameter_mm;
   std::vector<char> buf(4096 + 1536 * static_cast<std::size_t>(r.planes.count));
   json::Writer w(buf);
@@ -77,6 +77,16 @@ std::string format_planes_json(const ReconstructionOutput& r) {
   // How the rock was segmented (optional field): "ground_plane" or "click_region".
   w.key("segmentation").string(segment_method_name(r.segmentation));
   w.raw("\n");
+  // The pair's row alignment (optional field; absent on a replayed disparity map).
+  if (calibration != nullptr && calibration->present) {
+    w.key("calibration").begin_object();
+    w.key("vertical_offset_px").number(calibration->vertical_offset_px);
+    w.key("spread_px").number(calibration->spread_px);
+    w.key("features").integer(calibration->features);
+    w.key("verdict").string(to_string(calibration->verdict));
+    w.end_object();
+    w.raw("\n");
+  }
   const ReconstructionStats& s = r.stats;
   w.key("stats").begin_object();
   w.key("dense_points").integer(s.dense_points);

@@ -6,10 +6,13 @@
 
 #include <string>
 
+#include "algo/calib_check.hpp"
 #include "algo/reconstruction.hpp"
 
 namespace petra::eval {
 
-std::string format_planes_json(const ReconstructionOutput& result);
+// `calibration`: the pair's calibration check, written when present (optional field).
+std::string format_planes_json(const ReconstructionOutput& result,
+                               const CalibCheck* calibration = nullptr);
 
 }  // namespace petra::eval

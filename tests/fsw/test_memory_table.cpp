@@ -50,8 +50,8 @@ TEST(MemoryTable, StagesAddUpToTheArenaAndGrowWithTheRoi) {
     EXPECT_EQ(m.total(),
               Pipeline::arena_bytes(s.pipeline, FlightPipelineJob::pipeline_params(
                                                     FlightPipelineJob::default_settings())));
-    EXPECT_EQ(m.largest_step(),
-              std::max({m.range, m.match_dp, m.match_graph_cut, m.reconstruction + m.refinement}));
+    EXPECT_EQ(m.largest_step(), std::max({m.range, m.calib_check, m.match_dp, m.match_graph_cut,
+                                          m.reconstruction + m.refinement}));
     EXPECT_GT(m.match_graph_cut, 0u);  // the flight job keeps room for MATCH_METHOD 1
     EXPECT_GT(m.total(), last);
     last = m.total();
