@@ -7,24 +7,32 @@
 # e.g. toolchain/eval-scenes.sh build/release/sim/petra out/eval-scenes --method gc
 # With DISPARITY=truth in the environment each scene replays its
 # disparity_truth.pfm instead of matching (the reconstruction alone).
+# With REAL=1 it runs the realistic set (`petra sim set --real`, rendered into
+# WORK/real-set) and checks the realistic set's targets (docs/scene.md).
 set -euo pipefail
 PETRA=${1:-build/release/sim/petra}
 WORK=${2:-out/eval-scenes}
 shift $(( $# > 2 ? 2 : $# )) || true
 mkdir -p "$WORK"
-if [ ! -f "$WORK/set/scene_23/truth.json" ]; then
-  "$PETRA" sim set --out "$WORK/set" > "$WORK/set.log"
+SET=set
+SET_OPTS=()
+if [ "${REAL:-0}" = 1 ]; then SET=real-set; SET_OPTS=(--real); fi
+if [ ! -f "$WORK/$SET/done" ]; then
+  "$PETRA" sim set "${SET_OPTS[@]}" --out "$WORK/$SET" > "$WORK/$SET.log"
+  touch "$WORK/$SET/done"
 fi
-python3 - "$PETRA" "$WORK" "$@" <<'PY'
+python3 - "$PETRA" "$WORK" "$SET" "$@" <<'PY'
 import json, math, os, re, subprocess, sys, statistics
-petra, work, extra = sys.argv[1], sys.argv[2], sys.argv[3:]
+petra, work, set_dir, extra = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]
+real = set_dir == "real-set"
+refusals = {}
 rows, normal_errs, dists, count_ok, on_facet_all, matched_all = [], [], [], 0, 0, 0
 # One output folder per configuration, so runs of both matchers share the set.
-label = "eval" + "".join("-" + a.lstrip("-") for a in extra) + \
+label = ("real-" if real else "") + "eval" + "".join("-" + a.lstrip("-") for a in extra) + \
         ("-truth" if os.environ.get("DISPARITY") == "truth" else "")
-scenes = sorted(d for d in os.listdir(os.path.join(work, "set")) if d.startswith("scene_"))
+scenes = sorted(d for d in os.listdir(os.path.join(work, set_dir)) if d.startswith("scene_"))
 for s in scenes:
-    sd = os.path.join(work, "set", s)
+    sd = os.path.join(work, set_dir, s)
     truth = json.load(open(os.path.join(sd, "truth.json")))
     roi = ",".join(str(v) for v in truth["roi"])
     out = os.path.join(work, label, s)
@@ -36,6 +44,8 @@ for s in scenes:
     sc = truth["scene"]
     desc = f"{sc['boundary']:5s} {sc['shape']:7s} sun {sc['sun_elevation_deg']:4.0f}"
     if r.returncode != 0:
+        reason = re.sub(r"[0-9.]+", "N", r.stderr.strip().splitlines()[-1] if r.stderr.strip() else "?")
+        refusals[reason] = refusals.get(reason, 0) + 1
         rows.append(f"| {s} | {desc} | {truth['planes']} | - | failed: {r.stderr.strip()[:90]} |")
         continue
     cpu = re.search(r"total ([0-9.]+) CPU ms", r.stdout)
@@ -60,12 +70,16 @@ if normal_errs:
           f"normal error median {statistics.median(normal_errs):.2f} deg, max {max(normal_errs):.2f} deg; "
           f"centroid-plane distance median {statistics.median(dists):.2f} mm, max {max(dists):.2f} mm; "
           f"centroids on their facet {on_facet_all} of {matched_all}")
-    # The issue's targets (19 of 20 scenes: the same 95 % share of this set).
-    need = math.ceil(0.95 * len(scenes))
+    # The issue's targets: clean set (issue 1: 95 % of scenes, 0.5 / 1.5 deg,
+    # 1 mm); realistic set (issue 21: 90 %, 1.0 / 3.0 deg, 2 mm).
+    share, med, mx, cd = (0.90, 1.0, 3.0, 2.0) if real else (0.95, 0.5, 1.5, 1.0)
+    need = math.ceil(share * len(scenes))
     def verdict(ok): return "met" if ok else "NOT met"
     print(f"targets: plane count >= {need} of {len(scenes)}: {verdict(count_ok >= need)}; "
-          f"normal median <= 0.5 deg: {verdict(statistics.median(normal_errs) <= 0.5)}; "
-          f"normal max <= 1.5 deg: {verdict(max(normal_errs) <= 1.5)}; "
-          f"centroid-plane <= 1 mm: {verdict(max(dists) <= 1.0)}; "
+          f"normal median <= {med} deg: {verdict(statistics.median(normal_errs) <= med)}; "
+          f"normal max <= {mx} deg: {verdict(max(normal_errs) <= mx)}; "
+          f"centroid-plane <= {cd} mm: {verdict(max(dists) <= cd)}; "
           f"on the facet: {verdict(on_facet_all == matched_all)}")
+print(f"refused: {sum(refusals.values())} of {len(scenes)}" +
+      "".join(f"\n  {n} x {why}" for why, n in sorted(refusals.items(), key=lambda kv: -kv[1])))
 PY

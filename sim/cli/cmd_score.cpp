@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "algo/pipeline.hpp"
+#include "algo/shadow.hpp"
 #include "sim/cli/commands.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/score/planes_file.hpp"
@@ -20,6 +22,9 @@ namespace {
 struct ScoreArgs {
   std::string truth, planes, disparity, disparity_truth, shadow, shadow_truth;
   std::string disparity_roi, shadow_roi;
+  // The onboard shadow detector run on an image here (instead of --shadow).
+  std::string shadow_from;
+  std::optional<double> shadow_fraction;
   bool json = false;
   sim::ScoreLimits limits;
 };
@@ -62,8 +67,11 @@ const char* inconsistency(const ScoreArgs& a) {
   if (!a.planes.empty() && a.truth.empty()) return "--planes needs --truth";
   if (a.disparity.empty() != a.disparity_truth.empty())
     return "--disparity and --disparity-truth go together";
-  if (a.shadow.empty() != a.shadow_truth.empty()) return "--shadow and --shadow-truth go together";
-  if (a.planes.empty() && a.disparity.empty() && a.shadow.empty())
+  if (!a.shadow.empty() && !a.shadow_from.empty()) return "--shadow and --shadow-from exclude each other";
+  if ((a.shadow.empty() && a.shadow_from.empty()) != a.shadow_truth.empty())
+    return "--shadow (or --shadow-from) and --shadow-truth go together";
+  if (a.shadow_fraction && a.shadow_from.empty()) return "--shadow-fraction needs --shadow-from";
+  if (a.planes.empty() && a.disparity.empty() && a.shadow.empty() && a.shadow_from.empty())
     return "nothing to score: give --planes, --disparity or --shadow";
   const sim::ScoreLimits& l = a.limits;
   if (a.planes.empty() &&
@@ -71,9 +79,25 @@ const char* inconsistency(const ScoreArgs& a) {
     return "plane limits need --planes";
   if (a.disparity.empty() && (l.max_bad1_pct || l.max_bad2_pct))
     return "--max-bad1/2 need --disparity";
-  if (a.shadow.empty() && (l.min_shadow_precision || l.min_shadow_recall))
+  if (a.shadow.empty() && a.shadow_from.empty() &&
+      (l.min_shadow_precision || l.min_shadow_recall))
     return "--min-shadow-* need --shadow";
   return nullptr;
+}
+
+// The onboard detector (algo/shadow: the darkest `fraction` of the region)
+// on `image` over `region`, as a full-size mask (255 = shadow).
+Result<io::GrayImage> onboard_shadow(const io::GrayImage& image, const Rect& region,
+                                     double fraction) {
+  auto thr = shadow_threshold(image.view(), region, fraction);
+  if (!thr) return thr.error();
+  io::GrayImage area(region.w, region.h), full(image.width, image.height);
+  auto n = shadow_mask(image.view(), region, thr->threshold, area.view());
+  if (!n) return n.error();
+  for (int y = 0; y < region.h; ++y)
+    for (int x = 0; x < region.w; ++x)
+      full.view()(region.x + x, region.y + y) = area.view()(x, y) ? 255 : 0;
+  return full;
 }
 
 Status run(const ScoreArgs& a, int& exit_code) {
@@ -103,8 +127,8 @@ Status run(const ScoreArgs& a, int& exit_code) {
     if (!d) return d.error();
     report.disparity = *d;
   }
-  if (!a.shadow.empty()) {
-    auto out = io::read_gray_image(a.shadow);
+  if (!a.shadow.empty() || !a.shadow_from.empty()) {
+    auto out = io::read_gray_image(a.shadow.empty() ? a.shadow_from : a.shadow);
     if (!out) return out.error();
     auto tr = io::read_gray_image(a.shadow_truth);
     if (!tr) return tr.error();
@@ -112,6 +136,15 @@ Status run(const ScoreArgs& a, int& exit_code) {
         region_for(a.shadow_roi, "--shadow-roi",
                    truth ? std::optional<Rect>(truth->roi) : std::nullopt, tr->width, tr->height);
     if (!region) return region.error();
+    if (!a.shadow_from.empty()) {
+      if (out->width != tr->width || out->height != tr->height)
+        return Error::make(Errc::invalid_argument, "--shadow-from: image is %dx%d, truth %dx%d",
+                           out->width, out->height, tr->width, tr->height);
+      auto mask = onboard_shadow(*out, *region,
+                                 a.shadow_fraction.value_or(PipelineParams{}.shadow_fraction));
+      if (!mask) return mask.error();
+      *out = std::move(*mask);
+    }
     auto m = sim::score_mask(*out, *tr, *region);
     if (!m) return m.error();
     report.shadow = *m;
@@ -142,6 +175,12 @@ void add_score(CLI::App& app, Outcome& outcome) {
       "--disparity-roi", a.disparity_roi,
       "x,y,w,h region scored (default: roi_rectified of --truth, else the whole image)");
   cmd->add_option("--shadow", a.shadow, "shadow mask (PGM/PNG, 255 = shadow)");
+  cmd->add_option("--shadow-from", a.shadow_from,
+                  "image to run the onboard shadow detector on (the darkest --shadow-fraction of "
+                  "the region), scored instead of a --shadow mask");
+  cmd->add_option("--shadow-fraction", a.shadow_fraction,
+                  "shadow prior for --shadow-from, [0, 1) (default: the flight default)")
+      ->check(CLI::Range(0.0, 0.99));
   cmd->add_option("--shadow-truth", a.shadow_truth, "shadow_truth.pgm (or _right, _rectified)");
   cmd->add_option("--shadow-roi", a.shadow_roi,
                   "x,y,w,h region scored (default: roi of --truth, else the whole image)");

@@ -26,7 +26,58 @@ struct SceneArgs {
   std::optional<double> noise;
   bool no_texture = false;
   std::optional<int> edge_supersampling;
+  // The realistic world (docs/scene.md): --real sets every knob's realistic default.
+  bool real = false;
+  std::optional<double> relief, pebbles, stones, slope, slope_azimuth, face_roughness,
+      face_curvature, gain_left, gain_right, offset_left, offset_right, vignetting, prnu,
+      calib_residual, burial;
 };
+
+void add_world_options(CLI::App* cmd, SceneArgs& a) {
+  cmd->add_flag("--real", a.real,
+                "realistic world: every knob below at its realistic default (else 0 / gain 1)");
+  cmd->add_option("--relief", a.relief, "terrain relief RMS, mm, 0..10 (real 2)");
+  cmd->add_option("--pebbles", a.pebbles, "share of the ground under pebbles, 0..0.25 (real 0.12)");
+  cmd->add_option("--stones", a.stones, "small stones per m^2 near the rock, 0..200 (real 25)");
+  cmd->add_option("--slope", a.slope, "ground slope under the rock, deg, 0..20 (real 6)");
+  cmd->add_option("--slope-azimuth", a.slope_azimuth,
+                  "uphill direction from the heading, counter-clockwise, deg (default: drawn)");
+  cmd->add_option("--face-roughness", a.face_roughness,
+                  "rock faces' relief RMS, mm, 0..2 (real 0.3)");
+  cmd->add_option("--face-curvature", a.face_curvature,
+                  "rock faces' bulge, 1/m, 0..5 (real 0.5)");
+  cmd->add_option("--gain-left", a.gain_left, "left camera gain, 0.5..1.5 (real 1)");
+  cmd->add_option("--gain-right", a.gain_right, "right camera gain, 0.5..1.5 (real 0.92)");
+  cmd->add_option("--offset-left", a.offset_left, "left camera offset, DN, -40..40 (real 0)");
+  cmd->add_option("--offset-right", a.offset_right, "right camera offset, DN, -40..40 (real 4)");
+  cmd->add_option("--vignetting", a.vignetting, "fall-off at the corners, 0..0.6 (real 0.2)");
+  cmd->add_option("--prnu", a.prnu, "pixel response non-uniformity, 0..0.05 (real 0.01)");
+  cmd->add_option("--calib-residual", a.calib_residual,
+                  "calib.json's RMS reprojection error against the true rig, px, 0..2 (real 0.3)");
+  cmd->add_option("--burial", a.burial,
+                  "share of the rock's height below the ground, 0.15..0.7 (default: drawn 0.15..0.35)");
+}
+
+void apply_world(const SceneArgs& a, sim::World& w) {
+  auto set = [](const std::optional<double>& v, double& field) {
+    if (v) field = *v;
+  };
+  set(a.relief, w.relief_rms_mm);
+  set(a.pebbles, w.pebble_cover);
+  set(a.stones, w.stones_per_m2);
+  set(a.slope, w.slope_deg);
+  if (a.slope_azimuth) w.slope_azimuth_deg = *a.slope_azimuth;
+  set(a.face_roughness, w.face_roughness_mm);
+  set(a.face_curvature, w.face_curvature_per_m);
+  set(a.gain_left, w.gain_left);
+  set(a.gain_right, w.gain_right);
+  set(a.offset_left, w.offset_left_dn);
+  set(a.offset_right, w.offset_right_dn);
+  set(a.vignetting, w.vignetting);
+  set(a.prnu, w.prnu);
+  set(a.calib_residual, w.calib_residual_px);
+  if (a.burial) w.burial = *a.burial;
+}
 
 void add_scene_options(CLI::App* cmd, SceneArgs& a) {
   cmd->add_option("--boundary", a.boundary, "clear | weak (default: drawn from the seed)");
@@ -48,6 +99,7 @@ void add_scene_options(CLI::App* cmd, SceneArgs& a) {
   cmd->add_flag("--no-texture", a.no_texture, "uniform albedo (for geometry checks)");
   cmd->add_option("--edge-supersampling", a.edge_supersampling,
                   "samples per axis in edge pixels, 2..16 (default 8)");
+  add_world_options(cmd, a);
 }
 
 // Options as given on the command line over a base (seed or set entry).
@@ -71,6 +123,7 @@ Result<sim::SceneOptions> to_options(const SceneArgs& a, sim::SceneOptions o) {
   if (a.noise) o.noise_sigma_dn = *a.noise;
   if (a.no_texture) o.texture = false;
   if (a.edge_supersampling) o.edge_supersampling = *a.edge_supersampling;
+  apply_world(a, o.world);
   PETRA_TRY(sim::validate(o));
   return o;
 }
@@ -106,7 +159,8 @@ void add_sim(CLI::App& app, Outcome& outcome) {
   auto* seed_opt = scene->add_option("--seed", scene_args.seed, "scene seed, 0..2^53-1");
   auto* index_opt = scene->add_option(
       "--set-index", scene_args.set_index,
-      "render entry K of the standard set (0.." + std::to_string(sim::kStandardSetSize - 1) + ")");
+      "render entry K of the standard set (0.." + std::to_string(sim::kStandardSetSize - 1) +
+          "), or with --real of the realistic set");
   seed_opt->excludes(index_opt);
   scene->add_option("--out", scene_args.out, "output directory (created)")->required();
   add_scene_options(scene, scene_args);
@@ -115,13 +169,15 @@ void add_sim(CLI::App& app, Outcome& outcome) {
       sim::SceneOptions base;
       if (scene_args.set_index) {
         const int k = *scene_args.set_index;
-        if (k < 0 || k >= sim::kStandardSetSize) {
-          const std::string msg = "--set-index " + std::to_string(k) + " outside 0.." +
-                                  std::to_string(sim::kStandardSetSize - 1);
+        const int size = scene_args.real ? sim::kRealSetSize : sim::kStandardSetSize;
+        if (k < 0 || k >= size) {
+          const std::string msg =
+              "--set-index " + std::to_string(k) + " outside 0.." + std::to_string(size - 1);
           outcome.exit_code = fail("sim scene", msg.c_str());
           return;
         }
-        base = sim::standard_scene_set()[static_cast<std::size_t>(k)];
+        base = scene_args.real ? sim::real_scene_set()[static_cast<std::size_t>(k)]
+                               : sim::standard_scene_set()[static_cast<std::size_t>(k)];
       } else if (scene_args.seed) {
         const long long seed = *scene_args.seed;
         if (seed < 0 || static_cast<unsigned long long>(seed) > sim::kMaxSeed) {
@@ -131,6 +187,7 @@ void add_sim(CLI::App& app, Outcome& outcome) {
           return;
         }
         base.seed = static_cast<std::uint64_t>(seed);
+        if (scene_args.real) base.world = sim::realistic_world();
       } else {
         outcome.exit_code = fail("sim scene", "--seed N or --set-index K is required");
         return;
@@ -148,11 +205,15 @@ void add_sim(CLI::App& app, Outcome& outcome) {
   });
 
   static std::string set_out;
+  static bool set_real = false;
   auto* set = sim_cmd->add_subcommand("set", "Render the standard scene set into DIR/scene_KK");
   set->add_option("--out", set_out, "output directory (created)")->required();
+  set->add_flag("--real", set_real,
+                "the realistic set (" + std::to_string(sim::kRealSetSize) +
+                    " scenes, docs/scene.md) instead of the clean one");
   set->callback([&outcome] {
     try {
-      const auto entries = sim::standard_scene_set();
+      const auto entries = set_real ? sim::real_scene_set() : sim::standard_scene_set();
       for (std::size_t k = 0; k < entries.size(); ++k) {
         char name[32];
         std::snprintf(name, sizeof name, "/scene_%02zu", k);

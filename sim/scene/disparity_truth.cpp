@@ -20,11 +20,15 @@ bool visible_from(const Scene& scene, const Eigen::Vector3d& centre, const Eigen
   const Eigen::Vector3d to = p - centre;
   const double dist = to.norm();
   const SceneHit hit = trace(scene, centre, to / dist);
-  // Reaching p (to rounding) means nothing lies in front of it.
-  return hit.surface != kSky && hit.t >= dist * (1.0 - 1e-9) - 1e-6;
+  // Reaching p (to rounding, or to the marching tolerance of relief and rough
+  // faces) means nothing lies in front of it.
+  const double tol = clean_geometry(scene) ? 1e-6 : 0.02;
+  return hit.surface != kSky && hit.t >= dist * (1.0 - 1e-9) - tol;
 }
 
 Result<RectifiedTruth> render_rectified_truth(const Scene& scene) {
+  if (!clean_geometry(scene) || scene.tilted || scene.calib_residual_px > 0)
+    return render_rectified_truth_real(scene);
   const int w = kImageWidth, h = kImageHeight;
   auto pair = rectify_geometry(scene.rig, w, h);
   if (!pair) return pair.error();

@@ -9,7 +9,12 @@
 //   - the point falls outside the original right image, or its rectified
 //     right position u_left - d lies outside the rectified image.
 // Also the shadow truth for the same rectified left pixels (point-sampled).
+// In the realistic world (sloped frame, relief, rough faces, stones, a
+// calibration residual) the rectification is calib.json's and the rays are
+// the true cameras' (rectified_truth_real.cpp).
 #pragma once
+
+#include <vector>
 
 #include "algo/rectify_geometry.hpp"
 #include "sim/io/image_io.hpp"
@@ -21,9 +26,14 @@ struct RectifiedTruth {
   RectifiedPair pair;
   io::FloatImage disparity;   // +inf where invalid
   io::GrayImage shadow_mask;  // 255 in shadow (cast or self), else 0; 0 where no data
+  // Realistic world only (empty otherwise).
+  io::FloatImage vertical;        // v_right - v_left of each valid pixel (px), NaN elsewhere
+  io::FloatImage surface_height;  // ground hits: height above the local base plane, NaN elsewhere
+  std::vector<std::vector<Eigen::Vector3d>> face_points;  // local-frame hits per rock face
 };
 
 Result<RectifiedTruth> render_rectified_truth(const Scene& scene);
+Result<RectifiedTruth> render_rectified_truth_real(const Scene& scene);
 
 // True when world point p (on a scene surface) is the first thing the camera
 // at `centre` sees along its line of sight.

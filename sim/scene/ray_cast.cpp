@@ -5,7 +5,10 @@
 
 namespace petra::sim {
 
-SceneHit trace(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& dir) {
+namespace {
+
+// The clean world: flat ground z = 0 and the planar rock.
+SceneHit trace_clean(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& dir) {
   SceneHit hit;
   double t_max = INFINITY;
   if (dir.z() < 0) {
@@ -25,14 +28,106 @@ SceneHit trace(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector
   return hit;
 }
 
+RockEntry enter_target(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
+                       double t_min, double t_max) {
+  return scene.face_relief.active
+             ? ray_enter_rough_rock(scene.rock, scene.face_relief, o, dir, t_min, t_max)
+             : ray_enter_rock(scene.rock, o, dir, t_min, t_max);
+}
+
+// The realistic world: relief, rough faces, stones.
+SceneHit trace_real(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& dir) {
+  SceneHit hit;
+  double t_max = INFINITY;
+  if (scene.terrain.active) {
+    double t = 0;
+    if (ray_hits_terrain(scene.terrain, o, dir, 0.0, INFINITY, t)) {
+      hit.surface = kGround;
+      hit.t = t_max = t;
+    }
+  } else if (dir.z() < 0) {
+    hit.surface = kGround;
+    hit.t = t_max = -o.z() / dir.z();
+  }
+  const RockEntry e = enter_target(scene, o, dir, 0.0, t_max);
+  if (e.face >= 0) {
+    hit.surface = kRockFace0 + e.face;
+    hit.t = t_max = e.t;
+  }
+  for (std::size_t k = 0; k < scene.stones.size(); ++k) {
+    const RockEntry s = ray_enter_rock(scene.stones[k], o, dir, 0.0, t_max);
+    if (s.face < 0) continue;
+    hit.surface = kStone0 + static_cast<int>(k) * kStoneFaces + s.face;
+    hit.t = t_max = s.t;
+  }
+  if (hit.surface != kSky) {
+    hit.point = o + hit.t * dir;
+    if (hit.surface == kGround && !scene.terrain.active) hit.point.z() = 0.0;
+  }
+  return hit;
+}
+
+bool any_stone_meets(const Scene& scene, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
+                     int skip) {
+  for (std::size_t k = 0; k < scene.stones.size(); ++k)
+    if (static_cast<int>(k) != skip && ray_meets_rock(scene.stones[k], p, dir, 0.0)) return true;
+  return false;
+}
+
+}  // namespace
+
+SceneHit trace(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& dir) {
+  return clean_geometry(scene) ? trace_clean(scene, o, dir) : trace_real(scene, o, dir);
+}
+
 Eigen::Vector3d surface_normal(const Scene& scene, const SceneHit& hit) {
-  if (hit.surface == kGround) return Eigen::Vector3d::UnitZ();
-  if (hit.surface >= kRockFace0)
-    return scene.rock.faces[static_cast<std::size_t>(hit.surface - kRockFace0)].plane.normal;
+  if (hit.surface == kGround)
+    return scene.terrain.active ? terrain_normal(scene.terrain, hit.point.x(), hit.point.y())
+                                : Eigen::Vector3d::UnitZ();
+  if (hit.surface >= kStone0) {
+    const int k = (hit.surface - kStone0) / kStoneFaces, f = (hit.surface - kStone0) % kStoneFaces;
+    return scene.stones[static_cast<std::size_t>(k)].faces[static_cast<std::size_t>(f)].plane.normal;
+  }
+  if (hit.surface >= kRockFace0) {
+    const int face = hit.surface - kRockFace0;
+    if (scene.face_relief.active)
+      return rough_face_normal(scene.rock, scene.face_relief, face, hit.point);
+    return scene.rock.faces[static_cast<std::size_t>(face)].plane.normal;
+  }
   return Eigen::Vector3d::Zero();
 }
 
+namespace {
+
+// The realistic world's shadows: the target rock, the stones and the relief
+// itself (a point whose own slope turns it from the sun is shadowed too).
+bool in_shadow_real(const Scene& scene, const SceneHit& hit) {
+  const Eigen::Vector3d& s = scene.sun_dir;
+  if (hit.surface == kGround) {
+    const Eigen::Vector3d n = surface_normal(scene, hit);
+    if (n.dot(s) <= 0) return true;
+    const Eigen::Vector3d p = hit.point + 0.01 * n;  // off the surface it starts on
+    if (enter_target(scene, p, s, 0.0, INFINITY).face >= 0) return true;
+    if (any_stone_meets(scene, p, s, -1)) return true;
+    double t = 0;
+    return scene.terrain.active && ray_hits_terrain(scene.terrain, p, s, 0.0, INFINITY, t);
+  }
+  if (hit.surface >= kStone0) {
+    const int k = (hit.surface - kStone0) / kStoneFaces;
+    if (surface_normal(scene, hit).dot(s) <= 0) return true;
+    return enter_target(scene, hit.point, s, 1e-3, INFINITY).face >= 0 ||
+           any_stone_meets(scene, hit.point + 1e-3 * s, s, k);
+  }
+  // A rock face: self-shadowed by its plane's orientation, or under a stone's shadow.
+  const HalfSpace& h = scene.rock.faces[static_cast<std::size_t>(hit.surface - kRockFace0)].plane;
+  return h.normal.dot(s) <= 0.0 || any_stone_meets(scene, hit.point, s, -1);
+}
+
+}  // namespace
+
 bool in_shadow(const Scene& scene, const SceneHit& hit) {
+  if (hit.surface == kSky) return false;
+  if (!clean_geometry(scene)) return in_shadow_real(scene, hit);
   if (hit.surface == kGround) return ray_meets_rock(scene.rock, hit.point, scene.sun_dir, 0.0);
   if (hit.surface >= kRockFace0) return surface_normal(scene, hit).dot(scene.sun_dir) <= 0.0;
   return false;
@@ -45,9 +140,11 @@ double radiance(const Scene& scene, const SceneHit& hit, bool shadowed, double p
   // Pixel footprint on the surface, stretched at grazing incidence.
   const double cos_view = std::max(std::abs(n.dot(dir)), 0.2);
   const double footprint = hit.t * pixel_angle / cos_view;
-  const TextureRecipe& recipe = hit.surface == kGround ? scene.ground : scene.rock_surface;
-  const double a =
-      scene.options.texture ? albedo(recipe, hit.point, footprint) : recipe.mean_albedo;
+  const bool ground_like = hit.surface == kGround || hit.surface >= kStone0;
+  const TextureRecipe& recipe = ground_like ? scene.ground : scene.rock_surface;
+  double a = scene.options.texture ? albedo(recipe, hit.point, footprint) : recipe.mean_albedo;
+  if (hit.surface >= kStone0)
+    a *= scene.stone_albedo[static_cast<std::size_t>((hit.surface - kStone0) / kStoneFaces)];
   // Sky light falls off on faces turned toward the ground.
   const double sky = scene.ambient * (0.7 + 0.3 * n.z());
   const double sun = shadowed ? 0.0 : std::max(0.0, n.dot(scene.sun_dir));

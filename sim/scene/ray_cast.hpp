@@ -12,6 +12,9 @@ namespace petra::sim {
 inline constexpr int kSky = 0;
 inline constexpr int kGround = 1;
 inline constexpr int kRockFace0 = 2;
+// Stone k's face f (realistic world) as kStone0 + k * kStoneFaces + f.
+inline constexpr int kStone0 = 1 << 20;
+inline constexpr int kStoneFaces = 64;
 
 struct SceneHit {
   int surface = kSky;

@@ -15,6 +15,36 @@ namespace {
 // Noise streams (the geometry uses 1..3, see scene.cpp).
 constexpr std::uint64_t kStreamNoiseLeft = 11;
 constexpr std::uint64_t kStreamNoiseRight = 12;
+constexpr std::uint64_t kStreamPrnuLeft = 13;
+constexpr std::uint64_t kStreamPrnuRight = 14;
+
+// The camera's response (realistic world): vignetting and pixel response
+// non-uniformity on the signal, then the camera's gain and offset.
+struct Response {
+  bool active = false;
+  double vignetting = 0, prnu = 0, gain = 1, offset = 0;
+  double cx = 0, cy = 0, corner2 = 1;  // principal point, squared distance to the farthest corner
+  std::uint64_t prnu_key = 0;
+
+  Response(const Scene& s, const TsaiCamera& cam, Eye eye) {
+    const World& w = s.options.world;
+    const bool left = eye == Eye::left;
+    vignetting = w.vignetting;
+    prnu = w.prnu;
+    gain = left ? w.gain_left : w.gain_right;
+    offset = left ? w.offset_left_dn : w.offset_right_dn;
+    active = vignetting > 0 || prnu > 0 || gain != 1 || offset != 0;
+    cx = cam.cx_px;
+    cy = cam.cy_px;
+    const double dx = std::max(cx, cam.width - 1 - cx), dy = std::max(cy, cam.height - 1 - cy);
+    corner2 = dx * dx + dy * dy;
+    prnu_key = mix64(s.options.seed ^ ((left ? kStreamPrnuLeft : kStreamPrnuRight) << 56));
+  }
+  double signal(double dn, int i, int j, std::size_t k) const {
+    const double r2 = ((i - cx) * (i - cx) + (j - cy) * (j - cy)) / corner2;
+    return dn * (1.0 - vignetting * r2) * (1.0 + prnu * hashed_normal(prnu_key, k));
+  }
+};
 
 struct Sample {
   int label = 0;  // surface * 2 + shadowed
@@ -101,6 +131,7 @@ RenderedView render_view(const Scene& scene, Eye eye, const Rect& window) {
       mix64(scene.options.seed ^ ((eye == Eye::left ? kStreamNoiseLeft : kStreamNoiseRight) << 56));
   const double sigma = scene.options.noise_sigma_dn;
   const int n_edge = scene.options.edge_supersampling;
+  const Response response(scene, cam, eye);
   for (int j = y0; j < y1; ++j)
     for (int i = x0; i < x1; ++i) {
       bool refine = false;
@@ -113,10 +144,13 @@ RenderedView render_view(const Scene& scene, Eye eye, const Rect& window) {
       r.integrate(i, j, refine ? n_edge : 2, mean, shadow_fraction);
       out.edge_pixels += refine ? 1 : 0;
       const std::size_t k = static_cast<std::size_t>(j) * w + i;
-      const double dn = scene.gain_dn * mean;
+      double dn = scene.gain_dn * mean;
+      if (response.active) dn = response.signal(dn, i, j, k);
       // Read noise plus photon noise: sigma is the value at 128 DN.
       const double s = sigma * std::sqrt(0.25 + 0.75 * std::max(dn, 0.0) / 128.0);
-      out.image.pixels[k] = quantise(dn + s * hashed_normal(noise_key, k));
+      double value = dn + s * hashed_normal(noise_key, k);
+      if (response.active) value = response.gain * value + response.offset;
+      out.image.pixels[k] = quantise(value);
       out.shadow_mask.pixels[k] = shadow_fraction > 0.5 ? 255 : 0;
     }
   return out;

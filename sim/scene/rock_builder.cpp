@@ -123,7 +123,8 @@ Result<BuiltRock> build_rock(Rng& rng, const RockSpec& spec) {
       zmin = std::min(zmin, p.z());
       zmax = std::max(zmax, p.z());
     }
-  const double sink = rng.uniform(0.15, 0.35);
+  const double drawn = rng.uniform(0.15, 0.35);  // drawn even when given: keeps the stream
+  const double sink = spec.burial.value_or(drawn);
   BuiltRock out;
   out.centre_height_mm = -(zmin + sink * (zmax - zmin));
   out.rock = std::move(*rock);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 
 #include "algo/core/result.hpp"
 #include "sim/scene/convex_rock.hpp"
@@ -17,6 +18,7 @@ struct RockSpec {
   double size_mm = 150;  // largest dimension (the two farthest vertices), buried part included
   int flat_faces = 2;
   Eigen::Vector3d toward_cameras = Eigen::Vector3d::UnitZ();  // unit, rock to rig midpoint
+  std::optional<double> burial;  // share of the height below the ground (default: drawn 0.15..0.35)
 };
 
 struct BuiltRock {

@@ -11,6 +11,8 @@
 #include "sim/scene/rng.hpp"
 #include "sim/scene/rock_builder.hpp"
 #include "sim/scene/scene_geometry.hpp"
+#include "sim/scene/terrain.hpp"
+#include "sim/scene/world_builder.hpp"
 
 namespace petra::sim {
 
@@ -21,6 +23,9 @@ constexpr double kDeg = M_PI / 180.0;
 constexpr std::uint64_t kStreamChoices = 1;
 constexpr std::uint64_t kStreamGeometry = 2;
 constexpr std::uint64_t kStreamMaterials = 3;
+constexpr std::uint64_t kStreamWorld = 4;
+constexpr double kMinSunOverSlopeDeg = 5;  // sun above the sloped ground by at least this
+constexpr double kMinRigOverGroundMm = 200;
 constexpr int kMaxAttempts = 300;
 constexpr double kMarginPx = 40;         // rock and shadow this far inside both images
 constexpr double kMaxViewAngleDeg = 70;  // flat faces seen at most this obliquely
@@ -140,6 +145,8 @@ constexpr const char* kRefusals[] = {
     "rig cannot be rectified",
     "rock outside an image",
     "shadow outside an image",
+    "the sun is below the sloped ground",
+    "rig too close to the sloped ground",
 };
 
 // Why a placement is refused (an entry of kRefusals), or nullptr when it
@@ -185,6 +192,8 @@ const char* refusal(const Scene& s) {
   };
   if (!in_views(rock_outline_points(s.rock, 8))) return kRefusals[8];
   if (!in_views(polygon_edge_points(shadow_region(s.rock, s.sun_dir), 8))) return kRefusals[9];
+  if (s.tilted && s.sun_dir.z() < std::sin(kMinSunOverSlopeDeg * kDeg)) return kRefusals[10];
+  if (s.tilted && 0.5 * (cl + cr).z() < kMinRigOverGroundMm) return kRefusals[11];
   return nullptr;
 }
 
@@ -196,6 +205,7 @@ Result<Scene> make_scene(const SceneOptions& o) {
   s.options = o;
   resolve_choices(o, s);
   choose_materials(o, s);
+  s.slope_azimuth_deg = o.world.slope_azimuth_deg.value_or(Rng(o.seed, kStreamWorld).uniform(-180, 180));
   const double h = s.camera_height_mm;
   const double dist = s.rock_distance_mm;
   Rng geo(o.seed, kStreamGeometry);
@@ -220,6 +230,7 @@ Result<Scene> make_scene(const SceneOptions& o) {
     spec.shape = s.shape;
     spec.size_mm = s.rock_size_mm;
     spec.flat_faces = s.flat_faces;
+    spec.burial = o.world.burial;
     spec.toward_cameras =
         Eigen::Vector3d(std::sin(phi) * horiz0, -std::cos(phi) * horiz0, h - zc0).normalized();
     auto built = build_rock(geo, spec);
@@ -242,10 +253,18 @@ Result<Scene> make_scene(const SceneOptions& o) {
     pose.roll_rad = roll;
     s.rig = build_rig(geo, pose);
     s.sun_dir = sun_direction(phi, s.sun_azimuth_deg, s.sun_elevation_deg);
+    // A sloped ground: the rig and the sun move into the local ground frame.
+    set_slope(s, o.world.slope_deg, phi + s.slope_azimuth_deg * kDeg);
+    if (s.tilted) {
+      s.rig = rig_to_local(s, s.rig);
+      s.sun_dir = s.world_R.transpose() * s.sun_dir;
+    }
     s.attempts = attempt;
     why = refusal(s);
     if (!why) {
       set_tone_and_exposure(s);
+      add_world_geometry(s);
+      set_calibration(s);
       return s;
     }
     tally(why);

@@ -6,11 +6,14 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <vector>
 
 #include "algo/camera_model.hpp"
 #include "algo/core/result.hpp"
 #include "sim/scene/convex_rock.hpp"
+#include "sim/scene/face_relief.hpp"
 #include "sim/scene/scene_options.hpp"
+#include "sim/scene/terrain.hpp"
 #include "sim/scene/texture.hpp"
 
 namespace petra::sim {
@@ -41,7 +44,35 @@ struct Scene {
   TextureRecipe rock_surface;
   double gain_dn = 200;  // DN per unit radiance (exposure)
   int attempts = 1;      // placements tried before one met every requirement
+
+  // The realistic world (all inactive for a clean scene). Rendering happens
+  // in the local frame above (ground z = 0 under the rock); calib.json and
+  // truth.json are in the rover's world frame, X_world = world_R (X - pivot) + pivot,
+  // which differs from it when the ground is sloped.
+  Terrain terrain;
+  FaceRelief face_relief;
+  std::vector<ConvexRock> stones;
+  std::vector<double> stone_albedo;  // relative to the ground's
+  bool tilted = false;
+  Eigen::Matrix3d world_R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d pivot = Eigen::Vector3d::Zero();
+  double slope_azimuth_deg = 0;  // uphill, from the heading, counter-clockwise
+  StereoRig true_rig_world;      // the rendering rig in the world frame
+  StereoRig calib_rig;           // what calib.json says (== true_rig_world when exact)
+  double calib_residual_px = 0;  // RMS |calib - true| reprojection, as measured
 };
+
+// True when the geometry is the clean world's (flat ground, planar faces, one rock).
+inline bool clean_geometry(const Scene& s) {
+  return !s.terrain.active && !s.face_relief.active && s.stones.empty();
+}
+// World frame <-> the local rendering frame.
+inline Eigen::Vector3d to_world(const Scene& s, const Eigen::Vector3d& p) {
+  return s.tilted ? Eigen::Vector3d(s.world_R * (p - s.pivot) + s.pivot) : p;
+}
+inline Eigen::Vector3d dir_to_world(const Scene& s, const Eigen::Vector3d& d) {
+  return s.tilted ? Eigen::Vector3d(s.world_R * d) : d;
+}
 
 // Builds the scene for options.seed and the options; deterministic. Fails
 // with a message naming the option when the options are invalid or no

@@ -44,7 +44,56 @@ Status in_range(const std::optional<double>& v, double lo, double hi, const char
   return {};
 }
 
+Status in_range(double v, double lo, double hi, const char* name, const char* unit) {
+  return in_range(std::optional<double>(v), lo, hi, name, unit);
+}
+
+Status validate_world(const World& w) {
+  PETRA_TRY(in_range(w.relief_rms_mm, 0, kMaxReliefMm, "relief", "mm"));
+  PETRA_TRY(in_range(w.pebble_cover, 0, kMaxPebbleCover, "pebbles", "(share of the ground)"));
+  PETRA_TRY(in_range(w.stones_per_m2, 0, kMaxStonesPerM2, "stones", "per m^2"));
+  PETRA_TRY(in_range(w.slope_deg, 0, kMaxSlopeDeg, "slope", "deg"));
+  PETRA_TRY(in_range(w.slope_azimuth_deg, -360, 360, "slope-azimuth", "deg"));
+  PETRA_TRY(in_range(w.face_roughness_mm, 0, kMaxFaceRoughnessMm, "face-roughness", "mm"));
+  PETRA_TRY(
+      in_range(w.face_curvature_per_m, 0, kMaxFaceCurvaturePerM, "face-curvature", "1/m"));
+  PETRA_TRY(in_range(w.gain_left, kMinCameraGain, kMaxCameraGain, "gain-left", ""));
+  PETRA_TRY(in_range(w.gain_right, kMinCameraGain, kMaxCameraGain, "gain-right", ""));
+  PETRA_TRY(
+      in_range(w.offset_left_dn, -kMaxCameraOffsetDn, kMaxCameraOffsetDn, "offset-left", "DN"));
+  PETRA_TRY(
+      in_range(w.offset_right_dn, -kMaxCameraOffsetDn, kMaxCameraOffsetDn, "offset-right", "DN"));
+  PETRA_TRY(in_range(w.vignetting, 0, kMaxVignetting, "vignetting", "(corner fall-off)"));
+  PETRA_TRY(in_range(w.prnu, 0, kMaxPrnu, "prnu", "(relative, 1 sigma)"));
+  PETRA_TRY(in_range(w.calib_residual_px, 0, kMaxCalibResidualPx, "calib-residual", "px"));
+  PETRA_TRY(in_range(w.burial, kMinBurial, kMaxBurial, "burial", "(share of the height)"));
+  return {};
+}
+
 }  // namespace
+
+World realistic_world() {
+  World w;
+  w.relief_rms_mm = 2.0;
+  w.pebble_cover = 0.12;
+  w.stones_per_m2 = 25;
+  w.slope_deg = 6;
+  w.face_roughness_mm = 0.3;
+  w.face_curvature_per_m = 0.5;
+  w.gain_right = 0.92;
+  w.offset_right_dn = 4;
+  w.vignetting = 0.2;
+  w.prnu = 0.01;
+  w.calib_residual_px = 0.3;
+  return w;
+}
+
+bool is_clean(const World& w) {
+  return w.relief_rms_mm == 0 && w.pebble_cover == 0 && w.stones_per_m2 == 0 &&
+         w.slope_deg == 0 && w.face_roughness_mm == 0 && w.face_curvature_per_m == 0 &&
+         w.gain_left == 1 && w.gain_right == 1 && w.offset_left_dn == 0 &&
+         w.offset_right_dn == 0 && w.vignetting == 0 && w.prnu == 0 && w.calib_residual_px == 0 && !w.burial;
+}
 
 Status validate(const SceneOptions& o) {
   if (o.seed > kMaxSeed)
@@ -68,6 +117,7 @@ Status validate(const SceneOptions& o) {
   if (o.edge_supersampling < 2 || o.edge_supersampling > 16)
     return Error::make(Errc::out_of_range, "edge supersampling = %d outside 2..16",
                        o.edge_supersampling);
+  PETRA_TRY(validate_world(o.world));
   // The rock must lie ahead of the rig, not below it: its centre sits at most
   // ~150 mm above the ground, so the distance must clearly exceed the height.
   if (o.rock_distance_mm && o.camera_height_mm && *o.camera_height_mm > 0.85 * *o.rock_distance_mm)

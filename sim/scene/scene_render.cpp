@@ -20,7 +20,7 @@ Result<SceneProducts> render_scene(const SceneOptions& options) {
   p.rectified = std::move(*rect);
   p.truth = compute_truth(p.scene, p.rectified);
   std::vector<char> buf(16384);
-  auto n = format_calib_json(p.scene.rig, {buf.data(), buf.size()});
+  auto n = format_calib_json(p.scene.calib_rig, {buf.data(), buf.size()});
   if (!n) return n.error();
   p.calib_json.assign(buf.data(), *n);
   auto truth = format_truth_json(p.scene, p.truth);

@@ -18,4 +18,35 @@ std::vector<SceneOptions> standard_scene_set() {
   return set;
 }
 
+std::vector<SceneOptions> real_scene_set() {
+  static constexpr double kReliefMm[4] = {1.0, 2.0, 3.0, 4.0};
+  static constexpr double kSlopeDeg[4] = {0, 5, 10, 15};
+  static constexpr double kGainRight[4] = {0.85, 0.92, 1.0, 1.1};
+  static constexpr double kOffsetRightDn[4] = {-6, 4, 8, 0};
+  static constexpr double kResidualPx[3] = {0.2, 0.3, 0.4};
+  static constexpr double kRoughnessMm[3] = {0.2, 0.3, 0.5};
+  static constexpr double kCurvaturePerM[3] = {0.3, 0.6, 1.0};
+  std::vector<SceneOptions> set = standard_scene_set();
+  set.resize(kRealSetSize);
+  for (int k = 0; k < kRealSetSize; ++k) {
+    SceneOptions& o = set[static_cast<std::size_t>(k)];
+    o.seed = 2000 + static_cast<std::uint64_t>(k);
+    World& w = o.world;
+    w = realistic_world();
+    w.relief_rms_mm = kReliefMm[k % 4];
+    w.slope_deg = kSlopeDeg[(k / 4) % 4];
+    w.pebble_cover = k % 2 == 0 ? 0.08 : 0.15;
+    w.stones_per_m2 = 10.0 + 10.0 * (k % 3);
+    w.face_roughness_mm = kRoughnessMm[k % 3];
+    w.face_curvature_per_m = kCurvaturePerM[(k / 3) % 3];
+    w.gain_right = kGainRight[(k / 2) % 4];
+    w.offset_right_dn = kOffsetRightDn[(k / 5) % 4];
+    w.vignetting = 0.1 + 0.1 * (k % 3);
+    w.calib_residual_px = kResidualPx[(k / 8) % 3];
+    o.noise_sigma_dn = 2.0;
+    o.edge_supersampling = 4;  // pebble shadows make many edge pixels
+  }
+  return set;
+}
+
 }  // namespace petra::sim

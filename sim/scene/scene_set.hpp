@@ -14,4 +14,10 @@ inline constexpr int kStandardSetSize = 24;
 // Entry k (0-based) has seed 1000 + k; everything not listed is drawn from it.
 std::vector<SceneOptions> standard_scene_set();
 
+// The realistic set (`petra sim set --real`, docs/scene.md): entry k has seed
+// 2000 + k, the standard set's boundary x sun x shape x faces cycle, and the
+// realistic world with its knobs varied around their defaults.
+inline constexpr int kRealSetSize = 24;
+std::vector<SceneOptions> real_scene_set();
+
 }  // namespace petra::sim

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+
+#include "algo/calib_json.hpp"
 #include "algo/core/json_writer.hpp"
 
 namespace petra::sim {
@@ -39,7 +42,7 @@ Rect left_roi(const Scene& s) {
 Rect rectified_box(const Scene& s, const RectifiedPair& pair, const Rect& roi) {
   double u0 = INFINITY, v0 = INFINITY, u1 = -INFINITY, v1 = -INFINITY;
   auto add = [&](double u, double v) {
-    auto r = original_to_rectified(s.rig.left, pair.left, {u, v});
+    auto r = original_to_rectified(s.calib_rig.left, pair.left, {u, v});
     if (!r) return;
     u0 = std::min(u0, r->x());
     v0 = std::min(v0, r->y());
@@ -58,12 +61,90 @@ Rect rectified_box(const Scene& s, const RectifiedPair& pair, const Rect& roi) {
   return clip_box(u0, v0, u1, v1, pair.left.width, pair.left.height);
 }
 
+// Best plane through the points (least squares), its normal turned like `toward`.
+FacetFit fit_facet(VisibleFacet& f, const std::vector<Eigen::Vector3d>& pts) {
+  FacetFit fit;
+  if (pts.size() < 20) return fit;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : pts) mean += p;
+  mean /= static_cast<double>(pts.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& p : pts) cov += (p - mean) * (p - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  Eigen::Vector3d n = eig.eigenvectors().col(0);
+  if (n.dot(f.normal) < 0) n = -n;
+  double sum2 = 0;
+  for (const auto& p : pts) sum2 += std::pow(n.dot(p - mean), 2);
+  for (auto& p : f.polygon) p -= n * n.dot(p - mean);  // onto the fitted plane
+  f.normal = n;
+  f.centroid = polygon_centroid(f.polygon);
+  f.area_mm2 = polygon_area(f.polygon);
+  fit.fitted = true;
+  fit.flatness_rms_mm = std::sqrt(sum2 / static_cast<double>(pts.size()));
+  fit.points = static_cast<int>(pts.size());
+  return fit;
+}
+
+// RMS of the finite values of `img` inside `r` (-1 when none), and their largest |value|.
+double rms_in(const io::FloatImage& img, const Rect& r, double* max_abs = nullptr) {
+  if (img.data.empty()) return -1;
+  double sum2 = 0, peak = 0;
+  long n = 0;
+  const auto view = img.view();
+  for (int y = r.y; y < r.y + r.h; ++y)
+    for (int x = r.x; x < r.x + r.w; ++x) {
+      const double v = view(x, y);
+      if (!std::isfinite(v)) continue;
+      sum2 += v * v;
+      peak = std::max(peak, std::abs(v));
+      ++n;
+    }
+  if (max_abs) *max_abs = peak;
+  return n ? std::sqrt(sum2 / static_cast<double>(n)) : -1;
+}
+
 void vec3(json::Writer& w, const Eigen::Vector3d& v) {
   w.begin_array().number(v.x()).number(v.y()).number(v.z()).end_array();
 }
 
 void rect(json::Writer& w, const Rect& r) {
   w.begin_array().integer(r.x).integer(r.y).integer(r.w).integer(r.h).end_array();
+}
+
+// The realistic world's knobs and what was measured on the rendered scene.
+Status write_world(json::Writer& w, const Scene& s, const SceneTruth& t) {
+  const World& o = s.options.world;
+  w.raw("\n");
+  w.key("world").begin_object();
+  w.key("relief_rms_mm").number(o.relief_rms_mm);
+  w.key("relief_rms_roi_mm").number(t.relief_rms_roi_mm);
+  w.key("pebble_cover").number(o.pebble_cover);
+  w.key("stones_per_m2").number(o.stones_per_m2);
+  w.key("stones").integer(static_cast<long long>(s.stones.size()));
+  w.key("slope_deg").number(o.slope_deg);
+  w.key("slope_azimuth_deg").number(s.slope_azimuth_deg);
+  w.key("face_roughness_mm").number(o.face_roughness_mm);
+  w.key("face_curvature_per_m").number(o.face_curvature_per_m);
+  w.key("gain").begin_array().number(o.gain_left).number(o.gain_right).end_array();
+  w.key("offset_dn").begin_array().number(o.offset_left_dn).number(o.offset_right_dn).end_array();
+  w.key("vignetting").number(o.vignetting);
+  w.key("prnu").number(o.prnu);
+  if (o.burial) w.key("burial").number(*o.burial);
+  w.end_object();
+  w.raw("\n");
+  w.key("calibration").begin_object();
+  w.key("residual_px").number(s.calib_residual_px);
+  w.key("configured_residual_px").number(o.calib_residual_px);
+  w.key("vertical_disparity_rms_px").number(t.vertical_rms_px);
+  w.key("vertical_disparity_max_px").number(t.vertical_max_px);
+  std::vector<char> buf(16384);
+  auto n = format_calib_json(s.true_rig_world, {buf.data(), buf.size()});
+  if (!n) return n.error();
+  std::string_view rig(buf.data(), *n);
+  while (!rig.empty() && (rig.back() == '\n' || rig.back() == ' ')) rig.remove_suffix(1);
+  w.key("true_rig").raw(rig);  // last: raw text sets no separator
+  w.end_object();
+  return {};
 }
 
 }  // namespace
@@ -85,6 +166,12 @@ SceneTruth compute_truth(const Scene& s, const RectifiedTruth& rect_truth) {
     }
   t.disparity_min = std::isfinite(lo) ? lo : 0.0;
   t.disparity_max = std::isfinite(hi) ? hi : 0.0;
+  if (s.face_relief.active)
+    for (auto& f : t.facets)
+      t.fits.push_back(fit_facet(f, rect_truth.face_points[static_cast<std::size_t>(f.face)]));
+  t.relief_rms_roi_mm = rms_in(rect_truth.surface_height, t.roi_rectified);
+  if (!rect_truth.vertical.data.empty())
+    t.vertical_rms_px = rms_in(rect_truth.vertical, t.roi_rectified, &t.vertical_max_px);
   return t;
 }
 
@@ -101,27 +188,33 @@ Result<std::string> format_truth_json(const Scene& s, const SceneTruth& t) {
     w.raw("\n ");
     w.begin_object();
     w.key("normal");
-    vec3(w, f.normal);
+    vec3(w, dir_to_world(s, f.normal));
     w.key("centroid_mm");
-    vec3(w, f.centroid);
+    vec3(w, to_world(s, f.centroid));
     w.key("polygon_mm").begin_array();
-    for (const auto& p : f.polygon) vec3(w, p);
+    for (const auto& p : f.polygon) vec3(w, to_world(s, p));
     w.end_array();
     w.key("visible_area_mm2").number(f.area_mm2);
     w.key("grind_face").boolean(f.grind_face);
+    const std::size_t i = static_cast<std::size_t>(&f - t.facets.data());
+    if (i < t.fits.size() && t.fits[i].fitted) {
+      w.key("flatness_rms_mm").number(t.fits[i].flatness_rms_mm);
+      w.key("fit_points").integer(t.fits[i].points);
+    }
     w.end_object();
   }
   w.end_array();
   w.raw("\n");
   // Ground plane n.X + d = 0 (world frame: the ground is z = 0).
   w.key("ground").begin_object();
+  const Eigen::Vector3d ground_n = dir_to_world(s, Eigen::Vector3d::UnitZ());
   w.key("normal");
-  vec3(w, Eigen::Vector3d::UnitZ());
-  w.key("d_mm").number(0.0);
+  vec3(w, ground_n);
+  w.key("d_mm").number(s.tilted ? -ground_n.dot(s.pivot) : 0.0);
   w.end_object();
   w.raw("\n");
   w.key("sun_dir");
-  vec3(w, s.sun_dir);
+  vec3(w, dir_to_world(s, s.sun_dir));
   w.key("seed").integer(static_cast<long long>(s.options.seed));
   w.raw("\n");
   w.key("roi_rectified");
@@ -143,10 +236,11 @@ Result<std::string> format_truth_json(const Scene& s, const SceneTruth& t) {
   w.key("camera_height_mm").number(s.camera_height_mm);
   w.key("tone_ratio").number(s.tone_ratio);
   w.key("rock_centre_mm");
-  vec3(w, s.rock_centre_mm);
+  vec3(w, to_world(s, s.rock_centre_mm));
   w.key("noise_dn").number(s.options.noise_sigma_dn);
   w.key("texture").boolean(s.options.texture);
   w.end_object();
+  if (!is_clean(s.options.world)) PETRA_TRY(write_world(w, s, t));
   w.end_object();
   w.raw("\n");
   auto n = w.finish();

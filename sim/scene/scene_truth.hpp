@@ -13,6 +13,13 @@
 
 namespace petra::sim {
 
+// A rough face's truth: its best plane fitted to the rendered surface.
+struct FacetFit {
+  bool fitted = false;
+  double flatness_rms_mm = 0;  // RMS distance of the surface from that plane
+  int points = 0;              // rectified left pixels that saw the face
+};
+
 struct SceneTruth {
   Rect roi;            // original left image: rock, its shadow and a margin of ground
   Rect roi_rectified;  // bounding box of roi in the rectified left image
@@ -20,6 +27,10 @@ struct SceneTruth {
   std::vector<VisibleFacet> facets;
   double disparity_min = 0;  // valid truth disparities inside roi_rectified (px)
   double disparity_max = 0;
+  // Realistic world only (measured on the rendered scene).
+  std::vector<FacetFit> fits;         // per facet, when the faces are rough
+  double relief_rms_roi_mm = -1;      // ground height RMS about its base plane in roi_rectified
+  double vertical_rms_px = 0, vertical_max_px = 0;  // vertical disparity in roi_rectified
 };
 
 SceneTruth compute_truth(const Scene& scene, const RectifiedTruth& rect);

@@ -80,6 +80,12 @@ Result<TruthFile> parse_truth_json(std::string_view text, const char* name) {
       if (!gv) return gv.error();
       facet.grind_face = *gv;
     }
+    if (const std::uint32_t fl = f.optional_member(list[k], "flatness_rms_mm")) {
+      auto fv = f.number(fl, p + ".flatness_rms_mm");
+      if (!fv) return fv.error();
+      if (*fv < 0) return f.error(p + ".flatness_rms_mm", "must be >= 0");
+      facet.flatness_rms_mm = *fv;
+    }
     t.facets.push_back(std::move(facet));
   }
   if (*c < 1 || *c > static_cast<long long>(t.facets.size()))

@@ -1,7 +1,7 @@
 // truth.json (written by `petra sim scene`, contract in docs/icd.md) read
 // back for scoring. Required: roi, planes, facets (normal, centroid_mm,
 // polygon_mm, visible_area_mm2), ground, sun_dir, seed. Optional extras:
-// facets[].grind_face, roi_rectified, disparity_range.
+// facets[].grind_face, facets[].flatness_rms_mm, roi_rectified, disparity_range.
 #pragma once
 
 #include <Eigen/Core>
@@ -21,6 +21,7 @@ struct TruthFacet {
   Polygon3 polygon_mm;
   double visible_area_mm2 = 0;
   bool grind_face = false;
+  std::optional<double> flatness_rms_mm;  // rough faces: RMS about the fitted plane
 };
 
 struct TruthFile {
