@@ -54,7 +54,8 @@ TEST(SceneWorld, BadKnobsAreRefusedNamingTheOption) {
     c.set(o.world);
     const Status st = validate(o);
     ASSERT_FALSE(st.ok()) << c.name;
-    EXPECT_EQ(st.error().message.rfind(std::string(c.name) + " = ", 0), 0u) << st.error().message;
+    EXPECT_EQ(std::string(st.error().message).rfind(std::string(c.name) + " = ", 0), 0u)
+        << st.error().message;
   }
   SceneOptions o = base();
   o.world = realistic_world();
