@@ -98,9 +98,9 @@ Status only_known_keys(const Document& doc, std::uint32_t obj, const char* secti
         if (n < 0 || used + static_cast<std::size_t>(n) >= sizeof(list)) break;
         used += static_cast<std::size_t>(n);
       }
-      return Error::make(Errc::invalid_argument, "config: %s%s%.*s: unknown key (expected one of %s)",
-                         section, section[0] ? "." : "", static_cast<int>(name.size()),
-                         name.data(), list);
+      return Error::make(Errc::invalid_argument,
+                         "config: %s%s%.*s: unknown key (expected one of %s)", section,
+                         section[0] ? "." : "", static_cast<int>(name.size()), name.data(), list);
     }
     key = doc.token(key + 1).next;
   }
@@ -110,19 +110,21 @@ Status only_known_keys(const Document& doc, std::uint32_t obj, const char* secti
 // The keys of each section (docs/icd.md "petra-fsw configuration", docs/hal.md).
 Status check_keys(const Document& doc, bool v4l2) {
   PETRA_TRY(only_known_keys(
-      doc, 0, "", {"uplink", "downlink", "loop", "budget", "camera", "gpio", "arm", "calib", "params"}));
+      doc, 0, "",
+      {"uplink", "downlink", "loop", "budget", "camera", "gpio", "arm", "calib", "params"}));
   struct Section {
     const char* name;
     std::initializer_list<std::string_view> keys;
   };
   const Section sections[] = {
-      {"uplink", {"host", "port", "key_file", "counter_file"}},
+      {"uplink", {"host", "port", "key_file", "counter_file", "counter_floor"}},
       {"downlink", {"host", "port"}},
-      {"loop", {"cycle_ms", "commands_per_cycle", "health_period_ms", "watchdog_device",
-                "lock_memory"}},
-      {"budget", {"image_width", "image_height", "arena_mb", "tlm_queue_packets",
-                  "worker_stack_kb", "cloud_points"}},
-      {"arm", {"can_interface", "mount"}},
+      {"loop",
+       {"cycle_ms", "commands_per_cycle", "health_period_ms", "watchdog_device", "lock_memory"}},
+      {"budget",
+       {"image_width", "image_height", "arena_mb", "tlm_queue_packets", "worker_stack_kb",
+        "cloud_points", "roi_width", "roi_height"}},
+      {"arm", {"can_interface", "mount", "heartbeat_timeout_ms"}},
       {"gpio", {"chip", "trigger", "arm_power", "estop"}},
   };
   for (const Section& s : sections)
@@ -139,10 +141,10 @@ Status check_keys(const Document& doc, bool v4l2) {
   }
   const std::uint32_t camera = doc.find(0, "camera");
   if (v4l2)
-    return only_known_keys(doc, camera, "camera",
-                           {"kind", "layout", "left", "right", "width", "height", "formats",
-                            "buffers", "fps", "timeout_ms", "max_skew_us", "max_pair_frames",
-                            "trigger_width_us", "triggered"});
+    return only_known_keys(
+        doc, camera, "camera",
+        {"kind", "layout", "left", "right", "width", "height", "formats", "buffers", "fps",
+         "timeout_ms", "max_skew_us", "max_pair_frames", "trigger_width_us", "triggered"});
   return only_known_keys(doc, camera, "camera", {"kind", "dir"});
 }
 
@@ -180,8 +182,8 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
   if (camera == 0) return Error::make(Errc::missing_field, "config: camera: missing");
   PETRA_TRY(object_or_absent(*doc, doc->find(0, "gpio"), "gpio"));
   PETRA_TRY(object_or_absent(*doc, doc->find(0, "arm"), "arm"));
-  PETRA_TRY(check_keys(*doc, doc->find(camera, "kind") != 0 &&
-                                 doc->text_of(doc->find(camera, "kind")) == "v4l2"));
+  PETRA_TRY(check_keys(
+      *doc, doc->find(camera, "kind") != 0 && doc->text_of(doc->find(camera, "kind")) == "v4l2"));
 
   PETRA_TRY(r.text(up, "uplink", "host", c.cmd_host, false, false));
   PETRA_TRY(get_int(r, up, "uplink", "port", 0, 65535, c.cmd_port));
@@ -269,8 +271,8 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
       }
       c.arm.has_mount = true;
     }
-    PETRA_TRY(get_int(r, arm, "arm", "heartbeat_timeout_ms", 200, 60000,
-                      c.arm.heartbeat_timeout_ms));
+    PETRA_TRY(
+        get_int(r, arm, "arm", "heartbeat_timeout_ms", 200, 60000, c.arm.heartbeat_timeout_ms));
   }
   PETRA_TRY(r.text(0, "", "calib", c.calib_file, false, true));
   PETRA_TRY(r.text(0, "", "params", c.param_file, false, true));

@@ -60,6 +60,14 @@ TEST(FswGrindPlanes, TelemetryEqualsTheOnboardChainOnTheSamePair) {
   budget.image_height = left->height;
   budget.max_roi_width = std::min(640, left->width);
   budget.max_roi_height = std::min(480, left->height);
+  {
+    // The flight default's points budget: one per 2x2 pixels of its rectified ROI
+    // bound with this rig, 535 x 402 (docs/memory.md).
+    PipelineBudget flight = budget;
+    flight.max_roi_width = 535;
+    flight.max_roi_height = 402;
+    budget.max_points = points_of(flight);
+  }
   PipelineParams params;
   params.shadow_fraction = param_default(ParamId::SHADOW_FRACTION);
   budget.max_disparities = params.range.search_max_px - params.range.search_min_px + 1;

