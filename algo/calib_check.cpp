@@ -90,7 +90,7 @@ bool match_feature(const Search& s, const Patch& p, int x, int y, std::span<int>
       second = std::min(second, per_d[static_cast<std::size_t>(d - s.disp_min)]);
   if (second != INT_MAX && !(best < s.uniqueness * second)) return false;
   // Row profile: each offset's best of d1-1..d1+1 (the true d is fractional).
-  int prof[2 * 8 + 1];
+  int prof[2 * 8 + 1] = {};
   for (int dy = -s.V; dy <= s.V; ++dy) {
     int m = INT_MAX;
     for (int d = d1 - 1; d <= d1 + 1; ++d)

@@ -186,7 +186,7 @@ Result<Footprint> find_footprint(std::span<const FaceSample> samples,
       }
     return s;
   };
-  double rms[kFootprintCandidates], dist[kFootprintCandidates];
+  double rms[kFootprintCandidates] = {}, dist[kFootprintCandidates] = {};
   double flattest = 1e300;
   for (int j = 0; j < ncy; ++j)
     for (int i = 0; i < ncx; ++i) {
