@@ -53,8 +53,7 @@ Status validate(const ClickRegionParams& p) {
   if (!(p.max_concave_step_deg > 0.0 && p.max_concave_step_deg < 90.0))
     return Error::make(Errc::invalid_argument, "click region: max_concave_step_deg not in (0, 90)");
   if (!(p.max_normal_step_deg > 0.0 && p.max_normal_step_deg <= 180.0))
-    return Error::make(Errc::invalid_argument,
-                       "click region: max_normal_step_deg not in (0, 180]");
+    return Error::make(Errc::invalid_argument, "click region: max_normal_step_deg not in (0, 180]");
   if (p.min_points < 3)
     return Error::make(Errc::invalid_argument, "click region: min_points %zu < 3", p.min_points);
   return {};

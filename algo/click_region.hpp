@@ -36,7 +36,7 @@ struct ClickRegionParams {
 };
 
 struct ClickRegionResult {
-  std::size_t points = 0;         // in the region
+  std::size_t points = 0;           // in the region
   std::size_t stopped_concave = 0;  // edges refused as concave
   std::size_t stopped_fold = 0;     // edges refused for the normal step
 };

@@ -62,8 +62,8 @@ inline std::size_t draw_border_point(SplitMix& rng, std::span<const PixelPos> px
 // Plane through a, b, c oriented towards the camera; false when they are
 // (nearly) collinear: sin of the angle at a below 1e-3.
 template <class S>
-bool plane_through(const Vec3T<S>& a, const Vec3T<S>& b, const Vec3T<S>& c,
-                   const Vec3T<S>& camera, PlaneT<S>& out) {
+bool plane_through(const Vec3T<S>& a, const Vec3T<S>& b, const Vec3T<S>& c, const Vec3T<S>& camera,
+                   PlaneT<S>& out) {
   using std::sqrt;
   Vec3T<S> n = (b - a).cross(c - a);
   const S base = sqrt((b - a).squaredNorm()) * sqrt((c - a).squaredNorm());
@@ -164,8 +164,7 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
   if (click.present) {
     if (!roi.contains(click.u, click.v))
       return Error::make(Errc::out_of_range, "the click (%d, %d) is outside the ROI (%d, %d %dx%d)",
-                         click.u,
-                         click.v, roi.x, roi.y, roi.w, roi.h);
+                         click.u, click.v, roi.x, roi.y, roi.w, roi.h);
     const std::size_t c = ground_detail::nearest_pixel(px, click.u, click.v);
     const double du = px[c].u - click.u, dv = px[c].v - click.v;
     if (du * du + dv * dv > double(params.click_radius_px) * params.click_radius_px)
@@ -303,8 +302,8 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
 
   // Final labels about the final plane: ground is the band of noise around
   // it (3 measured RMS, at least min_ground_band_mm), everything above is
-  // rock (a wider band from the noise model took the foot of steep faces). The k-means midpoint found the plane; as a label it would give the
-  // lower half of the rock's faces to the ground.
+  // rock (a wider band from the noise model took the foot of steep faces). The k-means midpoint
+  // found the plane; as a label it would give the lower half of the rock's faces to the ground.
   std::size_t ng = 0, nr_ = 0, band_total = 0, band_ground = 0, below = 0;
   const double below_mm = std::max(params.min_rock_height_mm, to_double(inlier_band));
   const S deep = -S(below_mm);
@@ -344,11 +343,12 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
   // Nothing stands below the ground: a plane with much beneath it is a face
   // of a rock that fills the ROI.
   if (double(below) > params.max_below_fraction * double(n))
-    return fail(GroundFailure::no_ground,
-                Error::make(Errc::no_solution,
-                            "no ground in the ROI: %zu of %zu points lie %.1f mm below the flattest "
-                            "surface",
-                            below, n, below_mm));
+    return fail(
+        GroundFailure::no_ground,
+        Error::make(Errc::no_solution,
+                    "no ground in the ROI: %zu of %zu points lie %.1f mm below the flattest "
+                    "surface",
+                    below, n, below_mm));
   // Points on one plane: no rock (checked once the plane is known to be ground-like).
   if (nr_ == 0 || !(out.rock_centre_mm >= S(params.min_rock_height_mm)))
     return Error::make(Errc::degenerate,
@@ -356,10 +356,10 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
                        "need %.2f)",
                        to_double(out.rock_centre_mm), params.min_rock_height_mm);
   if (double(ng) < params.min_ground_fraction * double(n))
-    return fail(GroundFailure::no_ground,
-                Error::make(Errc::no_solution,
-                            "no ground in the ROI: only %zu of %zu points on a ground plane",
-                            ng, n));
+    return fail(
+        GroundFailure::no_ground,
+        Error::make(Errc::no_solution,
+                    "no ground in the ROI: only %zu of %zu points on a ground plane", ng, n));
   if (band_total > 0 && double(band_ground) < params.min_border_ground * double(band_total))
     return fail(GroundFailure::no_ground,
                 Error::make(Errc::no_solution,
@@ -367,9 +367,9 @@ Result<GroundResultT<S>> segment_ground(std::span<const Vec3T<S>> xyz, std::span
                             "fills the ROI",
                             band_ground, band_total));
   if (click.present && labels[out.click_point] != PointClass::rock)
-    return fail(GroundFailure::click_on_ground,
-                Error::make(Errc::no_solution,
-                            "no rock under the click: the click is on the ground"));
+    return fail(
+        GroundFailure::click_on_ground,
+        Error::make(Errc::no_solution, "no rock under the click: the click is on the ground"));
   // A rock stands clear of the ground's relief; a surface whose "rock" is
   // within a few RMS of it is a gently folded rock top (a roof), not ground.
   const double clear_mm = params.min_rock_height_rms * to_double(fit.rms);

@@ -337,11 +337,10 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
     if (!kept) return kept.error();
     PETRA_ASSERT(*kept == nr);
     st.rock_triangles = nr;
-    auto g =
-        find_grind_planes(out.xyz_mm, rock->first(nr), camera_centre_world(rig.left),
-                          request.planes, params.grind, arena, plane_of->first(nr), out.normals,
-                          RigGeometry{rect.left.f_px, rect.baseline_mm,
-                                      static_cast<double>(params.filter.window)});
+    auto g = find_grind_planes(
+        out.xyz_mm, rock->first(nr), camera_centre_world(rig.left), request.planes, params.grind,
+        arena, plane_of->first(nr), out.normals,
+        RigGeometry{rect.left.f_px, rect.baseline_mm, static_cast<double>(params.filter.window)});
     if (!g) return g.error();
     out.planes = *g;
     for (std::size_t j = 0; j < nr; ++j) {

@@ -32,8 +32,7 @@ class ProductStreamer {
  public:
   // memory[k]: buffer of kind k+1 (bytes_needed below). events: where
   // PRODUCT_SENT and PRODUCT_REFUSED go (none when null).
-  void init(std::array<std::span<std::uint8_t>, kProductKinds> memory,
-            EventLog* events = nullptr);
+  void init(std::array<std::span<std::uint8_t>, kProductKinds> memory, EventLog* events = nullptr);
 
   // Buffer sizes for a budget.
   static std::array<std::size_t, kProductKinds> bytes_needed(int max_width, int max_height,

@@ -41,7 +41,8 @@ Status write_small_file(const char* path, std::span<const char> data) {
   if (std::snprintf(tmp, sizeof(tmp), "%s.tmp", path) >= static_cast<int>(sizeof(tmp)))
     return Error::make(Errc::invalid_argument, "path too long: %s", path);
   const int fd = ::open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-  if (fd < 0) return Error::make(Errc::io_error, "%s: cannot create (%s)", tmp, std::strerror(errno));
+  if (fd < 0)
+    return Error::make(Errc::io_error, "%s: cannot create (%s)", tmp, std::strerror(errno));
   const ssize_t n = ::write(fd, data.data(), data.size());
   const int write_errno = errno;
   const bool ok = n == static_cast<ssize_t>(data.size());

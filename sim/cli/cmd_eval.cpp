@@ -175,10 +175,11 @@ void print_summary(const EvalOptions& o, const PipelineOutput& out, double total
   std::printf("  dense points           %ld of %ld ROI px   (before the mean filter)\n",
               s.dense_points, static_cast<long>(q.w) * q.h);
   std::printf("  filtered points        %ld\n", s.filtered_points);
-  std::printf("  3-D points, triangles  %zu (pixel stride %d), %zu kept of %zu   (removed: %zu long, "
-              "%zu oblique)\n",
-              s.triangulated, s.point_stride, s.mesh.kept, s.delaunay_triangles, s.mesh.removed_long,
-              s.mesh.removed_grazing);
+  std::printf(
+      "  3-D points, triangles  %zu (pixel stride %d), %zu kept of %zu   (removed: %zu long, "
+      "%zu oblique)\n",
+      s.triangulated, s.point_stride, s.mesh.kept, s.delaunay_triangles, s.mesh.removed_long,
+      s.mesh.removed_grazing);
   const Eigen::Vector3d& gn = r.ground.plane.normal;
   std::printf("  ground plane           n (%.4f, %.4f, %.4f), d %.2f mm, RMS %.2f mm, %zu points\n",
               gn.x(), gn.y(), gn.z(), r.ground.plane.d, r.ground.rms_mm, r.ground.ground_points);

@@ -67,7 +67,8 @@ const char* inconsistency(const ScoreArgs& a) {
   if (!a.planes.empty() && a.truth.empty()) return "--planes needs --truth";
   if (a.disparity.empty() != a.disparity_truth.empty())
     return "--disparity and --disparity-truth go together";
-  if (!a.shadow.empty() && !a.shadow_from.empty()) return "--shadow and --shadow-from exclude each other";
+  if (!a.shadow.empty() && !a.shadow_from.empty())
+    return "--shadow and --shadow-from exclude each other";
   if ((a.shadow.empty() && a.shadow_from.empty()) != a.shadow_truth.empty())
     return "--shadow (or --shadow-from) and --shadow-truth go together";
   if (a.shadow_fraction && a.shadow_from.empty()) return "--shadow-fraction needs --shadow-from";
@@ -79,8 +80,7 @@ const char* inconsistency(const ScoreArgs& a) {
     return "plane limits need --planes";
   if (a.disparity.empty() && (l.max_bad1_pct || l.max_bad2_pct))
     return "--max-bad1/2 need --disparity";
-  if (a.shadow.empty() && a.shadow_from.empty() &&
-      (l.min_shadow_precision || l.min_shadow_recall))
+  if (a.shadow.empty() && a.shadow_from.empty() && (l.min_shadow_precision || l.min_shadow_recall))
     return "--min-shadow-* need --shadow";
   return nullptr;
 }

@@ -44,8 +44,7 @@ void add_world_options(CLI::App* cmd, SceneArgs& a) {
                   "uphill direction from the heading, counter-clockwise, deg (default: drawn)");
   cmd->add_option("--face-roughness", a.face_roughness,
                   "rock faces' relief RMS, mm, 0..2 (real 0.3)");
-  cmd->add_option("--face-curvature", a.face_curvature,
-                  "rock faces' bulge, 1/m, 0..5 (real 0.5)");
+  cmd->add_option("--face-curvature", a.face_curvature, "rock faces' bulge, 1/m, 0..5 (real 0.5)");
   cmd->add_option("--gain-left", a.gain_left, "left camera gain, 0.5..1.5 (real 1)");
   cmd->add_option("--gain-right", a.gain_right, "right camera gain, 0.5..1.5 (real 0.92)");
   cmd->add_option("--offset-left", a.offset_left, "left camera offset, DN, -40..40 (real 0)");
@@ -54,8 +53,9 @@ void add_world_options(CLI::App* cmd, SceneArgs& a) {
   cmd->add_option("--prnu", a.prnu, "pixel response non-uniformity, 0..0.05 (real 0.01)");
   cmd->add_option("--calib-residual", a.calib_residual,
                   "calib.json's RMS reprojection error against the true rig, px, 0..2 (real 0.3)");
-  cmd->add_option("--burial", a.burial,
-                  "share of the rock's height below the ground, 0.15..0.7 (default: drawn 0.15..0.35)");
+  cmd->add_option(
+      "--burial", a.burial,
+      "share of the rock's height below the ground, 0.15..0.7 (default: drawn 0.15..0.35)");
 }
 
 void apply_world(const SceneArgs& a, sim::World& w) {
@@ -157,10 +157,10 @@ void add_sim(CLI::App& app, Outcome& outcome) {
   static SceneArgs scene_args;
   auto* scene = sim_cmd->add_subcommand("scene", "Render one stereo scene and its ground truth");
   auto* seed_opt = scene->add_option("--seed", scene_args.seed, "scene seed, 0..2^53-1");
-  auto* index_opt = scene->add_option(
-      "--set-index", scene_args.set_index,
-      "render entry K of the standard set (0.." + std::to_string(sim::kStandardSetSize - 1) +
-          "), or with --real of the realistic set");
+  auto* index_opt = scene->add_option("--set-index", scene_args.set_index,
+                                      "render entry K of the standard set (0.." +
+                                          std::to_string(sim::kStandardSetSize - 1) +
+                                          "), or with --real of the realistic set");
   seed_opt->excludes(index_opt);
   scene->add_option("--out", scene_args.out, "output directory (created)")->required();
   add_scene_options(scene, scene_args);

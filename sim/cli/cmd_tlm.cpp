@@ -22,7 +22,9 @@ namespace petra::cli {
 
 namespace {
 volatile std::sig_atomic_t g_stop = 0;
-extern "C" void on_stop_signal(int) { g_stop = 1; }
+extern "C" void on_stop_signal(int) {
+  g_stop = 1;
+}
 }  // namespace
 
 void add_tlm(CLI::App& app, Outcome& outcome) {
@@ -91,9 +93,9 @@ void add_tlm(CLI::App& app, Outcome& outcome) {
           std::fprintf(stderr, "petra tlm: wrote %s\n", path.c_str());
         }
       if (chunk == nullptr || !quiet_products) {
-        std::printf("%s\n", (json ? ground::format_json(*p, missing)
-                                   : ground::format_line(*p, missing))
-                                  .c_str());
+        std::printf(
+            "%s\n",
+            (json ? ground::format_json(*p, missing) : ground::format_line(*p, missing)).c_str());
         std::fflush(stdout);
       }
       if (count > 0 && ++seen >= count) return summary();

@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    if (e.get_exit_code() == 0) return app.exit(e);    // --help, --version
     if (cmd.empty() && argc > 1 && argv[1][0] != '-')  // CLI11 says "A subcommand is required"
       return petra::cli::usage_error("", std::string("unknown command '") + argv[1] + "'");
     return petra::cli::usage_error(cmd.c_str(), e.what());

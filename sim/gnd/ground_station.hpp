@@ -26,8 +26,8 @@
 #include "sim/gnd/arm_model.hpp"
 #include "sim/gnd/event_hub.hpp"
 #include "sim/ground/product_assembler.hpp"
-#include "sim/ground/tlm_archive.hpp"
 #include "sim/ground/seq_tracker.hpp"
+#include "sim/ground/tlm_archive.hpp"
 
 namespace petra::gnd {
 

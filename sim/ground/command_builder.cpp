@@ -3,8 +3,8 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -144,8 +144,8 @@ Result<cmd::Command> build_command(const std::string& name, const std::vector<st
     if (!optional_field(*desc, f) && std::find(given.begin(), given.end(), f.name) == given.end())
       missing += (missing.empty() ? "" : ", ") + std::string(f.name);
   if (!missing.empty())
-    return Error::make(Errc::missing_field, "%s: missing %s (every field is required)",
-                       desc->name, missing.c_str());
+    return Error::make(Errc::missing_field, "%s: missing %s (every field is required)", desc->name,
+                       missing.c_str());
   if (auto* roi = std::get_if<cmd::SelectRoiArgs>(&c.args); roi != nullptr && click)
     roi->has_click = 1;
   PETRA_TRY(check_consistency(c, given));

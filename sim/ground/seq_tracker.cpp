@@ -51,8 +51,8 @@ std::string SeqTracker::summary_line() const {
   for (const auto& [apid, s] : apids_) {
     packets += s.received;
     gaps += s.gaps;
-    if (s.missing > 0) per_apid << (per_apid.tellp() > 0 ? ", " : "") << apid_name(apid) << " "
-                                << s.missing;
+    if (s.missing > 0)
+      per_apid << (per_apid.tellp() > 0 ? ", " : "") << apid_name(apid) << " " << s.missing;
   }
   std::ostringstream o;
   o << "summary: " << packets << " packets, " << missing() << " missing in " << gaps << " gaps";

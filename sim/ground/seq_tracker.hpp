@@ -15,8 +15,8 @@ namespace petra::ground {
 
 struct ApidStats {
   std::uint64_t received = 0;
-  std::uint64_t missing = 0;  // packets never received between two that were
-  std::uint64_t gaps = 0;     // how many times a run of packets went missing
+  std::uint64_t missing = 0;   // packets never received between two that were
+  std::uint64_t gaps = 0;      // how many times a run of packets went missing
   std::uint64_t restarts = 0;  // count went backwards (the service restarted)
   std::uint16_t last_seq = 0;
 };
