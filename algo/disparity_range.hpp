@@ -16,13 +16,14 @@
 #include "algo/core/arena.hpp"
 #include "algo/core/image_view.hpp"
 #include "algo/core/result.hpp"
+#include "algo/chain_defaults.hpp"
 #include "algo/match_dp.hpp"
 
 namespace petra {
 
 struct RangeSearchParams {
-  int search_min_px = 64;  // working envelope, full-resolution px
-  int search_max_px = 320;
+  int search_min_px = kEnvelopeMinPx;  // working envelope, full-resolution px
+  int search_max_px = kEnvelopeMaxPx;
   int factor = 4;  // coarse level (2 for ROIs under 128 px wide)
   double low_quantile = 0.02;
   double high_quantile = 0.98;

@@ -20,6 +20,7 @@
 
 #include "algo/calib_check.hpp"
 #include "algo/camera_model.hpp"
+#include "algo/chain_defaults.hpp"
 #include "algo/core/arena.hpp"
 #include "algo/core/result.hpp"
 #include "algo/disparity_range.hpp"
@@ -56,10 +57,8 @@ Status validate(const PipelineBudget& b);
 std::size_t points_of(const PipelineBudget& b);  // the 3-D points budget
 
 struct PipelineParams {
-  // Expected shadow share of the ROI (SEED.md 1), [0, 1). Only the darkest
-  // 1 %: self-shadowed rock faces are grind candidates and still match
-  // (docs/reconstruction.md has the scene-set figures for 0..8 %).
-  double shadow_fraction = 0.01;
+  // Expected shadow share of the ROI (SEED.md 1), [0, 1).
+  double shadow_fraction = kShadowFraction;
   RangeSearchParams range;
   CalibCheckParams calib_check;  // row alignment of the rectified pair, after the range search
   MatchDpParams match;           // disp_min/max are set per run by the range search

@@ -144,6 +144,13 @@ struct HttpServer::Impl {
       if (!body) return answer_error(res, 400, body.error().message);
       res.set_content(*body, "application/json");
     });
+    server.Get("/api/gaps", [this](const httplib::Request& req, httplib::Response& res) {
+      auto body = gaps_json(station.archive_path(),
+                            std::strtod(req.get_param_value("start").c_str(), nullptr),
+                            std::strtod(req.get_param_value("end").c_str(), nullptr));
+      if (!body) return answer_error(res, 400, body.error().message);
+      res.set_content(*body, "application/json");
+    });
     server.Get("/api/palette", [](const httplib::Request&, httplib::Response& res) {
       res.set_content(palette_json(), "application/json");
     });

@@ -6,6 +6,7 @@
 //   GET  /api/dictionary        every telemetry point (telemetry_history.hpp, for Open MCT)
 //   GET  /api/history?packet=P[&field=F]&start=MS&end=MS[&min_severity=N]
 //                               a point's or a packet kind's history from the archive
+//   GET  /api/gaps?start=MS&end=MS  the archive's sequence gaps per APID
 //   GET  /api/events            server-sent events (see ground_station.hpp)
 //   POST /api/command           {"command": NAME, "args": {...}} -> {"counter": n}
 //                               or HTTP 400 {"error": "<field>: <problem>"}

@@ -1,11 +1,13 @@
 #include "sim/gnd/telemetry_history.hpp"
 
 #include <cstdio>
+#include <memory>
 #include <sstream>
 #include <type_traits>
 
 #include "sim/gnd/ground_station.hpp"
 #include "sim/gnd/json_text.hpp"
+#include "sim/ground/seq_tracker.hpp"
 #include "sim/ground/tlm_archive.hpp"
 #include "sim/ground/tlm_format.hpp"
 #include "tlm/telemetry.hpp"
@@ -22,6 +24,21 @@ const tlm::TmDesc* find_packet(const std::string& name) {
 
 bool plottable(const tlm::TmDesc& d) {
   return d.apid != static_cast<std::uint16_t>(tlm::Apid::PRODUCT);
+}
+
+// Spacecraft time in ms to the microsecond (%g would round 13-digit times to seconds).
+std::string time_ms(double scet_s) {
+  char t[32];
+  std::snprintf(t, sizeof t, "%.3f", scet_s * 1000.0);
+  return t;
+}
+
+Result<std::unique_ptr<ground::TlmArchive>> open_archive(const std::string& path, double start_ms,
+                                                         double end_ms) {
+  if (path.empty())
+    return Error::make(Errc::not_ready, "history: the station keeps no archive (--archive FILE)");
+  if (!(end_ms >= start_ms)) return Error::make(Errc::invalid_argument, "history: end before start");
+  return ground::TlmArchive::open(path);
 }
 
 std::string number(double v) {
@@ -87,14 +104,10 @@ std::string dictionary_json() {
 }
 
 Result<std::string> history_json(const std::string& archive_path, const HistoryRequest& r) {
-  if (archive_path.empty())
-    return Error::make(Errc::not_ready, "history: the station keeps no archive (--archive FILE)");
   const tlm::TmDesc* d = find_packet(r.packet);
   if (d == nullptr || !plottable(*d))
     return Error::make(Errc::invalid_argument, "history: packet '%s' unknown", r.packet.c_str());
-  if (!(r.end_ms >= r.start_ms))
-    return Error::make(Errc::invalid_argument, "history: end before start");
-  auto archive = ground::TlmArchive::open(archive_path);
+  auto archive = open_archive(archive_path, r.start_ms, r.end_ms);
   if (!archive) return archive.error();
   ground::ArchiveQuery q;
   q.apid = d->apid;
@@ -107,10 +120,9 @@ Result<std::string> history_json(const std::string& archive_path, const HistoryR
   auto s = (*archive)->query(q, [&](const ground::ArchivedPacket& a) {
     auto p = tlm::decode_tm(a.raw);
     if (!p) return;
-    char t[32];  // ms to the microsecond (%g would round 13-digit times to seconds)
-    std::snprintf(t, sizeof t, "%.3f", a.scet_s * 1000.0);
+    const std::string t = time_ms(a.scet_s);
     if (r.field.empty()) {
-      out += std::string(first ? "" : ",") + "{\"t\":" + std::string(t) +
+      out += std::string(first ? "" : ",") + "{\"t\":" + t +
              ",\"packet\":" + a.decoded + ",\"names\":" + packet_names_json(*p) +
              ",\"line\":" + json_string(ground::format_line(*p)) + "}";
     } else {
@@ -120,7 +132,7 @@ Result<std::string> history_json(const std::string& archive_path, const HistoryR
         return;
       }
       out +=
-          std::string(first ? "" : ",") + "{\"t\":" + std::string(t) + ",\"v\":" + number(v) + "}";
+          std::string(first ? "" : ",") + "{\"t\":" + t + ",\"v\":" + number(v) + "}";
     }
     first = false;
   });
@@ -128,6 +140,27 @@ Result<std::string> history_json(const std::string& archive_path, const HistoryR
   if (unknown_field)
     return Error::make(Errc::invalid_argument, "history: %s has no field '%s'", d->name,
                        r.field.c_str());
+  return out + "]";
+}
+
+Result<std::string> gaps_json(const std::string& archive_path, double start_ms, double end_ms) {
+  auto archive = open_archive(archive_path, start_ms, end_ms);
+  if (!archive) return archive.error();
+  ground::ArchiveQuery q;
+  q.from_s = start_ms / 1000.0;
+  q.to_s = end_ms / 1000.0;
+  ground::SeqTracker seqs;
+  std::string out = "[";
+  auto s = (*archive)->query(q, [&](const ground::ArchivedPacket& a) {
+    auto p = tlm::decode_tm(a.raw);
+    if (!p) return;
+    const std::uint32_t missing = seqs.observe(*p);
+    if (missing == 0) return;
+    out += std::string(out.size() > 1 ? "," : "") + "{\"t\":" + time_ms(a.scet_s) +
+           ",\"packet\":" + json_string(a.packet) + ",\"apid\":" + std::to_string(a.apid) +
+           ",\"seq\":" + std::to_string(a.seq) + ",\"missing\":" + std::to_string(missing) + "}";
+  });
+  if (!s) return s.error();
   return out + "]";
 }
 

@@ -10,6 +10,10 @@
 //     [{"t":MS,"v":value},...] in spacecraft time (ms since 1970)
 //   GET /api/history?packet=EVENT&start=MS&end=MS[&min_severity=N]  (no field: whole packets)
 //     [{"t":MS,"fields":{...},"names":{...},"line":"..."},...]
+//   GET /api/gaps?start=MS&end=MS
+//     [{"t":MS,"packet":"EVENT","apid":17,"seq":42,"missing":3},...]: every packet
+//     with packets of its APID missing just before it, in receive order (the
+//     first packet of each APID in the range has no known predecessor: no gap)
 #pragma once
 
 #include <string>
@@ -31,5 +35,8 @@ struct HistoryRequest {
 // Reads the archive at `archive_path` (a second connection beside the
 // station's writer). Errors name the parameter or the file.
 Result<std::string> history_json(const std::string& archive_path, const HistoryRequest& r);
+
+// The sequence gaps of every APID in the archive between two spacecraft times.
+Result<std::string> gaps_json(const std::string& archive_path, double start_ms, double end_ms);
 
 }  // namespace petra::gnd

@@ -49,6 +49,10 @@ TEST(UdpLink, ATruncatedDatagramReportsItsTrueSize) {
 }
 
 TEST(UdpLink, KernelDropsForAFullReceiveBufferAreCounted) {
+#ifdef PETRA_UNDER_EMULATOR
+  GTEST_SKIP() << "skipped: qemu-user does not pass SO_RXQ_OVFL ancillary data on (runs in the host "
+                  "build)";
+#endif
   Pair p;
   p.rx.set_receive_buffer(1);  // the kernel's minimum: a few datagrams at most
   const std::array<std::uint8_t, 512> d{};

@@ -16,6 +16,7 @@
 #include "algo/calib_json.hpp"
 #include "algo/pipeline.hpp"
 #include "cmd/param_defs.hpp"
+#include "fsw/flight_pipeline_job.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/score/plane_score.hpp"
 #include "sim/score/planes_file.hpp"
@@ -61,12 +62,13 @@ TEST(FswGrindPlanes, TelemetryEqualsTheOnboardChainOnTheSamePair) {
   budget.max_roi_width = std::min(640, left->width);
   budget.max_roi_height = std::min(480, left->height);
   {
-    // The flight default's points budget: one per 2x2 pixels of its rectified ROI
-    // bound with this rig, 535 x 402 (docs/memory.md).
-    PipelineBudget flight = budget;
-    flight.max_roi_width = 535;
-    flight.max_roi_height = 402;
-    budget.max_points = points_of(flight);
+    // The flight default's points budget: one per 2x2 pixels of the rectified
+    // bound, with this rig, of the default ROI budget (docs/memory.md).
+    fsw::PipelineBudget flight;
+    flight.max_width = left->width;
+    flight.max_height = left->height;
+    flight.rig = &*rig;
+    budget.max_points = points_of(fsw::FlightPipelineJob::sizing(flight).pipeline);
   }
   PipelineParams params;
   params.shadow_fraction = param_default(ParamId::SHADOW_FRACTION);

@@ -109,11 +109,15 @@ function decodeRaw(b) {
   }
 }
 
-// petra-fsw -> relay -> petra gnd serve; every datagram decoded here too.
-async function startRelay(toPort, sink) {
+// petra-fsw -> relay -> petra gnd serve; every datagram decoded here too. The
+// fifth HK packet is lost on the way (kept in `lost`): a gap the station shows.
+async function startRelay(toPort, sink, lost) {
   const s = dgram.createSocket('udp4');
   await new Promise((r) => s.bind(0, '127.0.0.1', r));
+  let hk = 0;
   s.on('message', (msg) => {
+    const apid = msg.readUInt16BE(0) & 0x7FF;
+    if (apid === 0x010 && ++hk === 5) return lost.push({ apid, seq: msg.readUInt16BE(2) & 0x3FFF });
     s.send(msg, toPort, '127.0.0.1');
     sink.push({ t: Date.now(), apid: msg.readUInt16BE(0) & 0x7FF, ...decodeRaw(msg) });
   });
@@ -139,8 +143,8 @@ async function main() {
   fs.writeFileSync(path.join(work, 'petra.key'), crypto.randomBytes(32).toString('hex') + '\n');
   const cmdPort = await freeUdpPort(), tlmPort = await freeUdpPort();
   const canFsw = await freeUdpPort(), canDrives = await freeUdpPort();
-  const raw = [];
-  const relay = await startRelay(tlmPort, raw);
+  const raw = [], lost = [];
+  const relay = await startRelay(tlmPort, raw, lost);
   const mount = [300, 100, 100, 90];
   // counter_floor 0: a new key, so petra-fsw may start without its counter file (docs/ops.md).
   const config = { uplink: { host: '127.0.0.1', port: cmdPort, key_file: 'petra.key', counter_floor: 0 },
@@ -193,8 +197,8 @@ async function main() {
   page.on('console', (m) => { if (m.type() === 'error' && !m.text().startsWith('Failed to load resource')) pageErrors.push(m.text()); });
   await page.goto(url);
   await until('the scene image on the page', () => page.evaluate(() => document.getElementById('left').width > 0), 10000);
-  await until('petra-fsw housekeeping in IDLE', () => page.evaluate(() => window.petra.hk?.names.mode === 'IDLE'), 15000);
-  const view3d = await until('the 3D view', () => page.evaluate(() => window.petra.view3d !== 'loading' && window.petra.view3d), 10000);
+  await until('petra-fsw housekeeping in IDLE', () => page.evaluate(() => window.petra?.hk?.names.mode === 'IDLE'), 15000);
+  const view3d = await until('the 3D view', () => page.evaluate(() => window.petra?.view3d !== 'loading' && window.petra?.view3d), 10000);
   check(view3d === 'ready', `3D view (three.js from /vendor, WebGL): ${view3d}`);
   check(await page.evaluate(() => window.petra.events.some((e) => e.startsWith('BOOT_COMPLETE'))), 'the page shows the BOOT_COMPLETE event');
   await until('ARM_READY (five simulated drives booted over CAN/UDP)',
@@ -432,7 +436,8 @@ async function main() {
     const all = await openmct.telemetry.request(events, { start: now - 3600e3, end: now + 60e3 });
     const acks = await openmct.telemetry.request(await openmct.objects.get(id('commands')), { start: now - 3600e3, end: now + 60e3 });
     const root = await openmct.composition.get(await openmct.objects.get(id('root'))).load();
-    return { hk: points.length, increasing: points.every((p, i) => i === 0 || p.value >= points[i - 1].value),
+    const gaps = await openmct.telemetry.request(await openmct.objects.get(id('gaps')), { start: now - 3600e3, end: now + 60e3 });
+    return { hk: points.length, gaps: gaps.map((g) => `${g.packet} ${g.seq} ${g.missing}`), increasing: points.every((p, i) => i === 0 || p.value >= points[i - 1].value),
              warnings: warnings.map((e) => e.severity), all: all.length, acks: acks.map((a) => `${a.command} ${a.stage}`),
              folders: root.length };
   });
@@ -446,6 +451,9 @@ async function main() {
         `Open MCT event list: ${history.warnings.length} of ${history.all} events at WARNING or above with the severity filter`);
   check(history.acks.includes('EVALUATE COMPLETED') && history.acks.includes('SET_MODE REJECTED'),
         `Open MCT command history: ${history.acks.length} acknowledgements (EVALUATE COMPLETED, SET_MODE REJECTED among them)`);
+  const hkGap = lost.length === 1 ? `HK ${(lost[0].seq + 1) & 0x3FFF} 1` : 'none';
+  check(history.gaps.includes(hkGap),
+        `Open MCT link gaps from the archive: ${history.gaps.join(', ') || 'none'} (the relay lost HK seq ${lost.map((l) => l.seq).join(', ')})`);
   check(history.folders >= 9, `Open MCT tree: ${history.folders} items under Petra (tables and one folder per packet)`);
   await mct.waitForTimeout(2000);
   await mct.screenshot({ path: path.join(shots, 'gnd_openmct_hk_plot.png') });

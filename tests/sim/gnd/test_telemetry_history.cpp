@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "sim/ground/tlm_archive.hpp"
 #include "tests/sim/ground/archive_packets.hpp"
@@ -53,6 +55,39 @@ TEST(TelemetryHistory, ReadsOnePointOrWholePacketsBackFromTheArchive) {
   r = {"PRODUCT", "", 0, 2e6};
   EXPECT_FALSE(history_json(path.string(), r).ok());
   EXPECT_FALSE(history_json("", {"HK", "uptime_s", 0, 1}).ok());
+  for (const char* s : {"", "-wal", "-shm"}) fs::remove(path.string() + s);
+}
+
+TEST(TelemetryHistory, GapsAreTheMissingSequenceCountsPerApid) {
+  const fs::path path =
+      fs::temp_directory_path() / ("petra_gaps_" + std::to_string(getpid()) + ".db");
+  {
+    auto a = ground::TlmArchive::open(path.string());
+    ASSERT_TRUE(a.ok());
+    // HK 0 1 2 _ _ 5 6, EVENT 0 1 _ 3 interleaved: one gap of 2 and one of 1.
+    const std::pair<bool, std::uint16_t> sent[] = {{true, 0},  {false, 0}, {true, 1}, {true, 2},
+                                                   {false, 1}, {true, 5},  {false, 3}, {true, 6}};
+    std::uint32_t ms = 0;
+    for (const auto& [is_hk, seq] : sent) {
+      std::vector<std::uint8_t> raw(tlm::kMaxTmBytes);
+      const tlm::TmTime t{1000u, (ms += 10) * 1000u};
+      const auto flags = wire::SeqFlags::unsegmented;
+      const std::size_t n = is_hk ? tlm::encode_tm(tlm::Housekeeping{}, seq, flags, t, raw)
+                                  : tlm::encode_tm(tlm::Event{}, seq, flags, t, raw);
+      raw.resize(n);
+      ASSERT_TRUE((*a)->add(raw, *tlm::decode_tm(raw), 2e9).ok());
+    }
+  }
+  auto g = gaps_json(path.string(), 0, 2e6);
+  ASSERT_TRUE(g.ok()) << g.error().message;
+  EXPECT_EQ(*g,
+            "[{\"t\":1000060.000,\"packet\":\"HK\",\"apid\":16,\"seq\":5,\"missing\":2},"
+            "{\"t\":1000070.000,\"packet\":\"EVENT\",\"apid\":17,\"seq\":3,\"missing\":1}]");
+  g = gaps_json(path.string(), 1000065, 2e6);  // from EVENT 3 on: no predecessor, no gap
+  ASSERT_TRUE(g.ok()) << g.error().message;
+  EXPECT_EQ(*g, "[]");
+  EXPECT_FALSE(gaps_json(path.string(), 2, 1).ok());
+  EXPECT_FALSE(gaps_json("", 0, 1).ok());
   for (const char* s : {"", "-wal", "-shm"}) fs::remove(path.string() + s);
 }
 

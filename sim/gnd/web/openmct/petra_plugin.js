@@ -1,8 +1,9 @@
 // Petra in Open MCT: one folder per telemetry packet, one telemetry point per
 // field, from the dictionary the station generates from the packet
 // definitions (GET /api/dictionary); the event list and the command history
-// (ACK) as tables. History comes from the station's archive (GET
-// /api/history), realtime from its event stream (GET /api/events).
+// (ACK) and the link's sequence gaps as tables. History comes from the
+// station's archive (GET /api/history, /api/gaps), realtime from its event
+// stream (GET /api/events).
 const NS = 'petra';
 const SEVERITIES = ['DEBUG', 'INFO', 'WARNING', 'ERROR', 'FATAL'];
 const utc = { key: 'utc', source: 'utc', name: 'Spacecraft time', format: 'utc', hints: { domain: 1 } };
@@ -17,6 +18,10 @@ const TABLES = {
     text('stage', 'Stage'), text('reason', 'Reason'), text('detail', 'Detail')],
     datum: (t, fields, names) => ({ utc: t, command: names.command, counter: fields.counter, stage: names.stage,
                                     reason: fields.reason ? names.reason : '', detail: names.detail || '' }) },
+  // Not a packet: each packet with packets of its APID missing just before it.
+  gaps: { name: 'Link gaps', values: [utc, text('packet', 'Packet'), text('seq', 'Sequence count'),
+    text('missing', 'Missing before')],
+    datum: (t, tlm) => ({ utc: t, packet: tlm.packet, seq: tlm.seq, missing: tlm.missing ?? tlm.missing_before }) },
 };
 
 // The value of "name" or "name[k]" in a packet's fields.
@@ -84,6 +89,10 @@ export default function PetraPlugin() {
       request: async (o, options) => {
         const table = TABLES[o.identifier.key];
         const q = new URLSearchParams({ start: options.start, end: options.end });
+        if (o.identifier.key === 'gaps') {
+          const r = await fetch(`/api/gaps?${q}`);
+          return r.ok ? (await r.json()).map((x) => table.datum(x.t, x)) : [];
+        }
         if (table) {
           q.set('packet', table.packet);
           const wanted = options.filters?.severity?.equals;
@@ -107,7 +116,9 @@ export default function PetraPlugin() {
         const key = field.join('.');
         return listen((m) => {
           const t = m.tlm.time * 1000;
-          if (table) {
+          if (o.identifier.key === 'gaps') {
+            if (m.tlm.missing_before > 0) callback(table.datum(t, m.tlm));
+          } else if (table) {
             if (m.tlm.packet !== table.packet) return;
             const d = table.datum(t, m.tlm.fields, m.names);
             const wanted = options?.filters?.severity?.equals;

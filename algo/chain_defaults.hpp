@@ -1,0 +1,18 @@
+// Defaults of the onboard chain that the flight service's parameter table
+// (cmd/param_defs.hpp: SHADOW_FRACTION, DISP_MIN_PX, DISP_MAX_PX) and the
+// library's parameter structs (PipelineParams, RangeSearchParams) share, so
+// the service and `petra eval` run the same chain on the same pair.
+#pragma once
+
+namespace petra {
+
+// Disparity working envelope of the rig, full-resolution px.
+inline constexpr int kEnvelopeMinPx = 64;
+inline constexpr int kEnvelopeMaxPx = 320;
+
+// Expected shadow share of the ROI. Only the darkest 1 %: self-shadowed rock
+// faces are grind candidates and still match; the scene-set and Rocks1 plane
+// figures of docs/performance.md were measured with it.
+inline constexpr double kShadowFraction = 0.01;
+
+}  // namespace petra
