@@ -13,10 +13,10 @@
 
 #include <cstddef>
 
+#include "algo/chain_defaults.hpp"
 #include "algo/core/arena.hpp"
 #include "algo/core/image_view.hpp"
 #include "algo/core/result.hpp"
-#include "algo/chain_defaults.hpp"
 #include "algo/match_dp.hpp"
 
 namespace petra {

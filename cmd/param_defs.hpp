@@ -13,9 +13,10 @@
 #define PETRA_PARAMS(X)                                                                           \
   X(HK_PERIOD_MS, 1, "ms", 100, 60000, 1000, true, "housekeeping packet period")                  \
   X(MATCH_METHOD, 2, "enum", 0, 1, 0, true, "stereo matcher: 0 dynamic programming, 1 graph cut") \
-  X(DISP_MIN_PX, 3, "px", 0, 1023, kEnvelopeMinPx, true, "disparity envelope searched: smallest")             \
-  X(DISP_MAX_PX, 4, "px", 0, 1023, kEnvelopeMaxPx, true, "disparity envelope searched: largest")             \
-  X(SHADOW_FRACTION, 5, "1", 0, 0.9, kShadowFraction, false, "expected fraction of shadow pixels in the ROI") \
+  X(DISP_MIN_PX, 3, "px", 0, 1023, kEnvelopeMinPx, true, "disparity envelope searched: smallest") \
+  X(DISP_MAX_PX, 4, "px", 0, 1023, kEnvelopeMaxPx, true, "disparity envelope searched: largest")  \
+  X(SHADOW_FRACTION, 5, "1", 0, 0.9, kShadowFraction, false,                                      \
+    "expected fraction of shadow pixels in the ROI")                                              \
   X(MIN_PLANE_AREA_MM2, 6, "mm2", 0, 1e6, 100, false,                                             \
     "grind planes smaller than this are refused")                                                 \
   X(PRODUCT_CHUNKS_PER_CYCLE, 7, "1", 1, 64, 8, true, "product packets queued per loop cycle")    \

@@ -37,7 +37,8 @@ Result<std::unique_ptr<ground::TlmArchive>> open_archive(const std::string& path
                                                          double end_ms) {
   if (path.empty())
     return Error::make(Errc::not_ready, "history: the station keeps no archive (--archive FILE)");
-  if (!(end_ms >= start_ms)) return Error::make(Errc::invalid_argument, "history: end before start");
+  if (!(end_ms >= start_ms))
+    return Error::make(Errc::invalid_argument, "history: end before start");
   return ground::TlmArchive::open(path);
 }
 
@@ -122,8 +123,8 @@ Result<std::string> history_json(const std::string& archive_path, const HistoryR
     if (!p) return;
     const std::string t = time_ms(a.scet_s);
     if (r.field.empty()) {
-      out += std::string(first ? "" : ",") + "{\"t\":" + t +
-             ",\"packet\":" + a.decoded + ",\"names\":" + packet_names_json(*p) +
+      out += std::string(first ? "" : ",") + "{\"t\":" + t + ",\"packet\":" + a.decoded +
+             ",\"names\":" + packet_names_json(*p) +
              ",\"line\":" + json_string(ground::format_line(*p)) + "}";
     } else {
       double v = 0;
@@ -131,8 +132,7 @@ Result<std::string> history_json(const std::string& archive_path, const HistoryR
         unknown_field = true;
         return;
       }
-      out +=
-          std::string(first ? "" : ",") + "{\"t\":" + t + ",\"v\":" + number(v) + "}";
+      out += std::string(first ? "" : ",") + "{\"t\":" + t + ",\"v\":" + number(v) + "}";
     }
     first = false;
   });

@@ -50,8 +50,9 @@ TEST(UdpLink, ATruncatedDatagramReportsItsTrueSize) {
 
 TEST(UdpLink, KernelDropsForAFullReceiveBufferAreCounted) {
 #ifdef PETRA_UNDER_EMULATOR
-  GTEST_SKIP() << "skipped: qemu-user does not pass SO_RXQ_OVFL ancillary data on (runs in the host "
-                  "build)";
+  GTEST_SKIP()
+      << "skipped: qemu-user does not pass SO_RXQ_OVFL ancillary data on (runs in the host "
+         "build)";
 #endif
   Pair p;
   p.rx.set_receive_buffer(1);  // the kernel's minimum: a few datagrams at most

@@ -65,7 +65,7 @@ TEST(TelemetryHistory, GapsAreTheMissingSequenceCountsPerApid) {
     auto a = ground::TlmArchive::open(path.string());
     ASSERT_TRUE(a.ok());
     // HK 0 1 2 _ _ 5 6, EVENT 0 1 _ 3 interleaved: one gap of 2 and one of 1.
-    const std::pair<bool, std::uint16_t> sent[] = {{true, 0},  {false, 0}, {true, 1}, {true, 2},
+    const std::pair<bool, std::uint16_t> sent[] = {{true, 0},  {false, 0}, {true, 1},  {true, 2},
                                                    {false, 1}, {true, 5},  {false, 3}, {true, 6}};
     std::uint32_t ms = 0;
     for (const auto& [is_hk, seq] : sent) {
