@@ -18,6 +18,7 @@
 #include "algo/camera_model.hpp"
 #include "algo/pipeline.hpp"
 #include "sim/io/image_io.hpp"
+#include "tests/support/eval_budget.hpp"
 
 namespace petra {
 namespace {
@@ -38,13 +39,7 @@ TEST(MarsBoulder, TheBestPlaneLiesOnTheBoulderWithTheNominalCalibration) {
   ASSERT_TRUE(rig.ok()) << rig.error().message;
 
   PipelineParams params;
-  PipelineBudget b;
-  b.image_width = left->width;
-  b.image_height = left->height;
-  b.max_roi_width = 320;
-  b.max_roi_height = 320;
-  b.max_points = std::size_t{320} * 320;  // one point per ROI pixel, as petra eval
-  b.max_disparities = params.range.search_max_px - params.range.search_min_px + 1;
+  const PipelineBudget b = test::eval_budget(left->width, left->height, 320, params);
   std::vector<std::byte> block(Pipeline::arena_bytes(b, params));
   Arena arena(block);
   auto p = Pipeline::create(*rig, b, params, arena);

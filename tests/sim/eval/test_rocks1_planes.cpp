@@ -27,6 +27,7 @@
 #include "algo/pipeline.hpp"
 #include "algo/plane_fit.hpp"
 #include "sim/io/image_io.hpp"
+#include "tests/support/eval_budget.hpp"
 
 namespace petra {
 namespace {
@@ -148,13 +149,7 @@ io::GrayImage changed_gain(const io::GrayImage& img) {
 void run_case(const RoiCase& c, Source source, bool surface_check) {
   const Data& d = data();
   PipelineParams params;
-  PipelineBudget b;
-  b.image_width = d.left.width;
-  b.image_height = d.left.height;
-  b.max_roi_width = 320;
-  b.max_roi_height = 320;
-  b.max_points = std::size_t{320} * 320;  // one point per ROI pixel, as petra eval
-  b.max_disparities = params.range.search_max_px - params.range.search_min_px + 1;
+  const PipelineBudget b = test::eval_budget(d.left.width, d.left.height, 320, params);
   std::vector<std::byte> block(Pipeline::arena_bytes(b, params));
   Arena arena(block);
   auto p = Pipeline::create(d.rig, b, params, arena);
