@@ -1,4 +1,4 @@
-// Clustering of unit normals by angle (SEED.md 4b steps 3-4), over a scalar
+// Clustering of unit normals by angle (docs/method.md 4b steps 3-4), over a scalar
 // type S (double or Fixed<F>):
 //   - initial centres: the given ones (normalised), kept only when more than
 //     min_separation_deg from every centre kept before; a centre that is too

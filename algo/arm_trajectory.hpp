@@ -1,4 +1,4 @@
-// Arm motion planning (SEED.md section 5): a joint-space move to a standoff
+// Arm motion planning (docs/method.md section 5): a joint-space move to a standoff
 // waypoint out along the grind plane's normal, then a straight approach to
 // contact with the tool axis along the negative normal.
 //

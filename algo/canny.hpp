@@ -1,4 +1,4 @@
-// Canny edge detector in integer arithmetic (SEED.md 2b step 1), on an area
+// Canny edge detector in integer arithmetic (docs/method.md 2b step 1), on an area
 // of an 8-bit gray image: 5x5 binomial smoothing (sigma ~ 1), 3x3 Sobel,
 // non-maximum suppression along the gradient quantised to four sectors, and
 // hysteresis from strong to weak pixels with a bounded explicit stack (no

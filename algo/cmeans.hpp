@@ -1,4 +1,4 @@
-// C-means clustering exactly as the paper's equations 9-12 (SEED.md 4a), over
+// C-means clustering exactly as the paper's equations 9-12 (docs/method.md 4a), over
 // a scalar type S (double or Fixed<F>), for 3-component samples:
 //   eq. 9   initial partition: sum(i) = x_i1 + x_i2 + x_i3, MA/MI its max/min,
 //           a_i = (c-1)(sum(i)-MI)/(MA-MI) + 1, x_i -> class round(a_i);

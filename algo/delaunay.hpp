@@ -1,4 +1,4 @@
-// 2-D Delaunay triangulation (SEED.md 3d) of the matched points in the
+// 2-D Delaunay triangulation (docs/method.md 3d) of the matched points in the
 // rectified left image. General input: Bowyer-Watson insertion with ghost
 // triangles (a vertex at infinity, so no super-triangle and no large
 // coordinates); raster-ordered input: see delaunay_raster.cpp. Incremental path:

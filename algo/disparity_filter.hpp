@@ -1,4 +1,4 @@
-// Disparity mean filter (SEED.md 3c, paper Table 1: 23465 -> 21382 points):
+// Disparity mean filter (docs/method.md 3c, paper Table 1: 23465 -> 21382 points):
 // removes spikes before triangulation. For every valid pixel, the mean of the
 // VALID NEIGHBOURS in a window x window box (the pixel itself excluded, box
 // clipped at the map border) is compared with its disparity; the pixel is

@@ -1,4 +1,4 @@
-// Edge matching on one scanline (SEED.md 2b step 2, paper 2.2.2): the Canny
+// Edge matching on one scanline (docs/method.md 2b step 2, paper 2.2.2): the Canny
 // edge points of the left and right rows, each sorted by u, are paired by
 // gray-level correlation (zero-mean normalised cross-correlation, ZNCC, over
 // a 5x5 window, integer sums) under the ordering constraint, by dynamic

@@ -1,4 +1,4 @@
-// Grind planes (SEED.md 4b) from the rock's mesh:
+// Grind planes (docs/method.md 4b) from the rock's mesh:
 //   1. centroid, area and unit normal (AB x AC, turned towards the left
 //      camera: a visible face's outward normal) of every rock triangle; for
 //      the clustering, the mean of its vertices' smoothed normals when given

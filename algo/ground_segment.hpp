@@ -1,4 +1,4 @@
-// Rock/ground segmentation by 3-D clustering (SEED.md 2a), over a scalar type
+// Rock/ground segmentation by 3-D clustering (docs/method.md 2a), over a scalar type
 // S (double or Fixed<F>):
 //   1. seed plane by MSAC: a bounded number of triples drawn by a fixed-seed
 //      generator from the points of the ROI's border band (a rock is

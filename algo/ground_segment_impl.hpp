@@ -101,7 +101,7 @@ struct MsacSeed {
   std::size_t seed[3] = {0, 0, 0};
 };
 
-// The best of a bounded number of random border triples (SEED.md 2a step 1, Petra's MSAC).
+// The best of a bounded number of random border triples (docs/method.md 2a step 1, Petra's MSAC).
 template <class S>
 MsacSeed msac_seed(std::span<const Vec3T<S>> xyz, std::span<const PixelPos> px, const Rect& roi,
                    int band, const Vec3T<S>& camera, S t, const GroundParams& params,

@@ -1,4 +1,4 @@
-// Kinematics of the 5-joint sampling arm (SEED.md section 5, docs/arm.md).
+// Kinematics of the 5-joint sampling arm (docs/method.md section 5, docs/arm.md).
 //
 // Joints: th1 shoulder base yaw (about the base's vertical z axis), th2 upper arm
 // pitch, th3 forearm pitch, th4 wrist pitch, th5 hand roll (about the hand's long
@@ -59,7 +59,7 @@ struct JointLimits {
   std::array<double, kJointCount> max_acceleration_rad_s2{};
 };
 
-// SEED.md ranges: th1 0..90, th2 0..90, th3 0..145, th4 35..180, th5 -45..45 deg;
+// Ranges of docs/method.md 5: th1 0..90, th2 0..90, th3 0..145, th4 35..180, th5 -45..45 deg;
 // rates 30 deg/s and 60 deg/s^2 for every joint.
 JointLimits default_joint_limits();
 // The paper's initial (stowed) pose (0, 0, 145, 35, 0) deg.

@@ -1,4 +1,4 @@
-// Edge-constrained scanline dynamic-programming stereo matcher (SEED.md 2b,
+// Edge-constrained scanline dynamic-programming stereo matcher (docs/method.md 2b,
 // the paper's fast path). On rectified images, for the ROI of the left view:
 //   1. Canny edges in the left ROI and the right search area (algo/canny).
 //   2. Per scanline, left and right edge points sorted by u are paired by

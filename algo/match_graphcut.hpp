@@ -27,7 +27,7 @@
 //
 // Shadow pixels (nonzero in a mask) are marked occluded: every assignment that
 // touches a shadow pixel, left or right, is left out of the problem, so shadow
-// pixels get no disparity (as SEED.md asks) and their neighbours are neither
+// pixels get no disparity (as docs/method.md 1 asks) and their neighbours are neither
 // pulled towards nor pushed away from them by the smoothness term.
 //
 // Inputs:  StereoInput (algo/match_dp.hpp): rectified left/right gray images

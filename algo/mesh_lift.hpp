@@ -1,4 +1,4 @@
-// The 2-D Delaunay mesh lifted to 3-D with the same connectivity (SEED.md 3d),
+// The 2-D Delaunay mesh lifted to 3-D with the same connectivity (docs/method.md 3d),
 // minus the triangles that span depth discontinuities (a rock's silhouette
 // against the ground, the rim of a shadow hole): a triangle goes when
 //   - any 3-D edge is longer than max_edge_mm (bridges a hole), or

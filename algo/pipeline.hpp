@@ -1,5 +1,5 @@
 // The whole onboard chain, from a stereo pair and an operator's request to
-// ranked grind planes (SEED.md 0-4), as one object the executive (fsw) and
+// ranked grind planes (docs/method.md 0-4), as one object the executive (fsw) and
 // the ground tool (`petra eval`) both drive:
 //   rectify (ROI and search area) -> disparity range (coarse match)
 //   -> calibration check (row offset of matched corners; algo/calib_check)
@@ -57,7 +57,7 @@ Status validate(const PipelineBudget& b);
 std::size_t points_of(const PipelineBudget& b);  // the 3-D points budget
 
 struct PipelineParams {
-  // Expected shadow share of the ROI (SEED.md 1), [0, 1).
+  // Expected shadow share of the ROI (docs/method.md 1), [0, 1).
   double shadow_fraction = kShadowFraction;
   RangeSearchParams range;
   CalibCheckParams calib_check;  // row alignment of the rectified pair, after the range search

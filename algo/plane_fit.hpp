@@ -1,6 +1,6 @@
 // Total-least-squares plane fit over a scalar type S (double or Fixed<F>):
 // the plane A X + B Y + C Z + D = 0 with |(A, B, C)| = 1 minimising the sum
-// of squared orthogonal distances (SEED.md 2a eq. 1, normalised form).
+// of squared orthogonal distances (docs/method.md 2a eq. 1, normalised form).
 // Centroid and bounding box first, then the covariance of the centred points
 // divided by a scale (half the largest extent), so sums stay O(count)
 // whatever the units: that keeps a Q format from overflowing and costs

@@ -1,5 +1,5 @@
 // Uncertainty of a fitted plane from the stereo depth-noise model
-// (SEED.md 2a; sigma_Z ~ Z^2 sigma_d / (f B)).
+// (docs/method.md 2a; sigma_Z ~ Z^2 sigma_d / (f B)).
 // Each sample is a point measured along its viewing ray with the range error
 // sigma_R = R^2 sigma_d / (f B) (R: range to the left camera, f: focal length
 // in pixels, B: baseline in mm, sigma_d: the noise of the disparities as

@@ -1,5 +1,5 @@
 // From a rectified disparity map to ranked grind planes, the back half of
-// the onboard chain (SEED.md 3c, 3d, 2a, 4):
+// the onboard chain (docs/method.md 3c, 3d, 2a, 4):
 //   mean filter -> triangulate (eq. 8) -> Delaunay (rectified left pixels)
 //   -> lift and drop discontinuities -> surface normals (local disparity
 //   planes) -> rock/ground segmentation: the ground plane (ground_segment),

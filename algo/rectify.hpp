@@ -1,4 +1,4 @@
-// Epipolar rectification of the stereo pair (SEED.md 3b) with remap tables
+// Epipolar rectification of the stereo pair (docs/method.md 3b) with remap tables
 // built once at init from calib.json (algo/rectify_geometry gives the common
 // virtual camera; the output has the input's size). Each rectified pixel
 // stores its source position in the original, distorted image in 1/16 px

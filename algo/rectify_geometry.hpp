@@ -1,4 +1,4 @@
-// Epipolar rectification geometry (SEED.md 3b): both cameras are rotated to a
+// Epipolar rectification geometry (docs/method.md 3b): both cameras are rotated to a
 // common orientation whose x axis is the baseline, with one distortion-free
 // virtual camera model (same f, cx, cy) for both, so a world point appears on
 // the same row in both rectified images and

@@ -1,4 +1,4 @@
-// Shadow elimination (SEED.md 1, paper 2.1). The cameras are monochrome and
+// Shadow elimination (docs/method.md 1, paper 2.1). The cameras are monochrome and
 // shadows are the darkest part of the ROI; ground experiments give the
 // expected fraction p of shadow pixels. Per view, the threshold T is the gray
 // value at which the ROI's cumulative histogram reaches p, and pixels <= T are

@@ -1,4 +1,4 @@
-// Triangulation by the paper's least-squares system (SEED.md 3c, eq. 4-8).
+// Triangulation by the paper's least-squares system (docs/method.md 3c, eq. 4-8).
 // Each Tsai camera (with its radial distortion) gives two linear equations in
 // the world point Pw from its pixel (u, v):
 //   A = Xu = (1 + k1 r^2) Xd,  Xd = (u - cx) dx / sx     (undistorted sensor x, mm)

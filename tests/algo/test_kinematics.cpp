@@ -98,8 +98,8 @@ TEST(Kinematics, IkThenFkReturnsTheTargetEverywhereInTheLimits) {
 }
 
 TEST(Kinematics, IkPrefersTheBranchNearestTheHint) {
-  // Within the SEED ranges the solution is unique, so IK must give back the very
-  // joint vector the target came from.
+  // Within the joint ranges of docs/method.md 5 the solution is unique, so IK must give back
+  // the very joint vector the target came from.
   const ArmGeometry g;
   const JointLimits l = default_joint_limits();
   std::mt19937_64 rng(11);

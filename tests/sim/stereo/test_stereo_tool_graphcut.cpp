@@ -123,7 +123,7 @@ TEST(StereoToolGraphCut, BadInputIsRefused) {
 // leaves a few pixels of faces foreshortened in the right view unmatched
 // (2-3%). Gross errors (bad-2) stay rare: 2.3-4.6%. A matcher that failed on
 // the rock or the ground, or a 1 px shift, would exceed both bounds by far;
-// the pipeline's mean filter (SEED.md 3c) smooths the steps before
+// the pipeline's mean filter (docs/method.md 3c) smooths the steps before
 // triangulation.
 TEST(StereoToolGraphCut, SimulatedScenesAgreeWithTheRenderedTruth) {
   const auto set = sim::standard_scene_set();
