@@ -94,7 +94,7 @@ struct GrindParams {
   // curving at the tool's scale). Off: measured on the clean scene set, the
   // matcher's correlated errors tilt 20 mm discs of planar faces by up to
   // 12.8 deg beyond 3 sigma of the independent-noise model, while the face's
-  // plane (photometrically refined) stays within 1.5 deg (docs/performance.md).
+  // plane (photometrically refined) stays within 1.5 deg (docs/log.md).
   bool report_disc_plane = false;
   double inlier_angle_deg = 12.0;  // a triangle supports a plane within this angle
   double min_trim_band_mm = 0.3;   // floor of the 3-RMS distance band

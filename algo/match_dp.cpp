@@ -386,7 +386,7 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void reverse_copy(const std::uint8_t* __re
 // 256-bit argument holds. On an Intel Xeon running the AVX-512 copy, the
 // setting and merging of 16 chains cost more than the waits they avoid: 4
 // chains measured right_winners at 5.8 % of the 160x160 ROI's time against
-// 7.7 % with 16 (2 chains 7.4 %, 1 chain 11 %; perf, docs/performance.md).
+// 7.7 % with 16 (2 chains 7.4 %, 1 chain 11 %; perf, docs/log.md).
 int right_chains() {
   return intel_avx512() ? 4 : kRightChains;
 }
