@@ -13,6 +13,7 @@
 #include "sim/calib/stereo_calibration.hpp"
 #include "sim/io/image_io.hpp"
 #include "tests/sim/calib/calib_test_scenes.hpp"
+#include "tests/support/cached_dir.hpp"
 
 namespace petra::calib {
 namespace {
@@ -21,40 +22,48 @@ namespace fs = std::filesystem;
 
 class RenderedSet : public ::testing::Test {
  protected:
+  // Written once per build tree, shared by this suite's test processes.
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / ("petra_calib_set_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
+    dir_ = petra::test::cached_dir("calib_board_set", "8 boards, pairs 8-11 broken",
+                                   petra::test::this_executable(), write_set);
+    ASSERT_FALSE(dir_.empty()) << "could not write the board set";
+  }
+
+  static bool write_set(const fs::path& dir) {
     const StereoRig rig = test::sample_rig();
     const BoardSpec board;
     RenderOptions ro;
     ro.blur_sigma_px = 1.0;
     ro.noise_sigma = 2.0;
+    bool ok = true;
     for (int k = 0; k < kBoards; ++k)
       for (int side = 0; side < 2; ++side) {
         ro.seed = static_cast<std::uint64_t>(10 * k + side + 1);
         const TsaiCamera cam = test::camera_seeing(rig, side, board, test::kPoses[k]);
         const io::GrayImage img = render_plane(cam, chessboard_albedo(board), ro);
-        ASSERT_TRUE(io::write_png(path(side, k), img.view()).ok());
+        ok = ok && io::write_png(file(dir, side, k), img.view()).ok();
       }
+    std::error_code ec;
     // Pair 8: the left file is not an image.
-    ASSERT_TRUE(io::write_text_file(path(0, 8), "not an image").ok());
-    ASSERT_TRUE(fs::copy_file(path(1, 0), path(1, 8)));
+    ok = ok && io::write_text_file(file(dir, 0, 8), "not an image").ok();
+    ok = ok && fs::copy_file(file(dir, 1, 0), file(dir, 1, 8), ec);
     // Pair 9: the left image has another size.
-    ASSERT_TRUE(io::write_png(path(0, 9), io::GrayImage(320, 240, 128).view()).ok());
-    ASSERT_TRUE(fs::copy_file(path(1, 1), path(1, 9)));
+    ok = ok && io::write_png(file(dir, 0, 9), io::GrayImage(320, 240, 128).view()).ok();
+    ok = ok && fs::copy_file(file(dir, 1, 1), file(dir, 1, 9), ec);
     // 10: a right image without a left one.
-    ASSERT_TRUE(fs::copy_file(path(1, 2), path(1, 10)));
+    ok = ok && fs::copy_file(file(dir, 1, 2), file(dir, 1, 10), ec);
     // Pair 11: no board at all.
-    ASSERT_TRUE(io::write_png(path(0, 11), io::GrayImage(640, 480, 128).view()).ok());
-    ASSERT_TRUE(io::write_png(path(1, 11), io::GrayImage(640, 480, 128).view()).ok());
+    ok = ok && io::write_png(file(dir, 0, 11), io::GrayImage(640, 480, 128).view()).ok();
+    ok = ok && io::write_png(file(dir, 1, 11), io::GrayImage(640, 480, 128).view()).ok();
+    return ok;
   }
-  static void TearDownTestSuite() { fs::remove_all(dir_); }
 
-  static std::string path(int side, int k) {
+  static std::string file(const fs::path& dir, int side, int k) {
     char name[32];
     std::snprintf(name, sizeof name, "%s%02d.png", side == 0 ? "left" : "right", k);
-    return (dir_ / name).string();
+    return (dir / name).string();
   }
+  static std::string path(int side, int k) { return file(dir_, side, k); }
   static std::string pattern(const char* side) {
     return (dir_ / (std::string(side) + "*.png")).string();
   }

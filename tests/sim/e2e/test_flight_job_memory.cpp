@@ -19,6 +19,7 @@
 #include "fsw/flight_pipeline_job.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/score/truth_file.hpp"
+#include "tests/support/cached_dir.hpp"
 #include "tests/support/heap_counter.hpp"
 
 namespace petra {
@@ -34,14 +35,11 @@ std::string read_all(const fs::path& p) {
 
 class FlightJob : public ::testing::Test {
  protected:
+  // Rendered once per build tree, shared by this suite's test processes.
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / ("petra_flight_job_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    const std::string cmd = std::string(PETRA_CLI_BIN) + " sim scene --seed 3 --out " +
-                            dir_.string() + " >/dev/null 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    dir_ = test::cached_petra_output("scene_seed3", PETRA_CLI_BIN, "sim scene --seed 3");
+    ASSERT_FALSE(dir_.empty()) << "petra sim scene --seed 3 failed";
   }
-  static void TearDownTestSuite() { fs::remove_all(dir_); }
 
   void SetUp() override {
     auto rig = parse_calib_json(read_all(dir_ / "calib.json"));
