@@ -37,7 +37,7 @@ tlm::TmTime Executive::now_tm() const {
   return tm_time(deps_.clock->realtime_ns());
 }
 
-Status Executive::allocate(const FswConfig& config, const PipelineBudget& pb,
+Status Executive::allocate(const FswConfig& config, const JobBudget& pb,
                            std::size_t arena_bytes) {
   const Budget& b = config.budget;
   const auto frame =
@@ -181,7 +181,7 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
     has_rig_ = true;
   }
 
-  PipelineBudget pb{b.image_width, b.image_height, b.cloud_points, b.arena_bytes};
+  JobBudget pb{b.image_width, b.image_height, b.cloud_points, b.arena_bytes};
   pb.max_roi_width = b.roi_width;
   pb.max_roi_height = b.roi_height;
   pb.rig = has_rig_ ? &rig_ : nullptr;

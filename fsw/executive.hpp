@@ -117,7 +117,7 @@ class Executive {
     int click_v_px = 0;
   };
 
-  Status allocate(const FswConfig& config, const PipelineBudget& pb, std::size_t arena_bytes);
+  Status allocate(const FswConfig& config, const JobBudget& pb, std::size_t arena_bytes);
   Status open_counter();
   void store_counter(std::uint32_t counter);
   void reserve_counters(std::uint32_t count);

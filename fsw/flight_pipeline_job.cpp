@@ -203,7 +203,7 @@ std::pair<int, int> rectified_bound(const StereoRig* rig, int image_w, int image
   return {std::min(bw + 1, W), std::min(bh + 1, H)};
 }
 
-petra::PipelineBudget roi_budget(const PipelineBudget& budget, int roi_w, int roi_h) {
+petra::PipelineBudget roi_budget(const JobBudget& budget, int roi_w, int roi_h) {
   const int image_w = budget.rig != nullptr ? budget.rig->left.width : budget.max_width;
   const int image_h = budget.rig != nullptr ? budget.rig->left.height : budget.max_height;
   petra::PipelineBudget b;
@@ -228,7 +228,7 @@ std::size_t FlightPipelineJob::need_bytes(const petra::PipelineBudget& b,
          product_bytes(b.max_roi_width, b.max_roi_height, cloud_points);
 }
 
-FlightPipelineJob::Sizing FlightPipelineJob::sizing(const PipelineBudget& budget) {
+FlightPipelineJob::Sizing FlightPipelineJob::sizing(const JobBudget& budget) {
   auto make = [&](int w, int h) {
     w = std::min(w, budget.max_width);
     h = std::min(h, budget.max_height);
@@ -245,7 +245,7 @@ FlightPipelineJob::Sizing FlightPipelineJob::sizing(const PipelineBudget& budget
   return make(kMinRoiWidth, kMinRoiWidth * 3 / 4);
 }
 
-petra::PipelineBudget FlightPipelineJob::pipeline_budget(const PipelineBudget& budget) {
+petra::PipelineBudget FlightPipelineJob::pipeline_budget(const JobBudget& budget) {
   return sizing(budget).pipeline;
 }
 
@@ -265,7 +265,7 @@ petra::PipelineParams FlightPipelineJob::pipeline_params(const Settings& setting
   return p;
 }
 
-std::size_t FlightPipelineJob::arena_bytes(const PipelineBudget& budget) const {
+std::size_t FlightPipelineJob::arena_bytes(const JobBudget& budget) const {
   return need_bytes(pipeline_budget(budget), budget.max_cloud_points);
 }
 
@@ -281,7 +281,7 @@ int FlightPipelineJob::describe_memory(char* buf, std::size_t size) const {
                                max_cloud_points_);
 }
 
-Status FlightPipelineJob::init(const PipelineBudget& budget, const StereoRig* rig, Arena& arena) {
+Status FlightPipelineJob::init(const JobBudget& budget, const StereoRig* rig, Arena& arena) {
   rig_ = rig;
   arena_ = &arena;
   base_mark_ = arena.mark();
@@ -293,7 +293,7 @@ Status FlightPipelineJob::init(const PipelineBudget& budget, const StereoRig* ri
                        "calib.json is for %dx%d images, budget.image_width/height is %dx%d",
                        rig->left.width, rig->left.height, budget.max_width, budget.max_height);
   // The ROI sized for the budget, the image for the rig (smaller or equal: less memory).
-  PipelineBudget sized = budget;
+  JobBudget sized = budget;
   sized.rig = rig;
   const Sizing s = sizing(sized);
   budget_ = s.pipeline;

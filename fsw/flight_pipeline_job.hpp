@@ -37,8 +37,8 @@ class FlightPipelineJob final : public PipelineJob {
   const char* name() const override {
     return "onboard chain (algo/pipeline, dp and graph-cut matchers)";
   }
-  std::size_t arena_bytes(const PipelineBudget& budget) const override;
-  Status init(const PipelineBudget& budget, const StereoRig* rig, Arena& arena) override;
+  std::size_t arena_bytes(const JobBudget& budget) const override;
+  Status init(const JobBudget& budget, const StereoRig* rig, Arena& arena) override;
   Status run(const EvalRequest& request, Arena& arena, const std::atomic<bool>& cancel,
              EvalOutput& out) override;
 
@@ -51,8 +51,8 @@ class FlightPipelineJob final : public PipelineJob {
     int roi_width = 0;
     int roi_height = 0;
   };
-  static Sizing sizing(const PipelineBudget& budget);
-  static petra::PipelineBudget pipeline_budget(const PipelineBudget& budget);
+  static Sizing sizing(const JobBudget& budget);
+  static petra::PipelineBudget pipeline_budget(const JobBudget& budget);
   // Arena bytes of a pipeline budget: the pipeline's (Pipeline::memory) + the products.
   static std::size_t need_bytes(const petra::PipelineBudget& b, std::size_t cloud_points);
   // What the pipeline is built for, from the parameter table's values.

@@ -34,8 +34,9 @@ enum class Step : std::uint8_t {
 #undef PETRA_STEP_ENUM
 };
 
-// Memory the job may size itself for (from the configuration's budget).
-struct PipelineBudget {
+// The configuration's budget as a job sees it: what it may size itself for.
+// (Not algo's PipelineBudget: the flight job derives that one from this.)
+struct JobBudget {
   int max_width = 0;
   int max_height = 0;
   std::size_t max_cloud_points = 0;
@@ -117,11 +118,11 @@ class PipelineJob {
   virtual ~PipelineJob() = default;
   virtual const char* name() const = 0;
   // Arena for init() plus the largest run, for this budget (asked once, at init).
-  virtual std::size_t arena_bytes(const PipelineBudget& budget) const = 0;
+  virtual std::size_t arena_bytes(const JobBudget& budget) const = 0;
   // Called once on the worker's arena before any run: what it takes stays
   // allocated for every run. `rig` is nullptr when no calib file is configured.
   // An error stops the executive's init (a configuration the job cannot serve).
-  virtual Status init(const PipelineBudget& budget, const StereoRig* rig, Arena& arena) {
+  virtual Status init(const JobBudget& budget, const StereoRig* rig, Arena& arena) {
     (void)budget;
     (void)rig;
     (void)arena;

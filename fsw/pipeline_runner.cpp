@@ -9,7 +9,7 @@ PipelineRunner::~PipelineRunner() {
 }
 
 Status PipelineRunner::init(PipelineJob* job, std::span<std::byte> arena_memory,
-                            const PipelineBudget& budget, const StereoRig* rig,
+                            const JobBudget& budget, const StereoRig* rig,
                             std::size_t stack_bytes, Health* health, const hal::Clock* clock) {
   job_ = job;
   health_ = health;

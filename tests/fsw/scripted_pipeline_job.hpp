@@ -24,7 +24,7 @@ class ScriptedPipelineJob final : public fsw::PipelineJob {
   void release() { hold.store(false); }
 
   const char* name() const override { return "scripted test double"; }
-  std::size_t arena_bytes(const fsw::PipelineBudget& b) const override {
+  std::size_t arena_bytes(const fsw::JobBudget& b) const override {
     return static_cast<std::size_t>(b.max_width) * static_cast<std::size_t>(b.max_height) * 4 +
            4096;
   }

@@ -72,7 +72,7 @@ class FlightJob : public ::testing::Test {
   static fs::path dir_;
   StereoRig rig_;
   io::GrayImage left_, right_;
-  fsw::PipelineBudget budget_;
+  fsw::JobBudget budget_;
   fsw::EvalRequest request_;
   fsw::FlightPipelineJob job_;
   std::vector<std::byte> block_;
@@ -200,7 +200,7 @@ TEST_F(FlightJob, WithoutCalibrationItBootsAndSaysWhyItCannotRun) {
 }
 
 TEST_F(FlightJob, RefusesACalibrationLargerThanTheBudget) {
-  const fsw::PipelineBudget small{left_.width / 2, left_.height / 2, 8192};
+  const fsw::JobBudget small{left_.width / 2, left_.height / 2, 8192};
   const Status s = job_.init(small, &rig_, arena_);
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.code(), Errc::capacity_exceeded);
