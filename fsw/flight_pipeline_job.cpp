@@ -11,6 +11,7 @@
 
 #include "cmd/param_defs.hpp"
 #include "fsw/memory_table.hpp"
+#include "fsw/step_slots.hpp"
 #include "tlm/palette.hpp"
 
 namespace petra::fsw {
@@ -37,33 +38,13 @@ std::uint64_t monotonic_ns(void*) {
          static_cast<std::uint64_t>(t.tv_nsec);
 }
 
-// The pipeline's step names, in the executive's step slots.
-Step slot_of(const char* name) {
-  struct Map {
-    const char* name;
-    Step step;
-  };
-  static constexpr Map kMap[] = {
-      {"rectify", Step::RECTIFY},         {"disparity range", Step::MATCH},
-      {"shadow", Step::SHADOW},           {"match", Step::MATCH},
-      {"mean filter", Step::RECONSTRUCT}, {"triangulate", Step::RECONSTRUCT},
-      {"delaunay", Step::RECONSTRUCT},    {"mesh filter", Step::RECONSTRUCT},
-      {"segmentation", Step::SEGMENT},    {"normals", Step::PLANES},
-      {"grind planes", Step::PLANES},     {"plane refinement", Step::PLANES},
-      {"calibration check", Step::MATCH},
-  };
-  for (const Map& m : kMap)
-    if (std::strcmp(m.name, name) == 0) return m.step;
-  return Step::PLANES;
-}
-
 // Remembers the step in progress, so a failure names where it happened, and
 // passes the executive's cancel flag to the pipeline's step boundaries.
 struct StepTracker {
   Step current = Step::RECTIFY;
   const std::atomic<bool>* cancel = nullptr;
-  static void on_step(void* self, const char* name) {
-    if (name != nullptr) static_cast<StepTracker*>(self)->current = slot_of(name);
+  static void on_step(void* self, PipelineStep step, bool running) {
+    if (running) static_cast<StepTracker*>(self)->current = slot_of(step);
   }
   static bool cancel_requested(void* self) {
     const auto* t = static_cast<StepTracker*>(self);
@@ -357,7 +338,7 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
     return Error::make(Errc::cancelled, "evaluation cancelled");
   const PipelineOutput& p = *result;
   for (std::size_t i = 0; i < p.timings.count; ++i)
-    out.step_us[static_cast<std::size_t>(slot_of(p.timings.steps[i].name))] +=
+    out.step_us[static_cast<std::size_t>(slot_of(p.timings.steps[i].step))] +=
         to_us(p.timings.steps[i].ns);
 
   const ReconstructionOutput& r = p.result;
