@@ -1,7 +1,5 @@
 #include "fsw/flight_pipeline_job.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -31,18 +29,16 @@ constexpr int kGraphCutBandRows = 128;
 constexpr int kGraphCutBandOverlap = 16;
 constexpr std::size_t kSlack = 4 * 64;
 
-std::uint64_t monotonic_ns(void*) {
-  timespec t{};
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return static_cast<std::uint64_t>(t.tv_sec) * 1000000000ull +
-         static_cast<std::uint64_t>(t.tv_nsec);
-}
-
-// Remembers the step in progress, so a failure names where it happened, and
-// passes the executive's cancel flag to the pipeline's step boundaries.
+// The StepClock's context: the injected clock for the step times, the step in
+// progress (so a failure names where it happened), and the executive's cancel
+// flag for the pipeline's step boundaries.
 struct StepTracker {
+  const hal::Clock* clock = nullptr;
   Step current = Step::RECTIFY;
   const std::atomic<bool>* cancel = nullptr;
+  static std::uint64_t now_ns(void* self) {
+    return static_cast<std::uint64_t>(static_cast<StepTracker*>(self)->clock->monotonic_ns());
+  }
   static void on_step(void* self, PipelineStep step, bool running) {
     if (running) static_cast<StepTracker*>(self)->current = slot_of(step);
   }
@@ -325,9 +321,8 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   pr.click_u = request.click_u_px;
   pr.click_v = request.click_v_px;
   pr.method = request.match_method == 1 ? MatchMethod::graph_cut : MatchMethod::dp;
-  StepTracker tracker;
-  tracker.cancel = &cancel;
-  const StepClock clock{monotonic_ns, &tracker, &StepTracker::on_step,
+  StepTracker tracker{clock_, Step::RECTIFY, &cancel};
+  const StepClock clock{&StepTracker::now_ns, &tracker, &StepTracker::on_step,
                         &StepTracker::cancel_requested};
   auto result = pipeline_.run(request.left, request.right, pr, clock);
   if (!result) {
@@ -379,9 +374,10 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   out.disparity_max = static_cast<float>(r.stats.disparity_max_px);
 
   out.failed_step = Step::PRODUCTS;
-  const std::uint64_t t0 = monotonic_ns(nullptr);
+  const std::int64_t t0 = clock_->monotonic_ns();
   PETRA_TRY(make_products(p, pipeline_.rectifier().geometry(), max_cloud_points_, arena, out));
-  out.step_us[static_cast<std::size_t>(Step::PRODUCTS)] = to_us(monotonic_ns(nullptr) - t0);
+  out.step_us[static_cast<std::size_t>(Step::PRODUCTS)] =
+      to_us(static_cast<std::uint64_t>(clock_->monotonic_ns() - t0));
   return {};
 }
 

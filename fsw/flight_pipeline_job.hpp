@@ -6,7 +6,8 @@
 //   run: EvalRequest -> PipelineRequest (ROI, c, click; MATCH_METHOD 0 DP,
 //     1 graph cut, whose matcher is reserved at init), the pipeline, then EvalOutput: accepted
 //     planes (ranked, normals out of the rock) not smaller than MIN_PLANE_AREA_MM2, ground plane,
-//     point counts, disparity range, step times in the fsw slots, and products built in the arena
+//     point counts, disparity range, step times (the injected clock) in the fsw slots
+//     (fsw/step_slots.hpp), and products built in the arena
 //     (disparity as 8-bit gray of the rectified ROI, an RGB overlay of the classes, the cloud in
 //     mm).
 // ROI size (original left image px, what SELECT_ROI carries): budget.roi_width
@@ -29,11 +30,14 @@
 
 #include "algo/pipeline.hpp"
 #include "fsw/pipeline_job.hpp"
+#include "hal/clock.hpp"
 
 namespace petra::fsw {
 
 class FlightPipelineJob final : public PipelineJob {
  public:
+  // Step times are read from `clock` (the executive's), on the worker thread.
+  explicit FlightPipelineJob(const hal::Clock& clock) : clock_(&clock) {}
   const char* name() const override {
     return "onboard chain (algo/pipeline, dp and graph-cut matchers)";
   }
@@ -68,6 +72,7 @@ class FlightPipelineJob final : public PipelineJob {
  private:
   Status create(const Settings& settings);
 
+  const hal::Clock* clock_;
   const StereoRig* rig_ = nullptr;
   Arena* arena_ = nullptr;
   std::size_t base_mark_ = 0;  // where the tables start

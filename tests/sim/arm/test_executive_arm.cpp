@@ -134,7 +134,8 @@ TEST(ExecutiveArm, TheFullChainOnASimulatedSceneEndsOnTheChosenPlane) {
                              std::filesystem::copy_options::overwrite_existing);
   std::filesystem::copy_file(dir / "scene/right.pgm", dir / "camera/right_000.pgm",
                              std::filesystem::copy_options::overwrite_existing);
-  rig.h.pipeline = fsw::flight_pipeline();
+  static hal::SystemClock clock;  // the job outlives the rig: static, as flight_pipeline() is
+  rig.h.pipeline = fsw::flight_pipeline(clock);
   rig.h.budget = R"({"image_width":1024,"image_height":768})";  // the flight default
   ASSERT_TRUE(rig.boot());
   const Rect roi = scene->truth.roi;

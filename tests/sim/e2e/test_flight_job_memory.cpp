@@ -74,7 +74,8 @@ class FlightJob : public ::testing::Test {
   io::GrayImage left_, right_;
   fsw::JobBudget budget_;
   fsw::EvalRequest request_;
-  fsw::FlightPipelineJob job_;
+  hal::SystemClock clock_;
+  fsw::FlightPipelineJob job_{clock_};
   std::vector<std::byte> block_;
   Arena arena_;
   std::atomic<bool> cancel_{false};
