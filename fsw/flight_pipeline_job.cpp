@@ -57,6 +57,26 @@ std::size_t product_bytes(int roi_w, int roi_h, std::size_t cloud_points) {
   return px + 3 * px + 3 * sizeof(float) * cloud_points + kSlack;
 }
 
+// The one conversion of a plane, at the algo/fsw boundary: algo does not
+// know telemetry, and from here on the plane stays this packet (the
+// executive's downlink and the arm target read it). Identity fields
+// (eval_id, rank, plane_count) are stamped at publishing.
+tlm::GrindPlane plane_packet(const GrindPlane& g, double footprint_diameter_mm) {
+  tlm::GrindPlane p;
+  p.normal = {g.normal.x(), g.normal.y(), g.normal.z()};
+  p.centroid_mm = {g.centroid_mm.x(), g.centroid_mm.y(), g.centroid_mm.z()};
+  p.area_mm2 = g.area_mm2;
+  p.flatness_rms_mm = g.rms_mm;
+  p.triangles = static_cast<std::uint32_t>(g.triangles);
+  p.verdict = static_cast<std::uint8_t>(g.verdict);
+  p.plane_source = g.footprint_local ? 1 : 0;
+  p.normal_sigma_deg = static_cast<float>(g.normal_sigma_deg);
+  p.offset_sigma_mm = static_cast<float>(g.offset_sigma_mm);
+  p.footprint_rms_mm = static_cast<float>(g.footprint_rms_mm);
+  p.footprint_diameter_mm = static_cast<float>(footprint_diameter_mm);
+  return p;
+}
+
 // Class colours of the overlay (tint over the rectified left image): tlm/palette.hpp.
 void tint(std::uint8_t* px, std::uint8_t gray, palette::Rgb8 c) {
   const std::uint8_t rgb[3] = {c.r, c.g, c.b};
@@ -304,9 +324,10 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
     return Error::make(Errc::not_ready, "no calib.json configured: the pipeline needs the rig");
   if (&arena != arena_)
     return Error::make(Errc::invalid_argument, "run: not the arena given to init");
-  if (request.match_method != 0 && request.match_method != 1)
+  const MatchMethod method = request.selection.method;
+  if (method != MatchMethod::dp && method != MatchMethod::graph_cut)
     return Error::make(Errc::invalid_argument, "MATCH_METHOD %d: 0 (dp) or 1 (graph cut)",
-                       request.match_method);
+                       static_cast<int>(method));
   if (request.left.empty() || request.right.empty())
     return Error::make(Errc::invalid_argument, "run: no stereo pair");
   const Settings wanted{request.shadow_fraction, request.disp_min_px, request.disp_max_px};
@@ -314,17 +335,10 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   if (cancel.load(std::memory_order_relaxed))
     return Error::make(Errc::cancelled, "evaluation cancelled");
 
-  PipelineRequest pr;
-  pr.roi = request.roi;
-  pr.planes = request.planes;
-  pr.has_click = request.has_click;
-  pr.click_u = request.click_u_px;
-  pr.click_v = request.click_v_px;
-  pr.method = request.match_method == 1 ? MatchMethod::graph_cut : MatchMethod::dp;
   StepTracker tracker{clock_, Step::RECTIFY, &cancel};
   const StepClock clock{&StepTracker::now_ns, &tracker, &StepTracker::on_step,
                         &StepTracker::cancel_requested};
-  auto result = pipeline_.run(request.left, request.right, pr, clock);
+  auto result = pipeline_.run(request.left, request.right, request.selection, clock);
   if (!result) {
     out.failed_step = tracker.current;
     return result.error();
@@ -340,19 +354,7 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   for (int k = 0; k < r.planes.accepted; ++k) {
     const GrindPlane& g = r.planes.planes[k];
     if (g.area_mm2 < request.min_plane_area_mm2) continue;  // ranked by area: the rest are smaller
-    PlaneOut po;
-    po.normal = {g.normal.x(), g.normal.y(), g.normal.z()};
-    po.centroid_mm = {g.centroid_mm.x(), g.centroid_mm.y(), g.centroid_mm.z()};
-    po.area_mm2 = g.area_mm2;
-    po.flatness_rms_mm = g.rms_mm;
-    po.triangles = static_cast<std::uint32_t>(g.triangles);
-    po.verdict = static_cast<std::uint8_t>(g.verdict);
-    po.plane_source = g.footprint_local ? 1 : 0;
-    po.normal_sigma_deg = g.normal_sigma_deg;
-    po.offset_sigma_mm = g.offset_sigma_mm;
-    po.footprint_rms_mm = g.footprint_rms_mm;
-    po.footprint_diameter_mm = r.planes.footprint_diameter_mm;
-    if (!out.planes.push_back(po)) break;
+    if (!out.planes.push_back(plane_packet(g, r.planes.footprint_diameter_mm))) break;
   }
   for (int k = r.planes.accepted; k < r.planes.count; ++k)  // refused ones follow, largest first
     if (r.planes.planes[k].verdict != PlaneVerdict::surplus) {

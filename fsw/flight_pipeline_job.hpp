@@ -3,8 +3,8 @@
 //   init: builds the rectification tables once in the worker's arena
 //     (they stay for every run); with no calib.json it stays unready and
 //     every run fails not_ready naming the missing file;
-//   run: EvalRequest -> PipelineRequest (ROI, c, click; MATCH_METHOD 0 DP,
-//     1 graph cut, whose matcher is reserved at init), the pipeline, then EvalOutput: accepted
+//   run: the request's selection (ROI, c, click; MATCH_METHOD 0 DP, 1 graph cut, whose
+//     matcher is reserved at init) straight to the pipeline, then EvalOutput: accepted
 //     planes (ranked, normals out of the rock) not smaller than MIN_PLANE_AREA_MM2, ground plane,
 //     point counts, disparity range, step times (the injected clock) in the fsw slots
 //     (fsw/step_slots.hpp), and products built in the arena
