@@ -27,6 +27,7 @@
 #include "fsw/config.hpp"
 #include "fsw/evaluation_service.hpp"
 #include "fsw/event_log.hpp"
+#include "fsw/executive_counters.hpp"
 #include "fsw/health.hpp"
 #include "fsw/mode_manager.hpp"
 #include "fsw/param_table.hpp"
@@ -47,30 +48,6 @@ struct Dependencies {
   PipelineJob* job = nullptr;           // optional: without it EVALUATE fails NO_PIPELINE
   ArmPort* arm = nullptr;               // optional: without it arm commands fail ARM_UNAVAILABLE
   hal::DigitalInput* estop = nullptr;   // optional: asserted = arm quick stop and SAFE
-};
-
-struct CommandCounters {
-  std::uint32_t received = 0;
-  std::uint32_t accepted = 0;
-  std::uint32_t rejected = 0;
-  std::uint32_t completed = 0;
-  std::uint32_t failed = 0;
-  std::uint32_t last_counter = 0;
-  std::uint32_t unreported = 0;    // throttled rejections (RejectionThrottle)
-  std::uint32_t kernel_drops = 0;  // datagrams the kernel dropped on the command port
-  std::uint8_t last_function_code = 0;
-  Reason last_reason = Reason::NONE;
-};
-
-struct LoopCounters {
-  std::uint32_t cycles = 0;
-  std::uint32_t overruns = 0;
-  std::uint32_t max_cycle_us = 0;
-  std::uint32_t tlm_sent = 0;
-  std::uint32_t tlm_send_errors = 0;
-  std::uint32_t faults = 0;
-  std::uint32_t frames = 0;
-  std::uint32_t evaluations = 0;
 };
 
 class Executive {
