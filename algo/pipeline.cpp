@@ -187,9 +187,9 @@ Result<PipelineOutput> Pipeline::run_with_disparity(ConstGray8View left,
   if (!lbuf) return lbuf.error();
   const Gray8View rl(lbuf->data(), budget_.image_width, budget_.image_height);
   out.left_rectified = rl;
-  PETRA_TRY(checkpoint(clock, "rectify"));
+  PETRA_TRY(checkpoint(clock, PipelineStep::rectify));
   {
-    StepTimer timer(clock, out.timings, "rectify");
+    StepTimer timer(clock, out.timings, PipelineStep::rectify);
     PETRA_TRY(rectifier_.rectify(StereoSide::left, left, rl, roi));
   }
   out.disparity = disparity;
@@ -225,12 +225,12 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
   if (!rbuf) return rbuf.error();
   const Gray8View rl(lbuf->data(), W, H), rr(rbuf->data(), W, H);
   out.left_rectified = rl;
-  PETRA_TRY(checkpoint(clock, "rectify"));
+  PETRA_TRY(checkpoint(clock, PipelineStep::rectify));
   // The right image is rectified (and valid) over the ROI's search envelope.
   const Rect right_rectified =
       right_search_area(roi, params_.range.search_min_px, params_.range.search_max_px, W);
   {
-    StepTimer timer(clock, timings, "rectify");
+    StepTimer timer(clock, timings, PipelineStep::rectify);
     PETRA_TRY(rectifier_.rectify(StereoSide::left, left, rl, roi));
     if (right_rectified.empty())
       return Error::make(Errc::out_of_range, "pipeline: no right search area for the ROI");
@@ -238,9 +238,9 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
   }
 
   // Disparity range for the fine matcher.
-  PETRA_TRY(checkpoint(clock, "disparity range"));
+  PETRA_TRY(checkpoint(clock, PipelineStep::disparity_range));
   {
-    StepTimer timer(clock, timings, "disparity range");
+    StepTimer timer(clock, timings, PipelineStep::disparity_range);
     auto r = find_disparity_range(rl, rr, roi, params_.range, params_.match, arena);
     if (!r) return r.error();
     out.range = *r;
@@ -251,7 +251,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
                        out.range.min_px, out.range.max_px, budget_.max_disparities);
   // Row alignment of the rectified pair over the range just found.
   {
-    StepTimer timer(clock, timings, "calibration check");
+    StepTimer timer(clock, timings, PipelineStep::calibration_check);
     auto c = check_calibration(rl, rr, roi, right_rectified, out.range.min_px, out.range.max_px,
                                params_.calib_check, arena);
     if (!c) return c.error();
@@ -271,9 +271,9 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
       "right shadow mask");
   if (!rmask) return rmask.error();
   ShadowMask right_shadow;
-  PETRA_TRY(checkpoint(clock, "shadow"));
+  PETRA_TRY(checkpoint(clock, PipelineStep::shadow));
   {
-    StepTimer timer(clock, timings, "shadow");
+    StepTimer timer(clock, timings, PipelineStep::shadow);
     auto tl = shadow_threshold(rl, roi, params_.shadow_fraction);
     if (!tl) return tl.error();
     out.shadow_left = *tl;
@@ -303,9 +303,9 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
       static_cast<std::size_t>(roi.w) * static_cast<std::size_t>(roi.h), "disparity");
   if (!q4) return q4.error();
   DisparityMap disp{ImageView<std::int16_t>(q4->data(), roi.w, roi.h), roi};
-  PETRA_TRY(checkpoint(clock, "match"));
+  PETRA_TRY(checkpoint(clock, PipelineStep::match));
   {
-    StepTimer timer(clock, timings, "match");
+    StepTimer timer(clock, timings, PipelineStep::match);
     const ArenaScope step(arena);  // matcher state and scratch end with the step
     StereoInput in;
     in.left = rl;
@@ -342,9 +342,9 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
                        params_.reconstruction, recon_budget(budget_), arena, clock, timings);
   if (!r) return r.error();
   out.result = *r;
-  PETRA_TRY(checkpoint(clock, "plane refinement"));
+  PETRA_TRY(checkpoint(clock, PipelineStep::plane_refinement));
   {
-    StepTimer timer(clock, timings, "plane refinement");
+    StepTimer timer(clock, timings, PipelineStep::plane_refinement);
     auto n = refine_grind_planes_photometric(rectifier_.geometry(), rl, rr, right_rectified,
                                              params_.photometric, out.result, arena);
     if (!n) return n.error();

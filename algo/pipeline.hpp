@@ -29,6 +29,7 @@
 #include "algo/match_dp.hpp"
 #include "algo/match_graphcut.hpp"
 #include "algo/match_graphcut_bands.hpp"
+#include "algo/pipeline_request.hpp"
 #include "algo/reconstruction.hpp"
 #include "algo/rectify.hpp"
 #include "algo/shadow.hpp"
@@ -71,18 +72,6 @@ struct PipelineParams {
   PhotometricPlaneParams photometric;
 };
 Status validate(const PipelineParams& p);
-
-enum class MatchMethod : std::uint8_t { dp, graph_cut };
-
-// What the operator sends (original left image pixels).
-struct PipelineRequest {
-  Rect roi;
-  bool has_click = false;
-  int click_u = 0;
-  int click_v = 0;
-  int planes = 2;  // c
-  MatchMethod method = MatchMethod::dp;
-};
 
 struct PipelineOutput {
   ReconstructionOutput result;  // planes, ground, cloud, mesh, stats

@@ -189,9 +189,9 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
       static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "filtered disparity");
   if (!filtered) return filtered.error();
   out.filtered = {ImageView<std::int16_t>(filtered->data(), w, h), disparity.roi};
-  PETRA_TRY(checkpoint(clock, "mean filter"));
+  PETRA_TRY(checkpoint(clock, PipelineStep::mean_filter));
   {
-    StepTimer timer(clock, timings, "mean filter");
+    StepTimer timer(clock, timings, PipelineStep::mean_filter);
     auto f = mean_filter_disparity(disparity, out.filtered, params.filter, arena);
     if (!f) return f.error();
     st.dense_points = f->before;
@@ -205,9 +205,9 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   auto px = arena.allocate<PixelPos>(n_max, "cloud pixels");
   if (!px) return px.error();
   std::size_t n = 0;
-  PETRA_TRY(checkpoint(clock, "triangulate"));
+  PETRA_TRY(checkpoint(clock, PipelineStep::triangulate));
   {
-    StepTimer timer(clock, timings, "triangulate");
+    StepTimer timer(clock, timings, PipelineStep::triangulate);
     // Above the points budget: a regular subset of the pixels (the normals
     // and the products keep the whole filtered map).
     ConstDisparityMap input = out.filtered;
@@ -234,9 +234,9 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   auto mesh = arena.allocate<MeshTriangle>(delaunay_max_triangles(n), "mesh");
   if (!mesh) return mesh.error();
   std::size_t nt = 0;
-  PETRA_TRY(checkpoint(clock, "delaunay"));
+  PETRA_TRY(checkpoint(clock, PipelineStep::delaunay));
   {
-    StepTimer timer(clock, timings, "delaunay");
+    StepTimer timer(clock, timings, PipelineStep::delaunay);
     ArenaScope scope(arena);
     auto ip = arena.allocate<IntPoint>(n, "delaunay points");
     if (!ip) return ip.error();
@@ -247,9 +247,9 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
     st.delaunay_triangles = d->triangles;
     st.duplicates = d->duplicates;
   }
-  PETRA_TRY(checkpoint(clock, "mesh filter"));
+  PETRA_TRY(checkpoint(clock, PipelineStep::mesh_filter));
   {
-    StepTimer timer(clock, timings, "mesh filter");
+    StepTimer timer(clock, timings, PipelineStep::mesh_filter);
     auto f = remove_discontinuities(out.xyz_mm, camera_centre_world(rig.left), params.mesh,
                                     mesh->first(nt), arena);
     if (!f) return f.error();
@@ -262,9 +262,9 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   auto normals = arena.allocate<Eigen::Vector3d>(n, "point normals");
   if (!normals) return normals.error();
   out.normals = *normals;
-  PETRA_TRY(checkpoint(clock, "normals"));
+  PETRA_TRY(checkpoint(clock, PipelineStep::normals));
   {
-    StepTimer timer(clock, timings, "normals");
+    StepTimer timer(clock, timings, PipelineStep::normals);
     ArenaScope scope(arena);
     auto grid = arena.allocate<Eigen::Vector3d>(
         static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "pixel normals");
@@ -285,9 +285,9 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   auto vclass = arena.allocate<std::uint8_t>(n, "vertex classes");
   if (!vclass) return vclass.error();
   out.vertex_class = *vclass;
-  PETRA_TRY(checkpoint(clock, "segmentation"));
+  PETRA_TRY(checkpoint(clock, PipelineStep::segmentation));
   {
-    StepTimer timer(clock, timings, "segmentation");
+    StepTimer timer(clock, timings, PipelineStep::segmentation);
     GroundFailure why = GroundFailure::none;
     const StereoNoise noise{rect.left.f_px, rect.baseline_mm};
     auto g = segment_ground<double>(out.xyz_mm, out.pixels, disparity.roi, request.click,
@@ -310,9 +310,9 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   out.mesh_class = *mclass;
   for (std::size_t i = 0; i < n; ++i)
     out.vertex_class[i] = out.point_class[i] == PointClass::rock ? kVertexRock : kVertexGround;
-  PETRA_TRY(checkpoint(clock, "grind planes"));
+  PETRA_TRY(checkpoint(clock, PipelineStep::grind_planes));
   {
-    StepTimer timer(clock, timings, "grind planes");
+    StepTimer timer(clock, timings, PipelineStep::grind_planes);
     ArenaScope scope(arena);
     auto is_rock = [&](const MeshTriangle& t) {
       for (int k = 0; k < 3; ++k)

@@ -8,7 +8,6 @@
 namespace petra::fsw {
 
 namespace {
-constexpr std::int64_t kMs = 1000000;
 std::uint8_t fc_of(const cmd::Command& c) {
   return static_cast<std::uint8_t>(c.code);
 }
@@ -90,7 +89,7 @@ void Executive::dispatch(const cmd::Command& c) {
   // Rejections a handler can still make, before anything changes.
   const bool needs_worker =
       c.code == cmd::FunctionCode::ACQUIRE || c.code == cmd::FunctionCode::EVALUATE;
-  if (needs_worker && runner_.busy()) {  // an aborted run is still unwinding
+  if (needs_worker && evaluation_.status().running) {  // an aborted run is still unwinding
     handler_rejects(c, Reason::BUSY, 0);
     return;
   }
@@ -133,9 +132,7 @@ void Executive::dispatch(const cmd::Command& c) {
       return;
     case FC::SELECT_ROI: {
       const auto& a = std::get<cmd::SelectRoiArgs>(c.args);
-      selection_ = {true,         Rect{a.x_px, a.y_px, a.w_px, a.h_px},
-                    a.planes,     a.has_click != 0,
-                    a.click_u_px, a.click_v_px};
+      evaluation_.select(selection_from(a));
       events_.raise(EventId::ROI_SELECTED, a.x_px, a.y_px, a.w_px, a.h_px);
       complete(fc_of(c), c.counter);
       return;
@@ -177,7 +174,7 @@ void Executive::on_set_param(const cmd::Command& c) {
   complete(fc_of(c), c.counter);
 }
 
-Status Executive::acquire_pair() {
+Result<std::uint32_t> Executive::acquire_pair() {
   const std::int64_t start = deps_.clock->monotonic_ns();
   // docs/hal.md "Faults": a broken frame, a timeout or no pair within the skew
   // is retried; a lost device (io_error) is not: it would fail the same way.
@@ -191,7 +188,7 @@ Status Executive::acquire_pair() {
     }
     meta = deps_.camera->acquire(left_, right_);
   }
-  acquire_us_ = static_cast<std::uint32_t>((deps_.clock->monotonic_ns() - start) / 1000);
+  const auto us = static_cast<std::uint32_t>((deps_.clock->monotonic_ns() - start) / 1000);
   has_frame_ = true;
   frame_seq_ = meta->sequence;
   ++loop_.frames;
@@ -201,14 +198,14 @@ Status Executive::acquire_pair() {
   if (params_.get_int(ParamId::SEND_LEFT_IMAGE) != 0)
     products_.stage_image(ProductKind::LEFT_IMAGE, frame_seq_, left_, 1,
                           params_.get_int(ParamId::LEFT_IMAGE_DECIMATION));
-  return {};
+  return us;
 }
 
 void Executive::on_acquire(const cmd::Command& c) {
   modes_.request(Mode::ACQUIRE, fc_of(c));
-  const Status s = acquire_pair();
+  const bool acquired = acquire_pair().ok();
   modes_.request(Mode::IDLE, 0);
-  if (s)
+  if (acquired)
     complete(fc_of(c), c.counter);
   else
     fail(fc_of(c), c.counter, Reason::CAMERA_ERROR);
@@ -216,147 +213,43 @@ void Executive::on_acquire(const cmd::Command& c) {
 
 void Executive::on_evaluate(const cmd::Command& c) {
   const auto& a = std::get<cmd::EvaluateArgs>(c.args);
-  if (!selection_.valid) return fail(fc_of(c), c.counter, Reason::NO_ROI);
-  if (!runner_.has_job()) return fail(fc_of(c), c.counter, Reason::NO_PIPELINE);
+  const Reason refused = evaluation_.refusal();
+  if (refused != Reason::NONE) return fail(fc_of(c), c.counter, refused);
   if (a.acquire == 0 && !has_frame_) return fail(fc_of(c), c.counter, Reason::NO_FRAME);
   modes_.request(Mode::EVALUATE, fc_of(c));
-  acquire_us_ = 0;
-  if (a.acquire != 0 && !acquire_pair()) {
-    modes_.request(Mode::IDLE, 0);
-    return fail(fc_of(c), c.counter, Reason::CAMERA_ERROR);
+  std::uint32_t acquire_us = 0;
+  if (a.acquire != 0) {
+    auto us = acquire_pair();
+    if (!us) {
+      modes_.request(Mode::IDLE, 0);
+      return fail(fc_of(c), c.counter, Reason::CAMERA_ERROR);
+    }
+    acquire_us = *us;
   }
-  EvalRequest r;
-  r.eval_id = ++eval_id_;
-  r.frame = frame_seq_;
-  r.left = left_;
-  r.right = right_;
-  r.rig = has_rig_ ? &rig_ : nullptr;
-  r.roi = selection_.roi;
-  r.planes = selection_.planes;
-  r.has_click = selection_.has_click;
-  r.click_u_px = selection_.click_u_px;
-  r.click_v_px = selection_.click_v_px;
-  r.match_method = params_.get_int(ParamId::MATCH_METHOD);
-  r.disp_min_px = params_.get_int(ParamId::DISP_MIN_PX);
-  r.disp_max_px = params_.get_int(ParamId::DISP_MAX_PX);
-  r.shadow_fraction = params_.get(ParamId::SHADOW_FRACTION);
-  r.min_plane_area_mm2 = params_.get(ParamId::MIN_PLANE_AREA_MM2);
-  // Stamped before the worker can start: the total then always covers its steps.
-  eval_started_ns_ = deps_.clock->monotonic_ns();
-  const Status s = runner_.start(r);
-  if (!s) {
+  if (!evaluation_.start(EvalFrame{frame_seq_, left_, right_, acquire_us})) {
     modes_.request(Mode::IDLE, 0);
     return fail(fc_of(c), c.counter, Reason::PIPELINE_ERROR);
   }
   ++loop_.evaluations;
   pending_eval_ = {true, fc_of(c), c.counter};
-  events_.raise(EventId::EVAL_STARTED, static_cast<std::int32_t>(r.eval_id),
-                static_cast<std::int32_t>(r.frame), r.planes, r.match_method);
 }
 
+// The evaluation publishes its own result; the command's ack and the mode are ours.
 void Executive::poll_pipeline() {
-  if (pending_eval_.active) {
-    const std::int64_t limit = params_.get_int(ParamId::EVAL_TIMEOUT_S) * 1000 * kMs;
-    if (deps_.clock->monotonic_ns() - eval_started_ns_ > limit) {
-      ++loop_.faults;
-      events_.raise(EventId::EVAL_TIMEOUT, static_cast<std::int32_t>(eval_id_),
-                    params_.get_int(ParamId::EVAL_TIMEOUT_S));
-      enter_safe();
-      return;
-    }
-  }
-  if (!runner_.poll_done()) return;
-  if (!pending_eval_.active) return;  // aborted: its late result is dropped
-  publish_evaluation();
-}
-
-void Executive::publish_evaluation() {
-  const EvalOutput& out = runner_.output();
-  const Status& s = runner_.status();
-  const tlm::TmTime t = now_tm();
-  eval_elapsed_ms_ =
-      static_cast<std::uint32_t>((deps_.clock->monotonic_ns() - eval_started_ns_) / kMs);
-  step_us_ = out.step_us;
-  if (acquire_us_ != 0) step_us_[static_cast<std::size_t>(Step::ACQUIRE)] = acquire_us_;
-
-  tlm::EvalResult r;
-  r.eval_id = eval_id_;
-  r.frame = frame_seq_;
-  r.roi_px = {
-      static_cast<std::uint16_t>(selection_.roi.x), static_cast<std::uint16_t>(selection_.roi.y),
-      static_cast<std::uint16_t>(selection_.roi.w), static_cast<std::uint16_t>(selection_.roi.h)};
-  r.planes_requested = static_cast<std::uint8_t>(selection_.planes);
-  r.total_ms = eval_elapsed_ms_;
-  r.step_us = step_us_;
-  const Pending p = pending_eval_;
-  pending_eval_.active = false;
-  last_planes_.clear();
-  if (!s) {
-    r.status = 2;
-    r.reason = static_cast<std::uint8_t>(Reason::PIPELINE_ERROR);
-    queue_.push(r, t);
-    events_.raise(EventId::EVAL_FAILED, static_cast<std::int32_t>(eval_id_),
-                  static_cast<std::int32_t>(s.code()), static_cast<std::int32_t>(out.failed_step));
-    modes_.request(Mode::IDLE, 0);
-    fail(p.function_code, p.counter, Reason::PIPELINE_ERROR);
+  const EvalProgress p = evaluation_.poll();
+  if (p == EvalProgress::TIMED_OUT) {
+    ++loop_.faults;
+    enter_safe();  // aborts the evaluation and fails its command
     return;
   }
-  r.planes_found = static_cast<std::uint8_t>(out.planes.size());
-  r.status = out.planes.size() < static_cast<std::size_t>(selection_.planes) ? 1 : 0;
-  r.dense_points = out.dense_points;
-  r.filtered_points = out.filtered_points;
-  r.disparity_min = out.disparity_min;
-  r.disparity_max = out.disparity_max;
-  r.segmentation = out.segmentation;
-  r.calib_vertical_offset_px = out.calib_vertical_offset_px;
-  r.calib_spread_px = out.calib_spread_px;
-  r.calib_features = out.calib_features;
-  r.calib_verdict = out.calib_verdict;
-  queue_.push(r, t);
-
-  tlm::GroundPlane g;
-  g.eval_id = eval_id_;
-  g.normal = out.ground_normal;
-  g.d_mm = out.ground_d_mm;
-  g.points = out.ground_points;
-  queue_.push(g, t);
-  for (std::size_t i = 0; i < out.planes.size(); ++i) {
-    const PlaneOut& po = out.planes[i];
-    tlm::GrindPlane gp;
-    gp.eval_id = eval_id_;
-    gp.rank = static_cast<std::uint8_t>(i);
-    gp.plane_count = static_cast<std::uint8_t>(out.planes.size());
-    gp.normal = po.normal;
-    gp.centroid_mm = po.centroid_mm;
-    gp.area_mm2 = po.area_mm2;
-    gp.flatness_rms_mm = po.flatness_rms_mm;
-    gp.triangles = po.triangles;
-    gp.verdict = po.verdict;
-    gp.plane_source = po.plane_source;
-    gp.normal_sigma_deg = static_cast<float>(po.normal_sigma_deg);
-    gp.offset_sigma_mm = static_cast<float>(po.offset_sigma_mm);
-    gp.footprint_rms_mm = static_cast<float>(po.footprint_rms_mm);
-    gp.footprint_diameter_mm = static_cast<float>(po.footprint_diameter_mm);
-    queue_.push(gp, t);
-    (void)last_planes_.push_back(po);
-  }
-  const int step = params_.get_int(ParamId::THUMB_DECIMATION);
-  if (!out.disparity_gray.empty())
-    products_.stage_image(ProductKind::DISPARITY, eval_id_, out.disparity_gray, 1, step);
-  if (!out.overlay_rgb.empty())
-    products_.stage_image(ProductKind::OVERLAY, eval_id_, out.overlay_rgb, 3, step);
-  if (!out.cloud_xyz_mm.empty())
-    products_.stage_cloud(eval_id_, out.cloud_xyz_mm,
-                          static_cast<std::size_t>(params_.get_int(ParamId::CLOUD_MAX_POINTS)));
-  events_.raise(EventId::EVAL_COMPLETED, static_cast<std::int32_t>(eval_id_),
-                static_cast<std::int32_t>(out.planes.size()), selection_.planes,
-                static_cast<std::int32_t>(eval_elapsed_ms_));
-  if (r.status == 1)
-    events_.raise(EventId::FEWER_PLANES, static_cast<std::int32_t>(eval_id_),
-                  static_cast<std::int32_t>(out.planes.size()), selection_.planes,
-                  out.refused_verdict);
+  if (p != EvalProgress::COMPLETED && p != EvalProgress::FAILED) return;
+  const Pending done = pending_eval_;
+  pending_eval_.active = false;
   modes_.request(Mode::IDLE, 0);
-  complete(p.function_code, p.counter);
+  if (p == EvalProgress::COMPLETED)
+    complete(done.function_code, done.counter);
+  else
+    fail(done.function_code, done.counter, Reason::PIPELINE_ERROR);
 }
 
 void Executive::on_arm(const cmd::Command& c) {
@@ -365,10 +258,9 @@ void Executive::on_arm(const cmd::Command& c) {
   Status s;
   if (c.code == cmd::FunctionCode::ARM_GOTO) {
     const auto& a = std::get<cmd::ArmGotoArgs>(c.args);
-    if (a.plane_rank >= last_planes_.size())
-      return fail(fc_of(c), c.counter, Reason::NO_SUCH_PLANE);
-    const PlaneOut& p = last_planes_[a.plane_rank];
-    s = deps_.arm->start_goto(ArmTarget{p.normal, p.centroid_mm, a.standoff_mm});
+    const tlm::GrindPlane* p = evaluation_.plane(a.plane_rank);
+    if (p == nullptr) return fail(fc_of(c), c.counter, Reason::NO_SUCH_PLANE);
+    s = deps_.arm->start_goto(ArmTarget{p->normal, p->centroid_mm, a.standoff_mm});
   } else {
     s = deps_.arm->start_stow();
   }
@@ -382,9 +274,8 @@ void Executive::on_arm(const cmd::Command& c) {
 
 void Executive::stop_activity(Reason why) {
   if (pending_eval_.active) {
-    runner_.cancel();
+    evaluation_.abort();  // EVAL_ABORTED
     pending_eval_.active = false;
-    events_.raise(EventId::EVAL_ABORTED, static_cast<std::int32_t>(eval_id_));
     fail(pending_eval_.function_code, pending_eval_.counter, why);
   }
   if (pending_arm_.active) {

@@ -28,7 +28,7 @@ Executive::~Executive() {
 
 void Executive::shutdown() {
   if (initialised_) watchdog_.disarm();  // a deliberate stop is not a hang
-  runner_.shutdown();
+  evaluation_.shutdown();
   uplink_.close();
   downlink_.close();
 }
@@ -37,8 +37,7 @@ tlm::TmTime Executive::now_tm() const {
   return tm_time(deps_.clock->realtime_ns());
 }
 
-Status Executive::allocate(const FswConfig& config, const PipelineBudget& pb,
-                           std::size_t arena_bytes) {
+Status Executive::allocate(const FswConfig& config, const JobBudget& pb, std::size_t arena_bytes) {
   const Budget& b = config.budget;
   const auto frame =
       static_cast<std::size_t>(b.image_width) * static_cast<std::size_t>(b.image_height);
@@ -90,8 +89,19 @@ Status Executive::allocate(const FswConfig& config, const PipelineBudget& pb,
   products_.init(product_mem, &events_);
   std::byte* arena = take(arena_bytes);
   PETRA_ASSERT(at <= total);
-  return runner_.init(deps_.job, {arena, arena_bytes}, pb, has_rig_ ? &rig_ : nullptr,
-                      b.worker_stack_bytes, &health_, deps_.clock);
+  EvaluationWiring w;
+  w.job = deps_.job;
+  w.arena = {arena, arena_bytes};
+  w.budget = pb;
+  w.rig = has_rig_ ? &rig_ : nullptr;
+  w.worker_stack_bytes = b.worker_stack_bytes;
+  w.health = &health_;
+  w.clock = deps_.clock;
+  w.params = &params_;
+  w.events = &events_;
+  w.queue = &queue_;
+  w.products = &products_;
+  return evaluation_.init(w);
 }
 
 // The replay guard cannot be left out: the counter is always kept (beside the
@@ -181,7 +191,7 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
     has_rig_ = true;
   }
 
-  PipelineBudget pb{b.image_width, b.image_height, b.cloud_points, b.arena_bytes};
+  JobBudget pb{b.image_width, b.image_height, b.cloud_points, b.arena_bytes};
   pb.max_roi_width = b.roi_width;
   pb.max_roi_height = b.roi_height;
   pb.rig = has_rig_ ? &rig_ : nullptr;
@@ -210,7 +220,7 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
     (void)std::fprintf(stderr, "petra-fsw: mlockall refused; memory not locked\n");
 
   events_.raise(EventId::BOOT_COMPLETE, static_cast<std::int32_t>(memory_bytes_),
-                static_cast<std::int32_t>(runner_.arena_capacity()), params_loaded);
+                static_cast<std::int32_t>(evaluation_.status().arena_bytes), params_loaded);
   if (previous_key_counter_ >= 0)
     events_.raise(EventId::UPLINK_NEW_KEY, static_cast<std::int32_t>(previous_key_counter_));
   modes_.request(Mode::IDLE, 0);
@@ -388,16 +398,14 @@ void Executive::send_housekeeping() {
   hk.events = events_.total();
   hk.faults = loop_.faults;
   hk.memory_bytes = static_cast<std::uint32_t>(memory_bytes_);
-  hk.arena_bytes = static_cast<std::uint32_t>(runner_.arena_capacity());
-  hk.arena_high_water_bytes = static_cast<std::uint32_t>(runner_.arena_high_water());
+  const EvalStatus eval = evaluation_.status();
+  hk.arena_bytes = static_cast<std::uint32_t>(eval.arena_bytes);
+  hk.arena_high_water_bytes = static_cast<std::uint32_t>(eval.arena_high_water_bytes);
   hk.frames = loop_.frames;
   hk.evaluations = loop_.evaluations;
-  hk.eval_running = runner_.busy() ? 1 : 0;
-  hk.eval_elapsed_ms =
-      runner_.busy() && pending_eval_.active
-          ? static_cast<std::uint32_t>((deps_.clock->monotonic_ns() - eval_started_ns_) / kMs)
-          : eval_elapsed_ms_;
-  hk.step_us = step_us_;
+  hk.eval_running = eval.running ? 1 : 0;
+  hk.eval_elapsed_ms = eval.elapsed_ms;
+  hk.step_us = eval.step_us;
   queue_.push(hk, now_tm());
   tlm::ArmStatus arm;
   if (deps_.arm != nullptr && deps_.arm->status(arm)) queue_.push(arm, now_tm());

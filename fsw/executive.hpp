@@ -1,14 +1,17 @@
-// Executive: the flight loop. init() loads everything and allocates every
-// buffer from the configured budget; after it, run_cycle() runs the due rate
-// groups of one minor frame and allocates nothing:
+// Executive: the flight loop, a rate-group table and a thin command router
+// (fsw/dispatcher.cpp) in front of two services it knows by their ports: the
+// evaluation (EvaluationPort, fsw/evaluation_service) and the arm (ArmPort).
+// init() loads everything and allocates every buffer from the configured
+// budget; after it, run_cycle() runs the due rate groups of one minor frame
+// and allocates nothing:
 //   uplink (every cycle)      receive, validate, acknowledge, dispatch commands
-//   pipeline (every cycle)    collect a finished evaluation, enforce its timeout
+//   pipeline (every cycle)    poll the evaluation: its result, its timeout
 //   arm (every cycle)         poll a running arm motion
 //   products (every cycle)    queue product chunks while the downlink has room
 //   housekeeping (HK_PERIOD_MS)  one HK packet
 //   health (health_period_ms) heartbeats; a silent component means SAFE
 //   downlink (every cycle)    send queued telemetry without blocking
-// Components: ModeManager, EventLog, ParamTable, Health, PipelineRunner,
+// Components: ModeManager, EventLog, ParamTable, Health, EvaluationService,
 // ProductStreamer, TlmQueue; devices come in through Dependencies.
 #pragma once
 
@@ -22,11 +25,12 @@
 #include "cmd/validator.hpp"
 #include "fsw/arm_port.hpp"
 #include "fsw/config.hpp"
+#include "fsw/evaluation_service.hpp"
 #include "fsw/event_log.hpp"
+#include "fsw/executive_counters.hpp"
 #include "fsw/health.hpp"
 #include "fsw/mode_manager.hpp"
 #include "fsw/param_table.hpp"
-#include "fsw/pipeline_runner.hpp"
 #include "fsw/product_streamer.hpp"
 #include "fsw/rejection_throttle.hpp"
 #include "hal/clock.hpp"
@@ -44,30 +48,6 @@ struct Dependencies {
   PipelineJob* job = nullptr;           // optional: without it EVALUATE fails NO_PIPELINE
   ArmPort* arm = nullptr;               // optional: without it arm commands fail ARM_UNAVAILABLE
   hal::DigitalInput* estop = nullptr;   // optional: asserted = arm quick stop and SAFE
-};
-
-struct CommandCounters {
-  std::uint32_t received = 0;
-  std::uint32_t accepted = 0;
-  std::uint32_t rejected = 0;
-  std::uint32_t completed = 0;
-  std::uint32_t failed = 0;
-  std::uint32_t last_counter = 0;
-  std::uint32_t unreported = 0;    // throttled rejections (RejectionThrottle)
-  std::uint32_t kernel_drops = 0;  // datagrams the kernel dropped on the command port
-  std::uint8_t last_function_code = 0;
-  Reason last_reason = Reason::NONE;
-};
-
-struct LoopCounters {
-  std::uint32_t cycles = 0;
-  std::uint32_t overruns = 0;
-  std::uint32_t max_cycle_us = 0;
-  std::uint32_t tlm_sent = 0;
-  std::uint32_t tlm_send_errors = 0;
-  std::uint32_t faults = 0;
-  std::uint32_t frames = 0;
-  std::uint32_t evaluations = 0;
 };
 
 class Executive {
@@ -95,7 +75,7 @@ class Executive {
   std::size_t memory_bytes() const { return memory_bytes_; }
   std::uint16_t command_port() const { return uplink_.local_port(); }
   unsigned watchdog_kicks() const { return watchdog_.kicks(); }
-  bool evaluation_running() const { return runner_.busy(); }
+  bool evaluation_running() const { return evaluation_.status().running; }
 
  private:
   struct RateGroup {
@@ -108,16 +88,7 @@ class Executive {
     std::uint8_t function_code = 0;
     std::uint32_t counter = 0;
   };
-  struct Selection {
-    bool valid = false;
-    Rect roi;
-    int planes = 0;
-    bool has_click = false;
-    int click_u_px = 0;
-    int click_v_px = 0;
-  };
-
-  Status allocate(const FswConfig& config, const PipelineBudget& pb, std::size_t arena_bytes);
+  Status allocate(const FswConfig& config, const JobBudget& pb, std::size_t arena_bytes);
   Status open_counter();
   void store_counter(std::uint32_t counter);
   void reserve_counters(std::uint32_t count);
@@ -148,11 +119,10 @@ class Executive {
   void on_arm(const cmd::Command& c);
   void on_abort(const cmd::Command& c);
   void on_set_mode(const cmd::Command& c);
-  Status acquire_pair();
+  Result<std::uint32_t> acquire_pair();  // the acquisition time, us
   void send_param(std::uint16_t id);
   void stop_activity(Reason why);
   void enter_safe();
-  void publish_evaluation();
   tlm::TmTime now_tm() const;
 
   FswConfig config_{};
@@ -165,7 +135,7 @@ class Executive {
   EventLog events_;
   ParamTable params_;
   Health health_;
-  PipelineRunner runner_;
+  EvaluationService evaluation_;
   ProductStreamer products_;
   tlm::TlmQueue queue_;
   hal::UdpLink uplink_;
@@ -187,15 +157,8 @@ class Executive {
   std::array<std::int64_t, kComponentCount> heartbeat_timeout_ns_{};
   CommandCounters cmd_;
   LoopCounters loop_;
-  Selection selection_;
   Pending pending_eval_;
   Pending pending_arm_;
-  std::uint32_t eval_id_ = 0;
-  std::int64_t eval_started_ns_ = 0;
-  std::uint32_t eval_elapsed_ms_ = 0;
-  std::array<std::uint32_t, kStepSlots> step_us_{};
-  std::uint32_t acquire_us_ = 0;
-  FixedVector<PlaneOut, kMaxPlanes> last_planes_;
   std::int64_t boot_ns_ = 0;
   std::int64_t last_overrun_event_ns_ = 0;
   bool counter_store_failed_ = false;

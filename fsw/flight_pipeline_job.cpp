@@ -1,7 +1,5 @@
 #include "fsw/flight_pipeline_job.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +9,7 @@
 
 #include "cmd/param_defs.hpp"
 #include "fsw/memory_table.hpp"
+#include "fsw/step_slots.hpp"
 #include "tlm/palette.hpp"
 
 namespace petra::fsw {
@@ -30,40 +29,18 @@ constexpr int kGraphCutBandRows = 128;
 constexpr int kGraphCutBandOverlap = 16;
 constexpr std::size_t kSlack = 4 * 64;
 
-std::uint64_t monotonic_ns(void*) {
-  timespec t{};
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return static_cast<std::uint64_t>(t.tv_sec) * 1000000000ull +
-         static_cast<std::uint64_t>(t.tv_nsec);
-}
-
-// The pipeline's step names, in the executive's step slots.
-Step slot_of(const char* name) {
-  struct Map {
-    const char* name;
-    Step step;
-  };
-  static constexpr Map kMap[] = {
-      {"rectify", Step::RECTIFY},         {"disparity range", Step::MATCH},
-      {"shadow", Step::SHADOW},           {"match", Step::MATCH},
-      {"mean filter", Step::RECONSTRUCT}, {"triangulate", Step::RECONSTRUCT},
-      {"delaunay", Step::RECONSTRUCT},    {"mesh filter", Step::RECONSTRUCT},
-      {"segmentation", Step::SEGMENT},    {"normals", Step::PLANES},
-      {"grind planes", Step::PLANES},     {"plane refinement", Step::PLANES},
-      {"calibration check", Step::MATCH},
-  };
-  for (const Map& m : kMap)
-    if (std::strcmp(m.name, name) == 0) return m.step;
-  return Step::PLANES;
-}
-
-// Remembers the step in progress, so a failure names where it happened, and
-// passes the executive's cancel flag to the pipeline's step boundaries.
+// The StepClock's context: the injected clock for the step times, the step in
+// progress (so a failure names where it happened), and the executive's cancel
+// flag for the pipeline's step boundaries.
 struct StepTracker {
+  const hal::Clock* clock = nullptr;
   Step current = Step::RECTIFY;
   const std::atomic<bool>* cancel = nullptr;
-  static void on_step(void* self, const char* name) {
-    if (name != nullptr) static_cast<StepTracker*>(self)->current = slot_of(name);
+  static std::uint64_t now_ns(void* self) {
+    return static_cast<std::uint64_t>(static_cast<StepTracker*>(self)->clock->monotonic_ns());
+  }
+  static void on_step(void* self, PipelineStep step, bool running) {
+    if (running) static_cast<StepTracker*>(self)->current = slot_of(step);
   }
   static bool cancel_requested(void* self) {
     const auto* t = static_cast<StepTracker*>(self);
@@ -78,6 +55,26 @@ std::uint32_t to_us(std::uint64_t ns) {
 std::size_t product_bytes(int roi_w, int roi_h, std::size_t cloud_points) {
   const auto px = static_cast<std::size_t>(roi_w) * static_cast<std::size_t>(roi_h);
   return px + 3 * px + 3 * sizeof(float) * cloud_points + kSlack;
+}
+
+// The one conversion of a plane, at the algo/fsw boundary: algo does not
+// know telemetry, and from here on the plane stays this packet (the
+// executive's downlink and the arm target read it). Identity fields
+// (eval_id, rank, plane_count) are stamped at publishing.
+tlm::GrindPlane plane_packet(const GrindPlane& g, double footprint_diameter_mm) {
+  tlm::GrindPlane p;
+  p.normal = {g.normal.x(), g.normal.y(), g.normal.z()};
+  p.centroid_mm = {g.centroid_mm.x(), g.centroid_mm.y(), g.centroid_mm.z()};
+  p.area_mm2 = g.area_mm2;
+  p.flatness_rms_mm = g.rms_mm;
+  p.triangles = static_cast<std::uint32_t>(g.triangles);
+  p.verdict = static_cast<std::uint8_t>(g.verdict);
+  p.plane_source = g.footprint_local ? 1 : 0;
+  p.normal_sigma_deg = static_cast<float>(g.normal_sigma_deg);
+  p.offset_sigma_mm = static_cast<float>(g.offset_sigma_mm);
+  p.footprint_rms_mm = static_cast<float>(g.footprint_rms_mm);
+  p.footprint_diameter_mm = static_cast<float>(footprint_diameter_mm);
+  return p;
 }
 
 // Class colours of the overlay (tint over the rectified left image): tlm/palette.hpp.
@@ -203,7 +200,7 @@ std::pair<int, int> rectified_bound(const StereoRig* rig, int image_w, int image
   return {std::min(bw + 1, W), std::min(bh + 1, H)};
 }
 
-petra::PipelineBudget roi_budget(const PipelineBudget& budget, int roi_w, int roi_h) {
+petra::PipelineBudget roi_budget(const JobBudget& budget, int roi_w, int roi_h) {
   const int image_w = budget.rig != nullptr ? budget.rig->left.width : budget.max_width;
   const int image_h = budget.rig != nullptr ? budget.rig->left.height : budget.max_height;
   petra::PipelineBudget b;
@@ -228,7 +225,7 @@ std::size_t FlightPipelineJob::need_bytes(const petra::PipelineBudget& b,
          product_bytes(b.max_roi_width, b.max_roi_height, cloud_points);
 }
 
-FlightPipelineJob::Sizing FlightPipelineJob::sizing(const PipelineBudget& budget) {
+FlightPipelineJob::Sizing FlightPipelineJob::sizing(const JobBudget& budget) {
   auto make = [&](int w, int h) {
     w = std::min(w, budget.max_width);
     h = std::min(h, budget.max_height);
@@ -245,7 +242,7 @@ FlightPipelineJob::Sizing FlightPipelineJob::sizing(const PipelineBudget& budget
   return make(kMinRoiWidth, kMinRoiWidth * 3 / 4);
 }
 
-petra::PipelineBudget FlightPipelineJob::pipeline_budget(const PipelineBudget& budget) {
+petra::PipelineBudget FlightPipelineJob::pipeline_budget(const JobBudget& budget) {
   return sizing(budget).pipeline;
 }
 
@@ -265,7 +262,7 @@ petra::PipelineParams FlightPipelineJob::pipeline_params(const Settings& setting
   return p;
 }
 
-std::size_t FlightPipelineJob::arena_bytes(const PipelineBudget& budget) const {
+std::size_t FlightPipelineJob::arena_bytes(const JobBudget& budget) const {
   return need_bytes(pipeline_budget(budget), budget.max_cloud_points);
 }
 
@@ -281,7 +278,7 @@ int FlightPipelineJob::describe_memory(char* buf, std::size_t size) const {
                                max_cloud_points_);
 }
 
-Status FlightPipelineJob::init(const PipelineBudget& budget, const StereoRig* rig, Arena& arena) {
+Status FlightPipelineJob::init(const JobBudget& budget, const StereoRig* rig, Arena& arena) {
   rig_ = rig;
   arena_ = &arena;
   base_mark_ = arena.mark();
@@ -293,7 +290,7 @@ Status FlightPipelineJob::init(const PipelineBudget& budget, const StereoRig* ri
                        "calib.json is for %dx%d images, budget.image_width/height is %dx%d",
                        rig->left.width, rig->left.height, budget.max_width, budget.max_height);
   // The ROI sized for the budget, the image for the rig (smaller or equal: less memory).
-  PipelineBudget sized = budget;
+  JobBudget sized = budget;
   sized.rig = rig;
   const Sizing s = sizing(sized);
   budget_ = s.pipeline;
@@ -327,9 +324,10 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
     return Error::make(Errc::not_ready, "no calib.json configured: the pipeline needs the rig");
   if (&arena != arena_)
     return Error::make(Errc::invalid_argument, "run: not the arena given to init");
-  if (request.match_method != 0 && request.match_method != 1)
+  const MatchMethod method = request.selection.method;
+  if (method != MatchMethod::dp && method != MatchMethod::graph_cut)
     return Error::make(Errc::invalid_argument, "MATCH_METHOD %d: 0 (dp) or 1 (graph cut)",
-                       request.match_method);
+                       static_cast<int>(method));
   if (request.left.empty() || request.right.empty())
     return Error::make(Errc::invalid_argument, "run: no stereo pair");
   const Settings wanted{request.shadow_fraction, request.disp_min_px, request.disp_max_px};
@@ -337,18 +335,10 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   if (cancel.load(std::memory_order_relaxed))
     return Error::make(Errc::cancelled, "evaluation cancelled");
 
-  PipelineRequest pr;
-  pr.roi = request.roi;
-  pr.planes = request.planes;
-  pr.has_click = request.has_click;
-  pr.click_u = request.click_u_px;
-  pr.click_v = request.click_v_px;
-  pr.method = request.match_method == 1 ? MatchMethod::graph_cut : MatchMethod::dp;
-  StepTracker tracker;
-  tracker.cancel = &cancel;
-  const StepClock clock{monotonic_ns, &tracker, &StepTracker::on_step,
+  StepTracker tracker{clock_, Step::RECTIFY, &cancel};
+  const StepClock clock{&StepTracker::now_ns, &tracker, &StepTracker::on_step,
                         &StepTracker::cancel_requested};
-  auto result = pipeline_.run(request.left, request.right, pr, clock);
+  auto result = pipeline_.run(request.left, request.right, request.selection, clock);
   if (!result) {
     out.failed_step = tracker.current;
     return result.error();
@@ -357,26 +347,14 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
     return Error::make(Errc::cancelled, "evaluation cancelled");
   const PipelineOutput& p = *result;
   for (std::size_t i = 0; i < p.timings.count; ++i)
-    out.step_us[static_cast<std::size_t>(slot_of(p.timings.steps[i].name))] +=
+    out.step_us[static_cast<std::size_t>(slot_of(p.timings.steps[i].step))] +=
         to_us(p.timings.steps[i].ns);
 
   const ReconstructionOutput& r = p.result;
   for (int k = 0; k < r.planes.accepted; ++k) {
     const GrindPlane& g = r.planes.planes[k];
     if (g.area_mm2 < request.min_plane_area_mm2) continue;  // ranked by area: the rest are smaller
-    PlaneOut po;
-    po.normal = {g.normal.x(), g.normal.y(), g.normal.z()};
-    po.centroid_mm = {g.centroid_mm.x(), g.centroid_mm.y(), g.centroid_mm.z()};
-    po.area_mm2 = g.area_mm2;
-    po.flatness_rms_mm = g.rms_mm;
-    po.triangles = static_cast<std::uint32_t>(g.triangles);
-    po.verdict = static_cast<std::uint8_t>(g.verdict);
-    po.plane_source = g.footprint_local ? 1 : 0;
-    po.normal_sigma_deg = g.normal_sigma_deg;
-    po.offset_sigma_mm = g.offset_sigma_mm;
-    po.footprint_rms_mm = g.footprint_rms_mm;
-    po.footprint_diameter_mm = r.planes.footprint_diameter_mm;
-    if (!out.planes.push_back(po)) break;
+    if (!out.planes.push_back(plane_packet(g, r.planes.footprint_diameter_mm))) break;
   }
   for (int k = r.planes.accepted; k < r.planes.count; ++k)  // refused ones follow, largest first
     if (r.planes.planes[k].verdict != PlaneVerdict::surplus) {
@@ -398,9 +376,10 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   out.disparity_max = static_cast<float>(r.stats.disparity_max_px);
 
   out.failed_step = Step::PRODUCTS;
-  const std::uint64_t t0 = monotonic_ns(nullptr);
+  const std::int64_t t0 = clock_->monotonic_ns();
   PETRA_TRY(make_products(p, pipeline_.rectifier().geometry(), max_cloud_points_, arena, out));
-  out.step_us[static_cast<std::size_t>(Step::PRODUCTS)] = to_us(monotonic_ns(nullptr) - t0);
+  out.step_us[static_cast<std::size_t>(Step::PRODUCTS)] =
+      to_us(static_cast<std::uint64_t>(clock_->monotonic_ns() - t0));
   return {};
 }
 

@@ -3,10 +3,11 @@
 //   init: builds the rectification tables once in the worker's arena
 //     (they stay for every run); with no calib.json it stays unready and
 //     every run fails not_ready naming the missing file;
-//   run: EvalRequest -> PipelineRequest (ROI, c, click; MATCH_METHOD 0 DP,
-//     1 graph cut, whose matcher is reserved at init), the pipeline, then EvalOutput: accepted
+//   run: the request's selection (ROI, c, click; MATCH_METHOD 0 DP, 1 graph cut, whose
+//     matcher is reserved at init) straight to the pipeline, then EvalOutput: accepted
 //     planes (ranked, normals out of the rock) not smaller than MIN_PLANE_AREA_MM2, ground plane,
-//     point counts, disparity range, step times in the fsw slots, and products built in the arena
+//     point counts, disparity range, step times (the injected clock) in the fsw slots
+//     (fsw/step_slots.hpp), and products built in the arena
 //     (disparity as 8-bit gray of the rectified ROI, an RGB overlay of the classes, the cloud in
 //     mm).
 // ROI size (original left image px, what SELECT_ROI carries): budget.roi_width
@@ -29,16 +30,19 @@
 
 #include "algo/pipeline.hpp"
 #include "fsw/pipeline_job.hpp"
+#include "hal/clock.hpp"
 
 namespace petra::fsw {
 
 class FlightPipelineJob final : public PipelineJob {
  public:
+  // Step times are read from `clock` (the executive's), on the worker thread.
+  explicit FlightPipelineJob(const hal::Clock& clock) : clock_(&clock) {}
   const char* name() const override {
     return "onboard chain (algo/pipeline, dp and graph-cut matchers)";
   }
-  std::size_t arena_bytes(const PipelineBudget& budget) const override;
-  Status init(const PipelineBudget& budget, const StereoRig* rig, Arena& arena) override;
+  std::size_t arena_bytes(const JobBudget& budget) const override;
+  Status init(const JobBudget& budget, const StereoRig* rig, Arena& arena) override;
   Status run(const EvalRequest& request, Arena& arena, const std::atomic<bool>& cancel,
              EvalOutput& out) override;
 
@@ -51,8 +55,8 @@ class FlightPipelineJob final : public PipelineJob {
     int roi_width = 0;
     int roi_height = 0;
   };
-  static Sizing sizing(const PipelineBudget& budget);
-  static petra::PipelineBudget pipeline_budget(const PipelineBudget& budget);
+  static Sizing sizing(const JobBudget& budget);
+  static petra::PipelineBudget pipeline_budget(const JobBudget& budget);
   // Arena bytes of a pipeline budget: the pipeline's (Pipeline::memory) + the products.
   static std::size_t need_bytes(const petra::PipelineBudget& b, std::size_t cloud_points);
   // What the pipeline is built for, from the parameter table's values.
@@ -68,6 +72,7 @@ class FlightPipelineJob final : public PipelineJob {
  private:
   Status create(const Settings& settings);
 
+  const hal::Clock* clock_;
   const StereoRig* rig_ = nullptr;
   Arena* arena_ = nullptr;
   std::size_t base_mark_ = 0;  // where the tables start

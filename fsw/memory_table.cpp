@@ -48,7 +48,7 @@ int format_memory_doc_table(char* buf, std::size_t size) {
                                      {448, 336}, {512, 384}, {640, 480}};
   int n = format_memory_header(buf, size);
   for (const auto& r : kRois) {
-    fsw::PipelineBudget eb;
+    fsw::JobBudget eb;
     eb.max_width = 1024;
     eb.max_height = 768;
     eb.max_cloud_points = Budget{}.cloud_points;

@@ -4,8 +4,8 @@
 
 namespace petra::fsw {
 
-PipelineJob* flight_pipeline() {
-  static FlightPipelineJob job;  // static storage: no heap
+PipelineJob* flight_pipeline(const hal::Clock& clock) {
+  static FlightPipelineJob job(clock);  // static storage: no heap
   return &job;
 }
 

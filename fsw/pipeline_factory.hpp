@@ -4,10 +4,13 @@
 #pragma once
 
 #include "fsw/pipeline_job.hpp"
+#include "hal/clock.hpp"
 
 namespace petra::fsw {
 
 // The job with static storage, or nullptr when this build has no pipeline.
-PipelineJob* flight_pipeline();
+// Built on the first call, reading step times from that call's clock (the
+// executive's: give the same one as Dependencies::clock).
+PipelineJob* flight_pipeline(const hal::Clock& clock);
 
 }  // namespace petra::fsw

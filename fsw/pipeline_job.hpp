@@ -17,6 +17,8 @@
 #include "algo/core/fixed_vector.hpp"
 #include "algo/core/image_view.hpp"
 #include "algo/core/result.hpp"
+#include "algo/pipeline_request.hpp"
+#include "tlm/telemetry.hpp"
 #include "tlm/tlm_defs.hpp"
 
 namespace petra {
@@ -34,8 +36,9 @@ enum class Step : std::uint8_t {
 #undef PETRA_STEP_ENUM
 };
 
-// Memory the job may size itself for (from the configuration's budget).
-struct PipelineBudget {
+// The configuration's budget as a job sees it: what it may size itself for.
+// (Not algo's PipelineBudget: the flight job derives that one from this.)
+struct JobBudget {
   int max_width = 0;
   int max_height = 0;
   std::size_t max_cloud_points = 0;
@@ -63,35 +66,20 @@ struct EvalRequest {
   ConstGray8View left;
   ConstGray8View right;
   const StereoRig* rig = nullptr;  // nullptr when no calib file is configured
-  Rect roi;
-  int planes = 0;  // c
-  bool has_click = false;
-  int click_u_px = 0;
-  int click_v_px = 0;
-  int match_method = 0;  // 0 DP, 1 graph cut
+  // SELECT_ROI as built from the command, MATCH_METHOD as method: what Pipeline::run takes.
+  PipelineRequest selection;
   int disp_min_px = 0;
   int disp_max_px = 0;
   double shadow_fraction = 0;
   double min_plane_area_mm2 = 0;
 };
 
-struct PlaneOut {
-  std::array<double, 3> normal{};
-  std::array<double, 3> centroid_mm{};
-  double area_mm2 = 0;
-  double flatness_rms_mm = 0;
-  std::uint32_t triangles = 0;
-  std::uint8_t verdict = 0;       // PlaneVerdict (0: grindable)
-  std::uint8_t plane_source = 0;  // 0 the face's plane, 1 the footprint disc's own
-  double normal_sigma_deg = 0;
-  double offset_sigma_mm = 0;
-  double footprint_rms_mm = 0;
-  double footprint_diameter_mm = 0;
-};
-
 struct EvalOutput {
-  FixedVector<PlaneOut, kMaxPlanes> planes;  // ranked, best first
-  std::uint8_t refused_verdict = 0;          // of the largest refused face (0: none refused)
+  // A plane is one type from here to the downlink and the arm target: the
+  // job fills what it measured; eval_id, rank and plane_count are stamped
+  // when the evaluation is published.
+  FixedVector<tlm::GrindPlane, kMaxPlanes> planes;  // ranked, best first
+  std::uint8_t refused_verdict = 0;                 // of the largest refused face (0: none refused)
   std::array<double, 3> ground_normal{};
   double ground_d_mm = 0;
   std::uint32_t ground_points = 0;
@@ -117,11 +105,11 @@ class PipelineJob {
   virtual ~PipelineJob() = default;
   virtual const char* name() const = 0;
   // Arena for init() plus the largest run, for this budget (asked once, at init).
-  virtual std::size_t arena_bytes(const PipelineBudget& budget) const = 0;
+  virtual std::size_t arena_bytes(const JobBudget& budget) const = 0;
   // Called once on the worker's arena before any run: what it takes stays
   // allocated for every run. `rig` is nullptr when no calib file is configured.
   // An error stops the executive's init (a configuration the job cannot serve).
-  virtual Status init(const PipelineBudget& budget, const StereoRig* rig, Arena& arena) {
+  virtual Status init(const JobBudget& budget, const StereoRig* rig, Arena& arena) {
     (void)budget;
     (void)rig;
     (void)arena;

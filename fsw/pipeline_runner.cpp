@@ -9,8 +9,8 @@ PipelineRunner::~PipelineRunner() {
 }
 
 Status PipelineRunner::init(PipelineJob* job, std::span<std::byte> arena_memory,
-                            const PipelineBudget& budget, const StereoRig* rig,
-                            std::size_t stack_bytes, Health* health, const hal::Clock* clock) {
+                            const JobBudget& budget, const StereoRig* rig, std::size_t stack_bytes,
+                            Health* health, const hal::Clock* clock) {
   job_ = job;
   health_ = health;
   clock_ = clock;

@@ -26,7 +26,7 @@ class PipelineRunner {
   // job may be nullptr (no pipeline in this build: start() then refuses).
   // Calls job->init(budget, rig, arena) once; every run then starts from the
   // arena as init left it.
-  Status init(PipelineJob* job, std::span<std::byte> arena_memory, const PipelineBudget& budget,
+  Status init(PipelineJob* job, std::span<std::byte> arena_memory, const JobBudget& budget,
               const StereoRig* rig, std::size_t stack_bytes, Health* health,
               const hal::Clock* clock);
   void shutdown();

@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
   deps.camera = &devices.camera();
   deps.clock = &clock;
   deps.estop = devices.estop();  // asserted: arm quick stop and SAFE
-  deps.job = petra::fsw::flight_pipeline();
+  deps.job = petra::fsw::flight_pipeline(clock);
   static petra::hal::SocketCanPort socketcan;
   static petra::hal::UdpCanPort udp_can;
   static petra::fsw::arm::FlightArm arm;

@@ -64,7 +64,9 @@ class Progress {
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
 
-  static void on_step(void* self, const char* name) { static_cast<Progress*>(self)->step(name); }
+  static void on_step(void* self, PipelineStep s, bool running) {
+    static_cast<Progress*>(self)->step(running ? step_name(s) : nullptr);
+  }
   void step(const char* name) {
     std::lock_guard<std::mutex> lock(mutex_);
     current_ = name;

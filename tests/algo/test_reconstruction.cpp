@@ -55,7 +55,8 @@ TEST(Reconstruction, DisparityToRankedPlanesOnARidgeRock) {
   EXPECT_LE(arena.high_water(), reconstruction_arena_bytes(budget));
   EXPECT_EQ(timings.count, 7u);
   EXPECT_STREQ(timings.steps[0].name, "mean filter");
-  EXPECT_STREQ(timings.steps[4].name, "normals");  // before segmentation: the click region uses them
+  EXPECT_STREQ(timings.steps[4].name,
+               "normals");  // before segmentation: the click region uses them
   EXPECT_STREQ(timings.steps[5].name, "segmentation");
   EXPECT_STREQ(timings.steps[6].name, "grind planes");
   EXPECT_EQ(timings.steps[2].ns, 1000u);
@@ -121,11 +122,11 @@ TEST(Reconstruction, BudgetAndRequestAreChecked) {
 // The caller's cancel flag, raised when a given step starts: the run ends at
 // the next step boundary with Errc::cancelled and runs nothing after it.
 struct CancelAt {
-  const char* step;
+  PipelineStep step;
   bool raised = false;
-  static void on_step(void* self, const char* name) {
+  static void on_step(void* self, PipelineStep step, bool running) {
     auto* c = static_cast<CancelAt*>(self);
-    if (name != nullptr && std::string(name) == c->step) c->raised = true;
+    if (running && step == c->step) c->raised = true;
   }
   static bool requested(void* self) { return static_cast<CancelAt*>(self)->raised; }
 };
@@ -137,7 +138,7 @@ TEST(Reconstruction, CancelStopsAtTheNextStepBoundary) {
   Arena arena(block);
   ReconstructionRequest req;
   req.planes = 3;
-  CancelAt cancel{"triangulate"};
+  CancelAt cancel{PipelineStep::triangulate};
   const StepClock clock{nullptr, &cancel, &CancelAt::on_step, &CancelAt::requested};
   StepTimings timings;
   auto r = reconstruct(s.rig, s.pair, s.disp.view(), req, ReconstructionParams{}, budget, arena,
@@ -149,7 +150,7 @@ TEST(Reconstruction, CancelStopsAtTheNextStepBoundary) {
   EXPECT_STREQ(timings.steps[1].name, "triangulate");
 
   // Not raised: the same run completes.
-  CancelAt never{"no such step"};
+  CancelAt never{PipelineStep::plane_refinement};  // the pipeline's, not reconstruct's
   const StepClock quiet{nullptr, &never, &CancelAt::on_step, &CancelAt::requested};
   timings = {};
   arena.reset();

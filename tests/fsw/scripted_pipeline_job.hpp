@@ -24,7 +24,7 @@ class ScriptedPipelineJob final : public fsw::PipelineJob {
   void release() { hold.store(false); }
 
   const char* name() const override { return "scripted test double"; }
-  std::size_t arena_bytes(const fsw::PipelineBudget& b) const override {
+  std::size_t arena_bytes(const fsw::JobBudget& b) const override {
     return static_cast<std::size_t>(b.max_width) * static_cast<std::size_t>(b.max_height) * 4 +
            4096;
   }
@@ -48,11 +48,13 @@ class ScriptedPipelineJob final : public fsw::PipelineJob {
     }
     out = script;
     // A disparity "product": the ROI of the left image, copied through the arena.
-    auto pixels = arena.allocate<std::uint8_t>(
-        static_cast<std::size_t>(request.roi.w) * static_cast<std::size_t>(request.roi.h), "disp");
+    auto pixels =
+        arena.allocate<std::uint8_t>(static_cast<std::size_t>(request.selection.roi.w) *
+                                         static_cast<std::size_t>(request.selection.roi.h),
+                                     "disp");
     if (!pixels) return pixels.error();
-    auto view = Gray8View::over(*pixels, request.roi.w, request.roi.h);
-    copy_pixels<std::uint8_t, std::uint8_t>(request.left.sub(request.roi), view);
+    auto view = Gray8View::over(*pixels, request.selection.roi.w, request.selection.roi.h);
+    copy_pixels<std::uint8_t, std::uint8_t>(request.left.sub(request.selection.roi), view);
     out.disparity_gray = view;
     for (std::size_t i = 0; i < out.step_us.size(); ++i)
       out.step_us[i] = static_cast<std::uint32_t>(10 * (i + 1));

@@ -14,13 +14,13 @@ using cmd::FunctionCode;
 
 fsw::EvalOutput two_planes() {
   fsw::EvalOutput o;
-  fsw::PlaneOut a;
+  tlm::GrindPlane a;
   a.normal = {0.0, -0.6, -0.8};
   a.centroid_mm = {12.5, -30.25, 812.0};
   a.area_mm2 = 1530.5;
   a.flatness_rms_mm = 0.42;
   a.triangles = 311;
-  fsw::PlaneOut b = a;
+  tlm::GrindPlane b = a;
   b.normal = {0.6, 0.0, -0.8};
   b.centroid_mm = {40.0, -10.0, 800.0};
   b.area_mm2 = 900.0;
@@ -65,8 +65,8 @@ TEST(Executive, SelectRoiAndEvaluateDownlinkThePipelinesPlanes) {
   EXPECT_TRUE(h.has_ack(sel.counter, AckStage::COMPLETED));
   EXPECT_EQ(h.exec().mode(), Mode::IDLE);
   // The job saw the operator's selection.
-  EXPECT_EQ(h.job.last_request.roi, (Rect{20, 10, 100, 80}));
-  EXPECT_EQ(h.job.last_request.planes, 3);
+  EXPECT_EQ(h.job.last_request.selection.roi, (Rect{20, 10, 100, 80}));
+  EXPECT_EQ(h.job.last_request.selection.planes, 3);
 
   const auto results = h.all<tlm::EvalResult>();
   ASSERT_EQ(results.size(), 1u);

@@ -24,7 +24,7 @@ long resident_kb() {
 TEST(ExecutiveMemory, ThousandCommandsOfEveryKindAllocateNothingAfterInit) {
   ExecutiveHarness h;
   fsw::EvalOutput o;
-  fsw::PlaneOut p;
+  tlm::GrindPlane p;
   p.normal = {0, 0, -1};
   (void)o.planes.push_back(p);
   h.job.script = o;

@@ -39,7 +39,7 @@ TEST(MemoryTable, DocsMatchTheGenerator) {
 TEST(MemoryTable, StagesAddUpToTheArenaAndGrowWithTheRoi) {
   std::size_t last = 0;
   for (int w : {128, 256, 512}) {
-    PipelineBudget eb;
+    JobBudget eb;
     eb.max_width = 1024;
     eb.max_height = 768;
     eb.max_roi_width = w;

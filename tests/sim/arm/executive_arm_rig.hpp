@@ -91,7 +91,7 @@ struct ArmRig {
     return until([&] { return event(EventId::ARM_READY); }, 500);
   }
   // SELECT_ROI + EVALUATE: the scripted job answers with `planes`.
-  bool evaluate(const std::vector<fsw::PlaneOut>& planes) {
+  bool evaluate(const std::vector<tlm::GrindPlane>& planes) {
     h.job.script = fsw::EvalOutput{};
     for (const auto& p : planes) (void)h.job.script.planes.push_back(p);
     const auto sel = h.make(FunctionCode::SELECT_ROI,
@@ -115,7 +115,7 @@ struct ArmRig {
 
 // Starts a goto towards a reachable plane and runs 2 s of it.
 inline void start_motion(ArmRig& rig, cmd::Command& go) {
-  fsw::PlaneOut p;
+  tlm::GrindPlane p;
   const arm::ToolPose t = arm::forward_kinematics(arm::rover_arm_geometry(), [] {
     arm::JointVector q;
     q << 35 * kArmDeg, 25 * kArmDeg, 100 * kArmDeg, 80 * kArmDeg, -10 * kArmDeg;

@@ -29,8 +29,8 @@ using test::ExecutiveHarness;
 using test::start_motion;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-fsw::PlaneOut plane_of(const sim::VisibleFacet& f) {
-  fsw::PlaneOut p;
+tlm::GrindPlane plane_of(const sim::VisibleFacet& f) {
+  tlm::GrindPlane p;
   for (int k = 0; k < 3; ++k) {
     p.normal[static_cast<std::size_t>(k)] = f.normal[k];
     p.centroid_mm[static_cast<std::size_t>(k)] = f.centroid[k];
@@ -41,13 +41,13 @@ fsw::PlaneOut plane_of(const sim::VisibleFacet& f) {
 }
 
 // The grind faces of the first simulated scene (seed 1 up) with one the arm can reach.
-std::vector<fsw::PlaneOut> scene_planes(int& reachable_rank, std::uint64_t& seed_used) {
+std::vector<tlm::GrindPlane> scene_planes(int& reachable_rank, std::uint64_t& seed_used) {
   for (std::uint64_t seed = 1; seed < 40; ++seed) {
     sim::SceneOptions o;
     o.seed = seed;
     auto scene = sim::make_scene(o);
     if (!scene) continue;
-    std::vector<fsw::PlaneOut> planes;
+    std::vector<tlm::GrindPlane> planes;
     reachable_rank = -1;
     for (const auto& f : sim::visible_facets(*scene)) {
       if (!f.grind_face) continue;
@@ -134,7 +134,8 @@ TEST(ExecutiveArm, TheFullChainOnASimulatedSceneEndsOnTheChosenPlane) {
                              std::filesystem::copy_options::overwrite_existing);
   std::filesystem::copy_file(dir / "scene/right.pgm", dir / "camera/right_000.pgm",
                              std::filesystem::copy_options::overwrite_existing);
-  rig.h.pipeline = fsw::flight_pipeline();
+  static hal::SystemClock clock;  // the job outlives the rig: static, as flight_pipeline() is
+  rig.h.pipeline = fsw::flight_pipeline(clock);
   rig.h.budget = R"({"image_width":1024,"image_height":768})";  // the flight default
   ASSERT_TRUE(rig.boot());
   const Rect roi = scene->truth.roi;
@@ -191,7 +192,7 @@ TEST(ExecutiveArm, TheFullChainOnASimulatedSceneEndsOnTheChosenPlane) {
 TEST(ExecutiveArm, AnUnreachablePlaneFailsWithArmRefused) {
   ArmRig rig;
   ASSERT_TRUE(rig.boot());
-  fsw::PlaneOut far;
+  tlm::GrindPlane far;
   far.normal = {0, 0, 1};
   far.centroid_mm = {0, 1600, 50};
   ASSERT_TRUE(rig.evaluate({far}));

@@ -57,8 +57,8 @@ class FlightJob : public ::testing::Test {
     request_.left = left_.view();
     request_.right = right_.view();
     request_.rig = &rig_;
-    request_.roi = truth->roi;
-    request_.planes = truth->planes;
+    request_.selection.roi = truth->roi;
+    request_.selection.planes = truth->planes;
     request_.shadow_fraction = param_default(ParamId::SHADOW_FRACTION);
     request_.min_plane_area_mm2 = param_default(ParamId::MIN_PLANE_AREA_MM2);
     request_.disp_min_px = static_cast<int>(param_default(ParamId::DISP_MIN_PX));
@@ -70,9 +70,10 @@ class FlightJob : public ::testing::Test {
   static fs::path dir_;
   StereoRig rig_;
   io::GrayImage left_, right_;
-  fsw::PipelineBudget budget_;
+  fsw::JobBudget budget_;
   fsw::EvalRequest request_;
-  fsw::FlightPipelineJob job_;
+  hal::SystemClock clock_;
+  fsw::FlightPipelineJob job_{clock_};
   std::vector<std::byte> block_;
   Arena arena_;
   std::atomic<bool> cancel_{false};
@@ -92,7 +93,7 @@ TEST_F(FlightJob, RepeatedEvaluationsAllocateNothingAndAgree) {
   EXPECT_FALSE(first.cloud_xyz_mm.empty());
   EXPECT_LE(first.cloud_xyz_mm.size(), 3 * budget_.max_cloud_points);
   EXPECT_GT(first.step_us[static_cast<std::size_t>(fsw::Step::MATCH)], 0u);
-  for (const fsw::PlaneOut& p : first.planes) {
+  for (const tlm::GrindPlane& p : first.planes) {
     const double n = std::sqrt(p.normal[0] * p.normal[0] + p.normal[1] * p.normal[1] +
                                p.normal[2] * p.normal[2]);
     EXPECT_NEAR(n, 1.0, 1e-9);
@@ -117,14 +118,14 @@ TEST_F(FlightJob, RepeatedEvaluationsAllocateNothingAndAgree) {
 TEST_F(FlightJob, RefusesWhatThisBuildCannotDoByName) {
   ASSERT_TRUE(job_.init(budget_, &rig_, arena_).ok());
   fsw::EvalOutput out;
-  request_.match_method = 2;
+  request_.selection.method = static_cast<MatchMethod>(2);
   const Status m = job_.run(request_, arena_, cancel_, out);
   ASSERT_FALSE(m.ok());
   EXPECT_EQ(m.code(), Errc::invalid_argument);
   EXPECT_NE(std::strstr(m.error().message, "MATCH_METHOD 2"), nullptr) << m.error().message;
 
-  request_.match_method = 0;
-  request_.roi = Rect{left_.width - 10, 0, 50, 50};  // leaves the image
+  request_.selection.method = MatchMethod::dp;
+  request_.selection.roi = Rect{left_.width - 10, 0, 50, 50};  // leaves the image
   const Status roi = job_.run(request_, arena_, cancel_, out);
   ASSERT_FALSE(roi.ok());
   EXPECT_EQ(roi.code(), Errc::out_of_range);
@@ -137,7 +138,7 @@ TEST_F(FlightJob, GraphCutFindsTheSameFacesWithoutHeap) {
   const std::size_t after_init = arena_.mark();
   fsw::EvalOutput dp;
   ASSERT_TRUE(job_.run(request_, arena_, cancel_, dp).ok());
-  request_.match_method = 1;
+  request_.selection.method = MatchMethod::graph_cut;
   arena_.release_to(after_init);
   fsw::EvalOutput gc;
   const Status s = job_.run(request_, arena_, cancel_, gc);
@@ -145,7 +146,7 @@ TEST_F(FlightJob, GraphCutFindsTheSameFacesWithoutHeap) {
   ASSERT_EQ(gc.planes.size(), dp.planes.size());
   for (std::size_t k = 0; k < dp.planes.size(); ++k) {
     double best = 180;
-    for (const fsw::PlaneOut& g : gc.planes) {
+    for (const tlm::GrindPlane& g : gc.planes) {
       const double c = g.normal[0] * dp.planes[k].normal[0] + g.normal[1] * dp.planes[k].normal[1] +
                        g.normal[2] * dp.planes[k].normal[2];
       best = std::min(best, std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI);
@@ -170,13 +171,13 @@ TEST_F(FlightJob, TheLargestRoiOfTheDefaultBudgetRunsBothMatchersWithoutHeap) {
   ASSERT_EQ(lim.roi_height, 384);
   EXPECT_EQ(lim.disparities, request_.disp_max_px - request_.disp_min_px + 1);
   const std::size_t after_init = arena_.mark();
-  const Rect& t = request_.roi;
-  request_.roi = Rect{std::clamp(t.x + t.w / 2 - 256, 0, left_.width - 512),
-                      std::clamp(t.y + t.h / 2 - 192, 0, left_.height - 384), 512, 384};
+  const Rect& t = request_.selection.roi;
+  request_.selection.roi = Rect{std::clamp(t.x + t.w / 2 - 256, 0, left_.width - 512),
+                                std::clamp(t.y + t.h / 2 - 192, 0, left_.height - 384), 512, 384};
   fsw::EvalOutput warm;
   ASSERT_TRUE(job_.run(request_, arena_, cancel_, warm).ok());
   for (int method : {0, 1}) {
-    request_.match_method = method;
+    request_.selection.method = static_cast<MatchMethod>(method);
     petra::test::HeapScope scope;
     arena_.release_to(after_init);
     fsw::EvalOutput out;
@@ -198,7 +199,7 @@ TEST_F(FlightJob, WithoutCalibrationItBootsAndSaysWhyItCannotRun) {
 }
 
 TEST_F(FlightJob, RefusesACalibrationLargerThanTheBudget) {
-  const fsw::PipelineBudget small{left_.width / 2, left_.height / 2, 8192};
+  const fsw::JobBudget small{left_.width / 2, left_.height / 2, 8192};
   const Status s = job_.init(small, &rig_, arena_);
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.code(), Errc::capacity_exceeded);

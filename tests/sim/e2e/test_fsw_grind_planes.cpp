@@ -64,7 +64,7 @@ TEST(FswGrindPlanes, TelemetryEqualsTheOnboardChainOnTheSamePair) {
   {
     // The flight default's points budget: one per 2x2 pixels of the rectified
     // bound, with this rig, of the default ROI budget (docs/memory.md).
-    fsw::PipelineBudget flight;
+    fsw::JobBudget flight;
     flight.max_width = left->width;
     flight.max_height = left->height;
     flight.rig = &*rig;
