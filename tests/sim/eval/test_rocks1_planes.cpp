@@ -10,14 +10,17 @@
 // with no ground in these ROIs the rock is grown from the click and gives
 // planes. With the right view's gain changed the green rock is still refused. Not met yet
 // (DISABLED_EveryPlaneLiesOnTheRealSurface, the target, left in to be
-// switched on): the planes' fit to the real surface, 2.0-10.8 deg and up to
-// 3.4 mm for the planes on the faces, and one plane of the grey rock's
-// curved underside 75-89 deg off (docs/performance.md, "Rocks1").
+// switched on): the planes' fit to the real surface, 2.8-9.9 deg and up to
+// 2.8 mm for the planes on the faces, and one plane of the grey rock's
+// curved underside 87-90 deg off (docs/performance.md, "Rocks1"). The truth's
+// own quantisation (0.5 px) accounts for at most 2.2 deg of it: the rest is
+// the faces' curvature under the reported whole-face plane.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <span>
 #include <string>
@@ -107,30 +110,60 @@ enum class Source { dp, truth, dp_gain };
 struct PlaneCheck {
   double angle_deg = 0, offset_mm = 0;
   std::size_t points = 0;
+  // The same fit on Petra's plane itself, sampled at the same pixels and
+  // quantised as the truth is (0.5 px of disparity: 3-5 mm of depth here):
+  // the angle the truth's quantisation alone gives, and the angle between
+  // the two quantised fits.
+  double quantisation_deg = 0, matched_deg = 0;
 };
+
+double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), std::abs(a.dot(b))) * 180 / M_PI;
+}
+
+// Petra's plane seen through the truth's quantisation at the pixel (u, v).
+bool quantised_point(const GrindPlane& g, int u, int v, Eigen::Vector3d& p) {
+  const Eigen::Vector3d ray((u - kCx) / kF, (v - kCy) / kF, 1.0);
+  const double along = g.normal.dot(ray);
+  if (std::abs(along) < 1e-6) return false;
+  const double z = g.normal.dot(g.centroid_mm) / along;
+  const double d = std::round(2.0 * (kF * kB / z - kOffset)) / 2.0;
+  p = ray * (kF * kB / (d + kOffset));
+  return z > 0;
+}
+
+std::optional<PlaneFitT<double>> fit_points(const std::vector<Eigen::Vector3d>& pts) {
+  auto fit = fit_plane_tls_by<double>(
+      pts.size(), [&](std::size_t i) -> const Eigen::Vector3d& { return pts[i]; },
+      [](std::size_t) { return true; });
+  if (!fit) return std::nullopt;
+  return *fit;
+}
 
 PlaneCheck check_plane(const GrindPlane& g) {
   const io::GrayImage& t = data().truth;
-  std::vector<Eigen::Vector3d> under;
+  std::vector<Eigen::Vector3d> under, quantised;
   for (int v = 0; v < t.height; ++v)
     for (int u = 0; u < t.width; ++u) {
-      Eigen::Vector3d p;
+      Eigen::Vector3d p, q;
       if (!truth_point(t, u, v, p)) continue;
       const Eigen::Vector3d r = p - g.centroid_mm;
       const double along = r.dot(g.normal);
-      if ((r - along * g.normal).norm() <= kFootprintRadiusMm && std::abs(along) < 50)
-        under.push_back(p);
+      if ((r - along * g.normal).norm() > kFootprintRadiusMm || std::abs(along) >= 50) continue;
+      under.push_back(p);
+      if (quantised_point(g, u, v, q)) quantised.push_back(q);
     }
   PlaneCheck c;
   c.points = under.size();
-  auto fit = fit_plane_tls_by<double>(
-      under.size(), [&](std::size_t i) -> const Eigen::Vector3d& { return under[i]; },
-      [](std::size_t) { return true; });
+  const auto fit = fit_points(under);
   if (!fit) return {180, 1e9, under.size()};
   const Eigen::Vector3d n = fit->plane.normal;
-  c.angle_deg = std::atan2(n.cross(g.normal).norm(), std::abs(n.dot(g.normal))) * 180 / M_PI;
+  c.angle_deg = angle_deg(n, g.normal);
   c.offset_mm = std::max(std::abs(fit->plane.distance(g.centroid_mm)),
                          std::abs(g.normal.dot(fit->centroid - g.centroid_mm)));
+  const auto own = fit_points(quantised);
+  c.quantisation_deg = own ? angle_deg(own->plane.normal, g.normal) : 180;
+  c.matched_deg = own ? angle_deg(own->plane.normal, n) : 180;
   return c;
 }
 
@@ -183,9 +216,11 @@ void run_case(const RoiCase& c, Source source, bool surface_check) {
   for (int k = 0; k < r.planes.accepted; ++k) {
     const GrindPlane& g = r.planes.planes[k];
     const PlaneCheck pc = check_plane(g);
-    std::printf("%-22s %-10s plane %d (%s): %zu truth points, %.2f deg, %.2f mm\n", c.name,
-                source == Source::dp ? "dp" : (source == Source::truth ? "truth" : "dp+gain"), k,
-                segment_method_name(r.segmentation), pc.points, pc.angle_deg, pc.offset_mm);
+    std::printf(
+        "%-22s %-7s plane %d: %zu truth points, %.2f deg, %.2f mm (quantisation alone %.2f deg; "
+        "quantised fits %.2f deg apart)\n",
+        c.name, source == Source::dp ? "dp" : (source == Source::truth ? "truth" : "dp+gain"), k,
+        pc.points, pc.angle_deg, pc.offset_mm, pc.quantisation_deg, pc.matched_deg);
     EXPECT_GE(pc.points, 50u) << c.name << " plane " << k;
     EXPECT_LE(pc.angle_deg, 3.0) << c.name << " plane " << k;
     EXPECT_LE(pc.offset_mm, 3.0) << c.name << " plane " << k;
