@@ -262,7 +262,8 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
   mp.disp_max = out.range.max_px;
 
   // Shadow masks (left over the ROI, right over its search area).
-  const Rect right_area = right_search_area(roi, mp.disp_min, mp.disp_max, W);
+  const RightShadowWindows right_windows = right_shadow_windows(roi, mp.disp_min, mp.disp_max, W);
+  const Rect right_area = right_windows.mask;
   auto lmask = arena.allocate<std::uint8_t>(
       static_cast<std::size_t>(roi.w) * static_cast<std::size_t>(roi.h), "left shadow mask");
   if (!lmask) return lmask.error();
@@ -280,10 +281,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
     auto nl = shadow_mask(rl, roi, tl->threshold, Gray8View(lmask->data(), roi.w, roi.h));
     if (!nl) return nl.error();
     out.left_shadow = {ImageView<const std::uint8_t>(lmask->data(), roi.w, roi.h), roi};
-    // The right histogram covers an ROI-sized window at the middle disparity.
-    Rect hist = roi;
-    hist.x = std::clamp(roi.x - (mp.disp_min + mp.disp_max) / 2, 0, W - roi.w);
-    auto tr = shadow_threshold(rr, hist, params_.shadow_fraction);
+    auto tr = shadow_threshold(rr, right_windows.histogram, params_.shadow_fraction);
     if (!tr) return tr.error();
     out.shadow_right = *tr;
     auto nr = shadow_mask(rr, right_area, tr->threshold,

@@ -1,6 +1,9 @@
 #include "algo/shadow.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "algo/match_dp.hpp"
 
 namespace petra {
 
@@ -68,6 +71,12 @@ Result<long> shadow_mask(ConstGray8View image, Rect area, int threshold, Gray8Vi
     }
   }
   return count;
+}
+
+RightShadowWindows right_shadow_windows(Rect roi, int disp_min, int disp_max, int image_width) {
+  Rect histogram = roi;
+  histogram.x = std::clamp(roi.x - (disp_min + disp_max) / 2, 0, image_width - roi.w);
+  return {histogram, right_search_area(roi, disp_min, disp_max, image_width)};
 }
 
 }  // namespace petra

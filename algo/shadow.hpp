@@ -36,6 +36,18 @@ Result<ShadowThreshold> shadow_threshold(ConstGray8View image, Rect roi, double 
 // `mask` has the area's size. Returns the number of shadow pixels.
 Result<long> shadow_mask(ConstGray8View image, Rect area, int threshold, Gray8View mask);
 
+// The right view's windows for a left ROI matched over [disp_min, disp_max]
+// in an image_width px wide pair: the mask covers the matcher's search area
+// (right_search_area, empty when the range reaches no column), and the
+// threshold's histogram an ROI-sized window at the middle disparity, clamped
+// into the image (the shadow's share there is the ROI's). The one rule of
+// the pipeline and of `petra stereo`.
+struct RightShadowWindows {
+  Rect histogram;
+  Rect mask;
+};
+RightShadowWindows right_shadow_windows(Rect roi, int disp_min, int disp_max, int image_width);
+
 // A mask over part of an image: pixels outside `area` are lit.
 struct ShadowMask {
   ImageView<const std::uint8_t> mask;

@@ -108,7 +108,7 @@ Status only_known_keys(const Document& doc, std::uint32_t obj, const char* secti
 }
 
 // The keys of each section (docs/icd.md "petra-fsw configuration", docs/hal.md).
-Status check_keys(const Document& doc, bool v4l2) {
+Status check_keys(const Document& doc, std::string_view camera_kind) {
   PETRA_TRY(only_known_keys(
       doc, 0, "",
       {"uplink", "downlink", "loop", "budget", "camera", "gpio", "arm", "calib", "params"}));
@@ -140,11 +140,16 @@ Status check_keys(const Document& doc, bool v4l2) {
     }
   }
   const std::uint32_t camera = doc.find(0, "camera");
-  if (v4l2)
+  if (camera_kind == "v4l2")
     return only_known_keys(
         doc, camera, "camera",
         {"kind", "layout", "left", "right", "width", "height", "formats", "buffers", "fps",
          "timeout_ms", "max_skew_us", "max_pair_frames", "trigger_width_us", "triggered"});
+  if (camera_kind == "libcamera")
+    return only_known_keys(
+        doc, camera, "camera",
+        {"kind", "layout", "left", "right", "width", "height", "formats", "buffers", "timeout_ms",
+         "max_skew_us", "max_pair_frames", "trigger_width_us", "triggered"});
   return only_known_keys(doc, camera, "camera", {"kind", "dir"});
 }
 
@@ -182,8 +187,8 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
   if (camera == 0) return Error::make(Errc::missing_field, "config: camera: missing");
   PETRA_TRY(object_or_absent(*doc, doc->find(0, "gpio"), "gpio"));
   PETRA_TRY(object_or_absent(*doc, doc->find(0, "arm"), "arm"));
-  PETRA_TRY(check_keys(
-      *doc, doc->find(camera, "kind") != 0 && doc->text_of(doc->find(camera, "kind")) == "v4l2"));
+  const std::uint32_t camera_kind = doc->find(camera, "kind");
+  PETRA_TRY(check_keys(*doc, camera_kind != 0 ? doc->text_of(camera_kind) : std::string_view()));
 
   PETRA_TRY(r.text(up, "uplink", "host", c.cmd_host, false, false));
   PETRA_TRY(get_int(r, up, "uplink", "port", 0, 65535, c.cmd_port));
@@ -234,9 +239,14 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
     auto v4l2 = hal::parse_v4l2_camera(*doc, camera);
     if (!v4l2) return Error::make(v4l2.code(), "config: %s", v4l2.error().message);
     c.v4l2 = *v4l2;
+  } else if (std::strcmp(kind.data(), "libcamera") == 0) {
+    c.camera_kind = CameraKind::libcamera;
+    auto lc = hal::parse_libcamera_camera(*doc, camera);
+    if (!lc) return Error::make(lc.code(), "config: %s", lc.error().message);
+    c.libcamera = *lc;
   } else {
-    return Error::make(Errc::invalid_argument, "config: camera.kind '%s': expected file or v4l2",
-                       kind.data());
+    return Error::make(Errc::invalid_argument,
+                       "config: camera.kind '%s': expected file, v4l2 or libcamera", kind.data());
   }
   const std::uint32_t gpio = doc->find(0, "gpio");
   if (gpio != 0) {
@@ -244,7 +254,9 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
     if (!lines) return Error::make(lines.code(), "config: %s", lines.error().message);
     c.gpio = *lines;
   }
-  if (c.camera_kind == CameraKind::v4l2 && c.v4l2.triggered && !c.gpio.has_trigger)
+  const bool triggered = (c.camera_kind == CameraKind::v4l2 && c.v4l2.triggered) ||
+                         (c.camera_kind == CameraKind::libcamera && c.libcamera.triggered);
+  if (triggered && !c.gpio.has_trigger)
     return Error::make(Errc::missing_field,
                        "config: camera.triggered needs gpio.trigger (the trigger line)");
   const std::uint32_t arm = doc->find(0, "arm");

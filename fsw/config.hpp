@@ -43,8 +43,9 @@ struct ArmConfig {
   std::uint16_t heartbeat_timeout_ms = 0;
 };
 
-// Where stereo pairs come from: a folder of PGM pairs or V4L2 cameras.
-enum class CameraKind : std::uint8_t { file, v4l2 };
+// Where stereo pairs come from ("camera.kind"): a folder of PGM pairs, V4L2
+// cameras, or cameras through libcamera.
+enum class CameraKind : std::uint8_t { file, v4l2, libcamera };
 
 struct FswConfig {
   Host cmd_host{};  // command port: bind address and port
@@ -62,8 +63,9 @@ struct FswConfig {
   Path param_file{};  // parameter defaults; optional
   Path calib_file{};  // calib.json for the pipeline; optional
   CameraKind camera_kind = CameraKind::file;
-  Path camera_dir{};            // kind "file": the folder of pairs
-  hal::V4l2CameraSection v4l2;  // kind "v4l2" (docs/hal.md "Device configuration")
+  Path camera_dir{};                      // kind "file": the folder of pairs
+  hal::V4l2CameraSection v4l2;            // kind "v4l2" (docs/hal.md "Device configuration")
+  hal::LibcameraCameraSection libcamera;  // kind "libcamera" (the same fields but fps)
   hal::GpioSection gpio;        // section "gpio": e-stop, arm power, trigger; absent = none wired
   Path watchdog_device{};       // e.g. /dev/watchdog; optional (none on development hosts)
   std::uint32_t cycle_ms = 10;  // minor frame

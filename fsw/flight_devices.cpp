@@ -33,6 +33,7 @@ Status FlightDevices::open(const FswConfig& config) {
                         config.camera_dir.data(), file_camera_.width(), file_camera_.height());
     return ok_status();
   }
+  if (kind_ == CameraKind::libcamera) return open_libcamera(config);
   hal::V4l2StereoConfig v4l2 = config.v4l2.config;
   if (config.v4l2.triggered) {
     // The cameras expose on the trigger's rising edge: the line idles inactive.
@@ -53,9 +54,28 @@ Status FlightDevices::open(const FswConfig& config) {
   return ok_status();
 }
 
+Status FlightDevices::open_libcamera(const FswConfig& config) {
+  hal::LibcameraStereoConfig lc = config.libcamera.config;
+  const bool two = lc.timing.layout == hal::StereoLayout::two_devices;
+  if (config.libcamera.triggered) {
+    PETRA_TRY(name_line(trigger_.open(config.gpio.trigger, "petra-fsw", false), "trigger",
+                        config.gpio.trigger));
+    lc.timing.trigger = &trigger_;
+  }
+  if (const Status s = libcamera_camera_.open(lc); !s)
+    return Error::make(s.code(), "camera (libcamera %s%s%s): %s", lc.left.camera.data(),
+                       two ? " + " : "", two ? lc.right.camera.data() : "", s.error().message);
+  (void)std::snprintf(camera_text_, sizeof camera_text_, "libcamera %.90s%s%.90s (%dx%d%s)",
+                      lc.left.camera.data(), two ? " + " : "", two ? lc.right.camera.data() : "",
+                      libcamera_camera_.width(), libcamera_camera_.height(),
+                      config.libcamera.triggered ? ", triggered" : "");
+  return ok_status();
+}
+
 void FlightDevices::close() {
   if (has_arm_power_) (void)arm_power_.set(false);
   v4l2_camera_.close();
+  libcamera_camera_.close();
   trigger_.close();
   arm_power_.close();
   estop_line_.close();
@@ -65,6 +85,7 @@ void FlightDevices::close() {
 
 hal::StereoCamera& FlightDevices::camera() {
   if (kind_ == CameraKind::v4l2) return v4l2_camera_;
+  if (kind_ == CameraKind::libcamera) return libcamera_camera_;
   return file_camera_;
 }
 

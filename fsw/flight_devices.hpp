@@ -1,5 +1,6 @@
 // The devices petra-fsw opens from its configuration (docs/hal.md "Wiring in
-// petra-fsw"): the stereo camera (a folder of pairs or V4L2 cameras) and the
+// petra-fsw"): the stereo camera (a folder of pairs, V4L2 cameras or cameras
+// through libcamera) and the
 // GPIO lines (e-stop input, arm power enable and camera trigger outputs, each
 // optional). open() runs once at init and owns every device; the executive
 // gets them through Dependencies. No heap after open().
@@ -9,6 +10,7 @@
 #include "hal/file_stereo_camera.hpp"
 #include "hal/gpio_digital_input.hpp"
 #include "hal/gpio_gpiod.hpp"
+#include "hal/libcamera_stereo_camera.hpp"
 #include "hal/v4l2_stereo_camera.hpp"
 
 namespace petra::fsw {
@@ -32,9 +34,12 @@ class FlightDevices {
   const char* camera_description() const { return camera_text_; }
 
  private:
+  Status open_libcamera(const FswConfig& config);
+
   CameraKind kind_ = CameraKind::file;
   hal::FileStereoCamera file_camera_;
   hal::V4l2StereoCamera v4l2_camera_;
+  hal::LibcameraStereoCamera libcamera_camera_;
   hal::GpiodOutput trigger_;
   hal::GpiodOutput arm_power_;
   hal::GpiodInput estop_line_;

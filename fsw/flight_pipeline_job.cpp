@@ -7,10 +7,10 @@
 #include <limits>
 #include <utility>
 
+#include "algo/products.hpp"
 #include "cmd/param_defs.hpp"
 #include "fsw/memory_table.hpp"
 #include "fsw/step_slots.hpp"
-#include "tlm/palette.hpp"
 
 namespace petra::fsw {
 
@@ -77,82 +77,23 @@ tlm::GrindPlane plane_packet(const GrindPlane& g, double footprint_diameter_mm) 
   return p;
 }
 
-// Class colours of the overlay (tint over the rectified left image): tlm/palette.hpp.
-void tint(std::uint8_t* px, std::uint8_t gray, palette::Rgb8 c) {
-  const std::uint8_t rgb[3] = {c.r, c.g, c.b};
-  for (int k = 0; k < 3; ++k) px[k] = static_cast<std::uint8_t>((gray + 2 * rgb[k]) / 3);
-}
-
+// The pictures: algo/products (the one palette, the drawing `petra eval` shares).
 Status make_products(const PipelineOutput& p, const RectifiedPair& pair, std::size_t max_cloud,
                      Arena& arena, EvalOutput& out) {
   const Rect roi = p.disparity.roi;
   const int w = roi.w, h = roi.h;
   const auto px = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
 
-  // Disparity: 1..255 from the smallest to the largest match, 0 where none.
   auto gray = arena.allocate<std::uint8_t>(px, "disparity product");
   if (!gray) return gray.error();
-  std::int16_t lo = std::numeric_limits<std::int16_t>::max();
-  std::int16_t hi = std::numeric_limits<std::int16_t>::min();
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const std::int16_t q = p.disparity.q4(x, y);
-      if (!is_valid_disparity(q)) continue;
-      lo = std::min(lo, q);
-      hi = std::max(hi, q);
-    }
-  const int span = hi > lo ? hi - lo : 1;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const std::int16_t q = p.disparity.q4(x, y);
-      (*gray)[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
-              static_cast<std::size_t>(x)] =
-          static_cast<std::uint8_t>(is_valid_disparity(q) ? 1 + (q - lo) * 254 / span : 0);
-    }
+  PETRA_TRY(products::disparity_gray(p.disparity, Gray8View(gray->data(), w, h)));
   out.disparity_gray = ConstGray8View(gray->data(), w, h);
 
-  // Overlay: the rectified ROI, shadow darkened blue, ground green-grey, rock
-  // as seen, each accepted plane in its colour, its centroid as a white cross.
   auto rgb = arena.allocate<std::uint8_t>(3 * px, "overlay product");
   if (!rgb) return rgb.error();
-  auto at = [&](int x, int y) {
-    return rgb->data() + 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
-                              static_cast<std::size_t>(x));
-  };
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const std::uint8_t g = p.left_rectified(roi.x + x, roi.y + y);
-      std::uint8_t* o = at(x, y);
-      o[0] = o[1] = o[2] = g;
-      if (p.left_shadow.is_shadow(roi.x + x, roi.y + y)) tint(o, g, palette::kShadow);
-    }
-  const ReconstructionOutput& r = p.result;
-  const int accepted = r.planes.accepted;
-  for (std::size_t i = 0; i < r.pixels.size() && i < r.vertex_class.size(); ++i) {
-    const int x = r.pixels[i].u - roi.x, y = r.pixels[i].v - roi.y;
-    if (x < 0 || y < 0 || x >= w || y >= h) continue;
-    const std::uint8_t k = r.vertex_class[i];
-    std::uint8_t* o = at(x, y);
-    const std::uint8_t g = p.left_rectified(roi.x + x, roi.y + y);
-    if (k == kVertexGround)
-      tint(o, g, palette::kGround);
-    else if (k >= kVertexPlane0 && k - kVertexPlane0 < accepted)
-      tint(o, g, palette::plane_colour(k - kVertexPlane0));
-  }
-  for (int k = 0; k < accepted; ++k) {
-    auto c = rectified_project(pair, r.planes.planes[k].centroid_mm);
-    if (!c) continue;
-    const int cx = static_cast<int>(std::lround(c->uv_left.x())) - roi.x;
-    const int cy = static_cast<int>(std::lround(c->uv_left.y())) - roi.y;
-    for (int d = -6; d <= 6; ++d)
-      for (int t = -1; t <= 1; ++t) {
-        if (cx + d >= 0 && cx + d < w && cy + t >= 0 && cy + t < h)
-          std::memset(at(cx + d, cy + t), 255, 3);
-        if (cx + t >= 0 && cx + t < w && cy + d >= 0 && cy + d < h)
-          std::memset(at(cx + t, cy + d), 255, 3);
-      }
-  }
+  PETRA_TRY(products::overlay(p, pair, ImageView<std::uint8_t>(rgb->data(), 3 * w, h)));
   out.overlay_rgb = ImageView<const std::uint8_t>(rgb->data(), 3 * w, h);
+  const ReconstructionOutput& r = p.result;
 
   // Cloud: at most the product's capacity, a regular stride through the points.
   const std::size_t points = r.xyz_mm.size();

@@ -88,12 +88,9 @@ Status gpio_line(const json::Document& doc, std::uint32_t obj, const char* key,
 
 }  // namespace
 
-Result<V4l2CameraSection> parse_v4l2_camera(const json::Document& doc, std::uint32_t obj) {
-  if (doc.token(obj).type != Type::object)
-    return Error::make(Errc::wrong_type, "camera: expected an object");
-  V4l2CameraSection out;
-  V4l2StereoConfig& c = out.config;
-  StereoTiming& t = c.timing;
+namespace {
+
+Status layout_field(const json::Document& doc, std::uint32_t obj, StereoTiming& t) {
   std::array<char, 24> layout{};
   PETRA_TRY(text(doc, obj, "camera", "layout", layout, false));
   const std::string_view l = layout.data();
@@ -108,9 +105,14 @@ Result<V4l2CameraSection> parse_v4l2_camera(const json::Document& doc, std::uint
                        "camera.layout '%s': expected two_devices, side_by_side or "
                        "pixel_interleaved",
                        layout.data());
-  PETRA_TRY(text(doc, obj, "camera", "left", c.left.device, true));
-  PETRA_TRY(
-      text(doc, obj, "camera", "right", c.right.device, t.layout == StereoLayout::two_devices));
+  return ok_status();
+}
+
+// The fields both camera backends share after the layout and the camera
+// names: view size, formats, buffers, timing and the trigger.
+Status stereo_fields(const json::Document& doc, std::uint32_t obj, int max_buffers, StereoTiming& t,
+                     FixedVector<PixelFormat, kPixelFormatCount>& formats, int& buffers,
+                     bool& triggered) {
   t.width = 0;
   t.height = 0;
   PETRA_TRY(integer(doc, obj, "camera", "width", 1, 8192, t.width));
@@ -118,33 +120,74 @@ Result<V4l2CameraSection> parse_v4l2_camera(const json::Document& doc, std::uint
   if (t.width == 0 || t.height == 0)
     return Error::make(Errc::missing_field, "camera.width/height: missing");
 
-  const std::uint32_t formats = doc.find(obj, "formats");
-  if (formats == 0) {
-    (void)c.left.formats.push_back(PixelFormat::grey);
+  const std::uint32_t list = doc.find(obj, "formats");
+  if (list == 0) {
+    (void)formats.push_back(PixelFormat::grey);
   } else {
-    if (doc.token(formats).type != Type::array || doc.token(formats).count == 0 ||
-        doc.token(formats).count > kPixelFormatCount)
+    if (doc.token(list).type != Type::array || doc.token(list).count == 0 ||
+        doc.token(list).count > kPixelFormatCount)
       return Error::make(Errc::wrong_type, "camera.formats: expected 1..%d format names",
                          kPixelFormatCount);
-    for (std::uint32_t k = 0; k < doc.token(formats).count; ++k) {
-      const std::uint32_t e = doc.element(formats, k);
+    for (std::uint32_t k = 0; k < doc.token(list).count; ++k) {
+      const std::uint32_t e = doc.element(list, k);
       if (doc.token(e).type != Type::string)
         return Error::make(Errc::wrong_type, "camera.formats[%u]: expected a name", k);
       auto f = pixel_format_from_name(doc.text_of(e));
       if (!f) return Error::make(f.code(), "camera.formats[%u]: %s", k, f.error().message);
-      (void)c.left.formats.push_back(*f);
+      (void)formats.push_back(*f);
     }
   }
-  PETRA_TRY(integer(doc, obj, "camera", "buffers", 2, V4l2Capture::kMaxBuffers, c.left.buffers));
-  PETRA_TRY(integer(doc, obj, "camera", "fps", 0, 1000, c.left.fps));
-  c.right.formats = c.left.formats;
-  c.right.buffers = c.left.buffers;
-  c.right.fps = c.left.fps;
+  PETRA_TRY(integer(doc, obj, "camera", "buffers", 2, max_buffers, buffers));
   PETRA_TRY(integer(doc, obj, "camera", "timeout_ms", 1, 60000, t.timeout_ms));
   PETRA_TRY(integer(doc, obj, "camera", "max_skew_us", 0, 1000000, t.max_skew_us));
   PETRA_TRY(integer(doc, obj, "camera", "max_pair_frames", 1, 64, t.max_pair_frames));
   PETRA_TRY(integer(doc, obj, "camera", "trigger_width_us", 1, 1000000, t.trigger_width_us));
-  PETRA_TRY(boolean(doc, obj, "camera", "triggered", out.triggered));
+  PETRA_TRY(boolean(doc, obj, "camera", "triggered", triggered));
+  return ok_status();
+}
+
+}  // namespace
+
+Result<V4l2CameraSection> parse_v4l2_camera(const json::Document& doc, std::uint32_t obj) {
+  if (doc.token(obj).type != Type::object)
+    return Error::make(Errc::wrong_type, "camera: expected an object");
+  V4l2CameraSection out;
+  V4l2StereoConfig& c = out.config;
+  StereoTiming& t = c.timing;
+  PETRA_TRY(layout_field(doc, obj, t));
+  PETRA_TRY(text(doc, obj, "camera", "left", c.left.device, true));
+  PETRA_TRY(
+      text(doc, obj, "camera", "right", c.right.device, t.layout == StereoLayout::two_devices));
+  PETRA_TRY(stereo_fields(doc, obj, V4l2Capture::kMaxBuffers, t, c.left.formats, c.left.buffers,
+                          out.triggered));
+  PETRA_TRY(integer(doc, obj, "camera", "fps", 0, 1000, c.left.fps));
+  c.right.formats = c.left.formats;
+  c.right.buffers = c.left.buffers;
+  c.right.fps = c.left.fps;
+  return out;
+}
+
+Result<LibcameraCameraSection> parse_libcamera_camera(const json::Document& doc,
+                                                      std::uint32_t obj) {
+  if (doc.token(obj).type != Type::object)
+    return Error::make(Errc::wrong_type, "camera: expected an object");
+  LibcameraCameraSection out;
+  LibcameraStereoConfig& c = out.config;
+  StereoTiming& t = c.timing;
+  PETRA_TRY(layout_field(doc, obj, t));
+  PETRA_TRY(text(doc, obj, "camera", "left", c.left.camera, true));
+  PETRA_TRY(
+      text(doc, obj, "camera", "right", c.right.camera, t.layout == StereoLayout::two_devices));
+  PETRA_TRY(stereo_fields(doc, obj, LibcameraCapture::kMaxBuffers, t, c.left.formats,
+                          c.left.buffers, out.triggered));
+  for (std::size_t k = 0; k < c.left.formats.size(); ++k)
+    if (c.left.formats[k] == PixelFormat::y16)
+      return Error::make(Errc::invalid_argument,
+                         "camera.formats[%zu]: Y16: libcamera has no 16-bit gray (GREY, YUYV, "
+                         "RGB24 or BGR24)",
+                         k);
+  c.right.formats = c.left.formats;
+  c.right.buffers = c.left.buffers;
   return out;
 }
 

@@ -9,11 +9,13 @@
 //            "estop": {"line": "estop", "active_low": true}}
 // A gpio line is a line name on the section's chip, or an object with its own
 // "chip", "line" and "active_low". Errors name the field ("camera.fps: ...").
+// "kind": "libcamera" takes the same fields but "fps" (parse_libcamera_camera).
 // Init only (heap-free, but not meant for the loop).
 #pragma once
 
 #include "algo/core/json_reader.hpp"
 #include "hal/gpio.hpp"
+#include "hal/libcamera_stereo_camera.hpp"
 #include "hal/v4l2_stereo_camera.hpp"
 
 namespace petra::hal {
@@ -26,6 +28,15 @@ struct V4l2CameraSection {
   bool triggered = false;
 };
 Result<V4l2CameraSection> parse_v4l2_camera(const json::Document& doc, std::uint32_t obj);
+
+// The same fields for "kind": "libcamera", except that "left" and "right" are
+// substrings of libcamera camera ids ("Sensor B"), there is no "fps", and Y16
+// is refused (libcamera has no 16-bit gray).
+struct LibcameraCameraSection {
+  LibcameraStereoConfig config;
+  bool triggered = false;
+};
+Result<LibcameraCameraSection> parse_libcamera_camera(const json::Document& doc, std::uint32_t obj);
 
 struct GpioSection {
   GpioLineConfig trigger;

@@ -1,10 +1,10 @@
 // Pictures an operator checks after `petra eval` (docs/icd.md):
 //   disparity.png: the ROI's disparity, colour-mapped (blue far, red near),
 //     black where there is no match, with a scale bar in px;
-//   overlay.png: the rectified left ROI tinted by class (ground, rock,
-//     shadow, each grind plane in its colour, rejected candidates grey),
-//     each accepted plane marked by its rank at its centroid with a stroke
-//     along its normal, the click (if any) as a cross, and a legend.
+//   overlay.png: the flight overlay's colours (algo/products: shadow, ground
+//     and each accepted grind plane tinted, rock as seen), scaled, each
+//     accepted plane marked by its rank at its centroid with a stroke along
+//     its normal, the click (if any) as a cross, and a legend.
 #pragma once
 
 #include "algo/pipeline.hpp"

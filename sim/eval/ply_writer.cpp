@@ -2,18 +2,10 @@
 
 #include <cstring>
 
+#include "algo/products.hpp"
 #include "sim/io/image_io.hpp"
-#include "tlm/palette.hpp"
 
 namespace petra::eval {
-
-Rgb class_colour(std::uint8_t c) {
-  // The one palette of every picture (tlm/palette.hpp).
-  const palette::Rgb8 p = c == kVertexGround ? palette::kGround
-                          : c == kVertexRock ? palette::kRock
-                                             : palette::plane_colour(c - kVertexPlane0);
-  return {p.r, p.g, p.b};
-}
 
 namespace {
 
@@ -41,7 +33,7 @@ std::string ply_bytes(const ReconstructionOutput& r, ConstGray8View left, bool w
     const float xyz[3] = {static_cast<float>(r.xyz_mm[i].x()), static_cast<float>(r.xyz_mm[i].y()),
                           static_cast<float>(r.xyz_mm[i].z())};
     put(out, xyz, sizeof xyz);  // x86-64 and aarch64 are little-endian
-    const Rgb c = class_colour(r.vertex_class[i]);
+    const palette::Rgb8 c = products::class_colour(r.vertex_class[i]);  // the one palette
     const int u = r.pixels[i].u, v = r.pixels[i].v;
     const std::uint8_t rgbg[4] = {c.r, c.g, c.b,
                                   left.in_bounds(u, v) ? left(u, v) : std::uint8_t{0}};

@@ -1,7 +1,8 @@
 // Binary little-endian PLY of the reconstruction for MeshLab / CloudCompare:
 // cloud.ply (vertices) and mesh.ply (vertices + triangles). Each vertex has
 // x, y, z (float, mm, world frame of calib.json), red/green/blue (its class
-// colour: ground, rock, or the grind plane it supports) and gray (the left
+// colour, products::class_colour: ground, rock, or the grind plane it
+// supports) and gray (the left
 // image's intensity there). docs/icd.md describes the layout.
 #pragma once
 
@@ -12,13 +13,6 @@
 #include "algo/reconstruction.hpp"
 
 namespace petra::eval {
-
-// Display colour of a vertex/triangle class (kVertexGround, kVertexRock,
-// kVertexPlane0 + rank), shared by the PLY files and overlay.png.
-struct Rgb {
-  std::uint8_t r, g, b;
-};
-Rgb class_colour(std::uint8_t vertex_class);
 
 // gray_of(i): intensity of point i.
 std::string ply_bytes(const ReconstructionOutput& result, ConstGray8View left_rectified,

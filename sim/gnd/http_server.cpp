@@ -10,11 +10,11 @@
 #include <sstream>
 #include <vector>
 
+#include "algo/palette.hpp"
 #include "cmd/commands.hpp"
 #include "sim/gnd/command_request.hpp"
 #include "sim/gnd/json_text.hpp"
 #include "sim/gnd/telemetry_history.hpp"
-#include "tlm/palette.hpp"
 
 namespace petra::gnd {
 

@@ -86,12 +86,10 @@ Result<StereoToolReport> run_stereo_tool(const StereoToolOptions& o) {
   if (o.shadow_fraction != 0.0) {
     PETRA_TRY(make_mask(in.left, roi, roi, o.shadow_fraction, mask_l, shadow_l));
     in.left_shadow = &shadow_l;
-    const Rect area = right_search_area(roi, o.disp_min, o.disp_max, W);
-    if (!area.empty()) {
-      // The right histogram covers an ROI-sized window at the middle disparity.
-      Rect hist = roi;
-      hist.x = std::clamp(roi.x - (o.disp_min + o.disp_max) / 2, 0, W - roi.w);
-      PETRA_TRY(make_mask(in.right, hist, area, o.shadow_fraction, mask_r, shadow_r));
+    const RightShadowWindows windows = right_shadow_windows(roi, o.disp_min, o.disp_max, W);
+    if (!windows.mask.empty()) {
+      PETRA_TRY(make_mask(in.right, windows.histogram, windows.mask, o.shadow_fraction, mask_r,
+                          shadow_r));
       in.right_shadow = &shadow_r;
     }
   }

@@ -134,6 +134,25 @@ TEST(Shadow, RandomImagesMaskAtLeastPAndOnlyTheDarkest) {
   }
 }
 
+// The right view's windows of a 100 px ROI at x = 300 of a 640 px image,
+// matched over 10..50 px: the histogram window is the ROI shifted by the
+// middle disparity (30), the mask the columns 250..389 the range reaches.
+TEST(Shadow, RightWindowsAreTheMiddleDisparityAndTheSearchArea) {
+  const Rect roi{300, 40, 100, 80};
+  const RightShadowWindows w = right_shadow_windows(roi, 10, 50, 640);
+  EXPECT_EQ(w.histogram.x, 270);
+  EXPECT_EQ(w.histogram.y, 40);
+  EXPECT_EQ(w.histogram.w, 100);
+  EXPECT_EQ(w.histogram.h, 80);
+  EXPECT_EQ(w.mask.x, 250);
+  EXPECT_EQ(w.mask.w, 140);
+  EXPECT_EQ(w.mask.h, 80);
+  // Near the left edge the histogram window is clamped into the image.
+  EXPECT_EQ(right_shadow_windows({10, 0, 100, 80}, 10, 50, 640).histogram.x, 0);
+  // A range that reaches no column: an empty mask area.
+  EXPECT_TRUE(right_shadow_windows({0, 0, 20, 10}, 30, 40, 640).mask.empty());
+}
+
 TEST(Shadow, AllocatesNothing) {
   Image img = ramp();
   std::vector<std::uint8_t> m(100);

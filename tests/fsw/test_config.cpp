@@ -51,6 +51,20 @@ TEST(Config, EveryErrorNamesTheField) {
        "camera.fps"},
       {R"({"uplink":{"key_file":"k"},"camera":{"kind":"v4l2","left":"a","right":"b","width":64,"height":48,"triggered":true}})",
        "gpio.trigger"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"libcamera","right":"b","width":64,"height":48}})",
+       "camera.left"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"libcamera","left":"a","width":64,"height":48}})",
+       "camera.right"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"libcamera","left":"a","layout":"side_by_side"}})",
+       "camera.width"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"libcamera","left":"a","layout":"stacked","width":64,"height":48}})",
+       "camera.layout"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"libcamera","left":"a","layout":"side_by_side","width":64,"height":48,"formats":["GREY","Y16"]}})",
+       "camera.formats[1]: Y16"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"libcamera","left":"a","layout":"side_by_side","width":64,"height":48,"buffers":9}})",
+       "camera.buffers"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"libcamera","left":"a","layout":"side_by_side","width":64,"height":48,"triggered":true}})",
+       "gpio.trigger"},
       {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"gpio":{"estop":"estop"}})",
        "gpio.estop"},
       {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"gpio":{"chip":"c","arm_power":7}})",
@@ -86,6 +100,8 @@ TEST(Config, UnknownKeysAreRefusedByName) {
       {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x","width":64}})", "camera.width"},
       {R"({"uplink":{"key_file":"k"},"camera":{"kind":"v4l2","left":"a","right":"b","width":64,"height":48,"fsp":5}})",
        "camera.fsp"},
+      {R"({"uplink":{"key_file":"k"},"camera":{"kind":"libcamera","left":"a","right":"b","width":64,"height":48,"fps":25}})",
+       "camera.fps"},
       {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"arm":{"can_interface":"can0","mnt":[0,0,0,0]}})",
        "arm.mnt"},
       {R"({"uplink":{"key_file":"k"},"camera":{"dir":"x"},"gpio":{"chip":"c","e_stop":"x"}})",
@@ -138,6 +154,40 @@ TEST(Config, AV4l2CameraAndTheGpioLinesAreReadForTheDevices) {
   ASSERT_TRUE(plain.ok());
   EXPECT_EQ(plain->camera_kind, CameraKind::file);
   EXPECT_FALSE(plain->gpio.has_estop || plain->gpio.has_arm_power || plain->gpio.has_trigger);
+}
+
+// The HIL bench's libcamera camera (vimc, one sensor carrying both views side
+// by side): the fields reach the libcamera backend's configuration.
+TEST(Config, ALibcameraCameraIsReadForTheDevices) {
+  auto c = parse(R"({"uplink":{"key_file":"k"},
+      "camera":{"kind":"libcamera","layout":"side_by_side","left":"Sensor B",
+                "width":636,"height":480,"formats":["GREY","YUYV"],"buffers":6,
+                "timeout_ms":2000,"max_skew_us":40000,"max_pair_frames":16}})");
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_EQ(c->camera_kind, CameraKind::libcamera);
+  const hal::LibcameraStereoConfig& lc = c->libcamera.config;
+  EXPECT_EQ(lc.timing.layout, hal::StereoLayout::side_by_side);
+  EXPECT_STREQ(lc.left.camera.data(), "Sensor B");
+  EXPECT_EQ(lc.timing.width, 636);
+  EXPECT_EQ(lc.timing.height, 480);
+  ASSERT_EQ(lc.left.formats.size(), 2u);
+  EXPECT_EQ(lc.left.formats[0], hal::PixelFormat::grey);
+  EXPECT_EQ(lc.left.formats[1], hal::PixelFormat::yuyv);
+  EXPECT_EQ(lc.left.buffers, 6);
+  EXPECT_EQ(lc.timing.timeout_ms, 2000);
+  EXPECT_EQ(lc.timing.max_skew_us, 40000);
+  EXPECT_EQ(lc.timing.max_pair_frames, 16);
+  EXPECT_FALSE(c->libcamera.triggered);
+  // Two cameras, triggered through the gpio line.
+  auto two = parse(R"({"uplink":{"key_file":"k"},
+      "camera":{"kind":"libcamera","left":"Sensor A","right":"Sensor B","width":64,"height":48,
+                "triggered":true},
+      "gpio":{"chip":"petra-hil","trigger":"cam_trigger"}})");
+  ASSERT_TRUE(two.ok()) << two.error().message;
+  EXPECT_EQ(two->libcamera.config.timing.layout, hal::StereoLayout::two_devices);
+  EXPECT_STREQ(two->libcamera.config.right.camera.data(), "Sensor B");
+  EXPECT_EQ(two->libcamera.config.right.formats.size(), 1u);  // GREY, as the left
+  EXPECT_TRUE(two->libcamera.triggered);
 }
 
 // Relative paths resolve against the file's folder: a path too long for the

@@ -13,6 +13,7 @@
 
 #include "algo/calib_json.hpp"
 #include "algo/pipeline.hpp"
+#include "algo/products.hpp"
 #include "sim/eval/eval_images.hpp"
 #include "sim/eval/planes_json.hpp"
 #include "sim/eval/ply_writer.hpp"
@@ -134,7 +135,7 @@ void products_are_well_formed(const PipelineOutput& run_out, const RectifiedPair
   EXPECT_GT(o.height, out->roi_rectified.h * (o.width / out->roi_rectified.w));
   // Every plane's colour appears in the overlay.
   for (int k = 0; k < r.planes.accepted; ++k) {
-    const eval::Rgb c = eval::class_colour(static_cast<std::uint8_t>(kVertexPlane0 + k));
+    const palette::Rgb8 c = products::class_colour(static_cast<std::uint8_t>(kVertexPlane0 + k));
     bool seen = false;
     for (int y = 0; y < o.height && !seen; ++y)
       for (int x = 0; x < o.width && !seen; ++x) {

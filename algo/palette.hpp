@@ -1,6 +1,7 @@
 // THE colours of the pictures an operator looks at: the onboard overlay
 // product (fsw), `petra eval`'s disparity.png, overlay.png and PLY colours
-// (sim/eval), and the ground station page (served as GET /api/palette).
+// (sim/eval), and the ground station page (served as GET /api/palette);
+// the pictures themselves are drawn once, by algo/products.
 // Grind plane colours are indexed by rank (the operator's plane k + 1 is
 // kPlanes[k]); shadow is a dark violet so it never reads as the blue plane.
 #pragma once
