@@ -45,18 +45,12 @@ flock "$cache/.lock" bash "$here/pack.sh" "$build" "$out" > "$out/pack.log" 2>&1
 t_pack=$(elapsed "$t1")
 . "$cache/current.env"
 kernel=$cache/$KVER/vmlinux
-# KVM where this machine lets us open it (several times faster), else TCG;
-# PETRA_HIL_ACCEL=tcg forces emulation. -cpu max: every feature the
-# accelerator offers (the kernel wants x86-64-v1 only).
-accel=tcg
-if [ "${PETRA_HIL_ACCEL:-auto}" != tcg ] && [ -r /dev/kvm ] && [ -w /dev/kvm ]; then accel=kvm; fi
-accel_opts=(-accel tcg,thread=multi)
-[ "$accel" = kvm ] && accel_opts=(-accel kvm -accel tcg,thread=multi)  # qemu falls back in order
-echo "hil: setup ${t_setup} s, pack ${t_pack} s ($(tail -1 "$out/pack.log")); booting $KVER under qemu ($accel)"
+echo "hil: setup ${t_setup} s, pack ${t_pack} s ($(tail -1 "$out/pack.log")); booting $KVER under qemu"
 
 t2=$(date +%s.%N)
+# -cpu max: the emulated CPU has every feature TCG offers (the kernel wants x86-64-v1 only).
 # The serial console is the guest's stdout; HIL lines are shown live, all of it is kept.
-timeout "${PETRA_HIL_TIMEOUT:-600}" qemu-system-x86_64 "${accel_opts[@]}" -cpu max -smp 2 -m 1536 \
+timeout "${PETRA_HIL_TIMEOUT:-600}" qemu-system-x86_64 -accel tcg,thread=multi -cpu max -smp 2 -m 1536 \
   -kernel "$kernel" -initrd "$out/initrd.cpio" \
   -append "console=ttyS0 quiet loglevel=3 panic=-1 ${PETRA_HIL_APPEND:-}" \
   -nographic -no-reboot -nodefaults -serial stdio -monitor none < /dev/null 2>&1 |
