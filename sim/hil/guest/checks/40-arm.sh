@@ -50,8 +50,10 @@ arm_more() {  # arm_more SECONDS PATTERN N: waits until more than N lines match
   done
   return 1
 }
-arm_show() {  # the last telemetry lines, for a failing check
+arm_show() {  # the last telemetry lines, for a failing check, and how stalled the guest was
   grep -v ' PRODUCT \| HK \| ARM_STATUS ' $A/tlm.txt | tail -${1:-12} | sed 's/^/  | /'
+  echo "  | stall: $(arm_count CYCLE_OVERRUN) CYCLE_OVERRUN events," \
+    "$(grep -o 'cycle_overruns=[0-9]*' $A/tlm.txt | tail -1)"
 }
 arm_leave_safe() {  # SET_MODE IDLE; true when COMPLETED
   local c
@@ -112,7 +114,7 @@ cat > $A/fsw.json << EOF
  "budget": {"image_width": ${W:-1024}, "image_height": ${H:-768}},
  "camera": {"kind": "file", "dir": "pairs"},
  $CALIB_LINE
- "arm": {"can_interface": "vcan0"},
+ "arm": {"can_interface": "vcan0", "heartbeat_timeout_ms": 2000},
  "gpio": {"chip": "petra-hil", "arm_power": "arm_power",
           "estop": {"line": "estop", "active_low": true}}}
 EOF
