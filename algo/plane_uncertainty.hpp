@@ -10,7 +10,7 @@
 // x correlation_px pixels), so N pixels hold N / correlation_px^2
 // independent measurements, each with sigma_d. Counted as independent, the
 // clean scene set's planes erred by a median 2.5 and up to 60 of their
-// sigmas (docs/performance.md).
+// sigmas (docs/log.md, 2026-12-03).
 // Linearised least squares about the plane (n, through `centre`), in the
 // frame (e1, e2, n): offset along n = a u + b v + c, Jacobian [u, v, 1].
 // Covariance = (sum w J^T J)^-1, scaled by the reduced chi-square of the
