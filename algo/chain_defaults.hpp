@@ -12,7 +12,7 @@ inline constexpr int kEnvelopeMaxPx = 320;
 
 // Expected shadow share of the ROI. Only the darkest 1 %: self-shadowed rock
 // faces are grind candidates and still match. Measured on the realistic set
-// (docs/performance.md "Shadow prior"): 0.1 gives the best shadow mask (IoU
+// (docs/matching.md "Shadow prior"): 0.1 gives the best shadow mask (IoU
 // 0.44 against 0.09) but worse planes (centroids on their facet 44 of 59
 // against 56), so the planes decide.
 inline constexpr double kShadowFraction = 0.01;

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Renders the simulator's standard scene set (or reuses it), runs `petra eval`
 # on every scene with the truth's ROI and plane count, scores each with
-# `petra score`, and prints one table row per scene plus the summary used in
-# docs/performance.md.
+# `petra score`, and prints one table row per scene (docs/reconstruction.md)
+# plus the summary used in docs/performance.md.
 #   toolchain/eval-scenes.sh [PETRA_BINARY] [WORK_DIR] [extra petra eval options...]
 # e.g. toolchain/eval-scenes.sh build/release/sim/petra out/eval-scenes --method gc
 # With DISPARITY=truth in the environment each scene replays its

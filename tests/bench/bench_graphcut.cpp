@@ -38,7 +38,7 @@ const MiddleburyData& scene(const std::string& name) {
 }
 
 // Overrides of the defaults for the exploration commands of
-// docs/performance.md ("Start and cycles").
+// docs/graphcut.md ("Why one guided and one full cycle").
 void apply_env_overrides(petra::GraphCutParams& p) {
   if (const char* c = std::getenv("PETRA_GC_CYCLES")) p.max_cycles = std::atoi(c);
   if (const char* c = std::getenv("PETRA_GC_START"))

@@ -1,4 +1,4 @@
-// Scene simulator speed (docs/performance.md, "Scene simulator"): the whole
+// Scene simulator speed (docs/scene.md, "Speed"): the whole
 // scene as `petra sim scene` renders it, and its parts, on one core.
 #include <benchmark/benchmark.h>
 

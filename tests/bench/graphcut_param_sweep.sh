@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The graph cut's energy parameters swept on the Middlebury pairs
-# (docs/performance.md, "A joint sweep of the energy's parameters"). Each line
+# (docs/graphcut.md, "Limits": the joint sweep of the energy's parameters). Each line
 # of the sweep runs the Explore test of sim_eval_test_graphcut_middlebury once
 # and prints its score line, prefixed with the setting. Two runs at a time (one
 # per core); about 10 minutes on 2 cores for the Baby1 grid.

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Reported plane sigmas against the errors measured on a scored scene set.
 
-docs/performance.md, "Grind planes in physical terms". Usage, after
+docs/reconstruction.md, "Grind planes in physical terms". Usage, after
 `toolchain/eval-scenes.sh PETRA WORK` has rendered and evaluated the clean set:
 
     python3 tests/bench/plane_sigma_check.py PETRA WORK

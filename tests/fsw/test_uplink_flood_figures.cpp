@@ -1,4 +1,4 @@
-// The uplink's figures on loopback (docs/performance.md "Uplink under bad
+// The uplink's figures on loopback (docs/executive.md "Uplink under bad
 // traffic"): the executive in its real 10 ms loop while another thread floods
 // its command port, paced, for PETRA_FLOOD_SECONDS (default 5) per phase:
 //   1. 300 empty datagrams/s, a signed NOOP every 250 ms: every NOOP must

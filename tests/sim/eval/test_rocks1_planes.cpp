@@ -12,9 +12,9 @@
 // (DISABLED_EveryPlaneLiesOnTheRealSurface, the issue's target, left in to be
 // switched on): the planes' fit to the real surface, 2.8-9.9 deg and up to
 // 2.8 mm for the planes on the faces, and one plane of the grey rock's
-// curved underside 87-90 deg off (docs/performance.md, "Rocks1"). The truth's
-// own quantisation (0.5 px) accounts for at most 2.2 deg of it: the rest is
-// the faces' curvature under the reported whole-face plane.
+// curved underside 87-90 deg off (docs/reconstruction.md, "Rocks1"). The
+// truth's own quantisation (0.5 px) accounts for at most 2.2 deg of it: the
+// rest is the faces' curvature under the reported whole-face plane.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -238,7 +238,7 @@ TEST_P(Rocks1, EveryRoiGivesPlanesFromTheClick) {
   // With the right view's gain changed the green rock (the last case) is still refused ("the
   // rock under the click is too small"), the DP map there being islands.
   // With the DP matcher the green rock's faces are now judged not grindable (too rough or too
-  // uncertain over the tool's footprint): reported in docs/performance.md, not asserted here.
+  // uncertain over the tool's footprint): reported in docs/reconstruction.md, not asserted here.
   const bool truth = GetParam() == Source::truth;
   for (const RoiCase& c : std::span(kCases).first(truth ? 3 : 2)) run_case(c, GetParam(), false);
 }

@@ -2,7 +2,7 @@
 // packets sent over UDP to `petra gnd serve`'s station, the station stopped
 // and started again half way on the same archive file; every packet is then
 // in the archive (counts per APID equal to those sent), raw bytes included.
-// Prints the insert and query figures (docs/performance.md); asserts none.
+// Prints the insert and query figures (docs/ops.md); asserts none.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
