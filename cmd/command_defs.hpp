@@ -7,7 +7,7 @@
 // FIELDS: F(type, name, count, unit, min, max, "meaning")
 #pragma once
 
-#include "cmd/field.hpp"
+#include "algo/wire/field.hpp"
 #include "cmd/mode.hpp"
 
 #define PETRA_SET_PARAM_FIELDS(F)                                             \

@@ -1,7 +1,7 @@
 #include "cmd/command_packet.hpp"
 
-#include "cmd/ccsds.hpp"
-#include "cmd/crc16.hpp"
+#include "algo/wire/ccsds.hpp"
+#include "algo/wire/crc16.hpp"
 
 namespace petra::cmd {
 

@@ -1,7 +1,7 @@
 #include "cmd/validator.hpp"
 
-#include "cmd/ccsds.hpp"
-#include "cmd/crc16.hpp"
+#include "algo/wire/ccsds.hpp"
+#include "algo/wire/crc16.hpp"
 #include "cmd/param_defs.hpp"
 
 namespace petra::cmd {

@@ -8,10 +8,10 @@
 #include <cstdint>
 #include <span>
 
+#include "algo/wire/reasons.hpp"
 #include "cmd/auth.hpp"
 #include "cmd/commands.hpp"
 #include "cmd/mode.hpp"
-#include "cmd/reasons.hpp"
 
 namespace petra::cmd {
 

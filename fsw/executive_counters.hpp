@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "cmd/reasons.hpp"
+#include "algo/wire/reasons.hpp"
 
 namespace petra::fsw {
 

@@ -11,7 +11,7 @@
 #include <array>
 #include <cstdint>
 
-#include "cmd/reasons.hpp"
+#include "algo/wire/reasons.hpp"
 
 namespace petra::fsw {
 

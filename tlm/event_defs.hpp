@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "cmd/reasons.hpp"
+#include "algo/wire/reasons.hpp"
 
 #define PETRA_EVENTS(X)                                                                       \
   X(BOOT_COMPLETE, 1, INFO,                                                                   \

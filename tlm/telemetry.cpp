@@ -1,6 +1,6 @@
 #include "tlm/telemetry.hpp"
 
-#include "cmd/crc16.hpp"
+#include "algo/wire/crc16.hpp"
 
 namespace petra::tlm {
 

@@ -12,7 +12,7 @@
 #include <variant>
 
 #include "algo/core/result.hpp"
-#include "cmd/ccsds.hpp"
+#include "algo/wire/ccsds.hpp"
 #include "tlm/tlm_defs.hpp"
 
 namespace petra::tlm {

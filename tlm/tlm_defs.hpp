@@ -6,7 +6,7 @@
 // FIELDS: F(type, name, count, unit, min, max, "meaning")
 #pragma once
 
-#include "cmd/field.hpp"
+#include "algo/wire/field.hpp"
 
 #define PETRA_U32_MAX 4294967295.0
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "algo/wire/reasons.hpp"
 #include "cmd/command_packet.hpp"
-#include "cmd/reasons.hpp"
 #include "hal/udp_link.hpp"
 #include "sim/cli/commands.hpp"
 #include "sim/ground/command_builder.hpp"

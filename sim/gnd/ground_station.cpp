@@ -4,9 +4,9 @@
 #include <type_traits>
 #include <vector>
 
+#include "algo/wire/reasons.hpp"
 #include "cmd/command_packet.hpp"
 #include "cmd/mode.hpp"
-#include "cmd/reasons.hpp"
 #include "sim/gnd/json_text.hpp"
 #include "sim/ground/command_builder.hpp"
 #include "sim/ground/tlm_format.hpp"

@@ -21,7 +21,7 @@ std::string format_json(const tlm::TmPacket& p, std::uint32_t missing_before = 0
 std::string event_text(const tlm::Event& e);
 // A refusal's detail in the operator's words: "field planes", "in mode SAFE",
 // "unknown parameter id 99" ("" when there is nothing to say). The detail's
-// meaning depends on the reason (cmd/reasons.hpp).
+// meaning depends on the reason (algo/wire/reasons.hpp).
 std::string refusal_detail(std::uint8_t function_code, std::uint8_t reason, std::uint16_t detail);
 
 }  // namespace petra::ground

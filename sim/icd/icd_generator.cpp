@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "cmd/ccsds.hpp"
+#include "algo/wire/ccsds.hpp"
 #include "cmd/commands.hpp"
 #include "cmd/param_defs.hpp"
 #include "tlm/event_defs.hpp"

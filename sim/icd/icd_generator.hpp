@@ -1,7 +1,7 @@
 // Generates the packet part of docs/icd.md and the XTCE file
 // docs/petra.xtce.xml from the packet definitions (cmd/command_defs.hpp,
 // tlm/tlm_defs.hpp, tlm/event_defs.hpp, cmd/param_defs.hpp, cmd/mode.hpp,
-// cmd/reasons.hpp), so the documents cannot drift from the code.
+// algo/wire/reasons.hpp), so the documents cannot drift from the code.
 // `petra icd` writes them; tests/sim/icd/test_icd_generator.cpp compares.
 #pragma once
 

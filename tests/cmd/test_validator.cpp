@@ -6,8 +6,8 @@
 #include <array>
 #include <vector>
 
+#include "algo/wire/crc16.hpp"
 #include "cmd/command_packet.hpp"
-#include "cmd/crc16.hpp"
 #include "cmd/param_defs.hpp"
 #include "tests/support/heap_counter.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <set>
 
-#include "cmd/crc16.hpp"
+#include "algo/wire/crc16.hpp"
 #include "tests/fsw/executive_harness.hpp"
 
 namespace petra::test {

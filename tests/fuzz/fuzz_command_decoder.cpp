@@ -12,9 +12,9 @@
 #include <cstring>
 #include <span>
 
-#include "cmd/ccsds.hpp"
+#include "algo/wire/ccsds.hpp"
+#include "algo/wire/crc16.hpp"
 #include "cmd/command_packet.hpp"
-#include "cmd/crc16.hpp"
 #include "cmd/validator.hpp"
 #include "tlm/telemetry.hpp"
 

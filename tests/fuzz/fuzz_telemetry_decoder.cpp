@@ -14,8 +14,8 @@
 #include <span>
 #include <variant>
 
-#include "cmd/ccsds.hpp"
-#include "cmd/crc16.hpp"
+#include "algo/wire/ccsds.hpp"
+#include "algo/wire/crc16.hpp"
 #include "tlm/telemetry.hpp"
 
 namespace {

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "algo/wire/reasons.hpp"
 #include "sim/ground/tlm_format.hpp"
-#include "cmd/reasons.hpp"
 #include "tlm/event_defs.hpp"
 
 namespace petra::ground {

@@ -12,7 +12,7 @@
 #include <span>
 #include <type_traits>
 
-#include "cmd/byte_io.hpp"
+#include "algo/wire/byte_io.hpp"
 
 namespace petra::wire {
 

@@ -1,4 +1,4 @@
-#include "cmd/crc16.hpp"
+#include "algo/wire/crc16.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "cmd/ccsds.hpp"
+#include "algo/wire/ccsds.hpp"
 
 namespace petra::wire {
 
