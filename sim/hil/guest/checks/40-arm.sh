@@ -2,7 +2,8 @@
 # arm's five simulated drives (`petra sim-arm --can vcan0`) on vcan0, its e-stop and arm
 # power on the gpio-sim chip, ground commands over UDP, `candump -L vcan0` logging every
 # frame for the checks; then petra-fsw taking its pairs from two vivid cameras while a
-# broken frame is injected and one camera is disconnected. One HIL line per check.
+# broken frame is injected and one camera is disconnected; last, petra-fsw taking them from
+# vimc through libcamera until vimc is unbound. One HIL line per check.
 
 A=/tmp/arm
 mkdir -p $A
@@ -288,6 +289,33 @@ else
 fi
 
 # --- the cameras: petra-fsw on vivid ------------------------------------------------------
+# The camera checks of petra-fsw on vivid and on vimc.
+# cam_acquires NAME SIZE: ACQUIRE completes, FRAME_ACQUIRED with views of SIZE ("640 x 480").
+cam_acquires() {
+  local a
+  a=$(arm_cmd ACQUIRE)
+  if arm_ack ACQUIRE "$a" COMPLETED 30 && arm_wait 5 "FRAME_ACQUIRED: .*\($2 px"; then
+    hil_pass "$1" "$(grep -o -E 'camera (v4l2|libcamera) [^,]*' $A/fsw.log | head -1)"
+  else
+    hil_fail "$1"
+    sed 's/^/  | /' $A/fsw.log | tail -5
+    arm_show
+  fi
+}
+# cam_gone_fails NAME LINE: the camera went away after telemetry line LINE; ACQUIRE fails,
+# the mode stays IDLE, no retry (a lost device would fail the same way).
+cam_gone_fails() {
+  local a
+  a=$(arm_cmd ACQUIRE)
+  if arm_ack ACQUIRE "$a" "FAILED CAMERA_ERROR" 30 && arm_wait 5 "CAMERA_FAULT: camera error io_error" &&
+    arm_mode_after "$2" IDLE 10; then
+    hil_pass "$1" "ACQUIRE FAILED CAMERA_ERROR, CAMERA_FAULT io_error, IDLE"
+  else
+    hil_fail "$1"
+    sed 's/^/  | /' $A/fsw.log | tail -5
+    arm_show
+  fi
+}
 # Two capture instances: vivid-001 and vivid-003 (spare, the one disconnected here).
 arm_dev() {  # /dev path of a video node by name
   for v in /sys/class/video4linux/video*; do
@@ -309,14 +337,7 @@ EOF
 if [ -z "$LEFT" ] || [ -z "$RIGHT" ]; then
   hil_fail system/v4l2-fsw-acquires "vivid-001/003 not found"
 elif arm_start_fsw $A/fsw-v4l2.json; then
-  a=$(arm_cmd ACQUIRE)
-  if arm_ack ACQUIRE "$a" COMPLETED 30 && arm_wait 5 "FRAME_ACQUIRED"; then
-    hil_pass system/v4l2-fsw-acquires "$(grep -o 'camera v4l2[^,]*' $A/fsw.log | head -1)"
-  else
-    hil_fail system/v4l2-fsw-acquires
-    sed 's/^/  | /' $A/fsw.log | tail -5
-    arm_show
-  fi
+  cam_acquires system/v4l2-fsw-acquires "640 x 480"
   # A broken frame (vivid flags the next buffer V4L2_BUF_FLAG_ERROR): refused, retried.
   faults=$(arm_count CAMERA_FAULT)
   v4l2-ctl -d "$RIGHT" -c inject_v4l2_buf_flag_error=1
@@ -327,17 +348,10 @@ elif arm_start_fsw $A/fsw-v4l2.json; then
     hil_fail system/broken-frame-retried "camera faults $faults -> $(arm_count CAMERA_FAULT)"
     arm_show
   fi
-  # The right camera disconnected: the command fails, mode unchanged (IDLE), no retry.
+  # The right camera disconnected.
   n=$(arm_lines)
   v4l2-ctl -d "$RIGHT" -c disconnect=1
-  a=$(arm_cmd ACQUIRE)
-  if arm_ack ACQUIRE "$a" "FAILED CAMERA_ERROR" 30 && arm_wait 5 "CAMERA_FAULT: camera error io_error" &&
-    arm_mode_after "$n" IDLE 10; then
-    hil_pass system/disconnected-camera-fails-commands "ACQUIRE FAILED CAMERA_ERROR, CAMERA_FAULT io_error, IDLE"
-  else
-    hil_fail system/disconnected-camera-fails-commands
-    arm_show
-  fi
+  cam_gone_fails system/disconnected-camera-fails-commands "$n"
   # The e-stop input works without an arm too: SAFE.
   n=$(arm_lines)
   echo pull-down > $GPIO_SIM/sim_gpio2/pull
@@ -352,3 +366,40 @@ else
   sed 's/^/  | /' $A/fsw.log | tail -5
 fi
 arm_stop
+
+# --- the camera through libcamera: petra-fsw on vimc ----------------------------------------
+# vimc's one sensor carries both views side by side (docs/hal.md), in RGB24 (it has no GREY);
+# its pipeline scales by 3, so a 636-pixel view is taken as is and a 640-pixel one (1280
+# wide) is changed.
+lc_config() {  # lc_config VIEW_WIDTH: the configuration, on stdout
+  cat << LC
+{"uplink": {"host": "127.0.0.1", "port": $CMD_PORT, "key_file": "petra.key"},
+ "downlink": {"host": "127.0.0.1", "port": $TLM_PORT},
+ "budget": {"image_width": $1, "image_height": 480, "arena_mb": 16},
+ "camera": {"kind": "libcamera", "layout": "side_by_side", "left": "Sensor B",
+            "width": $1, "height": 480, "formats": ["GREY", "RGB24", "BGR24"], "timeout_ms": 2000}}
+LC
+}
+# A size the camera changes stops petra-fsw at init, naming the camera and both sizes.
+lc_config 640 > $A/fsw-libcamera-640.json
+timeout 120 petra-fsw --config $A/fsw-libcamera-640.json 2> $A/fsw-libcamera-640.log
+rc=$?
+if [ $rc = 1 ] && grep -q 'camera (libcamera Sensor B).*configured 1280x480' $A/fsw-libcamera-640.log; then
+  hil_pass system/libcamera-size-changed-refused-at-init "$(grep -o 'format: .*' $A/fsw-libcamera-640.log | head -1)"
+else
+  hil_fail system/libcamera-size-changed-refused-at-init "exit $rc"
+  tail -5 $A/fsw-libcamera-640.log | sed 's/^/  | /'
+fi
+lc_config 636 > $A/fsw-libcamera.json
+if arm_start_fsw $A/fsw-libcamera.json; then
+  cam_acquires system/libcamera-fsw-acquires "636 x 480"
+  # vimc unbound from its driver under petra-fsw (no check after this one uses it).
+  n=$(arm_lines)
+  echo vimc.0 > /sys/bus/platform/drivers/vimc/unbind
+  cam_gone_fails system/libcamera-camera-gone-fails-commands "$n"
+else
+  hil_fail system/libcamera-fsw-acquires "petra-fsw did not boot"
+  sed 's/^/  | /' $A/fsw.log | tail -5
+fi
+arm_stop
+sed 's/^/  . /' $A/fsw.log | tail -1
