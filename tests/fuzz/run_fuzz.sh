@@ -25,6 +25,7 @@ case $what in
     runs=${5:--1}
     [ -x "$build/$target" ] || { echo "run_fuzz: $build/$target not built (run_fuzz.sh build)" >&2; exit 1; }
     mkdir -p "$build/corpus-$target"
+    build=$(cd "$build" && pwd)  # libFuzzer's -artifact_prefix is read after the cd below
     cd "$build"
     start=$(date +%s%N)
     set +e
