@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <span>
 
-#include "algo/chain_defaults.hpp"
+#include "algo/core/chain_defaults.hpp"
 
 #define PETRA_PARAMS(X)                                                                           \
   X(HK_PERIOD_MS, 1, "ms", 100, 60000, 1000, true, "housekeeping packet period")                  \

@@ -9,9 +9,9 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "algo/chain/pipeline_request.hpp"
 #include "algo/core/image_view.hpp"
 #include "algo/core/result.hpp"
-#include "algo/pipeline_request.hpp"
 #include "fsw/pipeline_job.hpp"
 #include "tlm/event_defs.hpp"
 #include "tlm/telemetry.hpp"

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "algo/calib_json.hpp"
+#include "algo/camera/calib_json.hpp"
 #include "hal/file_io.hpp"
 
 namespace petra::fsw {

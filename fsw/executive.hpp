@@ -19,7 +19,7 @@
 #include <cstdint>
 #include <memory>
 
-#include "algo/camera_model.hpp"
+#include "algo/camera/camera_model.hpp"
 #include "cmd/auth.hpp"
 #include "cmd/counter_store.hpp"
 #include "cmd/validator.hpp"

@@ -7,7 +7,7 @@
 #include <limits>
 #include <utility>
 
-#include "algo/products.hpp"
+#include "algo/chain/products.hpp"
 #include "cmd/param_defs.hpp"
 #include "fsw/memory_table.hpp"
 #include "fsw/step_slots.hpp"
@@ -77,7 +77,7 @@ tlm::GrindPlane plane_packet(const GrindPlane& g, double footprint_diameter_mm) 
   return p;
 }
 
-// The pictures: algo/products (the one palette, the drawing `petra eval` shares).
+// The pictures: algo/chain/products (the one palette, the drawing `petra eval` shares).
 Status make_products(const PipelineOutput& p, const RectifiedPair& pair, std::size_t max_cloud,
                      Arena& arena, EvalOutput& out) {
   const Rect roi = p.disparity.roi;

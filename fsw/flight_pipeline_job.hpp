@@ -1,4 +1,4 @@
-// The flight PipelineJob: the onboard chain (algo/pipeline) behind the
+// The flight PipelineJob: the onboard chain (algo/chain/pipeline) behind the
 // executive's interface (fsw/pipeline_job.hpp).
 //   init: builds the rectification tables once in the worker's arena
 //     (they stay for every run); with no calib.json it stays unready and
@@ -28,7 +28,7 @@
 
 #include <cstddef>
 
-#include "algo/pipeline.hpp"
+#include "algo/chain/pipeline.hpp"
 #include "fsw/pipeline_job.hpp"
 #include "hal/clock.hpp"
 
@@ -39,7 +39,7 @@ class FlightPipelineJob final : public PipelineJob {
   // Step times are read from `clock` (the executive's), on the worker thread.
   explicit FlightPipelineJob(const hal::Clock& clock) : clock_(&clock) {}
   const char* name() const override {
-    return "onboard chain (algo/pipeline, dp and graph-cut matchers)";
+    return "onboard chain (algo/chain/pipeline, dp and graph-cut matchers)";
   }
   std::size_t arena_bytes(const JobBudget& budget) const override;
   Status init(const JobBudget& budget, const StereoRig* rig, Arena& arena) override;

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "algo/delaunay.hpp"
+#include "algo/mesh/delaunay.hpp"
 #include "fsw/config.hpp"
 #include "fsw/flight_pipeline_job.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <cstddef>
 
-#include "algo/pipeline.hpp"
+#include "algo/chain/pipeline.hpp"
 
 namespace petra::fsw {
 

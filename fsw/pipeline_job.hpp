@@ -13,11 +13,11 @@
 #include <cstdint>
 #include <span>
 
+#include "algo/chain/pipeline_request.hpp"
 #include "algo/core/arena.hpp"
 #include "algo/core/fixed_vector.hpp"
 #include "algo/core/image_view.hpp"
 #include "algo/core/result.hpp"
-#include "algo/pipeline_request.hpp"
 #include "tlm/telemetry.hpp"
 #include "tlm/tlm_defs.hpp"
 
@@ -84,7 +84,7 @@ struct EvalOutput {
   double ground_d_mm = 0;
   std::uint32_t ground_points = 0;
   std::uint8_t segmentation = 0;       // SegmentMethod: 0 ground plane, 1 click region
-  float calib_vertical_offset_px = 0;  // calibration check (algo/calib_check)
+  float calib_vertical_offset_px = 0;  // calibration check (algo/camera/calib_check)
   float calib_spread_px = 0;
   std::uint16_t calib_features = 0;
   std::uint8_t calib_verdict = 0;  // CalibVerdict: 0 unknown, 1 ok, 2 drifted

@@ -1,10 +1,10 @@
-// Where each step of the onboard chain (algo/pipeline_steps.hpp) is counted
+// Where each step of the onboard chain (algo/core/pipeline_steps.hpp) is counted
 // among the step slots housekeeping and EVAL_RESULT carry (Step,
 // PETRA_PIPELINE_STEPS in tlm/tlm_defs.hpp). A switch without a default: the
 // compiler names any step added to the chain and not given a slot here.
 #pragma once
 
-#include "algo/pipeline_steps.hpp"
+#include "algo/core/pipeline_steps.hpp"
 #include "fsw/pipeline_job.hpp"
 
 namespace petra::fsw {

@@ -1,7 +1,7 @@
 // The arm service: turns ARM_GOTO / ARM_STOW / ABORT into motion of the five
 // CANopen drives and reports what the arm does.
 //   goto(plane): plan (IK, joint limits, standoff along the normal, straight
-//     approach; algo/arm_trajectory), then stream set-points each cycle:
+//     approach; algo/arm/arm_trajectory), then stream set-points each cycle:
 //     [retreat along the previous normal] -> joint move to the standoff ->
 //     straight approach -> settle; finally verify the reached pose from the
 //     drives' position feedback (forward kinematics) against the plane.
@@ -19,7 +19,7 @@
 #include <array>
 #include <cstdint>
 
-#include "algo/arm_trajectory.hpp"
+#include "algo/arm/arm_trajectory.hpp"
 #include "algo/core/fixed_vector.hpp"
 #include "hal/can.hpp"
 #include "hal/canopen/canopen_master.hpp"

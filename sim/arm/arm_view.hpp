@@ -4,7 +4,7 @@
 // read: an oblique 3-D view from beside the arm, the side view in the arm's
 // vertical plane (the pitch joints undistorted) and the top view; below them
 // the numbers (joint angles, approach speed and time) or the refusal reason.
-// Uses the flight planner (algo/arm_trajectory) so the picture shows exactly
+// Uses the flight planner (algo/arm/arm_trajectory) so the picture shows exactly
 // what ARM_GOTO would do.
 #pragma once
 
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "algo/arm_trajectory.hpp"
+#include "algo/arm/arm_trajectory.hpp"
 #include "sim/arm/canvas.hpp"
 #include "sim/score/planes_file.hpp"
 

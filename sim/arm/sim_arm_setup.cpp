@@ -1,7 +1,7 @@
 #include "sim/arm/sim_arm_setup.hpp"
 
+#include "algo/arm/kinematics.hpp"
 #include "algo/core/assert.hpp"
-#include "algo/kinematics.hpp"
 
 namespace petra::sim {
 

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <functional>
 
-#include "algo/camera_model.hpp"
+#include "algo/camera/camera_model.hpp"
 #include "sim/io/image_io.hpp"
 
 namespace petra::calib {

@@ -3,7 +3,7 @@
 // intrinsics of each camera (f, kappa1, principal point, sx), the pose of
 // each camera relative to camera 0 (the rig) and the pose of the board in
 // each view relative to camera 0. One camera and no rig is the single-camera
-// case. Residuals go through the full camera model (algo/camera_model),
+// case. Residuals go through the full camera model (algo/camera/camera_model),
 // distortion inverted exactly; Jacobians are analytic (the distortion's by
 // implicit differentiation); rotations are updated as R <- exp([d]x) R.
 // Pixel pitch dx, dy is never estimated: only f/dx and f/dy are observable.
@@ -13,7 +13,7 @@
 #include <array>
 #include <vector>
 
-#include "algo/camera_model.hpp"
+#include "algo/camera/camera_model.hpp"
 #include "algo/core/result.hpp"
 #include "sim/calib/levenberg_marquardt.hpp"
 

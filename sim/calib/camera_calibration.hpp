@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "algo/camera_model.hpp"
+#include "algo/camera/camera_model.hpp"
 #include "algo/core/result.hpp"
 #include "sim/calib/calib_bundle.hpp"
 #include "sim/calib/tsai_view.hpp"

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "algo/camera_model.hpp"
+#include "algo/camera/camera_model.hpp"
 #include "algo/core/result.hpp"
 #include "sim/calib/camera_calibration.hpp"
 

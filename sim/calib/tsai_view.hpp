@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "algo/camera_model.hpp"
+#include "algo/camera/camera_model.hpp"
 #include "algo/core/result.hpp"
 
 namespace petra::calib {

@@ -22,7 +22,7 @@
 #include <thread>
 #include <vector>
 
-#include "algo/kinematics.hpp"
+#include "algo/arm/kinematics.hpp"
 #include "hal/can_loopback.hpp"
 #include "hal/canopen/canopen_master.hpp"
 #include "hal/socketcan.hpp"

@@ -11,7 +11,7 @@
 
 #include <Eigen/Geometry>
 
-#include "algo/calib_json.hpp"
+#include "algo/camera/calib_json.hpp"
 #include "sim/calib/board_images.hpp"
 #include "sim/calib/format_text.hpp"
 #include "sim/calib/stereo_calibration.hpp"

@@ -9,8 +9,8 @@
 #include <exception>
 #include <string>
 
-#include "algo/calib_json.hpp"
-#include "algo/epipolar.hpp"
+#include "algo/camera/calib_json.hpp"
+#include "algo/camera/epipolar.hpp"
 #include "sim/cli/commands.hpp"
 #include "sim/io/image_io.hpp"
 

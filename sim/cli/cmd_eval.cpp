@@ -1,6 +1,6 @@
 // `petra eval --calib C --left L --right R --roi x,y,w,h --planes c
 //             [--click u,v] [--method dp|gc] [--shadow-fraction p] --out DIR`:
-// runs the onboard chain (algo/pipeline) on a stereo pair as the rover would,
+// runs the onboard chain (algo/chain/pipeline) on a stereo pair as the rover would,
 // writes planes.json, cloud.ply, mesh.ply, disparity.png and overlay.png into
 // DIR (docs/icd.md), and prints a summary like the paper's Table 1 with the
 // time of every step. Steps that run over a second report progress on stderr.
@@ -19,8 +19,8 @@
 #include <thread>
 #include <vector>
 
-#include "algo/calib_json.hpp"
-#include "algo/pipeline.hpp"
+#include "algo/camera/calib_json.hpp"
+#include "algo/chain/pipeline.hpp"
 #include "sim/cli/commands.hpp"
 #include "sim/eval/eval_images.hpp"
 #include "sim/eval/planes_json.hpp"

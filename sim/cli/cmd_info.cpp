@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "algo/calib_json.hpp"
+#include "algo/camera/calib_json.hpp"
 #include "sim/cli/commands.hpp"
 #include "sim/io/image_io.hpp"
 

@@ -79,8 +79,9 @@ void add_middlebury(CLI::App& app, Outcome& outcome) {
   cmd->add_option("--scene", o.scene,
                   "one scene (tsukuba, venus, sawtooth, map, teddy, cones, Aloe, Baby1, Rocks1)");
   cmd->add_flag("--no-edges", o.no_edges, "skip the edge constraint (for comparisons)");
-  cmd->add_flag("--normalise", o.normalise,
-                "map the right view's gray levels to the left's first (algo/match_photometric)");
+  cmd->add_flag(
+      "--normalise", o.normalise,
+      "map the right view's gray levels to the left's first (algo/stereo/match_photometric)");
   cmd->add_option("--perturb", o.perturb,
                   "change the right view before matching: gain,offset,sigma[,seed[,vignetting]] "
                   "(e.g. 0.82,12,2: another camera's gain and offset, noise sigma 2)");

@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 
-#include "algo/pipeline.hpp"
-#include "algo/shadow.hpp"
+#include "algo/chain/pipeline.hpp"
+#include "algo/stereo/shadow.hpp"
 #include "sim/cli/commands.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/score/planes_file.hpp"
@@ -85,7 +85,7 @@ const char* inconsistency(const ScoreArgs& a) {
   return nullptr;
 }
 
-// The onboard detector (algo/shadow: the darkest `fraction` of the region)
+// The onboard detector (algo/stereo/shadow: the darkest `fraction` of the region)
 // on `image` over `region`, as a full-size mask (255 = shadow).
 Result<io::GrayImage> onboard_shadow(const io::GrayImage& image, const Rect& region,
                                      double fraction) {

@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "algo/disparity.hpp"
+#include "algo/core/disparity.hpp"
 #include "sim/cli/commands.hpp"
 #include "sim/stereo/stereo_tool.hpp"
 
@@ -44,7 +44,7 @@ int run(const stereo::StereoToolOptions& o) {
 
 }  // namespace
 
-// The matchers' disparities are Q4 in int16 (algo/disparity.hpp): 2047 px at most.
+// The matchers' disparities are Q4 in int16 (algo/core/disparity.hpp): 2047 px at most.
 constexpr int kMaxDisparityPx = std::numeric_limits<std::int16_t>::max() / kDisparityScale;
 
 void add_stereo(CLI::App& app, Outcome& outcome) {

@@ -4,7 +4,7 @@
 // scorer and the peers in the benchmark.
 #pragma once
 
-#include "algo/disparity.hpp"
+#include "algo/core/disparity.hpp"
 #include "sim/io/image_io.hpp"
 
 namespace petra::eval {

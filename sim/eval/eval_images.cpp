@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "algo/products.hpp"
+#include "algo/chain/products.hpp"
 #include "sim/eval/tiny_font.hpp"
 
 namespace petra::eval {
@@ -99,7 +99,7 @@ io::RgbImage overlay_picture(const PipelineOutput& out, const RectifiedPair& pai
     draw_line(img, cx - 7, cy, cx + 7, cy, kWhite, 1);
     draw_line(img, cx, cy - 7, cx, cy + 7, kWhite, 1);
   }
-  // Legend: the classes algo/products tints (rock and refused candidates are as seen).
+  // Legend: the classes algo/chain/products tints (rock and refused candidates are as seen).
   const int ly = roi.h * s;
   fill_rect(img, 0, ly, img.width, legend_h, {30, 30, 30});
   int x = 4;

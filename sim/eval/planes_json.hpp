@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "algo/calib_check.hpp"
-#include "algo/reconstruction.hpp"
+#include "algo/camera/calib_check.hpp"
+#include "algo/chain/reconstruction.hpp"
 
 namespace petra::eval {
 

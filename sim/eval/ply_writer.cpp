@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include "algo/products.hpp"
+#include "algo/chain/products.hpp"
 #include "sim/io/image_io.hpp"
 
 namespace petra::eval {

@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <string>
 
+#include "algo/chain/reconstruction.hpp"
 #include "algo/core/result.hpp"
-#include "algo/reconstruction.hpp"
 
 namespace petra::eval {
 

@@ -1,9 +1,9 @@
-// Runs the onboard matcher (algo/match_dp) over a whole image pair with a
+// Runs the onboard matcher (algo/stereo/match_dp) over a whole image pair with a
 // budget sized for it, as the ground tools and the benchmark do; returns the
 // full-size float disparity (invalid = +inf).
 #pragma once
 
-#include "algo/match_dp.hpp"
+#include "algo/stereo/match_dp.hpp"
 #include "sim/io/image_io.hpp"
 
 namespace petra::eval {

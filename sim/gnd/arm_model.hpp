@@ -1,5 +1,5 @@
 // The arm as the ground station draws it: the same kinematics as the flight
-// arm service (algo/kinematics, algo/arm_trajectory) with the mount petra-fsw
+// arm service (algo/arm/kinematics, algo/arm/arm_trajectory) with the mount petra-fsw
 // is configured with, so the page's arm model follows ARM_STATUS joint
 // angles and a picked plane shows the pose the arm will plan for it.
 //   skeleton_json(joints): [[x,y,z] x 6] mm, world frame: base, shoulder,
@@ -12,9 +12,9 @@
 #include <string>
 #include <string_view>
 
-#include "algo/arm_trajectory.hpp"
+#include "algo/arm/arm_trajectory.hpp"
+#include "algo/arm/kinematics.hpp"
 #include "algo/core/result.hpp"
-#include "algo/kinematics.hpp"
 
 namespace petra::gnd {
 

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <vector>
 
-#include "algo/palette.hpp"
+#include "algo/chain/palette.hpp"
 #include "cmd/commands.hpp"
 #include "sim/gnd/command_request.hpp"
 #include "sim/gnd/json_text.hpp"

@@ -2,7 +2,7 @@
 // bridges it to the GroundStation.
 //   GET  /                      static page (web dir); /vendor/ npm-built assets
 //   GET  /api/info              command definitions (names, fields, ranges, units)
-//   GET  /api/palette           the picture colours (algo/palette.hpp), see palette_json()
+//   GET  /api/palette           the picture colours (algo/chain/palette.hpp), see palette_json()
 //   GET  /api/dictionary        every telemetry point (telemetry_history.hpp, for Open MCT)
 //   GET  /api/history?packet=P[&field=F]&start=MS&end=MS[&min_severity=N]
 //                               a point's or a packet kind's history from the archive
@@ -53,7 +53,7 @@ class HttpServer {
 
 // The body of GET /api/info.
 std::string info_json();
-// The body of GET /api/palette: algo/palette.hpp as "#rrggbb" strings
+// The body of GET /api/palette: algo/chain/palette.hpp as "#rrggbb" strings
 // {"planes":[..8..],"ground","rock","shadow","rejected","no_data","disparity_ramp":[..5..]}.
 std::string palette_json();
 

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "algo/camera_model.hpp"
+#include "algo/camera/camera_model.hpp"
 
 namespace petra::sim {
 

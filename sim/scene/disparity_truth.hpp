@@ -16,7 +16,7 @@
 
 #include <vector>
 
-#include "algo/rectify_geometry.hpp"
+#include "algo/camera/rectify_geometry.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/scene/scene.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-#include "algo/camera_model.hpp"
+#include "algo/camera/camera_model.hpp"
 #include "sim/scene/rng.hpp"
 
 namespace petra::sim {

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "algo/rectify_geometry.hpp"
+#include "algo/camera/rectify_geometry.hpp"
 #include "sim/scene/rig_builder.hpp"
 #include "sim/scene/rng.hpp"
 #include "sim/scene/rock_builder.hpp"

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "algo/camera_model.hpp"
+#include "algo/camera/camera_model.hpp"
 #include "algo/core/result.hpp"
 #include "sim/scene/convex_rock.hpp"
 #include "sim/scene/face_relief.hpp"

@@ -4,7 +4,7 @@
 #include <system_error>
 #include <vector>
 
-#include "algo/calib_json.hpp"
+#include "algo/camera/calib_json.hpp"
 
 namespace petra::sim {
 

@@ -6,7 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "algo/calib_json.hpp"
+#include "algo/camera/calib_json.hpp"
 #include "algo/core/json_writer.hpp"
 
 namespace petra::sim {

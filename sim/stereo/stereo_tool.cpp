@@ -4,10 +4,10 @@
 #include <chrono>
 #include <vector>
 
-#include "algo/calib_json.hpp"
-#include "algo/match_graphcut_bands.hpp"
-#include "algo/rectify.hpp"
-#include "algo/shadow.hpp"
+#include "algo/camera/calib_json.hpp"
+#include "algo/camera/rectify.hpp"
+#include "algo/stereo/match_graphcut_bands.hpp"
+#include "algo/stereo/shadow.hpp"
 #include "sim/eval/disparity_image.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/io/parse_roi.hpp"

@@ -9,8 +9,8 @@
 
 #include "algo/core/image_view.hpp"
 #include "algo/core/result.hpp"
-#include "algo/match_dp.hpp"
-#include "algo/match_graphcut.hpp"
+#include "algo/stereo/match_dp.hpp"
+#include "algo/stereo/match_graphcut.hpp"
 
 namespace petra::stereo {
 

@@ -6,7 +6,7 @@
 #include <memory>
 #include <numbers>
 
-#include "algo/arm_trajectory.hpp"
+#include "algo/arm/arm_trajectory.hpp"
 #include "hal/can_loopback.hpp"
 #include "hal/canopen/canopen_master.hpp"
 #include "sim/arm/sim_arm_bus.hpp"

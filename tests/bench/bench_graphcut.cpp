@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "algo/match_graphcut.hpp"
-#include "algo/match_graphcut_bands.hpp"
+#include "algo/stereo/match_graphcut.hpp"
+#include "algo/stereo/match_graphcut_bands.hpp"
 #include "sim/eval/disparity_image.hpp"
 #include "sim/eval/middlebury.hpp"
 #include "tests/bench/bench_middlebury.hpp"

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "algo/reconstruction.hpp"
+#include "algo/chain/reconstruction.hpp"
 #include "tests/support/synthetic_disparity.hpp"
 #include "tests/support/test_rig.hpp"
 

@@ -1,10 +1,10 @@
 // Cost of the two refinements after matching (docs/performance.md):
-//   BM_SubpixelDp_Roi160   window-SSD sub-pixel step (algo/disparity_subpixel)
+//   BM_SubpixelDp_Roi160   window-SSD sub-pixel step (algo/stereo/disparity_subpixel)
 //                          on the 160x160 ROI of teddy (the matchers' ROI
 //                          benchmark), whole-pixel truth as the input map;
 //                          args: window radius, search_px
 //   BM_PlanePhotometric/N  photometric refinement of one grind plane
-//                          (algo/plane_photometric) over N face pixels of a
+//                          (algo/surface/plane_photometric) over N face pixels of a
 //                          steep, weakly textured synthetic face
 // Run (one core):  taskset -c 1 build/release/tests/bench/bench_refine
 #include <benchmark/benchmark.h>
@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "algo/disparity_subpixel.hpp"
-#include "algo/plane_photometric.hpp"
+#include "algo/stereo/disparity_subpixel.hpp"
+#include "algo/surface/plane_photometric.hpp"
 #include "sim/eval/middlebury.hpp"
 
 namespace {

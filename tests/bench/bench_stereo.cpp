@@ -1,5 +1,5 @@
 // Stereo benchmark: accuracy and time of the edge-constrained DP matcher
-// (algo/match_dp) against OpenCV StereoSGBM and StereoBM in the same run,
+// (algo/stereo/match_dp) against OpenCV StereoSGBM and StereoBM in the same run,
 // on the eight Middlebury scenes of ../shared/data (bad-1 counters, strict
 // and filled, nonocc and all, convention of sim/eval/middlebury.hpp), plus
 // the speed targets of docs/performance.md:
@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "algo/match_dp.hpp"
-#include "algo/rectify.hpp"
-#include "algo/shadow.hpp"
+#include "algo/camera/rectify.hpp"
+#include "algo/stereo/match_dp.hpp"
+#include "algo/stereo/shadow.hpp"
 #include "sim/eval/disparity_image.hpp"
 #include "sim/eval/middlebury.hpp"
 #include "tests/bench/bench_middlebury.hpp"

@@ -1,6 +1,6 @@
 // libFuzzer target over the JSON reader and the two documents it reads from
 // outside the flight code's control: the service configuration
-// (fsw/config: parse_config) and the calibration (algo/calib_json).
+// (fsw/config: parse_config) and the calibration (algo/camera/calib_json).
 // Properties: no crash or sanitizer report; a parsed document's tokens lie
 // inside the text and each token's subtree ends after it.
 #include <cstddef>
@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "algo/calib_json.hpp"
+#include "algo/camera/calib_json.hpp"
 #include "algo/core/json_reader.hpp"
 #include "fsw/config.hpp"
 

@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "algo/disparity.hpp"
-#include "algo/rectify_geometry.hpp"
+#include "algo/camera/rectify_geometry.hpp"
+#include "algo/core/disparity.hpp"
 #include "tests/support/synthetic_scene.hpp"
 
 namespace petra::test {

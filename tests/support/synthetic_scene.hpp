@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "algo/cloud.hpp"
 #include "algo/core/image_view.hpp"
+#include "algo/mesh/cloud.hpp"
 
 namespace petra::test {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <random>
 
-#include "algo/camera_model.hpp"
+#include "algo/camera/camera_model.hpp"
 
 namespace petra::test {
 

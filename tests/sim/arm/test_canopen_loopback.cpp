@@ -8,7 +8,7 @@
 #include <numbers>
 #include <vector>
 
-#include "algo/kinematics.hpp"
+#include "algo/arm/kinematics.hpp"
 #include "hal/can_loopback.hpp"
 #include "hal/canopen/canopen_master.hpp"
 #include "sim/arm/sim_arm_bus.hpp"

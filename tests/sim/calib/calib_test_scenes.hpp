@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "algo/camera_model.hpp"
+#include "algo/camera/camera_model.hpp"
 #include "sim/calib/board_renderer.hpp"
 #include "sim/calib/stereo_calibration.hpp"
 

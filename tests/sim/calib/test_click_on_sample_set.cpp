@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "algo/epipolar.hpp"
+#include "algo/camera/epipolar.hpp"
 #include "sim/calib/board_images.hpp"
 #include "sim/calib/stereo_calibration.hpp"
 #include "sim/io/image_io.hpp"

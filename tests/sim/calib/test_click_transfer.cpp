@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "algo/epipolar.hpp"
+#include "algo/camera/epipolar.hpp"
 #include "sim/calib/board_renderer.hpp"
 #include "tests/sim/calib/calib_test_scenes.hpp"
 

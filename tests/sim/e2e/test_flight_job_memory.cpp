@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "algo/calib_json.hpp"
+#include "algo/camera/calib_json.hpp"
 #include "cmd/param_defs.hpp"
 #include "fsw/flight_pipeline_job.hpp"
 #include "sim/io/image_io.hpp"

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "algo/calib_json.hpp"
-#include "algo/pipeline.hpp"
+#include "algo/camera/calib_json.hpp"
+#include "algo/chain/pipeline.hpp"
 #include "cmd/param_defs.hpp"
 #include "fsw/flight_pipeline_job.hpp"
 #include "sim/io/image_io.hpp"

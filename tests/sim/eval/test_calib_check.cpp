@@ -1,8 +1,8 @@
-// The calibration check (algo/calib_check) on real pairs: the rectified
+// The calibration check (algo/camera/calib_check) on real pairs: the rectified
 // Middlebury pairs (row offset ~0), the same pairs with the right image
 // shifted down by a known amount, and the uncalibrated Mars pair whose
 // PROVENANCE gives a vertical offset median of -2.4 px (feature matches).
-#include "algo/calib_check.hpp"
+#include "algo/camera/calib_check.hpp"
 
 #include <gtest/gtest.h>
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "algo/calib_json.hpp"
+#include "algo/camera/calib_json.hpp"
+#include "algo/chain/pipeline.hpp"
 #include "algo/core/arena.hpp"
-#include "algo/pipeline.hpp"
 #include "sim/eval/planes_json.hpp"
 #include "sim/scene/scene_render.hpp"
 #include "sim/scene/scene_set.hpp"

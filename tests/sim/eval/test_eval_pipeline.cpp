@@ -1,4 +1,4 @@
-// The onboard chain (algo/pipeline) and `petra eval`'s products on a scene
+// The onboard chain (algo/chain/pipeline) and `petra eval`'s products on a scene
 // from the simulator's standard set, scored against its truth: plane count,
 // normal and centroid errors, zero heap in the steady state, the named
 // refusals, and the files (planes.json, PLY, PNG) an operator gets.
@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "algo/calib_json.hpp"
-#include "algo/pipeline.hpp"
-#include "algo/products.hpp"
+#include "algo/camera/calib_json.hpp"
+#include "algo/chain/pipeline.hpp"
+#include "algo/chain/products.hpp"
 #include "sim/eval/eval_images.hpp"
 #include "sim/eval/planes_json.hpp"
 #include "sim/eval/ply_writer.hpp"

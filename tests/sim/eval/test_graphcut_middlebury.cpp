@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "algo/match_graphcut.hpp"
+#include "algo/stereo/match_graphcut.hpp"
 #include "sim/eval/disparity_image.hpp"
 #include "sim/eval/middlebury.hpp"
 

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "algo/calib_json.hpp"
-#include "algo/camera_model.hpp"
-#include "algo/pipeline.hpp"
+#include "algo/camera/calib_json.hpp"
+#include "algo/camera/camera_model.hpp"
+#include "algo/chain/pipeline.hpp"
 #include "sim/io/image_io.hpp"
 #include "tests/support/eval_budget.hpp"
 

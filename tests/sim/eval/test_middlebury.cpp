@@ -217,7 +217,7 @@ double dp_filled_nonocc(const char* name, const Perturbation& change, bool norma
 }
 
 // The right camera with another gain (0.82) and offset (+12 gray levels):
-// with the gray-level normalisation (algo/match_photometric) the DP matcher
+// with the gray-level normalisation (algo/stereo/match_photometric) the DP matcher
 // stays within 1 point of its figure on the original pair (measured: +0.02
 // to +0.36 on the nine pairs, docs/performance.md "Camera differences").
 // Without it Baby1 loses several points, so the bound can fail.

@@ -26,9 +26,9 @@
 #include <string>
 #include <vector>
 
-#include "algo/calib_json.hpp"
-#include "algo/pipeline.hpp"
-#include "algo/plane_fit.hpp"
+#include "algo/camera/calib_json.hpp"
+#include "algo/chain/pipeline.hpp"
+#include "algo/surface/plane_fit.hpp"
 #include "sim/io/image_io.hpp"
 #include "tests/support/eval_budget.hpp"
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "algo/rectify_geometry.hpp"
+#include "algo/camera/rectify_geometry.hpp"
 #include "independent_scene_check.hpp"
 #include "sim/scene/disparity_truth.hpp"
 #include "sim/scene/render_view.hpp"

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "algo/calib_json.hpp"
+#include "algo/camera/calib_json.hpp"
 #include "sim/scene/scene_render.hpp"
 #include "sim/scene/scene_set.hpp"
 #include "sim/score/truth_file.hpp"

@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <string>
 
-#include "algo/rectify_geometry.hpp"
+#include "algo/camera/rectify_geometry.hpp"
 #include "sim/scene/camera_rays.hpp"
 #include "sim/scene/ray_cast.hpp"
 #include "sim/scene/scene_render.hpp"

@@ -11,7 +11,7 @@
 
 #include <unistd.h>
 
-#include "algo/calib_json.hpp"
+#include "algo/camera/calib_json.hpp"
 #include "sim/eval/middlebury.hpp"
 #include "sim/io/image_io.hpp"
 

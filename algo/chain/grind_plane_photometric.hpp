@@ -1,0 +1,31 @@
+// Photometric refinement of the ranked grind planes (algo/surface/plane_photometric)
+// after reconstruction: each plane's face pixels (the points labelled with
+// its rank, border left out), its 3-D plane turned into the rectified
+// disparity plane, refined on the gray levels of both images, and turned
+// back. The normal turns by the refinement's rotation; the centroid moves
+// along its viewing ray onto the refined plane. Area, flatness, triangle
+// count, verdicts and ranking stay those of the mesh.
+// Inputs:  rectified pair geometry and images (right valid in right_valid),
+//          the reconstruction output (pixels, vertex classes, planes).
+// Output:  out.planes refined in place (accepted and rejected); how many of
+//          the accepted planes were refined.
+// Memory:  arena scratch of ROI area x (1 + sizeof(PixelPos)) + 8 x ROI height
+//          bytes (grind_photometric_scratch_bytes), released.
+#pragma once
+
+#include <cstddef>
+
+#include "algo/chain/reconstruction.hpp"
+#include "algo/core/arena.hpp"
+#include "algo/surface/plane_photometric.hpp"
+
+namespace petra {
+
+std::size_t grind_photometric_scratch_bytes(int roi_width, int roi_height);
+
+Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray8View left,
+                                            ConstGray8View right, Rect right_valid,
+                                            const PhotometricPlaneParams& params,
+                                            ReconstructionOutput& out, Arena& arena);
+
+}  // namespace petra

@@ -1,0 +1,358 @@
+#include "algo/chain/reconstruction.hpp"
+
+#include <algorithm>
+
+#include "algo/mesh/triangulate.hpp"
+
+namespace petra {
+
+namespace {
+
+constexpr std::size_t kSlackPerAllocation = 64;  // alignment padding, generous
+constexpr std::size_t kAllocations = 32;
+
+template <class T>
+std::size_t bytes_for(std::size_t n) {
+  return n * sizeof(T) + alignof(T);
+}
+
+std::size_t roi_px(const ReconstructionBudget& b) {
+  return static_cast<std::size_t>(b.max_roi_width) * static_cast<std::size_t>(b.max_roi_height);
+}
+
+std::size_t max_triangles(const ReconstructionBudget& b) {
+  return delaunay_max_triangles(b.max_points);
+}
+
+std::size_t persistent_bytes(const ReconstructionBudget& b) {
+  const std::size_t n = b.max_points, t = max_triangles(b);
+  const std::size_t roi =
+      static_cast<std::size_t>(b.max_roi_width) * static_cast<std::size_t>(b.max_roi_height);
+  return bytes_for<std::int16_t>(roi) + 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<PixelPos>(n) +
+         bytes_for<PointClass>(n) + bytes_for<std::uint8_t>(n) + bytes_for<MeshTriangle>(t) +
+         bytes_for<std::uint8_t>(t);
+}
+
+std::size_t transient_bytes(const ReconstructionBudget& b) {
+  const std::size_t n = b.max_points, t = max_triangles(b);
+  const std::size_t filter =
+      std::max(mean_filter_scratch_bytes(b.max_roi_width), bytes_for<std::int16_t>(roi_px(b)));
+  const std::size_t delaunay =
+      bytes_for<IntPoint>(n) +
+      delaunay_scratch_bytes(n, static_cast<std::size_t>(b.max_roi_height));
+  const std::size_t mesh = mesh_filter_scratch_bytes(t);
+  const std::size_t roi =
+      static_cast<std::size_t>(b.max_roi_width) * static_cast<std::size_t>(b.max_roi_height);
+  const std::size_t normals =
+      bytes_for<Eigen::Vector3d>(roi) + surface_normals_scratch_bytes(b.max_roi_width);
+  const std::size_t grind = bytes_for<MeshTriangle>(t) + bytes_for<std::int32_t>(t) +
+                            bytes_for<std::uint8_t>(t) +
+                            std::max(mesh_filter_scratch_bytes(t), grind_planes_scratch_bytes(t));
+  const std::size_t region = click_region_scratch_bytes(n, t);
+  return std::max(std::max(std::max(filter, delaunay), region),
+                  std::max(std::max(mesh, normals), grind));
+}
+
+// The clicked point: the cloud point nearest the click within the radius
+// that has a surface normal and a mesh triangle (an isolated point grows nothing).
+std::size_t clicked_point(const ReconstructionOutput& out, const ClickPx& click, int radius) {
+  const std::span<const PixelPos> px = out.pixels;
+  std::size_t best = px.size();
+  long best_d2 = static_cast<long>(radius) * radius;
+  for (std::size_t i = 0; i < px.size(); ++i) {
+    const long du = px[i].u - click.u, dv = px[i].v - click.v;
+    if (du * du + dv * dv <= best_d2 && out.normals[i].squaredNorm() > 0.0 &&
+        out.vertex_class[i] == 1) {
+      best = i;
+      best_d2 = du * du + dv * dv;
+    }
+  }
+  return best;
+}
+
+// No ground: the rock is the region grown from the click; "ground" becomes
+// the plane of the points around it (its RMS says how far from a plane).
+Status segment_from_click(const ReconstructionRequest& request, const ReconstructionParams& params,
+                          const Error& no_ground, Arena& arena, ReconstructionOutput& out) {
+  // Mark the points that some kept triangle uses (vertex_class as scratch; set again later).
+  for (std::uint8_t& v : out.vertex_class) v = 0;
+  for (const MeshTriangle& t : out.mesh)
+    for (int k = 0; k < 3; ++k) out.vertex_class[static_cast<std::size_t>(t.v[k])] = 1;
+  // The clicked point, else the next nearest within the radius (up to 8):
+  // a point on a small island of the map grows too little.
+  std::size_t seed = out.pixels.size();
+  Result<ClickRegionResult> r = no_ground;
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    const std::size_t c = clicked_point(out, request.click, params.ground.click_radius_px);
+    if (c == out.pixels.size()) break;
+    seed = c;
+    out.vertex_class[c] = 2;  // tried
+    r = grow_click_region(out.xyz_mm, out.normals, out.mesh, seed, params.click_region,
+                          out.point_class, arena);
+    if (r || r.code() != Errc::no_solution) break;
+  }
+  if (seed == out.pixels.size()) return no_ground;  // segment_ground names the click's problem
+  if (!r) return r.error();
+  out.segmentation = SegmentMethod::click_region;
+  out.click_region = *r;
+  GroundResultT<double>& g = out.ground;
+  g = {};
+  g.click_point = seed;
+  g.rock_points = r->points;
+  g.ground_points = out.xyz_mm.size() - r->points;
+  auto f = fit_plane_tls_by<double>(
+      out.xyz_mm.size(), [&](std::size_t i) -> const Eigen::Vector3d& { return out.xyz_mm[i]; },
+      [&](std::size_t i) { return out.point_class[i] == PointClass::ground; });
+  if (f) {
+    g.plane = f->plane;
+    g.rms_mm = f->rms;
+  }
+  return {};
+}
+
+// The smallest pixel stride (in both directions, from the ROI's corner) on
+// which the map's valid disparities fit `capacity` points.
+int point_stride(ImageView<const std::int16_t> q4, std::size_t capacity) {
+  for (int s = 1;; ++s) {
+    std::size_t count = 0;
+    for (int y = 0; y < q4.height(); y += s)
+      for (int x = 0; x < q4.width(); x += s) count += is_valid_disparity(q4(x, y)) ? 1 : 0;
+    if (count <= capacity) return s;
+  }
+}
+
+// `map` with the disparities off the stride grid invalid, into `out`.
+ConstDisparityMap on_stride(ConstDisparityMap map, int s, std::span<std::int16_t> out) {
+  const int w = map.q4.width(), h = map.q4.height();
+  ImageView<std::int16_t> v(out.data(), w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      v(x, y) = (x % s == 0 && y % s == 0) ? map.q4(x, y) : kInvalidDisparity;
+  return {ImageView<const std::int16_t>(out.data(), w, h), map.roi};
+}
+
+}  // namespace
+
+const char* segment_method_name(SegmentMethod m) {
+  return m == SegmentMethod::click_region ? "click_region" : "ground_plane";
+}
+
+Status validate(const ReconstructionBudget& b) {
+  if (b.max_roi_width < 8 || b.max_roi_width > 8192 || b.max_roi_height < 8 ||
+      b.max_roi_height > 8192)
+    return Error::make(Errc::invalid_argument, "budget: max ROI %dx%d not within 8..8192",
+                       b.max_roi_width, b.max_roi_height);
+  if (b.max_points < 16 || b.max_points > (std::size_t{1} << 24))
+    return Error::make(Errc::invalid_argument, "budget: max_points %zu not within 16..2^24",
+                       b.max_points);
+  return {};
+}
+
+std::size_t reconstruction_arena_bytes(const ReconstructionBudget& b) {
+  return persistent_bytes(b) + transient_bytes(b) + kAllocations * kSlackPerAllocation;
+}
+
+Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPair& rect,
+                                         ConstDisparityMap disparity,
+                                         const ReconstructionRequest& request,
+                                         const ReconstructionParams& params,
+                                         const ReconstructionBudget& budget, Arena& arena,
+                                         const StepClock& clock, StepTimings& timings) {
+  PETRA_TRY(validate(budget));
+  const int w = disparity.q4.width(), h = disparity.q4.height();
+  if (w > budget.max_roi_width || h > budget.max_roi_height)
+    return Error::make(Errc::capacity_exceeded,
+                       "reconstruction: ROI %dx%d exceeds the budget %dx%d", w, h,
+                       budget.max_roi_width, budget.max_roi_height);
+  if (request.planes < 1 || request.planes > kMaxClasses)
+    return Error::make(Errc::out_of_range, "reconstruction: c = %d planes, must be 1..%d",
+                       request.planes, kMaxClasses);
+  ReconstructionOutput out;
+  ReconstructionStats& st = out.stats;
+
+  // Disparity range of the input (Table 1).
+  {
+    bool any = false;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const std::int16_t q = disparity.q4(x, y);
+        if (!is_valid_disparity(q)) continue;
+        const double d = disparity_px(q);
+        st.disparity_min_px = any ? std::min(st.disparity_min_px, d) : d;
+        st.disparity_max_px = any ? std::max(st.disparity_max_px, d) : d;
+        any = true;
+      }
+  }
+
+  // Mean filter.
+  auto filtered = arena.allocate<std::int16_t>(
+      static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "filtered disparity");
+  if (!filtered) return filtered.error();
+  out.filtered = {ImageView<std::int16_t>(filtered->data(), w, h), disparity.roi};
+  PETRA_TRY(checkpoint(clock, PipelineStep::mean_filter));
+  {
+    StepTimer timer(clock, timings, PipelineStep::mean_filter);
+    auto f = mean_filter_disparity(disparity, out.filtered, params.filter, arena);
+    if (!f) return f.error();
+    st.dense_points = f->before;
+    st.filtered_points = f->after;
+  }
+
+  // Triangulation (eq. 8).
+  const std::size_t n_max = budget.max_points;
+  auto xyz = arena.allocate<Eigen::Vector3d>(n_max, "cloud positions");
+  if (!xyz) return xyz.error();
+  auto px = arena.allocate<PixelPos>(n_max, "cloud pixels");
+  if (!px) return px.error();
+  std::size_t n = 0;
+  PETRA_TRY(checkpoint(clock, PipelineStep::triangulate));
+  {
+    StepTimer timer(clock, timings, PipelineStep::triangulate);
+    // Above the points budget: a regular subset of the pixels (the normals
+    // and the products keep the whole filtered map).
+    ConstDisparityMap input = out.filtered;
+    ArenaScope scope(arena);
+    st.point_stride = point_stride(input.q4, n_max);
+    if (st.point_stride > 1) {
+      auto thinned = arena.allocate<std::int16_t>(
+          static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "disparity on the stride");
+      if (!thinned) return thinned.error();
+      input = on_stride(input, st.point_stride, *thinned);
+    }
+    auto t = triangulate_disparity(rig, rect, input, *xyz, *px);
+    if (!t) return t.error();
+    n = t->points;
+    st.triangulated = t->points;
+    st.triangulation_rejected = t->rejected;
+  }
+  out.xyz_mm = xyz->first(n);
+  out.pixels = px->first(n);
+  if (n < 3)
+    return Error::make(Errc::degenerate, "reconstruction: %zu 3-D points, need at least 3", n);
+
+  // Delaunay in the rectified left image, lifted, discontinuities removed.
+  auto mesh = arena.allocate<MeshTriangle>(delaunay_max_triangles(n), "mesh");
+  if (!mesh) return mesh.error();
+  std::size_t nt = 0;
+  PETRA_TRY(checkpoint(clock, PipelineStep::delaunay));
+  {
+    StepTimer timer(clock, timings, PipelineStep::delaunay);
+    ArenaScope scope(arena);
+    auto ip = arena.allocate<IntPoint>(n, "delaunay points");
+    if (!ip) return ip.error();
+    for (std::size_t i = 0; i < n; ++i) (*ip)[i] = {out.pixels[i].u, out.pixels[i].v};
+    auto d = delaunay_triangulate(*ip, *mesh, arena);
+    if (!d) return d.error();
+    nt = d->triangles;
+    st.delaunay_triangles = d->triangles;
+    st.duplicates = d->duplicates;
+  }
+  PETRA_TRY(checkpoint(clock, PipelineStep::mesh_filter));
+  {
+    StepTimer timer(clock, timings, PipelineStep::mesh_filter);
+    auto f = remove_discontinuities(out.xyz_mm, camera_centre_world(rig.left), params.mesh,
+                                    mesh->first(nt), arena);
+    if (!f) return f.error();
+    st.mesh = *f;
+    nt = f->kept;
+  }
+  out.mesh = mesh->first(nt);
+
+  // Smoothed surface normals per point, from the filtered disparity.
+  auto normals = arena.allocate<Eigen::Vector3d>(n, "point normals");
+  if (!normals) return normals.error();
+  out.normals = *normals;
+  PETRA_TRY(checkpoint(clock, PipelineStep::normals));
+  {
+    StepTimer timer(clock, timings, PipelineStep::normals);
+    ArenaScope scope(arena);
+    auto grid = arena.allocate<Eigen::Vector3d>(
+        static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "pixel normals");
+    if (!grid) return grid.error();
+    PETRA_TRY(surface_normals(out.filtered, rect.left, params.normals, *grid, arena));
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t at = static_cast<std::size_t>(out.pixels[i].v - disparity.roi.y) *
+                                 static_cast<std::size_t>(w) +
+                             static_cast<std::size_t>(out.pixels[i].u - disparity.roi.x);
+      out.normals[i] = (*grid)[at];
+    }
+  }
+
+  // Rock / ground.
+  auto pclass = arena.allocate<PointClass>(n, "point classes");
+  if (!pclass) return pclass.error();
+  out.point_class = *pclass;
+  auto vclass = arena.allocate<std::uint8_t>(n, "vertex classes");
+  if (!vclass) return vclass.error();
+  out.vertex_class = *vclass;
+  PETRA_TRY(checkpoint(clock, PipelineStep::segmentation));
+  {
+    StepTimer timer(clock, timings, PipelineStep::segmentation);
+    GroundFailure why = GroundFailure::none;
+    const StereoNoise noise{rect.left.f_px, rect.baseline_mm};
+    auto g = segment_ground<double>(out.xyz_mm, out.pixels, disparity.roi, request.click,
+                                    camera_centre_world(rig.left), params.ground, out.point_class,
+                                    noise, &why);
+    if (g) {
+      out.ground = *g;
+    } else if (why != GroundFailure::no_ground) {
+      return g.error();
+    } else if (!request.click.present) {
+      return Error::make(g.code(), "%s; click on the rock", g.error().message);
+    } else {
+      PETRA_TRY(segment_from_click(request, params, g.error(), arena, out));
+    }
+  }
+
+  // Grind planes on the rock triangles.
+  auto mclass = arena.allocate<std::uint8_t>(nt, "mesh classes");
+  if (!mclass) return mclass.error();
+  out.mesh_class = *mclass;
+  for (std::size_t i = 0; i < n; ++i)
+    out.vertex_class[i] = out.point_class[i] == PointClass::rock ? kVertexRock : kVertexGround;
+  PETRA_TRY(checkpoint(clock, PipelineStep::grind_planes));
+  {
+    StepTimer timer(clock, timings, PipelineStep::grind_planes);
+    ArenaScope scope(arena);
+    auto is_rock = [&](const MeshTriangle& t) {
+      for (int k = 0; k < 3; ++k)
+        if (out.point_class[static_cast<std::size_t>(t.v[k])] != PointClass::rock) return false;
+      return true;
+    };
+    auto rock = arena.allocate<MeshTriangle>(nt, "rock triangles");
+    if (!rock) return rock.error();
+    auto origin = arena.allocate<std::int32_t>(nt, "rock triangle origins");
+    if (!origin) return origin.error();
+    auto plane_of = arena.allocate<std::uint8_t>(nt, "rock triangle planes");
+    if (!plane_of) return plane_of.error();
+    std::size_t nr = 0;
+    for (std::size_t i = 0; i < nt; ++i) {
+      const bool r = is_rock(out.mesh[i]);
+      out.mesh_class[i] = r ? kVertexRock : kVertexGround;
+      (*rock)[i] = out.mesh[i];
+      if (r) (*origin)[nr++] = static_cast<std::int32_t>(i);
+    }
+    auto kept = keep_triangles(
+        rock->first(nt), [&](std::size_t i) { return is_rock(out.mesh[i]); }, arena);
+    if (!kept) return kept.error();
+    PETRA_ASSERT(*kept == nr);
+    st.rock_triangles = nr;
+    auto g = find_grind_planes(
+        out.xyz_mm, rock->first(nr), camera_centre_world(rig.left), request.planes, params.grind,
+        arena, plane_of->first(nr), out.normals,
+        RigGeometry{rect.left.f_px, rect.baseline_mm, static_cast<double>(params.filter.window)});
+    if (!g) return g.error();
+    out.planes = *g;
+    for (std::size_t j = 0; j < nr; ++j) {
+      const std::uint8_t p = (*plane_of)[j];
+      if (p == 0xFF) continue;
+      const std::uint8_t cls = static_cast<std::uint8_t>(kVertexPlane0 + p);
+      const MeshTriangle& t = out.mesh[static_cast<std::size_t>((*origin)[j])];
+      out.mesh_class[static_cast<std::size_t>((*origin)[j])] = cls;
+      for (int k = 0; k < 3; ++k) out.vertex_class[static_cast<std::size_t>(t.v[k])] = cls;
+    }
+  }
+  return out;
+}
+
+}  // namespace petra

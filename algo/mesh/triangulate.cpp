@@ -1,0 +1,51 @@
+#include "algo/mesh/triangulate.hpp"
+
+namespace petra {
+
+Result<TriangulationStats> triangulate_disparity(const StereoRig& rig, const RectifiedPair& rect,
+                                                 ConstDisparityMap disparity,
+                                                 std::span<Eigen::Vector3d> xyz_mm,
+                                                 std::span<PixelPos> pixels) {
+  const std::size_t capacity = xyz_mm.size() < pixels.size() ? xyz_mm.size() : pixels.size();
+  const Rect& roi = disparity.roi;
+  if (roi.x < 0 || roi.y < 0 || roi.x + roi.w > 32767 || roi.y + roi.h > 32767)
+    return Error::make(Errc::out_of_range, "triangulate: ROI (%d,%d %dx%d) outside 0..32767", roi.x,
+                       roi.y, roi.w, roi.h);
+  const Eq8Camera<double> left = eq8_camera<double>(rig.left);
+  const Eq8Camera<double> right = eq8_camera<double>(rig.right);
+  TriangulationStats stats;
+  for (int y = 0; y < disparity.q4.height(); ++y) {
+    const std::int16_t* row = disparity.q4.row(y);
+    for (int x = 0; x < disparity.q4.width(); ++x) {
+      const std::int16_t q = row[x];
+      if (!is_valid_disparity(q)) continue;
+      if (q <= 0) {
+        ++stats.rejected;
+        continue;
+      }
+      if (stats.points == capacity)
+        return Error::make(Errc::capacity_exceeded,
+                           "triangulate: more valid disparities than the point budget %zu",
+                           capacity);
+      const double u = roi.x + x, v = roi.y + y;
+      auto ol = rectified_to_original(rig.left, rect.left, {u, v});
+      auto orr = rectified_to_original(rig.right, rect.right, {u - disparity_px(q), v});
+      if (!ol || !orr) {
+        ++stats.rejected;
+        continue;
+      }
+      auto p = triangulate_eq8<double>(left, right, *ol, *orr);
+      if (!p) {
+        ++stats.rejected;
+        continue;
+      }
+      xyz_mm[stats.points] = *p;
+      pixels[stats.points] = {static_cast<std::int16_t>(roi.x + x),
+                              static_cast<std::int16_t>(roi.y + y)};
+      ++stats.points;
+    }
+  }
+  return stats;
+}
+
+}  // namespace petra

@@ -1,0 +1,242 @@
+#include "algo/surface/grind_footprint.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace petra {
+
+namespace {
+
+// Discs within this share of the flattest are taken as equally flat (their
+// difference is the noise); the one nearest the face's centre wins.
+constexpr double kFlatTie = 0.10;
+constexpr int kSectors = 8;
+
+struct Local {
+  double x, y, z, a;  // in the face frame (e1, e2, n) about the face centre; area
+};
+
+struct Frame {
+  Eigen::Vector3d o, e1, e2, n;
+  Local to_local(const FaceSample& s) const {
+    const Eigen::Vector3d q = s.p - o;
+    return {q.dot(e1), q.dot(e2), q.dot(n), s.area};
+  }
+};
+
+Frame frame_of(const Eigen::Vector3d& n, const Eigen::Vector3d& o) {
+  Frame f;
+  f.o = o;
+  f.n = n;
+  const Eigen::Vector3d helper =
+      std::abs(n.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
+  f.e1 = helper.cross(n).normalized();
+  f.e2 = n.cross(f.e1);
+  return f;
+}
+
+// Area-weighted sums of a disc about its centre (dx, dy relative to it).
+struct DiscSums {
+  double w = 0, x = 0, y = 0, z = 0, xx = 0, xy = 0, yy = 0, xz = 0, yz = 0, zz = 0;
+  double sector[kSectors] = {};
+  std::size_t count = 0;
+  void add(double dx, double dy, double dz, double a) {
+    w += a, x += a * dx, y += a * dy, z += a * dz;
+    xx += a * dx * dx, xy += a * dx * dy, yy += a * dy * dy;
+    xz += a * dx * dz, yz += a * dy * dz, zz += a * dz * dz;
+    // Octant by signs and which coordinate is larger: no trigonometry.
+    const int s = (dx < 0 ? 4 : 0) + (dy < 0 ? 2 : 0) + (std::abs(dx) < std::abs(dy) ? 1 : 0);
+    sector[s] += a;
+    ++count;
+  }
+};
+
+// z = zc + a dx + b dy by weighted least squares; rss over w.
+struct DiscPlane {
+  bool ok = false;
+  double a = 0, b = 0, zc = 0, rms = 0;
+};
+
+DiscPlane solve(const DiscSums& s) {
+  DiscPlane p;
+  if (s.count < 3 || !(s.w > 0)) return p;
+  const double mx = s.x / s.w, my = s.y / s.w, mz = s.z / s.w;
+  const double cxx = s.xx / s.w - mx * mx, cxy = s.xy / s.w - mx * my;
+  const double cyy = s.yy / s.w - my * my, cxz = s.xz / s.w - mx * mz;
+  const double cyz = s.yz / s.w - my * mz, czz = s.zz / s.w - mz * mz;
+  const double det = cxx * cyy - cxy * cxy;
+  if (!(det > 1e-12 * (cxx + cyy) * (cxx + cyy))) return p;
+  p.a = (cxz * cyy - cyz * cxy) / det;
+  p.b = (cyz * cxx - cxz * cxy) / det;
+  p.zc = mz - p.a * mx - p.b * my;
+  const double rss = std::max(0.0, czz - p.a * cxz - p.b * cyz);
+  // Offsets along n to distances across the disc's own plane.
+  p.rms = std::sqrt(rss / (1.0 + p.a * p.a + p.b * p.b));
+  p.ok = true;
+  return p;
+}
+
+bool covers(const DiscSums& s, double disc_area, double weight, double min_coverage) {
+  if (s.w * weight < min_coverage * disc_area) return false;
+  for (double a : s.sector)
+    if (a * weight < 0.5 * disc_area / kSectors) return false;
+  return true;
+}
+
+struct Grid {
+  double x0 = 0, y0 = 0, cell = 1;
+  int nx = 0, ny = 0;
+  int cx(double x) const { return std::clamp(static_cast<int>((x - x0) / cell), 0, nx - 1); }
+  int cy(double y) const { return std::clamp(static_cast<int>((y - y0) / cell), 0, ny - 1); }
+};
+
+}  // namespace
+
+std::size_t footprint_scratch_bytes(std::size_t samples) {
+  const std::size_t m = std::min(samples, kFootprintSamples);
+  return m * sizeof(Local) + alignof(Local) + m * sizeof(std::int32_t) +
+         (kFootprintCells + 1) * sizeof(std::int32_t) + 2 * alignof(std::int32_t);
+}
+
+Result<Footprint> find_footprint(std::span<const FaceSample> samples,
+                                 const Eigen::Vector3d& face_normal,
+                                 const Eigen::Vector3d& face_centre, const FootprintParams& params,
+                                 Arena& arena) {
+  if (!(params.diameter_mm > 0.0 && params.diameter_mm < 1000.0))
+    return Error::make(Errc::invalid_argument, "footprint: diameter_mm %.3g not in (0, 1000)",
+                       params.diameter_mm);
+  if (!(params.min_coverage > 0.0 && params.min_coverage <= 1.0))
+    return Error::make(Errc::invalid_argument, "footprint: min_coverage not in (0, 1]");
+  if (!(std::abs(face_normal.norm() - 1.0) < 1e-6))
+    return Error::make(Errc::invalid_argument, "footprint: the face normal is not a unit vector");
+  const std::size_t m_all = samples.size();
+  if (m_all < 3) return Error::make(Errc::degenerate, "footprint: %zu face samples", m_all);
+  ArenaScope scope(arena);
+  const Frame fr = frame_of(face_normal, face_centre);
+  const double r = params.diameter_mm / 2.0, disc_area = M_PI * r * r;
+  // 1. Thinned samples in the face frame, binned by cell.
+  const std::size_t stride = (m_all + kFootprintSamples - 1) / kFootprintSamples;
+  const std::size_t m = (m_all + stride - 1) / stride;
+  auto local = arena.allocate_uninitialised<Local>(m, "footprint samples");
+  if (!local) return local.error();
+  auto order = arena.allocate_uninitialised<std::int32_t>(m, "footprint order");
+  if (!order) return order.error();
+  auto start = arena.allocate<std::int32_t>(kFootprintCells + 1, "footprint cells");
+  if (!start) return start.error();
+  double lo_x = 1e300, lo_y = 1e300, hi_x = -1e300, hi_y = -1e300;
+  for (std::size_t i = 0; i < m; ++i) {
+    const Local l = fr.to_local(samples[i * stride]);
+    (*local)[i] = l;
+    lo_x = std::min(lo_x, l.x), hi_x = std::max(hi_x, l.x);
+    lo_y = std::min(lo_y, l.y), hi_y = std::max(hi_y, l.y);
+  }
+  Grid g;
+  g.x0 = lo_x, g.y0 = lo_y, g.cell = r;
+  auto cells_for = [&](double c) {
+    return static_cast<double>(static_cast<int>((hi_x - lo_x) / c) + 1) *
+           static_cast<double>(static_cast<int>((hi_y - lo_y) / c) + 1);
+  };
+  while (cells_for(g.cell) > static_cast<double>(kFootprintCells)) g.cell *= 1.25;
+  g.nx = static_cast<int>((hi_x - lo_x) / g.cell) + 1;
+  g.ny = static_cast<int>((hi_y - lo_y) / g.cell) + 1;
+  const std::size_t cells = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
+  auto cell_of = [&](const Local& l) {
+    return static_cast<std::size_t>(g.cy(l.y)) * static_cast<std::size_t>(g.nx) +
+           static_cast<std::size_t>(g.cx(l.x));
+  };
+  for (std::size_t i = 0; i < m; ++i) ++(*start)[cell_of((*local)[i]) + 1];
+  for (std::size_t c = 0; c < cells; ++c) (*start)[c + 1] += (*start)[c];
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::size_t c = cell_of((*local)[i]);
+    (*order)[static_cast<std::size_t>((*start)[c]++)] = static_cast<std::int32_t>(i);
+  }
+  for (std::size_t c = cells; c > 0; --c) (*start)[c] = (*start)[c - 1];
+  (*start)[0] = 0;
+
+  // 2. Candidate centres: a grid over the extent, a radius in from its edges.
+  Footprint out;
+  const double span_x = hi_x - lo_x - 2 * r, span_y = hi_y - lo_y - 2 * r;
+  if (span_x < 0 || span_y < 0) return out;  // no disc fits in the extent
+  double h = r / 2;
+  auto count_for = [&](double step) {
+    return static_cast<std::size_t>(span_x / step + 1) *
+           static_cast<std::size_t>(span_y / step + 1);
+  };
+  while (count_for(h) > kFootprintCandidates) h *= 1.25;
+  const int ncx = static_cast<int>(span_x / h) + 1, ncy = static_cast<int>(span_y / h) + 1;
+  const double x0 = lo_x + r + (span_x - (ncx - 1) * h) / 2;
+  const double y0 = lo_y + r + (span_y - (ncy - 1) * h) / 2;
+
+  // 3. Each disc: coverage and flatness.
+  auto disc_sums = [&](double cx, double cy) {
+    DiscSums s;
+    const int gx0 = g.cx(cx - r), gx1 = g.cx(cx + r), gy0 = g.cy(cy - r), gy1 = g.cy(cy + r);
+    for (int gy = gy0; gy <= gy1; ++gy)
+      for (int gx = gx0; gx <= gx1; ++gx) {
+        const std::size_t c = static_cast<std::size_t>(gy) * static_cast<std::size_t>(g.nx) +
+                              static_cast<std::size_t>(gx);
+        for (std::int32_t k = (*start)[c]; k < (*start)[c + 1]; ++k) {
+          const Local& l =
+              (*local)[static_cast<std::size_t>((*order)[static_cast<std::size_t>(k)])];
+          const double dx = l.x - cx, dy = l.y - cy;
+          if (dx * dx + dy * dy <= r * r) s.add(dx, dy, l.z, l.a);
+        }
+      }
+    return s;
+  };
+  double rms[kFootprintCandidates] = {}, dist[kFootprintCandidates] = {};
+  double flattest = 1e300;
+  for (int j = 0; j < ncy; ++j)
+    for (int i = 0; i < ncx; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j * ncx + i);
+      const double cx = x0 + i * h, cy = y0 + j * h;
+      const DiscSums s = disc_sums(cx, cy);
+      const DiscPlane p = solve(s);
+      rms[k] = -1;
+      ++out.candidates;
+      if (!p.ok || !covers(s, disc_area, static_cast<double>(stride), params.min_coverage))
+        continue;
+      rms[k] = p.rms;
+      dist[k] = std::hypot(cx, cy);
+      flattest = std::min(flattest, p.rms);
+    }
+  // 4. The flattest, or the most central of the equally flat.
+  int best = -1;
+  for (int k = 0; k < ncx * ncy; ++k) {
+    const std::size_t u = static_cast<std::size_t>(k);
+    if (rms[u] < 0 || rms[u] > flattest * (1.0 + kFlatTie)) continue;
+    if (best < 0 || dist[u] < dist[static_cast<std::size_t>(best)]) best = k;
+  }
+  if (best < 0) return out;
+  const double cx = x0 + (best % ncx) * h, cy = y0 + (best / ncx) * h;
+
+  // 5. The chosen disc on every sample.
+  const Eigen::Vector3d c3 = fr.o + cx * fr.e1 + cy * fr.e2;
+  DiscSums s;
+  for_each_in_disc(samples, fr.n, c3, r, [&](const FaceSample& fs) {
+    const Local l = fr.to_local(fs);
+    s.add(l.x - cx, l.y - cy, l.z, l.a);
+  });
+  const DiscPlane p = solve(s);
+  if (!p.ok) return out;
+  out.covered = true;
+  out.coverage = s.w / disc_area;
+  out.samples = s.count;
+  out.rms_mm = p.rms;
+  out.normal = (fr.n - p.a * fr.e1 - p.b * fr.e2).normalized();
+  out.centre_mm = c3 + p.zc * fr.n;
+  double lo = 0, hi = 0;
+  bool first = true;
+  for_each_in_disc(samples, fr.n, c3, r, [&](const FaceSample& fs) {
+    const double d = out.normal.dot(fs.p - out.centre_mm);
+    lo = first ? d : std::min(lo, d);
+    hi = first ? d : std::max(hi, d);
+    first = false;
+  });
+  out.peak_to_valley_mm = hi - lo;
+  return out;
+}
+
+}  // namespace petra

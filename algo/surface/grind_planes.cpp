@@ -1,0 +1,673 @@
+#include "algo/surface/grind_planes.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "algo/surface/grind_qualify.hpp"
+#include "algo/surface/plane_fit.hpp"
+
+namespace petra {
+
+namespace {
+
+// A split is kept only when it lowers the dispersion by this share (noise
+// alone lowers it a little with any extra centre).
+constexpr double kSplitGain = 0.02;
+
+constexpr std::uint8_t kNone = 0xFF;
+
+template <class T>
+std::size_t bytes_for(std::size_t n) {
+  return n * sizeof(T) + alignof(T);
+}
+
+struct Scratch {
+  std::span<Eigen::Vector3d> normal, centroid, sample;
+  std::span<double> sample_area;
+  std::span<std::uint8_t> sample_cls;
+  std::span<double> area;
+  std::span<std::uint8_t> cls, support, depth;
+  std::span<std::int32_t> queue, patch;
+  std::span<FaceSample> face;  // one face's patch, core first (step 5)
+};
+
+Result<Scratch> allocate(Arena& arena, std::size_t n) {
+  Scratch s;
+  auto normal = arena.allocate<Eigen::Vector3d>(n, "grind planes normals");
+  if (!normal) return normal.error();
+  auto centroid = arena.allocate<Eigen::Vector3d>(n, "grind planes centroids");
+  if (!centroid) return centroid.error();
+  auto area = arena.allocate<double>(n, "grind planes areas");
+  if (!area) return area.error();
+  auto cls = arena.allocate<std::uint8_t>(n, "grind planes classes");
+  if (!cls) return cls.error();
+  auto support = arena.allocate<std::uint8_t>(n, "grind planes support");
+  if (!support) return support.error();
+  auto patch = arena.allocate<std::int32_t>(n, "grind planes patch");
+  if (!patch) return patch.error();
+  s.patch = *patch;
+  auto depth = arena.allocate<std::uint8_t>(n, "grind planes border depth");
+  if (!depth) return depth.error();
+  s.depth = *depth;
+  auto queue = arena.allocate<std::int32_t>(n, "grind planes queue");
+  if (!queue) return queue.error();
+  auto face = arena.allocate<FaceSample>(n, "grind planes face samples");
+  if (!face) return face.error();
+  s.face = *face;
+  auto sample = arena.allocate<Eigen::Vector3d>(kCMeansSamples, "c-means samples");
+  if (!sample) return sample.error();
+  auto sample_cls = arena.allocate<std::uint8_t>(kCMeansSamples, "c-means sample classes");
+  if (!sample_cls) return sample_cls.error();
+  s.sample = *sample;
+  auto sample_area = arena.allocate<double>(kCMeansSamples, "c-means sample areas");
+  if (!sample_area) return sample_area.error();
+  s.sample_area = *sample_area;
+  s.sample_cls = *sample_cls;
+  s.normal = *normal;
+  s.centroid = *centroid;
+  s.area = *area;
+  s.cls = *cls;
+  s.support = *support;
+  s.queue = *queue;
+  return s;
+}
+
+double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI;
+}
+
+// Marks (support[i] = 1) the largest edge-connected patch of class k, by
+// area, lists its triangles in s.patch and returns their count.
+// Breadth-first with an explicit queue; `support` doubles as the visited mark
+// (2 = visited, not chosen).
+std::size_t largest_patch(std::span<const MeshTriangle> tris, const Scratch& s, std::uint8_t k) {
+  const std::size_t n = tris.size();
+  std::size_t best_start = n;
+  double best_area = -1;
+  for (std::size_t i = 0; i < n; ++i) s.support[i] = 0;
+  for (std::size_t seed = 0; seed < n; ++seed) {
+    if (s.cls[seed] != k || s.support[seed] != 0) continue;
+    std::size_t head = 0, tail = 0;
+    double area = 0;
+    s.queue[tail++] = static_cast<std::int32_t>(seed);
+    s.support[seed] = 2;
+    while (head < tail) {
+      const std::size_t t = static_cast<std::size_t>(s.queue[head++]);
+      area += s.area[t];
+      for (int e = 0; e < 3; ++e) {
+        const std::int32_t nb = tris[t].n[e];
+        if (nb < 0) continue;
+        const std::size_t u = static_cast<std::size_t>(nb);
+        if (s.cls[u] != k || s.support[u] != 0) continue;
+        s.support[u] = 2;
+        s.queue[tail++] = nb;
+      }
+    }
+    if (area > best_area) {
+      best_area = area;
+      best_start = seed;
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) s.support[i] = 0;
+  if (best_start == n) return 0;
+  std::size_t head = 0, tail = 0;
+  s.patch[tail++] = static_cast<std::int32_t>(best_start);
+  s.support[best_start] = 1;
+  while (head < tail) {
+    const std::size_t t = static_cast<std::size_t>(s.patch[head++]);
+    for (int e = 0; e < 3; ++e) {
+      const std::int32_t nb = tris[t].n[e];
+      if (nb < 0) continue;
+      const std::size_t u = static_cast<std::size_t>(nb);
+      if (s.cls[u] != k || s.support[u] != 0) continue;
+      s.support[u] = 1;
+      s.patch[tail++] = nb;
+    }
+  }
+  return tail;
+}
+
+// Marks depth[i] = 1..rings for the patch triangles (s.patch[0..m) with
+// support == 1) within `rings` edge steps of the patch border, 0 for the core
+// beyond; returns the core's triangle count. Breadth-first, explicit queue.
+std::size_t erode(std::span<const MeshTriangle> tris, const Scratch& s, std::size_t m, int rings) {
+  std::size_t head = 0, tail = 0;
+  for (std::size_t j = 0; j < m; ++j) s.depth[static_cast<std::size_t>(s.patch[j])] = 0;
+  for (std::size_t j = 0; j < m; ++j) {
+    const std::size_t i = static_cast<std::size_t>(s.patch[j]);
+    if (s.support[i] != 1) continue;
+    for (int e = 0; e < 3; ++e) {
+      const std::int32_t nb = tris[i].n[e];
+      if (nb < 0 || s.support[static_cast<std::size_t>(nb)] != 1) {
+        s.depth[i] = 1;
+        s.queue[tail++] = static_cast<std::int32_t>(i);
+        break;
+      }
+    }
+  }
+  while (head < tail) {
+    const std::size_t t = static_cast<std::size_t>(s.queue[head++]);
+    if (s.depth[t] >= rings) continue;
+    for (int e = 0; e < 3; ++e) {
+      const std::int32_t nb = tris[t].n[e];
+      if (nb < 0) continue;
+      const std::size_t u = static_cast<std::size_t>(nb);
+      if (s.support[u] != 1 || s.depth[u] != 0) continue;
+      s.depth[u] = static_cast<std::uint8_t>(s.depth[t] + 1);
+      s.queue[tail++] = nb;
+    }
+  }
+  std::size_t core = 0;
+  for (std::size_t j = 0; j < m; ++j) {
+    const std::size_t i = static_cast<std::size_t>(s.patch[j]);
+    core += s.support[i] == 1 && s.depth[i] == 0;
+  }
+  return core;
+}
+
+}  // namespace
+
+double plane_view_angle_deg(const Eigen::Vector3d& normal, const Eigen::Vector3d& centroid_mm,
+                            const Eigen::Vector3d& camera_centre_mm) {
+  return angle_deg(normal, camera_centre_mm - centroid_mm);
+}
+
+// Area-weighted angular dispersion of a clustering: sum of w (1 - cos) of
+// every sample to its class centre (what the angle clustering lowers).
+double dispersion(std::span<const Eigen::Vector3d> normals, std::span<const double> weights,
+                  std::span<const std::uint8_t> labels, const Eigen::Vector3d* centres) {
+  double sum = 0;
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    sum += weights[i] * (1.0 - normals[i].dot(centres[labels[i]]));
+  return sum;
+}
+
+// Seeds that split the widest class of a clustering in two along the main
+// direction of its normals' spread, in place of its lightest class. False
+// when no class spreads over more than `min_sep_rad`.
+bool split_seeds(std::span<const Eigen::Vector3d> normals, std::span<const double> weights,
+                 std::span<const std::uint8_t> labels, const AngleClusterResultT<double>& r,
+                 double min_sep_rad, Eigen::Vector3d* seeds) {
+  double spread[kMaxClasses] = {};
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    spread[labels[i]] += weights[i] * (1.0 - normals[i].dot(r.centres[labels[i]]));
+  int wide = 0, light = 0;
+  for (int k = 1; k < r.c; ++k) {
+    if (spread[k] > spread[wide]) wide = k;
+    if (r.weight[k] < r.weight[light]) light = k;
+  }
+  if (wide == light || !(r.weight[wide] > 0)) return false;
+  const Eigen::Vector3d u = r.centres[wide];
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < normals.size(); ++i) {
+    if (labels[i] != wide) continue;
+    const Eigen::Vector3d t = normals[i] - normals[i].dot(u) * u;  // tangent part
+    scatter += weights[i] * t * t.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
+  const double theta = std::sqrt(std::max(0.0, eig.eigenvalues()(2)) / r.weight[wide]);
+  if (!(theta > min_sep_rad)) return false;
+  const Eigen::Vector3d e = eig.eigenvectors().col(2);
+  for (int k = 0; k < r.c; ++k) seeds[k] = r.centres[k];
+  seeds[wide] = (u + std::tan(theta) * e).normalized();
+  seeds[light] = (u - std::tan(theta) * e).normalized();
+  return true;
+}
+
+int cluster_count(int c) {
+  return std::min(kMaxClasses, std::max(c + 3, 2 * c));
+}
+
+const char* verdict_name(PlaneVerdict v) {
+  switch (v) {
+    case PlaneVerdict::surplus:
+      return "more planes qualify than asked for";
+    case PlaneVerdict::accepted:
+      return "accepted";
+    case PlaneVerdict::faces_away:
+      return "faces away from the cameras";
+    case PlaneVerdict::too_small:
+      return "smaller than the grinder footprint";
+    case PlaneVerdict::too_rough:
+      return "too rough over the grinder footprint";
+    case PlaneVerdict::too_uncertain:
+      return "plane too uncertain for the grinder";
+    case PlaneVerdict::no_support:
+      return "no supporting triangles";
+  }
+  return "?";
+}
+
+const char* verdict_key(PlaneVerdict v) {
+  switch (v) {
+    case PlaneVerdict::surplus:
+      return "surplus";
+    case PlaneVerdict::accepted:
+      return "grindable";
+    case PlaneVerdict::faces_away:
+      return "faces_away";
+    case PlaneVerdict::too_small:
+      return "too_small";
+    case PlaneVerdict::too_rough:
+      return "too_rough";
+    case PlaneVerdict::too_uncertain:
+      return "too_uncertain";
+    case PlaneVerdict::no_support:
+      return "no_support";
+  }
+  return "?";
+}
+
+Status validate(const GrindParams& p) {
+  if (!(p.grinder_diameter_mm > 0.0) || !(p.grinder_diameter_mm < 1000.0))
+    return Error::make(Errc::invalid_argument,
+                       "grind planes: grinder_diameter_mm %.3g not in (0, 1000)",
+                       p.grinder_diameter_mm);
+  if (!(p.max_view_angle_deg > 0.0 && p.max_view_angle_deg <= 90.0))
+    return Error::make(Errc::invalid_argument,
+                       "grind planes: max_view_angle_deg %.3g not in (0, 90]",
+                       p.max_view_angle_deg);
+  if (!(p.max_footprint_rms_mm > 0.0))
+    return Error::make(Errc::invalid_argument, "grind planes: max_footprint_rms_mm must be > 0");
+  if (!(p.min_footprint_coverage > 0.0 && p.min_footprint_coverage <= 1.0))
+    return Error::make(Errc::invalid_argument,
+                       "grind planes: min_footprint_coverage %.3g not in (0, 1]",
+                       p.min_footprint_coverage);
+  if (!(p.max_normal_sigma_deg > 0.0) || !(p.max_offset_sigma_mm > 0.0) || !(p.agree_sigmas > 0.0))
+    return Error::make(Errc::invalid_argument,
+                       "grind planes: max_normal_sigma_deg, max_offset_sigma_mm and agree_sigmas "
+                       "must be > 0");
+  PETRA_TRY(validate(DepthNoise{0, 0, p.sigma_disparity_px, 1}));
+  if (!(p.inlier_angle_deg > 0.0 && p.inlier_angle_deg < 90.0))
+    return Error::make(Errc::invalid_argument, "grind planes: inlier_angle_deg %.3g not in (0, 90)",
+                       p.inlier_angle_deg);
+  if (!(p.merge_angle_deg >= 0.0 && p.merge_angle_deg < 45.0) || !(p.merge_distance_mm >= 0.0))
+    return Error::make(Errc::invalid_argument,
+                       "grind planes: merge_angle_deg %.3g or merge_distance_mm %.3g invalid",
+                       p.merge_angle_deg, p.merge_distance_mm);
+  if (p.edge_rings < 0 || p.edge_rings > 50)
+    return Error::make(Errc::invalid_argument, "grind planes: edge_rings %d not in 0..50",
+                       p.edge_rings);
+  if (p.grow_rounds < 0 || p.grow_rounds > 10 ||
+      !(p.grow_angle_deg > 0.0 && p.grow_angle_deg < 90.0))
+    return Error::make(Errc::invalid_argument,
+                       "grind planes: grow_rounds %d not in 0..10 or grow_angle_deg %.3g not in "
+                       "(0, 90)",
+                       p.grow_rounds, p.grow_angle_deg);
+  if (!(p.min_trim_band_mm > 0.0))
+    return Error::make(Errc::invalid_argument, "grind planes: min_trim_band_mm must be > 0");
+  return validate(p.cmeans);
+}
+
+std::size_t grind_planes_scratch_bytes(std::size_t n) {
+  return 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<double>(n) + 3 * bytes_for<std::uint8_t>(n) +
+         2 * bytes_for<std::int32_t>(n) + bytes_for<Eigen::Vector3d>(kCMeansSamples) +
+         bytes_for<std::uint8_t>(kCMeansSamples) + bytes_for<double>(kCMeansSamples) +
+         bytes_for<FaceSample>(n) + footprint_scratch_bytes(n);
+}
+
+Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
+                                      std::span<const MeshTriangle> tris,
+                                      const Eigen::Vector3d& camera, int c,
+                                      const GrindParams& params, Arena& arena,
+                                      std::span<std::uint8_t> triangle_plane,
+                                      std::span<const Eigen::Vector3d> point_normals,
+                                      const RigGeometry& rig) {
+  PETRA_TRY(validate(params));
+  const std::size_t n = tris.size();
+  if (c < 1 || c > kMaxClasses)
+    return Error::make(Errc::out_of_range, "grind planes: c = %d planes, must be 1..%d", c,
+                       kMaxClasses);
+  if (triangle_plane.size() != n)
+    return Error::make(Errc::invalid_argument, "grind planes: %zu triangles, %zu labels", n,
+                       triangle_plane.size());
+  if (!point_normals.empty() && point_normals.size() != xyz.size())
+    return Error::make(Errc::invalid_argument, "grind planes: %zu points, %zu normals", xyz.size(),
+                       point_normals.size());
+  if (n < 3 * static_cast<std::size_t>(c))
+    return Error::make(Errc::degenerate, "grind planes: %zu rock triangles, too few for c = %d", n,
+                       c);
+  const std::int32_t npts = static_cast<std::int32_t>(xyz.size());
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k)
+      if (tris[i].v[k] < 0 || tris[i].v[k] >= npts || tris[i].n[k] < -1 ||
+          tris[i].n[k] >= static_cast<std::int64_t>(n))
+        return Error::make(Errc::out_of_range, "grind planes: triangle %zu has a bad index", i);
+
+  for (std::size_t i = 0; i < n; ++i) triangle_plane[i] = kNone;
+  ArenaScope scope(arena);
+  auto scratch = allocate(arena, n);
+  if (!scratch) return scratch.error();
+  const Scratch& s = *scratch;
+
+  // 1. Triangle geometry, normals towards the camera.
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d& a = xyz[static_cast<std::size_t>(tris[i].v[0])];
+    const Eigen::Vector3d& b = xyz[static_cast<std::size_t>(tris[i].v[1])];
+    const Eigen::Vector3d& cc = xyz[static_cast<std::size_t>(tris[i].v[2])];
+    const Eigen::Vector3d cross = (b - a).cross(cc - a);
+    const double len = cross.norm();
+    s.centroid[i] = (a + b + cc) / 3.0;
+    s.area[i] = 0.5 * len;
+    Eigen::Vector3d nrm = len > 0 ? Eigen::Vector3d(cross / len) : Eigen::Vector3d::UnitZ();
+    if (!point_normals.empty()) {
+      const Eigen::Vector3d& na = point_normals[static_cast<std::size_t>(tris[i].v[0])];
+      const Eigen::Vector3d& nb = point_normals[static_cast<std::size_t>(tris[i].v[1])];
+      const Eigen::Vector3d& nc = point_normals[static_cast<std::size_t>(tris[i].v[2])];
+      const Eigen::Vector3d mean = na + nb + nc;
+      if (na.squaredNorm() > 0 && nb.squaredNorm() > 0 && nc.squaredNorm() > 0 && mean.norm() > 1.5)
+        nrm = mean.normalized();
+    }
+    if (nrm.dot(camera - s.centroid[i]) < 0) nrm = -nrm;
+    s.normal[i] = nrm;
+  }
+
+  GrindResult out;
+  out.footprint_diameter_mm = params.grinder_diameter_mm;
+  // 2. C-means surface classes (eq. 9-12) on the normals, into more classes
+  // than the operator's c: a rock shows more faces than the c it is asked
+  // for, and c classes would merge two of them into a plane of neither.
+  const int k_classes = cluster_count(c);
+  Eigen::Vector3d centres[kMaxClasses];
+  int k_eff = k_classes;
+  // C-means and the angle pass iterate on a regular sample of the triangles
+  // (their cost is per sample and per iteration); then every triangle joins
+  // the nearest final centre.
+  const std::size_t stride = (n + kCMeansSamples - 1) / kCMeansSamples;
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < n; i += stride) {
+    s.sample[m] = s.normal[i];
+    s.sample_area[m] = s.area[i];
+    ++m;
+  }
+  {
+    auto cm = cmeans<double>(std::span<const Eigen::Vector3d>(s.sample.data(), m), k_classes,
+                             params.cmeans, s.sample_cls.first(m));
+    if (!cm) {
+      // All normals equal (one flat face): one class.
+      if (cm.code() != Errc::degenerate) return cm.error();
+      k_eff = 1;
+      centres[0] = s.normal[0];
+    } else {
+      out.cmeans_iterations = cm->iterations;
+      for (int j = 0; j < k_classes; ++j) centres[j] = cm->classes[j].mean;
+      out.converged = cm->converged;
+    }
+  }
+  // 3. Angle clustering refinement (4b; centres more than 5 deg apart),
+  // area-weighted.
+  auto ac = angle_cluster<double>(
+      std::span<const Eigen::Vector3d>(s.sample.data(), m),
+      std::span<const double>(s.sample_area.data(), m),
+      std::span<const Eigen::Vector3d>(centres, static_cast<std::size_t>(k_eff)), params.angle,
+      s.sample_cls.first(m));
+  if (!ac) return ac.error();
+  out.angle_iterations = ac->iterations;
+  out.converged = (k_eff == 1 || out.converged) && ac->converged;
+  // Petra adds: C-means can leave two faces in one broad class (its
+  // log-determinant term tolerates a wide class) and the angle pass keeps
+  // them there, with a centre between the faces. Split the widest class in
+  // place of the lightest while that lowers the angular dispersion.
+  {
+    const std::span<const Eigen::Vector3d> sn(s.sample.data(), m);
+    const std::span<const double> sw(s.sample_area.data(), m);
+    std::uint8_t trial_labels[kCMeansSamples];
+    const std::span<std::uint8_t> tl(trial_labels, m);
+    double best = dispersion(sn, sw, s.sample_cls.first(m), ac->centres);
+    const double min_sep = params.angle.min_separation_deg * M_PI / 180.0;
+    for (int attempt = 0; attempt < k_classes; ++attempt) {
+      Eigen::Vector3d seeds[kMaxClasses];
+      if (ac->c < 2 || !split_seeds(sn, sw, s.sample_cls.first(m), *ac, min_sep, seeds)) break;
+      auto trial = angle_cluster<double>(
+          sn, sw, std::span<const Eigen::Vector3d>(seeds, static_cast<std::size_t>(ac->c)),
+          params.angle, tl);
+      if (!trial) break;
+      const double d = dispersion(sn, sw, tl, trial->centres);
+      if (!(d < best * (1.0 - kSplitGain))) break;
+      best = d;
+      ac = trial;
+      std::copy(tl.begin(), tl.end(), s.sample_cls.begin());
+      ++out.splits;
+    }
+  }
+  std::size_t members[kMaxClasses] = {};
+  for (std::size_t i = 0; i < n; ++i) {
+    int best = 0;
+    double best_cos = s.normal[i].dot(ac->centres[0]);
+    for (int k = 1; k < ac->c; ++k) {
+      const double d = s.normal[i].dot(ac->centres[k]);
+      if (d > best_cos) {
+        best_cos = d;
+        best = k;
+      }
+    }
+    s.cls[i] = static_cast<std::uint8_t>(best);
+    ++members[best];
+  }
+
+  // 4. One candidate plane per class; coplanar neighbours merged.
+  GrindPlane candidates[kMaxClasses];
+  bool alive[kMaxClasses] = {};
+  const double cos_inlier = std::cos(params.inlier_angle_deg * M_PI / 180.0);
+  const double cos_merge = std::cos(params.merge_angle_deg * M_PI / 180.0);
+  const double cos_grow = std::cos(params.grow_angle_deg * M_PI / 180.0);
+  const DepthNoise noise{rig.focal_px, rig.baseline_mm, params.sigma_disparity_px,
+                         rig.correlation_px};
+  Status failure;
+  auto fit_class = [&](int k) {
+    GrindPlane& plane = candidates[k];
+    plane = GrindPlane{};
+    for (std::size_t i = 0; i < n; ++i)
+      if (triangle_plane[i] == k) triangle_plane[i] = kNone;
+    std::size_t pm = largest_patch(tris, s, static_cast<std::uint8_t>(k));
+    auto vertex = [&](std::size_t j) -> const Eigen::Vector3d& {
+      return xyz[static_cast<std::size_t>(tris[static_cast<std::size_t>(s.patch[j / 3])].v[j % 3])];
+    };
+    auto tri_of = [&](std::size_t j) { return static_cast<std::size_t>(s.patch[j]); };
+    PlaneFitT<double> fit;
+    bool have = false;
+    for (int round = 0; round < 3; ++round) {
+      auto f = fit_plane_tls_by<double>(
+          3 * pm, vertex, [&](std::size_t j) { return s.support[tri_of(j / 3)] == 1; });
+      if (!f) break;
+      fit = *f;
+      have = true;
+      // Trim the patch to the triangles that agree with the plane.
+      const double band = std::max(3.0 * fit.rms, params.min_trim_band_mm);
+      Eigen::Vector3d up = fit.plane.normal;
+      if (up.dot(camera - fit.centroid) < 0) up = -up;
+      for (std::size_t j = 0; j < pm; ++j) {
+        const std::size_t i = tri_of(j);
+        if (s.support[i] != 1) continue;
+        const bool agrees = s.normal[i].dot(up) >= cos_inlier &&
+                            std::abs(fit.plane.distance(s.centroid[i])) <= band;
+        if (!agrees) s.support[i] = 3;  // dropped
+      }
+    }
+    // Regrow: a steep face's matched disparity is a staircase, whose treads
+    // and risers cluster into different normal classes, so the class patch
+    // holds the treads only and its plane leans towards them. The face is
+    // taken back by position: edge neighbours of the patch that lie within
+    // the distance band of its plane and within grow_angle_deg of its normal
+    // join it (from any class), and the plane is refitted on the whole set.
+    std::size_t pn = pm;
+    for (int round = 0; have && round < params.grow_rounds; ++round) {
+      const double band = std::max(3.0 * fit.rms, params.min_trim_band_mm);
+      Eigen::Vector3d up = fit.plane.normal;
+      if (up.dot(camera - fit.centroid) < 0) up = -up;
+      // Marks: 1 in the patch, 3 trimmed (listed in s.patch), 4 + round
+      // looked at and left out this round (largest_patch clears them all).
+      const std::uint8_t looked = static_cast<std::uint8_t>(4 + round);
+      std::size_t head = 0, tail = 0;
+      for (std::size_t j = 0; j < pn; ++j)
+        if (s.support[tri_of(j)] == 1) s.queue[tail++] = s.patch[j];
+      while (head < tail) {
+        const std::size_t t = static_cast<std::size_t>(s.queue[head++]);
+        for (int e = 0; e < 3; ++e) {
+          const std::int32_t nb = tris[t].n[e];
+          if (nb < 0) continue;
+          const std::size_t u = static_cast<std::size_t>(nb);
+          if (s.support[u] == 1 || s.support[u] == looked) continue;
+          const bool joins = s.normal[u].dot(up) >= cos_grow &&
+                             std::abs(fit.plane.distance(s.centroid[u])) <= band;
+          if (!joins) {
+            if (s.support[u] != 3) s.support[u] = looked;
+            continue;
+          }
+          if (s.support[u] != 3) s.patch[pn++] = nb;  // not listed yet
+          s.support[u] = 1;
+          s.queue[tail++] = nb;
+        }
+      }
+      auto f = fit_plane_tls_by<double>(
+          3 * pn, vertex, [&](std::size_t j) { return s.support[tri_of(j / 3)] == 1; });
+      if (!f) break;
+      fit = *f;
+    }
+    pm = pn;
+    // The final plane from the patch's core: the matcher's window rounds
+    // depth over a few pixels at every crease, so the rings of triangles
+    // along the patch's border bend towards the neighbouring faces.
+    std::size_t patch = 0;
+    const std::size_t core = erode(tris, s, pm, params.edge_rings);
+    for (std::size_t j = 0; j < pm; ++j) patch += s.support[tri_of(j)] == 1;
+    const bool use_core = core >= 20 && 4 * core >= patch;
+    auto in_fit = [&](std::size_t i) {
+      return s.support[i] == 1 && (!use_core || s.depth[i] == 0);
+    };
+    // The final fit: least squares along the viewing ray to the patch (the
+    // stereo error model, fit_along_ray), or total least squares.
+    if (have) {
+      const Eigen::Vector3d ray = (fit.centroid - camera).normalized();
+      auto use = [&](std::size_t j) { return in_fit(tri_of(j / 3)) ? 1.0 : 0.0; };
+      auto f = params.fit_along_ray ? fit_plane_along_by<double>(3 * pm, vertex, use, ray)
+                                    : fit_plane_wtls_by<double>(3 * pm, vertex, use);
+      if (f) fit = *f;
+      if (fit.plane.normal.dot(camera - fit.centroid) < 0) {
+        fit.plane.normal = -fit.plane.normal;
+        fit.plane.d = -fit.plane.d;
+      }
+    }
+    double area = 0, core_area = 0;
+    Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+    std::size_t count = 0;
+    for (std::size_t j = 0; j < pm; ++j) {
+      const std::size_t i = tri_of(j);
+      if (s.support[i] != 1) continue;
+      // A triangle regrown into two faces' patches (at a crease) is counted
+      // by the first only.
+      if (triangle_plane[i] != kNone && triangle_plane[i] != k) continue;
+      area += s.area[i];
+      ++count;
+      triangle_plane[i] = static_cast<std::uint8_t>(k);
+      if (in_fit(i)) {
+        weighted += s.area[i] * s.centroid[i];
+        core_area += s.area[i];
+      }
+    }
+    plane.triangles = count;
+    plane.area_mm2 = area;
+    if (!have || count == 0 || !(area > 0) || !(core_area > 0)) {
+      plane.verdict = PlaneVerdict::no_support;
+      return;
+    }
+    plane.normal = fit.plane.normal;
+    const Eigen::Vector3d centre = weighted / core_area;
+    plane.centroid_mm = centre - fit.plane.distance(centre) * fit.plane.normal;  // onto the plane
+    plane.rms_mm = fit.rms;
+    plane.view_angle_deg = plane_view_angle_deg(plane.normal, plane.centroid_mm, camera);
+    // 5. Where the grinder sits, the plane's uncertainty, the verdict.
+    std::size_t faces = 0, core_faces = 0;
+    for (int pass = 0; pass < 2; ++pass)  // the fit's core first, then the border
+      for (std::size_t j = 0; j < pm; ++j) {
+        const std::size_t i = tri_of(j);
+        if (s.support[i] != 1 || triangle_plane[i] != k || in_fit(i) != (pass == 0)) continue;
+        s.face[faces++] = FaceSample{s.centroid[i], s.area[i]};
+        if (pass == 0) ++core_faces;
+      }
+    Status q = qualify_plane(s.face.first(faces), core_faces, camera, params, noise, arena, plane);
+    if (!q.ok()) {
+      plane.verdict = PlaneVerdict::no_support;
+      if (q.code() != Errc::degenerate) failure = q;  // a budget or a bad parameter: fail
+    }
+  };
+  for (int k = 0; k < ac->c; ++k) {
+    alive[k] = members[k] > 0;
+    if (alive[k]) fit_class(k);
+  }
+  // Two classes on one face (its normals spread over both): merge when their
+  // planes agree in direction and each centroid lies on the other's plane.
+  auto coplanar = [&](int i, int j) {
+    const GrindPlane& a = candidates[i];
+    const GrindPlane& b = candidates[j];
+    if (a.verdict == PlaneVerdict::no_support || b.verdict == PlaneVerdict::no_support)
+      return false;
+    // The whole patches' planes (the reported ones may be a footprint's).
+    const Eigen::Vector3d &na = a.face_normal, &nb = b.face_normal;
+    const Eigen::Vector3d &ca = a.face_centroid_mm, &cb = b.face_centroid_mm;
+    return na.dot(nb) >= cos_merge && std::abs(na.dot(cb - ca)) <= params.merge_distance_mm &&
+           std::abs(nb.dot(ca - cb)) <= params.merge_distance_mm;
+  };
+  for (int guard = 0; guard < kMaxClasses; ++guard) {
+    bool merged = false;
+    for (int i = 0; i < ac->c && !merged; ++i)
+      for (int j = i + 1; j < ac->c && !merged; ++j) {
+        if (!alive[i] || !alive[j] || !coplanar(i, j)) continue;
+        for (std::size_t t = 0; t < n; ++t) {
+          if (s.cls[t] == j) s.cls[t] = static_cast<std::uint8_t>(i);
+          if (triangle_plane[t] == j) triangle_plane[t] = kNone;
+        }
+        alive[j] = false;
+        fit_class(i);
+        ++out.merges;
+        merged = true;
+      }
+    if (!merged) break;
+  }
+  if (!failure.ok()) return failure.error();
+  int distinct = 0;
+  for (int k = 0; k < ac->c; ++k) distinct += alive[k];
+  out.classes = distinct;
+
+  // 5. Rank: accepted by area (largest first; beyond c they are surplus),
+  // then the rejected ones.
+  int order[kMaxClasses] = {};
+  bool qualified[kMaxClasses] = {};  // ranked in pass 0 (accepted or surplus): not again
+  for (int k = 0; k < ac->c; ++k) qualified[k] = candidates[k].verdict == PlaneVerdict::accepted;
+  int ranked = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    const int pass_start = ranked;
+    for (int k = 0; k < ac->c; ++k) {
+      if (!alive[k]) continue;
+      if ((pass == 0) != qualified[k]) continue;
+      int pos = ranked++;
+      order[pos] = k;
+      while (pos > pass_start && candidates[order[pos - 1]].area_mm2 < candidates[k].area_mm2) {
+        order[pos] = order[pos - 1];
+        order[--pos] = k;
+      }
+    }
+    if (pass == 0) {
+      out.accepted = std::min(ranked, c);
+      for (int r = out.accepted; r < ranked; ++r)
+        candidates[order[r]].verdict = PlaneVerdict::surplus;
+    }
+  }
+  out.count = ranked;
+  int rank_of[kMaxClasses];
+  for (int k = 0; k < kMaxClasses; ++k) rank_of[k] = -1;
+  for (int r = 0; r < ranked; ++r) {
+    out.planes[r] = candidates[order[r]];
+    rank_of[order[r]] = r;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint8_t v = triangle_plane[i];
+    triangle_plane[i] =
+        v < kMaxClasses && rank_of[v] >= 0 ? static_cast<std::uint8_t>(rank_of[v]) : kNone;
+  }
+  return out;
+}
+
+}  // namespace petra

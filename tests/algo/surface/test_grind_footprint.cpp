@@ -1,0 +1,169 @@
+#include "algo/surface/grind_footprint.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <functional>
+#include <random>
+#include <vector>
+
+#include "tests/support/heap_counter.hpp"
+
+namespace petra {
+namespace {
+
+// A face in the plane through `o` with normal n (frame e1, e2), meshed on a
+// 0.5 mm grid of w x h mm, each cell two triangles; height(x, y) moves the
+// surface along n. The samples are the triangles' centroids and areas.
+struct FaceMesh {
+  Eigen::Vector3d o, n, e1, e2;
+  std::vector<FaceSample> samples;
+  Eigen::Vector3d at(double x, double y, double z) const { return o + x * e1 + y * e2 + z * n; }
+};
+
+FaceMesh make_face(double w, double h, const std::function<double(double, double)>& height,
+                   const std::function<bool(double, double)>& keep = nullptr) {
+  FaceMesh f;
+  f.o = Eigen::Vector3d(10, -20, 900);
+  f.n = Eigen::Vector3d(0.2, -0.3, -1).normalized();
+  f.e1 = Eigen::Vector3d::UnitY().cross(f.n).normalized();
+  f.e2 = f.n.cross(f.e1);
+  const double s = 0.5;
+  auto p = [&](double x, double y) { return f.at(x, y, height(x, y)); };
+  for (double y = -h / 2; y < h / 2 - 1e-9; y += s)
+    for (double x = -w / 2; x < w / 2 - 1e-9; x += s) {
+      if (keep && !keep(x + s / 2, y + s / 2)) continue;
+      const Eigen::Vector3d a = p(x, y), b = p(x + s, y), c = p(x + s, y + s), d = p(x, y + s);
+      f.samples.push_back({(a + b + c) / 3, 0.5 * (b - a).cross(c - a).norm()});
+      f.samples.push_back({(a + c + d) / 3, 0.5 * (c - a).cross(d - a).norm()});
+    }
+  return f;
+}
+
+Result<Footprint> run(const FaceMesh& f, double diameter) {
+  std::vector<std::byte> block(footprint_scratch_bytes(f.samples.size()));
+  Arena arena(block);
+  FootprintParams p;
+  p.diameter_mm = diameter;
+  auto r = find_footprint(f.samples, f.n, f.o, p, arena);
+  EXPECT_EQ(arena.used(), 0u);
+  return r;
+}
+
+double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / M_PI;
+}
+
+TEST(GrindFootprint, FlatCornerOfARoughFaceIsFound) {
+  // 60 x 40 mm: rough (1 mm RMS relief) except a flat 25 x 25 mm corner
+  // tilted 2 deg about e2 and raised 0.5 mm: the tool sits there.
+  std::mt19937 rng(2);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::vector<double> relief(200000);
+  for (double& v : relief) v = g(rng);
+  const double tilt = std::tan(2.0 * M_PI / 180.0);
+  auto flat = [](double x, double y) { return x >= 5 && y >= -20 && y <= 5; };
+  auto height = [&](double x, double y) {
+    if (flat(x, y)) return 0.5 + tilt * (x - 17.5);
+    const auto i =
+        static_cast<std::size_t>((x + 30) * 2) * 101 + static_cast<std::size_t>((y + 20) * 2);
+    return relief[i % relief.size()];
+  };
+  const FaceMesh f = make_face(60, 40, height);
+  auto r = run(f, 20);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  ASSERT_TRUE(r->covered);
+  // The disc lies in the flat corner (its centre at least a radius inside).
+  const Eigen::Vector3d q = r->centre_mm - f.o;
+  const double x = q.dot(f.e1), y = q.dot(f.e2);
+  EXPECT_GE(x, 15 - 0.3);
+  EXPECT_LE(y, -5 + 0.3);
+  EXPECT_LT(r->rms_mm, 0.01);
+  EXPECT_LT(r->peak_to_valley_mm, 0.05);
+  // Its plane is the corner's: 2 deg from the face frame about e2, on it.
+  const Eigen::Vector3d corner_n = (f.n - tilt * f.e1).normalized();
+  EXPECT_LT(angle_deg(r->normal, corner_n), 0.05);
+  EXPECT_NEAR(q.dot(f.n), 0.5 + tilt * (x - 17.5), 0.01);
+  EXPECT_GT(r->coverage, 0.95);
+  EXPECT_LE(r->candidates, static_cast<int>(kFootprintCandidates));
+}
+
+TEST(GrindFootprint, CurvedFaceGivesTheTangentPlaneAtItsCentre) {
+  // A spherical cap, radius of curvature 300 mm, apex at (4, -3) in the face
+  // frame: every disc is as flat as another, so the most central one wins,
+  // and its plane is the sphere's tangent plane there.
+  const double R = 300;
+  auto height = [&](double x, double y) {
+    const double rho2 = (x - 4) * (x - 4) + (y + 3) * (y + 3);
+    return R - std::sqrt(R * R - rho2);
+  };
+  const FaceMesh f = make_face(50, 50, height);
+  auto r = run(f, 20);
+  ASSERT_TRUE(r.ok());
+  ASSERT_TRUE(r->covered);
+  const Eigen::Vector3d q = r->centre_mm - f.o;
+  const double x = q.dot(f.e1), y = q.dot(f.e2);
+  // Sphere normal under the disc's centre (pointing the face normal's way).
+  const Eigen::Vector3d centre_of_sphere = f.at(4, -3, R);
+  const Eigen::Vector3d surface = f.at(x, y, height(x, y));
+  const Eigen::Vector3d tangent_n = (centre_of_sphere - surface).normalized();
+  EXPECT_LT(angle_deg(r->normal, tangent_n), 0.15);
+  EXPECT_LT(std::hypot(x, y), 4.0);  // the most central of the equally flat
+  // RMS of a paraboloid over a disc about its best plane: r^2 / (2 R sqrt 12).
+  EXPECT_NEAR(r->rms_mm, 100.0 / (2 * R * std::sqrt(12.0)), 0.01);
+}
+
+TEST(GrindFootprint, FaceSmallerThanTheToolIsNotCovered) {
+  const FaceMesh f = make_face(15, 40, [](double, double) { return 0.0; });
+  auto r = run(f, 20);
+  ASSERT_TRUE(r.ok());
+  EXPECT_FALSE(r->covered);
+  // A face wide enough, but holed in the middle, with a band around: no
+  // covered disc either.
+  const FaceMesh holed = make_face(
+      30, 30, [](double, double) { return 0.0; },
+      [](double x, double y) { return std::hypot(x, y) > 6; });
+  r = run(holed, 20);
+  ASSERT_TRUE(r.ok());
+  EXPECT_FALSE(r->covered);
+  // The same face with the tool of 12 mm: a disc fits in the band's corner.
+  r = run(holed, 12);
+  ASSERT_TRUE(r.ok());
+  EXPECT_TRUE(r->covered);
+}
+
+TEST(GrindFootprint, BadInputIsNamed) {
+  const FaceMesh f = make_face(30, 30, [](double, double) { return 0.0; });
+  std::vector<std::byte> block(footprint_scratch_bytes(f.samples.size()));
+  Arena arena(block);
+  FootprintParams p;
+  p.diameter_mm = 0;
+  auto r = find_footprint(f.samples, f.n, f.o, p, arena);
+  EXPECT_EQ(r.code(), Errc::invalid_argument);
+  EXPECT_NE(std::string(r.error().message).find("diameter_mm"), std::string::npos);
+  EXPECT_EQ(find_footprint(f.samples, 2 * f.n, f.o, {}, arena).code(), Errc::invalid_argument);
+  EXPECT_EQ(find_footprint(std::span(f.samples).first(2), f.n, f.o, {}, arena).code(),
+            Errc::degenerate);
+  std::vector<std::byte> small(64);
+  Arena tiny(small);
+  EXPECT_EQ(find_footprint(f.samples, f.n, f.o, {}, tiny).code(), Errc::capacity_exceeded);
+}
+
+TEST(GrindFootprint, LargeFaceIsBoundedAndHeapFree) {
+  // 150 x 150 mm at 0.5 mm: 180000 samples, thinned for the search.
+  const FaceMesh f = make_face(150, 150, [](double x, double y) { return 0.001 * x * y / 100; });
+  std::vector<std::byte> block(footprint_scratch_bytes(f.samples.size()));
+  Arena arena(block);
+  test::HeapScope scope;
+  auto r = find_footprint(f.samples, f.n, f.o, {}, arena);
+  EXPECT_EQ(scope.allocations(), 0u);
+  ASSERT_TRUE(r.ok());
+  EXPECT_TRUE(r->covered);
+  EXPECT_LE(r->candidates, static_cast<int>(kFootprintCandidates));
+  EXPECT_LE(footprint_scratch_bytes(f.samples.size()), footprint_scratch_bytes(kFootprintSamples));
+}
+
+}  // namespace
+}  // namespace petra
