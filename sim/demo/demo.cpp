@@ -381,6 +381,11 @@ Stop evaluate(const Scene& scene, int timeout_s, Session& fsw, Uplink& up, Downl
   for (int i = 0; i < 150 && expect_pictures && !(down.has_product(2) && down.has_product(3)); ++i)
     down.pump(200);
   down.pump(300);
+  if (down.link.kernel_drops() > 0 || down.assembler.incomplete() > 0)
+    std::fprintf(out,
+                 "   telemetry lost: %u packets dropped by this end's receive buffer, %zu products "
+                 "incomplete\n",
+                 down.link.kernel_drops(), down.assembler.incomplete());
   return std::nullopt;
 }
 
