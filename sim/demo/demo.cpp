@@ -432,6 +432,7 @@ Stop start_fsw(const Options& o, const fs::path& dir, const Scene& scene, const 
   const std::uint16_t cmd_port = free_port();
   const std::uint16_t tlm_port = free_port();
   if (!down.link.open("127.0.0.1", tlm_port)) return "cannot listen for telemetry";
+  down.link.set_receive_buffer(8 << 20);  // products arrive in bursts of chunks (as sim/gnd)
   if (Stop s = write_fsw_config(dir, cmd_port, tlm_port, left, scene)) return s;
   const std::string fsw_bin = find_fsw(o);
   if (!fsw.start(fsw_bin, dir / "fsw.json", dir / "fsw.log")) return "cannot start " + fsw_bin;
