@@ -304,12 +304,18 @@ struct Downlink {
     } else if (const auto* gp = std::get_if<tlm::GroundPlane>(&p.body)) {
       ground_plane = *gp;
     } else if (const auto* c = std::get_if<tlm::Product>(&p.body)) {
-      if (auto done = assembler.add(*c)) {
-        pictures.push_back(ground::write_product(*done, dir.string()));
-        const std::string png = write_png_of(*done, dir);
-        if (!png.empty()) pictures.push_back(png);
-        products.push_back(std::move(*done));
-      }
+      // Written after the wait (write_pictures): a PNG encoded here held
+      // the loop for up to 0.7 s while the next products' chunks streamed in.
+      if (auto done = assembler.add(*c)) products.push_back(std::move(*done));
+    }
+  }
+
+  // The products received, as files in dir (and a PNG of each picture).
+  void write_pictures() {
+    for (const ground::Product& p : products) {
+      pictures.push_back(ground::write_product(p, dir.string()));
+      const std::string png = write_png_of(p, dir);
+      if (!png.empty()) pictures.push_back(png);
     }
   }
 
@@ -510,7 +516,9 @@ int run(const Options& o, std::FILE* out) {
   down.out = out;
   Session fsw;  // declared last: stopped first
   if (Stop s = start_fsw(o, dir, scene, left, fsw, up, down, out)) return fail(*s);
-  if (Stop s = evaluate(scene, o.timeout_s, fsw, up, down, out)) return fail(*s);
+  const Stop evaluated = evaluate(scene, o.timeout_s, fsw, up, down, out);
+  down.write_pictures();  // what came, also when EVALUATE failed
+  if (evaluated) return fail(*evaluated);
   if (Stop s = report(o, scene, dir, down, out)) return fail(*s);
   fsw.stop();
   return down.planes.empty() ? 1 : 0;
