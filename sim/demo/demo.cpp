@@ -389,8 +389,8 @@ Stop evaluate(const Scene& scene, int timeout_s, Session& fsw, Uplink& up, Downl
   down.pump(300);
   if (down.link.kernel_drops() > 0 || down.assembler.incomplete() > 0)
     std::fprintf(out,
-                 "   telemetry lost: %u packets dropped by this end's receive buffer, %zu products "
-                 "incomplete\n",
+                 "   telemetry: %u packets dropped by this end's receive buffer; %zu products not "
+                 "complete when the wait ended (lost chunks, or still streaming)\n",
                  down.link.kernel_drops(), down.assembler.incomplete());
   return std::nullopt;
 }
