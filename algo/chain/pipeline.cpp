@@ -203,6 +203,140 @@ Result<PipelineOutput> Pipeline::run_with_disparity(ConstGray8View left,
   return out;
 }
 
+namespace {
+
+struct RectifiedViews {
+  Gray8View left, right;  // whole images; valid over the ROI and the right search area
+};
+
+// Rectifies the ROI and the right search area of the whole envelope (the
+// range search's) into whole-image buffers from the arena.
+Result<RectifiedViews> rectify_pair(const Rectifier& rectifier, const PipelineBudget& budget,
+                                    ConstGray8View left, ConstGray8View right, Rect roi,
+                                    Rect right_rectified, Arena& arena, const StepClock& clock,
+                                    PipelineOutput& out) {
+  const int W = budget.image_width, H = budget.image_height;
+  auto lbuf = arena.allocate<std::uint8_t>(image_bytes(budget), "rectified left");
+  if (!lbuf) return lbuf.error();
+  auto rbuf = arena.allocate<std::uint8_t>(image_bytes(budget), "rectified right");
+  if (!rbuf) return rbuf.error();
+  const RectifiedViews pair{Gray8View(lbuf->data(), W, H), Gray8View(rbuf->data(), W, H)};
+  out.left_rectified = pair.left;
+  PETRA_TRY(checkpoint(clock, PipelineStep::rectify));
+  StepTimer timer(clock, out.timings, PipelineStep::rectify);
+  PETRA_TRY(rectifier.rectify(StereoSide::left, left, pair.left, roi));
+  if (right_rectified.empty())
+    return Error::make(Errc::out_of_range, "pipeline: no right search area for the ROI");
+  PETRA_TRY(rectifier.rectify(StereoSide::right, right, pair.right, right_rectified));
+  return pair;
+}
+
+// The disparity range for the fine matcher, within the budget.
+Status disparity_range_step(const RectifiedViews& pair, Rect roi, const PipelineParams& params,
+                            const PipelineBudget& budget, Arena& arena, const StepClock& clock,
+                            PipelineOutput& out) {
+  PETRA_TRY(checkpoint(clock, PipelineStep::disparity_range));
+  {
+    StepTimer timer(clock, out.timings, PipelineStep::disparity_range);
+    auto r = find_disparity_range(pair.left, pair.right, roi, params.range, params.match, arena);
+    if (!r) return r.error();
+    out.range = *r;
+  }
+  if (out.range.max_px - out.range.min_px + 1 > budget.max_disparities)
+    return Error::make(Errc::capacity_exceeded,
+                       "pipeline: disparity range %d..%d px exceeds the budget of %d disparities",
+                       out.range.min_px, out.range.max_px, budget.max_disparities);
+  return {};
+}
+
+// Shadow masks: the left over the ROI (into out), the right over its search
+// area at the matcher's range (returned).
+Result<ShadowMask> shadow_step(const RectifiedViews& pair, Rect roi, const MatchDpParams& mp,
+                               double shadow_fraction, Arena& arena, const StepClock& clock,
+                               PipelineOutput& out) {
+  const RightShadowWindows right_windows =
+      right_shadow_windows(roi, mp.disp_min, mp.disp_max, pair.right.width());
+  const Rect right_area = right_windows.mask;
+  auto lmask = arena.allocate<std::uint8_t>(
+      static_cast<std::size_t>(roi.w) * static_cast<std::size_t>(roi.h), "left shadow mask");
+  if (!lmask) return lmask.error();
+  auto rmask = arena.allocate<std::uint8_t>(
+      static_cast<std::size_t>(right_area.w) * static_cast<std::size_t>(right_area.h),
+      "right shadow mask");
+  if (!rmask) return rmask.error();
+  PETRA_TRY(checkpoint(clock, PipelineStep::shadow));
+  StepTimer timer(clock, out.timings, PipelineStep::shadow);
+  auto tl = shadow_threshold(pair.left, roi, shadow_fraction);
+  if (!tl) return tl.error();
+  out.shadow_left = *tl;
+  auto nl = shadow_mask(pair.left, roi, tl->threshold, Gray8View(lmask->data(), roi.w, roi.h));
+  if (!nl) return nl.error();
+  out.left_shadow = {ImageView<const std::uint8_t>(lmask->data(), roi.w, roi.h), roi};
+  auto tr = shadow_threshold(pair.right, right_windows.histogram, shadow_fraction);
+  if (!tr) return tr.error();
+  out.shadow_right = *tr;
+  auto nr = shadow_mask(pair.right, right_area, tr->threshold,
+                        Gray8View(rmask->data(), right_area.w, right_area.h));
+  if (!nr) return nr.error();
+  return ShadowMask{ImageView<const std::uint8_t>(rmask->data(), right_area.w, right_area.h),
+                    right_area};
+}
+
+// Fine matching over the ROI by the requested method, into a disparity map
+// from the arena; the matcher's state and scratch end with the step.
+Result<DisparityMap> match_step(const RectifiedViews& pair, const ShadowMask& right_shadow,
+                                Rect roi, MatchMethod method, const MatchDpParams& mp,
+                                const PipelineParams& params, const PipelineBudget& budget,
+                                Arena& arena, const StepClock& clock, PipelineOutput& out) {
+  auto q4 = arena.allocate<std::int16_t>(
+      static_cast<std::size_t>(roi.w) * static_cast<std::size_t>(roi.h), "disparity");
+  if (!q4) return q4.error();
+  DisparityMap disp{ImageView<std::int16_t>(q4->data(), roi.w, roi.h), roi};
+  PETRA_TRY(checkpoint(clock, PipelineStep::match));
+  StepTimer timer(clock, out.timings, PipelineStep::match);
+  const ArenaScope step(arena);
+  StereoInput in;
+  in.left = pair.left;
+  in.right = pair.right;
+  in.left_shadow = &out.left_shadow;
+  in.right_shadow = &right_shadow;
+  out.method = method;
+  if (method == MatchMethod::graph_cut) {
+    GraphCutParams gp = params.graph_cut;
+    gp.disp_min = mp.disp_min;
+    gp.disp_max = mp.disp_max;
+    gp.cancel = &clock;  // the caller's cancel is seen between expansions, not only steps
+    // Its state for this ROI (or band) and range, released on return.
+    auto st = match_graph_cut_bands(in, roi, gp, budget.graph_cut_bands, arena, disp);
+    if (!st) return st.error();
+    out.graph_cut = *st;
+    auto refined = refine_subpixel(in, params.subpixel, disp);
+    if (!refined) return refined.error();
+    out.subpixel_refined = *refined;
+  } else {
+    const MatchBudget mb{budget.max_roi_width, budget.max_roi_height, budget.max_disparities};
+    auto st = match_dp(in, roi, mp, mb, arena, disp);
+    if (!st) return st.error();
+    out.match = *st;
+  }
+  return disp;
+}
+
+// Photometric refinement of the accepted planes on the rectified pair.
+Status refinement_step(const RectifiedPair& geometry, const RectifiedViews& pair,
+                       Rect right_rectified, const PipelineParams& params, Arena& arena,
+                       const StepClock& clock, PipelineOutput& out) {
+  PETRA_TRY(checkpoint(clock, PipelineStep::plane_refinement));
+  StepTimer timer(clock, out.timings, PipelineStep::plane_refinement);
+  auto n = refine_grind_planes_photometric(geometry, pair.left, pair.right, right_rectified,
+                                           params.photometric, out.result, arena);
+  if (!n) return n.error();
+  out.planes_refined = *n;
+  return {};
+}
+
+}  // namespace
+
 Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
                                      const PipelineRequest& req, const StepClock& clock) {
   if (arena_ == nullptr) return Error::make(Errc::not_ready, "pipeline: not created");
@@ -214,46 +348,21 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
                        right.width(), right.height(), W, H);
   PipelineOutput out;
   last_calibration_ = {};
-  StepTimings& timings = out.timings;
   PETRA_TRY(prepare(left, req, out));
   const Rect roi = out.roi_rectified;
 
-  // Rectify the ROI and the right search area of the whole envelope.
-  auto lbuf = arena.allocate<std::uint8_t>(image_bytes(budget_), "rectified left");
-  if (!lbuf) return lbuf.error();
-  auto rbuf = arena.allocate<std::uint8_t>(image_bytes(budget_), "rectified right");
-  if (!rbuf) return rbuf.error();
-  const Gray8View rl(lbuf->data(), W, H), rr(rbuf->data(), W, H);
-  out.left_rectified = rl;
-  PETRA_TRY(checkpoint(clock, PipelineStep::rectify));
   // The right image is rectified (and valid) over the ROI's search envelope.
   const Rect right_rectified =
       right_search_area(roi, params_.range.search_min_px, params_.range.search_max_px, W);
-  {
-    StepTimer timer(clock, timings, PipelineStep::rectify);
-    PETRA_TRY(rectifier_.rectify(StereoSide::left, left, rl, roi));
-    if (right_rectified.empty())
-      return Error::make(Errc::out_of_range, "pipeline: no right search area for the ROI");
-    PETRA_TRY(rectifier_.rectify(StereoSide::right, right, rr, right_rectified));
-  }
-
-  // Disparity range for the fine matcher.
-  PETRA_TRY(checkpoint(clock, PipelineStep::disparity_range));
-  {
-    StepTimer timer(clock, timings, PipelineStep::disparity_range);
-    auto r = find_disparity_range(rl, rr, roi, params_.range, params_.match, arena);
-    if (!r) return r.error();
-    out.range = *r;
-  }
-  if (out.range.max_px - out.range.min_px + 1 > budget_.max_disparities)
-    return Error::make(Errc::capacity_exceeded,
-                       "pipeline: disparity range %d..%d px exceeds the budget of %d disparities",
-                       out.range.min_px, out.range.max_px, budget_.max_disparities);
+  auto pair =
+      rectify_pair(rectifier_, budget_, left, right, roi, right_rectified, arena, clock, out);
+  if (!pair) return pair.error();
+  PETRA_TRY(disparity_range_step(*pair, roi, params_, budget_, arena, clock, out));
   // Row alignment of the rectified pair over the range just found.
   {
-    StepTimer timer(clock, timings, PipelineStep::calibration_check);
-    auto c = check_calibration(rl, rr, roi, right_rectified, out.range.min_px, out.range.max_px,
-                               params_.calib_check, arena);
+    StepTimer timer(clock, out.timings, PipelineStep::calibration_check);
+    auto c = check_calibration(pair->left, pair->right, roi, right_rectified, out.range.min_px,
+                               out.range.max_px, params_.calib_check, arena);
     if (!c) return c.error();
     out.calibration = last_calibration_ = *c;
   }
@@ -261,93 +370,28 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
   mp.disp_min = out.range.min_px;
   mp.disp_max = out.range.max_px;
 
-  // Shadow masks (left over the ROI, right over its search area).
-  const RightShadowWindows right_windows = right_shadow_windows(roi, mp.disp_min, mp.disp_max, W);
-  const Rect right_area = right_windows.mask;
-  auto lmask = arena.allocate<std::uint8_t>(
-      static_cast<std::size_t>(roi.w) * static_cast<std::size_t>(roi.h), "left shadow mask");
-  if (!lmask) return lmask.error();
-  auto rmask = arena.allocate<std::uint8_t>(
-      static_cast<std::size_t>(right_area.w) * static_cast<std::size_t>(right_area.h),
-      "right shadow mask");
-  if (!rmask) return rmask.error();
-  ShadowMask right_shadow;
-  PETRA_TRY(checkpoint(clock, PipelineStep::shadow));
-  {
-    StepTimer timer(clock, timings, PipelineStep::shadow);
-    auto tl = shadow_threshold(rl, roi, params_.shadow_fraction);
-    if (!tl) return tl.error();
-    out.shadow_left = *tl;
-    auto nl = shadow_mask(rl, roi, tl->threshold, Gray8View(lmask->data(), roi.w, roi.h));
-    if (!nl) return nl.error();
-    out.left_shadow = {ImageView<const std::uint8_t>(lmask->data(), roi.w, roi.h), roi};
-    auto tr = shadow_threshold(rr, right_windows.histogram, params_.shadow_fraction);
-    if (!tr) return tr.error();
-    out.shadow_right = *tr;
-    auto nr = shadow_mask(rr, right_area, tr->threshold,
-                          Gray8View(rmask->data(), right_area.w, right_area.h));
-    if (!nr) return nr.error();
-    right_shadow = {ImageView<const std::uint8_t>(rmask->data(), right_area.w, right_area.h),
-                    right_area};
-  }
+  auto right_shadow = shadow_step(*pair, roi, mp, params_.shadow_fraction, arena, clock, out);
+  if (!right_shadow) return right_shadow.error();
   if (out.click_rectified.present &&
       out.left_shadow.is_shadow(out.click_rectified.u, out.click_rectified.v))
     return Error::make(Errc::no_solution,
                        "pipeline: click (%d, %d) is on shadow: no 3-D point there", req.click_u,
                        req.click_v);
-
-  // Fine matching.
-  auto q4 = arena.allocate<std::int16_t>(
-      static_cast<std::size_t>(roi.w) * static_cast<std::size_t>(roi.h), "disparity");
-  if (!q4) return q4.error();
-  DisparityMap disp{ImageView<std::int16_t>(q4->data(), roi.w, roi.h), roi};
-  PETRA_TRY(checkpoint(clock, PipelineStep::match));
-  {
-    StepTimer timer(clock, timings, PipelineStep::match);
-    const ArenaScope step(arena);  // matcher state and scratch end with the step
-    StereoInput in;
-    in.left = rl;
-    in.right = rr;
-    in.left_shadow = &out.left_shadow;
-    in.right_shadow = &right_shadow;
-    out.method = req.method;
-    if (req.method == MatchMethod::graph_cut) {
-      GraphCutParams gp = params_.graph_cut;
-      gp.disp_min = mp.disp_min;
-      gp.disp_max = mp.disp_max;
-      gp.cancel = &clock;  // the caller's cancel is seen between expansions, not only steps
-      // Its state for this ROI (or band) and range, released on return.
-      auto st = match_graph_cut_bands(in, roi, gp, budget_.graph_cut_bands, arena, disp);
-      if (!st) return st.error();
-      out.graph_cut = *st;
-      auto refined = refine_subpixel(in, params_.subpixel, disp);
-      if (!refined) return refined.error();
-      out.subpixel_refined = *refined;
-    } else {
-      const MatchBudget mb{budget_.max_roi_width, budget_.max_roi_height, budget_.max_disparities};
-      auto st = match_dp(in, roi, mp, mb, arena, disp);
-      if (!st) return st.error();
-      out.match = *st;
-    }
-  }
-  out.disparity = disp;
+  auto disp =
+      match_step(*pair, *right_shadow, roi, req.method, mp, params_, budget_, arena, clock, out);
+  if (!disp) return disp.error();
+  out.disparity = *disp;
 
   // Disparity to ranked planes.
   ReconstructionRequest rr_req;
   rr_req.planes = req.planes;
   rr_req.click = out.click_rectified;
-  auto r = reconstruct(rectifier_.rig(), rectifier_.geometry(), disp, rr_req,
-                       params_.reconstruction, recon_budget(budget_), arena, clock, timings);
+  auto r = reconstruct(rectifier_.rig(), rectifier_.geometry(), *disp, rr_req,
+                       params_.reconstruction, recon_budget(budget_), arena, clock, out.timings);
   if (!r) return r.error();
   out.result = *r;
-  PETRA_TRY(checkpoint(clock, PipelineStep::plane_refinement));
-  {
-    StepTimer timer(clock, timings, PipelineStep::plane_refinement);
-    auto n = refine_grind_planes_photometric(rectifier_.geometry(), rl, rr, right_rectified,
-                                             params_.photometric, out.result, arena);
-    if (!n) return n.error();
-    out.planes_refined = *n;
-  }
+  PETRA_TRY(
+      refinement_step(rectifier_.geometry(), *pair, right_rectified, params_, arena, clock, out));
   return out;
 }
 

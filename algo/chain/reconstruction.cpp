@@ -152,54 +152,44 @@ std::size_t reconstruction_arena_bytes(const ReconstructionBudget& b) {
   return persistent_bytes(b) + transient_bytes(b) + kAllocations * kSlackPerAllocation;
 }
 
-Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPair& rect,
-                                         ConstDisparityMap disparity,
-                                         const ReconstructionRequest& request,
-                                         const ReconstructionParams& params,
-                                         const ReconstructionBudget& budget, Arena& arena,
-                                         const StepClock& clock, StepTimings& timings) {
-  PETRA_TRY(validate(budget));
+namespace {
+
+// Disparity range of the input (Table 1).
+void disparity_extent(ConstDisparityMap disparity, ReconstructionStats& st) {
+  bool any = false;
+  for (int y = 0; y < disparity.q4.height(); ++y)
+    for (int x = 0; x < disparity.q4.width(); ++x) {
+      const std::int16_t q = disparity.q4(x, y);
+      if (!is_valid_disparity(q)) continue;
+      const double d = disparity_px(q);
+      st.disparity_min_px = any ? std::min(st.disparity_min_px, d) : d;
+      st.disparity_max_px = any ? std::max(st.disparity_max_px, d) : d;
+      any = true;
+    }
+}
+
+Status mean_filter_step(ConstDisparityMap disparity, const ReconstructionParams& params,
+                        Arena& arena, const StepClock& clock, StepTimings& timings,
+                        ReconstructionOutput& out) {
   const int w = disparity.q4.width(), h = disparity.q4.height();
-  if (w > budget.max_roi_width || h > budget.max_roi_height)
-    return Error::make(Errc::capacity_exceeded,
-                       "reconstruction: ROI %dx%d exceeds the budget %dx%d", w, h,
-                       budget.max_roi_width, budget.max_roi_height);
-  if (request.planes < 1 || request.planes > kMaxClasses)
-    return Error::make(Errc::out_of_range, "reconstruction: c = %d planes, must be 1..%d",
-                       request.planes, kMaxClasses);
-  ReconstructionOutput out;
-  ReconstructionStats& st = out.stats;
-
-  // Disparity range of the input (Table 1).
-  {
-    bool any = false;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        const std::int16_t q = disparity.q4(x, y);
-        if (!is_valid_disparity(q)) continue;
-        const double d = disparity_px(q);
-        st.disparity_min_px = any ? std::min(st.disparity_min_px, d) : d;
-        st.disparity_max_px = any ? std::max(st.disparity_max_px, d) : d;
-        any = true;
-      }
-  }
-
-  // Mean filter.
   auto filtered = arena.allocate<std::int16_t>(
       static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "filtered disparity");
   if (!filtered) return filtered.error();
   out.filtered = {ImageView<std::int16_t>(filtered->data(), w, h), disparity.roi};
   PETRA_TRY(checkpoint(clock, PipelineStep::mean_filter));
-  {
-    StepTimer timer(clock, timings, PipelineStep::mean_filter);
-    auto f = mean_filter_disparity(disparity, out.filtered, params.filter, arena);
-    if (!f) return f.error();
-    st.dense_points = f->before;
-    st.filtered_points = f->after;
-  }
+  StepTimer timer(clock, timings, PipelineStep::mean_filter);
+  auto f = mean_filter_disparity(disparity, out.filtered, params.filter, arena);
+  if (!f) return f.error();
+  out.stats.dense_points = f->before;
+  out.stats.filtered_points = f->after;
+  return ok_status();
+}
 
-  // Triangulation (eq. 8).
-  const std::size_t n_max = budget.max_points;
+// Triangulation (eq. 8) of the filtered map into at most `n_max` points.
+Status triangulate_step(const StereoRig& rig, const RectifiedPair& rect, std::size_t n_max,
+                        Arena& arena, const StepClock& clock, StepTimings& timings,
+                        ReconstructionOutput& out) {
+  ReconstructionStats& st = out.stats;
   auto xyz = arena.allocate<Eigen::Vector3d>(n_max, "cloud positions");
   if (!xyz) return xyz.error();
   auto px = arena.allocate<PixelPos>(n_max, "cloud pixels");
@@ -215,7 +205,8 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
     st.point_stride = point_stride(input.q4, n_max);
     if (st.point_stride > 1) {
       auto thinned = arena.allocate<std::int16_t>(
-          static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "disparity on the stride");
+          static_cast<std::size_t>(input.q4.width()) * static_cast<std::size_t>(input.q4.height()),
+          "disparity on the stride");
       if (!thinned) return thinned.error();
       input = on_stride(input, st.point_stride, *thinned);
     }
@@ -229,8 +220,14 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   out.pixels = px->first(n);
   if (n < 3)
     return Error::make(Errc::degenerate, "reconstruction: %zu 3-D points, need at least 3", n);
+  return ok_status();
+}
 
-  // Delaunay in the rectified left image, lifted, discontinuities removed.
+// Delaunay in the rectified left image, lifted, discontinuities removed.
+Status mesh_step(const StereoRig& rig, const ReconstructionParams& params, Arena& arena,
+                 const StepClock& clock, StepTimings& timings, ReconstructionOutput& out) {
+  ReconstructionStats& st = out.stats;
+  const std::size_t n = out.xyz_mm.size();
   auto mesh = arena.allocate<MeshTriangle>(delaunay_max_triangles(n), "mesh");
   if (!mesh) return mesh.error();
   std::size_t nt = 0;
@@ -257,28 +254,40 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
     nt = f->kept;
   }
   out.mesh = mesh->first(nt);
+  return ok_status();
+}
 
-  // Smoothed surface normals per point, from the filtered disparity.
+// Smoothed surface normals per point, from the filtered disparity.
+Status normals_step(const RectifiedPair& rect, const ReconstructionParams& params, Arena& arena,
+                    const StepClock& clock, StepTimings& timings, ReconstructionOutput& out) {
+  const std::size_t n = out.xyz_mm.size();
+  const Rect roi = out.filtered.roi;
+  const int w = out.filtered.q4.width(), h = out.filtered.q4.height();
   auto normals = arena.allocate<Eigen::Vector3d>(n, "point normals");
   if (!normals) return normals.error();
   out.normals = *normals;
   PETRA_TRY(checkpoint(clock, PipelineStep::normals));
-  {
-    StepTimer timer(clock, timings, PipelineStep::normals);
-    ArenaScope scope(arena);
-    auto grid = arena.allocate<Eigen::Vector3d>(
-        static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "pixel normals");
-    if (!grid) return grid.error();
-    PETRA_TRY(surface_normals(out.filtered, rect.left, params.normals, *grid, arena));
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t at = static_cast<std::size_t>(out.pixels[i].v - disparity.roi.y) *
-                                 static_cast<std::size_t>(w) +
-                             static_cast<std::size_t>(out.pixels[i].u - disparity.roi.x);
-      out.normals[i] = (*grid)[at];
-    }
+  StepTimer timer(clock, timings, PipelineStep::normals);
+  ArenaScope scope(arena);
+  auto grid = arena.allocate<Eigen::Vector3d>(
+      static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "pixel normals");
+  if (!grid) return grid.error();
+  PETRA_TRY(surface_normals(out.filtered, rect.left, params.normals, *grid, arena));
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t at =
+        static_cast<std::size_t>(out.pixels[i].v - roi.y) * static_cast<std::size_t>(w) +
+        static_cast<std::size_t>(out.pixels[i].u - roi.x);
+    out.normals[i] = (*grid)[at];
   }
+  return ok_status();
+}
 
-  // Rock / ground.
+// Rock / ground; from the click where no ground is found.
+Status segmentation_step(const StereoRig& rig, const RectifiedPair& rect, Rect roi,
+                         const ReconstructionRequest& request, const ReconstructionParams& params,
+                         Arena& arena, const StepClock& clock, StepTimings& timings,
+                         ReconstructionOutput& out) {
+  const std::size_t n = out.xyz_mm.size();
   auto pclass = arena.allocate<PointClass>(n, "point classes");
   if (!pclass) return pclass.error();
   out.point_class = *pclass;
@@ -286,72 +295,104 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   if (!vclass) return vclass.error();
   out.vertex_class = *vclass;
   PETRA_TRY(checkpoint(clock, PipelineStep::segmentation));
-  {
-    StepTimer timer(clock, timings, PipelineStep::segmentation);
-    GroundFailure why = GroundFailure::none;
-    const StereoNoise noise{rect.left.f_px, rect.baseline_mm};
-    auto g = segment_ground<double>(out.xyz_mm, out.pixels, disparity.roi, request.click,
-                                    camera_centre_world(rig.left), params.ground, out.point_class,
-                                    noise, &why);
-    if (g) {
-      out.ground = *g;
-    } else if (why != GroundFailure::no_ground) {
-      return g.error();
-    } else if (!request.click.present) {
-      return Error::make(g.code(), "%s; click on the rock", g.error().message);
-    } else {
-      PETRA_TRY(segment_from_click(request, params, g.error(), arena, out));
-    }
+  StepTimer timer(clock, timings, PipelineStep::segmentation);
+  GroundFailure why = GroundFailure::none;
+  const StereoNoise noise{rect.left.f_px, rect.baseline_mm};
+  auto g = segment_ground<double>(out.xyz_mm, out.pixels, roi, request.click,
+                                  camera_centre_world(rig.left), params.ground, out.point_class,
+                                  noise, &why);
+  if (g) {
+    out.ground = *g;
+  } else if (why != GroundFailure::no_ground) {
+    return g.error();
+  } else if (!request.click.present) {
+    return Error::make(g.code(), "%s; click on the rock", g.error().message);
+  } else {
+    PETRA_TRY(segment_from_click(request, params, g.error(), arena, out));
   }
+  return ok_status();
+}
 
-  // Grind planes on the rock triangles.
+// Grind planes on the rock triangles; mesh and vertex classes from them.
+Status grind_planes_step(const StereoRig& rig, const RectifiedPair& rect,
+                         const ReconstructionRequest& request, const ReconstructionParams& params,
+                         Arena& arena, const StepClock& clock, StepTimings& timings,
+                         ReconstructionOutput& out) {
+  const std::size_t n = out.xyz_mm.size(), nt = out.mesh.size();
   auto mclass = arena.allocate<std::uint8_t>(nt, "mesh classes");
   if (!mclass) return mclass.error();
   out.mesh_class = *mclass;
   for (std::size_t i = 0; i < n; ++i)
     out.vertex_class[i] = out.point_class[i] == PointClass::rock ? kVertexRock : kVertexGround;
   PETRA_TRY(checkpoint(clock, PipelineStep::grind_planes));
-  {
-    StepTimer timer(clock, timings, PipelineStep::grind_planes);
-    ArenaScope scope(arena);
-    auto is_rock = [&](const MeshTriangle& t) {
-      for (int k = 0; k < 3; ++k)
-        if (out.point_class[static_cast<std::size_t>(t.v[k])] != PointClass::rock) return false;
-      return true;
-    };
-    auto rock = arena.allocate<MeshTriangle>(nt, "rock triangles");
-    if (!rock) return rock.error();
-    auto origin = arena.allocate<std::int32_t>(nt, "rock triangle origins");
-    if (!origin) return origin.error();
-    auto plane_of = arena.allocate<std::uint8_t>(nt, "rock triangle planes");
-    if (!plane_of) return plane_of.error();
-    std::size_t nr = 0;
-    for (std::size_t i = 0; i < nt; ++i) {
-      const bool r = is_rock(out.mesh[i]);
-      out.mesh_class[i] = r ? kVertexRock : kVertexGround;
-      (*rock)[i] = out.mesh[i];
-      if (r) (*origin)[nr++] = static_cast<std::int32_t>(i);
-    }
-    auto kept = keep_triangles(
-        rock->first(nt), [&](std::size_t i) { return is_rock(out.mesh[i]); }, arena);
-    if (!kept) return kept.error();
-    PETRA_ASSERT(*kept == nr);
-    st.rock_triangles = nr;
-    auto g = find_grind_planes(
-        out.xyz_mm, rock->first(nr), camera_centre_world(rig.left), request.planes, params.grind,
-        arena, plane_of->first(nr), out.normals,
-        RigGeometry{rect.left.f_px, rect.baseline_mm, static_cast<double>(params.filter.window)});
-    if (!g) return g.error();
-    out.planes = *g;
-    for (std::size_t j = 0; j < nr; ++j) {
-      const std::uint8_t p = (*plane_of)[j];
-      if (p == 0xFF) continue;
-      const std::uint8_t cls = static_cast<std::uint8_t>(kVertexPlane0 + p);
-      const MeshTriangle& t = out.mesh[static_cast<std::size_t>((*origin)[j])];
-      out.mesh_class[static_cast<std::size_t>((*origin)[j])] = cls;
-      for (int k = 0; k < 3; ++k) out.vertex_class[static_cast<std::size_t>(t.v[k])] = cls;
-    }
+  StepTimer timer(clock, timings, PipelineStep::grind_planes);
+  ArenaScope scope(arena);
+  auto is_rock = [&](const MeshTriangle& t) {
+    for (int k = 0; k < 3; ++k)
+      if (out.point_class[static_cast<std::size_t>(t.v[k])] != PointClass::rock) return false;
+    return true;
+  };
+  auto rock = arena.allocate<MeshTriangle>(nt, "rock triangles");
+  if (!rock) return rock.error();
+  auto origin = arena.allocate<std::int32_t>(nt, "rock triangle origins");
+  if (!origin) return origin.error();
+  auto plane_of = arena.allocate<std::uint8_t>(nt, "rock triangle planes");
+  if (!plane_of) return plane_of.error();
+  std::size_t nr = 0;
+  for (std::size_t i = 0; i < nt; ++i) {
+    const bool r = is_rock(out.mesh[i]);
+    out.mesh_class[i] = r ? kVertexRock : kVertexGround;
+    (*rock)[i] = out.mesh[i];
+    if (r) (*origin)[nr++] = static_cast<std::int32_t>(i);
   }
+  auto kept = keep_triangles(
+      rock->first(nt), [&](std::size_t i) { return is_rock(out.mesh[i]); }, arena);
+  if (!kept) return kept.error();
+  PETRA_ASSERT(*kept == nr);
+  out.stats.rock_triangles = nr;
+  auto g = find_grind_planes(
+      out.xyz_mm, rock->first(nr), camera_centre_world(rig.left), request.planes, params.grind,
+      arena, plane_of->first(nr), out.normals,
+      RigGeometry{rect.left.f_px, rect.baseline_mm, static_cast<double>(params.filter.window)});
+  if (!g) return g.error();
+  out.planes = *g;
+  for (std::size_t j = 0; j < nr; ++j) {
+    const std::uint8_t p = (*plane_of)[j];
+    if (p == 0xFF) continue;
+    const std::uint8_t cls = static_cast<std::uint8_t>(kVertexPlane0 + p);
+    const MeshTriangle& t = out.mesh[static_cast<std::size_t>((*origin)[j])];
+    out.mesh_class[static_cast<std::size_t>((*origin)[j])] = cls;
+    for (int k = 0; k < 3; ++k) out.vertex_class[static_cast<std::size_t>(t.v[k])] = cls;
+  }
+  return ok_status();
+}
+
+}  // namespace
+
+Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPair& rect,
+                                         ConstDisparityMap disparity,
+                                         const ReconstructionRequest& request,
+                                         const ReconstructionParams& params,
+                                         const ReconstructionBudget& budget, Arena& arena,
+                                         const StepClock& clock, StepTimings& timings) {
+  PETRA_TRY(validate(budget));
+  const int w = disparity.q4.width(), h = disparity.q4.height();
+  if (w > budget.max_roi_width || h > budget.max_roi_height)
+    return Error::make(Errc::capacity_exceeded,
+                       "reconstruction: ROI %dx%d exceeds the budget %dx%d", w, h,
+                       budget.max_roi_width, budget.max_roi_height);
+  if (request.planes < 1 || request.planes > kMaxClasses)
+    return Error::make(Errc::out_of_range, "reconstruction: c = %d planes, must be 1..%d",
+                       request.planes, kMaxClasses);
+  ReconstructionOutput out;
+  disparity_extent(disparity, out.stats);
+  PETRA_TRY(mean_filter_step(disparity, params, arena, clock, timings, out));
+  PETRA_TRY(triangulate_step(rig, rect, budget.max_points, arena, clock, timings, out));
+  PETRA_TRY(mesh_step(rig, params, arena, clock, timings, out));
+  PETRA_TRY(normals_step(rect, params, arena, clock, timings, out));
+  PETRA_TRY(
+      segmentation_step(rig, rect, disparity.roi, request, params, arena, clock, timings, out));
+  PETRA_TRY(grind_planes_step(rig, rect, request, params, arena, clock, timings, out));
   return out;
 }
 

@@ -448,6 +448,384 @@ Rect right_search_area(Rect roi, int disp_min, int disp_max, int image_width) {
 
 namespace {
 
+// Rows go through in pairs: steps 1-3 for two rows, then both DPs at once
+// (scanline_dp_pair: the DP is latency-bound, two rows fill each other's
+// waits), then steps 4-5 for both. Each row in flight has its own cost,
+// bounds, penalties and path costs.
+struct RowBuffers {
+  std::span<std::uint16_t> agg, p2;
+  std::span<std::int16_t> lo, hi, S, back;
+};
+
+// The row buffers of one call, taken from the arena once.
+struct MatchBuffers {
+  std::span<std::uint8_t> ring, census_rows, skip, reasons, cli, clo, gl, cri, cro, gr, ov, t1, t2,
+      neutral, rshade;
+  std::span<std::uint16_t> colsum, hs;
+  std::span<std::int16_t> rmin, rk, med, wk, wbest, wsecond;
+  std::span<std::int32_t> right_keys, gathered;
+  std::span<match::EdgePair> pairs;
+  RowBuffers rows[2];
+  match::SelectRowScratch select_scratch;
+};
+
+// In the order and sizes Layout::rows() budgets for.
+Status take_buffers(Arena& arena, const Layout& L, int path_stride, MatchBuffers& b) {
+  const int w = L.w, D = L.d, Dp = L.dp, wc = L.wc, nrp = L.nrp;
+  const std::size_t cells = static_cast<std::size_t>(wc) * Dp;
+  PETRA_TRY(take(arena, kWindowRows * cells, "raw cost ring", b.ring));
+  PETRA_TRY(take(arena, cells, "column sums", b.colsum));
+  PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(Dp), "box sums", b.hs));
+  for (RowBuffers& r : b.rows) {
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w) * Dp, "aggregated cost", r.agg));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w) * path_stride, "path costs", r.S));
+    PETRA_TRY(
+        take(arena, static_cast<std::size_t>(w) * path_stride, "backward path costs", r.back));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w), "lower bounds", r.lo));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w), "upper bounds", r.hi));
+    PETRA_TRY(take(arena, static_cast<std::size_t>(w), "jump penalties", r.p2));
+  }
+
+  PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(nrp + 4), "census rows", b.census_rows));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census inner", b.cli));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census outer", b.clo));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left gray", b.gl));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left neutral", b.neutral));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right census inner", b.cri));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right census outer", b.cro));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right gray", b.gr));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right override", b.ov));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right row 1", b.t1));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right row 2", b.t2));
+
+  const std::size_t right_len = static_cast<std::size_t>(kRightChains) * (w + Dp);
+  PETRA_TRY(take(arena, right_len, "right winners", b.rmin));
+  PETRA_TRY(take(arena, right_len, "right winner lanes", b.rk));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w + Dp), "right winner keys", b.right_keys));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "edge pairs", b.pairs));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "winner lanes", b.wk));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "winner costs", b.wbest));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "second best costs", b.wsecond));
+  PETRA_TRY(take(arena, median3x3_scratch(w), "median rows", b.med));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "shadow row", b.skip));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "rejection reasons", b.reasons));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w + D - 1), "right shadow row", b.rshade));
+  PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(w), "winner neighbourhoods", b.gathered));
+  b.select_scratch.below = b.gathered.data();
+  b.select_scratch.above = b.gathered.data() + w;
+  b.select_scratch.right = b.gathered.data() + 2 * w;
+  b.select_scratch.cost = b.gathered.data() + 3 * w;
+  b.select_scratch.shade = b.gathered.data() + 4 * w;
+  return ok_status();
+}
+
+// What every row of one call shares: inputs, sizes and the tables derived
+// from the parameters once.
+struct MatchContext {
+  const StereoInput& in;
+  const Rect roi, band;
+  const MatchDpParams& p;
+  int W = 0, H = 0;                           // image
+  int w = 0, D = 0, Dp = 0, wc = 0, nrp = 0;  // Layout
+  int dmin = 0;
+  int Ds = 0, sp = 0;  // path cost lanes and row stride
+  std::size_t cells = 0;
+  Gray8View el, er;  // edge maps (step 1)
+  match::GrayMap gray_map{};
+  int xl_first = 0;                    // left column of raw cost column 0
+  int xr_hi = 0;                       // right column of reversed index 0
+  int nr = 0;                          // reversed indices inside the range
+  std::uint16_t p2_of_step[256] = {};  // by |dI|: one division per level, not per pixel
+  int tol = 0;
+  bool unsigned_min = false;
+  int chains = 0;
+  long cost_ceiling = 0;
+  int zfloor = 0;
+
+  MatchContext(const StereoInput& input, Rect roi_in, Rect band_in, const MatchDpParams& params,
+               const Layout& L)
+      : in(input), roi(roi_in), band(band_in), p(params) {
+    W = in.left.width();
+    H = in.left.height();
+    w = L.w;
+    D = L.d;
+    Dp = L.dp;
+    wc = L.wc;
+    nrp = L.nrp;
+    dmin = p.disp_min;
+    Ds = path_lanes(D);
+    sp = match::path_row_stride(Ds);
+    cells = static_cast<std::size_t>(wc) * Dp;
+    xl_first = roi.x - kMarginX;
+    xr_hi = roi.x + w - 1 + kMarginX - dmin;
+    nr = wc + D - 1;
+    // p2 lowered at intensity edges: P2 * 8 / (8 + |dI|), never below P1 + 1.
+    const int p2_floor = std::min(p.p2, p.p1 + 1);
+    for (int g = 0; g < 256; ++g)
+      p2_of_step[g] = static_cast<std::uint16_t>(std::max(p2_floor, p.p2 * 8 / (8 + g)));
+    tol = p.edge_tolerance_px;
+    unsigned_min = unsigned_min_is_native();
+    chains = right_chains();
+    PETRA_ASSERT(chains >= 1 && chains <= kRightChains && (chains & (chains - 1)) == 0);
+    cost_ceiling = static_cast<long>(p.max_mean_cost) * kWindowPixels;
+    zfloor = p.edge_zncc_floor_pct * match::kZnccOne / 100;
+  }
+};
+
+// Counts the ROI's shadow pixels; an ROI all in shadow has nothing to match.
+Status count_left_shadow(const StereoInput& in, Rect roi, MatchDpStats& st) {
+  st.roi_pixels = roi.area();
+  if (in.left_shadow != nullptr)
+    for (int y = 0; y < roi.h; ++y)
+      for (int x = 0; x < roi.w; ++x)
+        st.shadow_left += shadow_at(in.left_shadow, roi.x + x, roi.y + y);
+  if (st.shadow_left == st.roi_pixels)
+    return Error::make(Errc::degenerate, "match_dp: all %ld pixels of the ROI are shadow",
+                       st.roi_pixels);
+  return ok_status();
+}
+
+// Step 1: Canny in both views (the right one only for the edge
+// constraint); a textureless ROI is refused here.
+Status find_edges(MatchContext& c, Arena& arena, MatchDpStats& st) {
+  const int w = c.w, h = c.roi.h;
+  std::span<std::uint8_t> edges_left, edges_right;
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w) * h, "left edge map", edges_left));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(c.band.w) * h, "right edge map", edges_right));
+  c.el = Gray8View::over(edges_left, w, h);
+  c.er = Gray8View::over(edges_right, c.band.w, h);
+  {
+    auto s = canny(c.in.left, c.roi, c.p.canny, arena, c.el);
+    if (!s) return s.error();
+    st.left_edges = s->edge_pixels;
+  }
+  const long need_edges = std::max(kMinEdgePixels, st.roi_pixels / 500);
+  if (st.left_edges < need_edges)
+    return Error::make(Errc::degenerate,
+                       "match_dp: ROI is textureless (%ld edge pixels, need %ld): nothing to match",
+                       st.left_edges, need_edges);
+  if (c.p.edge_constraint) {
+    auto s = canny(c.in.right, c.band, c.p.canny, arena, c.er);
+    if (!s) return s.error();
+    st.right_edges = s->edge_pixels;
+  }
+  return ok_status();
+}
+
+// Raw cost of image row y into `raw` ([i][k], column i = left x0 - 4 + i).
+template <int kLanes>
+void raw_row(const MatchContext& c, MatchBuffers& b, int y, std::uint8_t* raw) {
+  const StereoInput& in = c.in;
+  const int wc = c.wc, nrp = c.nrp, W = c.W, xl_first = c.xl_first, xr_hi = c.xr_hi;
+  match::census_row(in.left, y, xl_first, wc, b.cli.data(), b.clo.data(), b.census_rows.data());
+  match::gray_row(in.left, y, xl_first, wc, b.gl.data());
+  match::census_row(in.right, y, xr_hi - nrp + 1, nrp, b.t1.data(), b.t2.data(),
+                    b.census_rows.data());
+  reverse_copy(b.t1.data(), nrp, b.cri.data());
+  reverse_copy(b.t2.data(), nrp, b.cro.data());
+  match::gray_row(in.right, y, xr_hi - nrp + 1, nrp, b.t1.data());
+  match::apply_gray_map(c.gray_map, b.t1.data(), nrp, b.t1.data());
+  reverse_copy(b.t1.data(), nrp, b.gr.data());
+  const int yc = std::clamp(y, 0, c.H - 1);
+  // Right samples: kRawMax outside the image or the range, kRawNeutral in
+  // shadow (reversed index m is column xr_hi - m).
+  shadow_row(in.right_shadow, yc, xr_hi - nrp + 1, nrp, kRawNeutral, 0, b.t1.data());
+  reverse_copy(b.t1.data(), nrp, b.ov.data());
+  const int m_lo = std::max(0, xr_hi - W + 1), m_hi = std::min(c.nr - 1, xr_hi);  // inside
+  std::fill(b.ov.data(), b.ov.data() + std::clamp(m_lo, 0, nrp), std::uint8_t{kRawMax});
+  std::fill(b.ov.data() + std::clamp(m_hi + 1, 0, nrp), b.ov.data() + nrp, std::uint8_t{kRawMax});
+  // Left pixels outside the image or in shadow carry no information.
+  shadow_row(in.left_shadow, yc, xl_first, wc, 1, 0, b.neutral.data());
+  std::fill(b.neutral.data(), b.neutral.data() + std::clamp(-xl_first, 0, wc), std::uint8_t{1});
+  std::fill(b.neutral.data() + std::clamp(W - xl_first, 0, wc), b.neutral.data() + wc,
+            std::uint8_t{1});
+  match::RawRowInputs ri{b.cli.data(), b.clo.data(), b.gl.data(),
+                         wc,           b.cri.data(), b.cro.data(),
+                         b.gr.data(),  b.ov.data(),  b.neutral.data()};
+  match::raw_cost_row<kLanes>(ri, c.D, raw, b.colsum.data(), c.Dp);
+}
+
+// Keeps, at the front of `pairs`, the edge pairs the dense cost confirms
+// from both views; returns how many.
+template <int kLanes>
+int confirmed_anchors(const MatchContext& c, const RowBuffers& rb, std::span<match::EdgePair> pairs,
+                      int n_pairs) {
+  const int D = c.D, Dp = c.Dp, w = c.w, dmin = c.dmin, tol = c.tol;
+  int n_anchor = 0;
+  for (int a = 0; a < n_pairs; ++a) {
+    const match::EdgePair e = pairs[static_cast<std::size_t>(a)];
+    const int i = e.x_left - c.roi.x;
+    const int kp = e.x_left - e.x_right - dmin;
+    // All Dp lanes: the padding lanes' cost exceeds every real one, so
+    // they win neither the best nor the second best of a real lane.
+    const Winner wl = winner<kLanes>(rb.agg.data() + static_cast<std::size_t>(i) * Dp, Dp);
+    if (std::abs(wl.k - kp) > tol || !unique_enough(wl, c.p.edge_uniqueness_pct)) continue;
+    // Right view: lanes k whose left column base + k lies in the ROI.
+    const int base = e.x_right - c.roi.x + dmin;
+    const int k_first = std::max(0, -base), k_last = std::min(D - 1, w - 1 - base);
+    if (k_first > k_last) continue;
+    // First lane of the smallest cost: the minimum of cost * 2^12 + lane
+    // (lanes < 2^12), over four interleaved chains (one chain of
+    // compare-and-selects waited on itself at every lane).
+    const std::uint16_t* diag = rb.agg.data() + static_cast<std::size_t>(base) * Dp;
+    const int dstep = Dp + 1;  // next column, next lane
+    auto key = [&](int k) {
+      return (static_cast<int>(diag[static_cast<std::ptrdiff_t>(k) * dstep]) << kLaneBits) | k;
+    };
+    int c0 = key(k_first), c1 = c0, c2 = c0, c3 = c0;
+    int k = k_first + 1;
+    for (; k + 3 <= k_last; k += 4) {
+      c0 = std::min(c0, key(k));
+      c1 = std::min(c1, key(k + 1));
+      c2 = std::min(c2, key(k + 2));
+      c3 = std::min(c3, key(k + 3));
+    }
+    for (; k <= k_last; ++k) c0 = std::min(c0, key(k));
+    const int kr = std::min(std::min(c0, c1), std::min(c2, c3)) & kNoLane;
+    if (std::abs(kr - kp) > tol) continue;
+    pairs[static_cast<std::size_t>(n_anchor++)] = e;
+  }
+  return n_anchor;
+}
+
+// Ordering: between anchors a and b the right match lies strictly between
+// their right points; at an anchor, its disparity.
+void bounds_from_anchors(const MatchContext& c, std::span<const match::EdgePair> anchors,
+                         RowBuffers& rb) {
+  const int D = c.D, w = c.w, dmin = c.dmin, tol = c.tol;
+  const int n_anchor = static_cast<int>(anchors.size());
+  for (int a = 0; a <= n_anchor; ++a) {
+    const bool has_prev = a > 0;
+    const bool has_next = a < n_anchor;
+    const match::EdgePair* pa = has_prev ? &anchors[static_cast<std::size_t>(a - 1)] : nullptr;
+    const match::EdgePair* pb = has_next ? &anchors[static_cast<std::size_t>(a)] : nullptr;
+    const int i0 = has_prev ? pa->x_left - c.roi.x + 1 : 0;
+    const int i1 = has_next ? pb->x_left - c.roi.x : w;  // exclusive
+    for (int i = i0; i < i1; ++i) {
+      const int x = c.roi.x + i;
+      int klo = 0, khi = D - 1;
+      if (has_next) klo = std::max(klo, x - pb->x_right + 1 - tol - dmin);
+      if (has_prev) khi = std::min(khi, x - pa->x_right - 1 + tol - dmin);
+      if (klo <= khi) {
+        rb.lo[i] = static_cast<std::int16_t>(klo);
+        rb.hi[i] = static_cast<std::int16_t>(khi);
+      }
+    }
+    if (has_next) {
+      const int i = pb->x_left - c.roi.x;
+      const int k = pb->x_left - pb->x_right - dmin;
+      rb.lo[i] = static_cast<std::int16_t>(std::max(0, k - tol));
+      rb.hi[i] = static_cast<std::int16_t>(std::min(D - 1, k + tol));
+    }
+  }
+}
+
+// Steps 2-3: edge pairs -> anchors -> bounds of row t (lanes k = d - dmin).
+template <int kLanes>
+Status edge_bounds(const MatchContext& c, MatchBuffers& b, Arena& arena, MatchDpStats& st, int t,
+                   RowBuffers& rb) {
+  for (int i = 0; i < c.w; ++i) {
+    rb.lo[i] = 0;
+    rb.hi[i] = static_cast<std::int16_t>(c.D - 1);
+  }
+  if (!c.p.edge_constraint) return ok_status();
+  match::EdgeRowInputs ei;
+  ei.left = c.in.left;
+  ei.right = c.in.right;
+  ei.y = c.roi.y + t;
+  ei.left_edges = c.el.row(t);
+  ei.left_x0 = c.roi.x;
+  ei.left_n = c.w;
+  ei.right_edges = c.er.row(t);
+  ei.right_x0 = c.band.x;
+  ei.right_n = c.band.w;
+  ei.disp_min = c.p.disp_min;
+  ei.disp_max = c.p.disp_max;
+  ei.zncc_floor_q10 = c.zfloor;
+  auto n_pairs = match::match_edge_row(ei, arena, b.pairs);
+  if (!n_pairs) return n_pairs.error();
+  st.edge_pairs += *n_pairs;
+  const int n_anchor = confirmed_anchors<kLanes>(c, rb, b.pairs, *n_pairs);
+  st.anchors += n_anchor;
+  bounds_from_anchors(c, b.pairs.first(static_cast<std::size_t>(n_anchor)), rb);
+  return ok_status();
+}
+
+// Steps 1-3 for row t: its window of raw costs, aggregated and bounded,
+// and its jump penalties, ready for the DP.
+template <int kLanes>
+Status prepare_row(const MatchContext& c, MatchBuffers& b, Arena& arena, MatchDpStats& st, int t,
+                   RowBuffers& rb) {
+  const int y = c.roi.y + t;
+  if (t > 0) {  // slide the window down one row
+    std::uint8_t* slot = b.ring.data() + static_cast<std::size_t>((t - 1) % kWindowRows) * c.cells;
+    raw_row<kLanes>(c, b, y + match::kBoxRadiusY, slot);  // replaces the row leaving the window
+  }
+  match::box_and_shift_row<kLanes>(b.colsum.data(), c.w, c.Dp, b.hs.data(), rb.agg.data());
+  PETRA_TRY(edge_bounds<kLanes>(c, b, arena, st, t, rb));
+
+  // Step 3: scanline DP over the aggregated cost.
+  const std::uint8_t* img_row = c.in.left.row(y) + c.roi.x;
+  for (int i = 1; i < c.w; ++i) {
+    const int g = std::abs(img_row[i] - img_row[i - 1]);
+    rb.p2[i] = c.p2_of_step[g];
+  }
+  rb.p2[0] = static_cast<std::uint16_t>(c.p.p2);
+  match::apply_bounds<kLanes>(rb.agg.data(), c.w, c.Dp, rb.lo.data(), rb.hi.data(), c.D - 1);
+  return ok_status();
+}
+
+// Steps 4-5 for row t: select (row_winners completes S = forward + backward
+// first: the DP left the sum to it), reject, refine.
+template <int kPathLanes>
+void finish_row(const MatchContext& c, MatchBuffers& b, MatchDpStats& st, DisparityMap& out,
+                ImageView<std::uint8_t> confidence, int t, RowBuffers& rb) {
+  const int y = c.roi.y + t, w = c.w, sp = c.sp, Ds = c.Ds;
+  std::int16_t* const S = rb.S.data() + match::kGuardLanes;
+  const std::int16_t* const back = rb.back.data() + match::kGuardLanes;
+  if (c.unsigned_min)
+    row_winners<kPathLanes, true>(S, back, w, sp, Ds, b.wk.data(), b.wbest.data(),
+                                  b.wsecond.data());
+  else
+    row_winners<kPathLanes, false>(S, back, w, sp, Ds, b.wk.data(), b.wbest.data(),
+                                   b.wsecond.data());
+
+  // Right view winners along the same path costs (reversed index m).
+  shadow_row(c.in.left_shadow, y, c.roi.x, w, 1, 0, b.skip.data());
+  right_winners<kPathLanes>(S, w, sp, Ds, b.skip.data(), b.rmin.data(), b.rk.data(),
+                            b.right_keys.data(), c.chains);
+  match::SelectRowInputs si;
+  si.w = w;
+  si.k1 = b.wk.data();
+  si.best = b.wbest.data();
+  si.second = b.wsecond.data();
+  si.S = rb.S.data() + match::kGuardLanes;
+  si.s_stride = sp;
+  si.cost = rb.agg.data();
+  si.c_stride = c.Dp;
+  si.lo = rb.lo.data();
+  si.hi = rb.hi.data();
+  si.right_lane = b.rk.data();
+  si.left_shadow = b.skip.data();
+  shadow_row(c.in.right_shadow, y, c.roi.x - c.p.disp_max, w + c.D - 1, 1, 0, b.rshade.data());
+  si.right_shadow = b.rshade.data();
+  si.lanes = c.D;
+  si.x0 = c.roi.x;
+  si.disp_min = c.dmin;
+  si.image_width = c.W;
+  si.lr_tolerance_px = c.p.lr_tolerance_px;
+  si.uniqueness_pct = c.p.uniqueness_pct;
+  si.cost_ceiling = c.cost_ceiling;
+  const match::RejectCounts rc =
+      match::select_row(si, b.select_scratch, out.q4.row(t),
+                        confidence.empty() ? nullptr : confidence.row(t), b.reasons.data());
+  st.rejected_range += rc.range;
+  st.rejected_lr += rc.lr;
+  st.rejected_uniqueness += rc.uniqueness;
+  st.rejected_cost += rc.cost;
+  st.rejected_shadow_right += rc.shadow_right;
+}
+
 // The whole matcher for one lane count (kLanes = Dp, or 0 for any), so every
 // row kernel runs with a compile-time lane count. kPathLanes: the lanes of
 // the path costs S (D rounded up to 16, or 0 for any), which may be fewer
@@ -459,347 +837,53 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
                                                     const MatchDpParams& p, Arena& arena,
                                                     DisparityMap& out,
                                                     ImageView<std::uint8_t> confidence) {
-  const int W = in.left.width();
-  const int H = in.left.height();
-  const Rect band = right_search_area(roi, p.disp_min, p.disp_max, W);
+  const Rect band = right_search_area(roi, p.disp_min, p.disp_max, in.left.width());
   if (band.empty())
     return Error::make(
         Errc::out_of_range,
         "match_dp: disparities [%d, %d] put every match of the ROI outside the right image",
         p.disp_min, p.disp_max);
   const Layout L(roi.w, roi.h, p.disp_max - p.disp_min + 1);
-  const int w = L.w, h = L.h, D = L.d, Dp = L.dp, wc = L.wc, nrp = L.nrp;
-  const int dmin = p.disp_min;
+  const int w = L.w, h = L.h, Dp = L.dp;
 
   ArenaScope scope(arena);
   const std::size_t used_at_entry = arena.used();
   MatchDpStats st;
-  st.roi_pixels = roi.area();
-  if (in.left_shadow != nullptr)
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) st.shadow_left += shadow_at(in.left_shadow, roi.x + x, roi.y + y);
-  if (st.shadow_left == st.roi_pixels)
-    return Error::make(Errc::degenerate, "match_dp: all %ld pixels of the ROI are shadow",
-                       st.roi_pixels);
+  PETRA_TRY(count_left_shadow(in, roi, st));
 
+  MatchContext c(in, roi, band, p, L);
+  PETRA_ASSERT(kPathLanes == 0 || kPathLanes == c.Ds);
   // The right view's gray levels on the left's scale (the cameras' gain and
   // offset), for the intensity term; census does not depend on them.
-  const match::GrayMap gray_map =
-      p.normalise_gray ? match::gray_map_for_roi(in.left, in.right, roi, p.disp_min, p.disp_max)
-                       : match::identity_gray_map();
-
-  // Step 1: Canny in both views.
-  std::span<std::uint8_t> edges_left, edges_right;
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w) * h, "left edge map", edges_left));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(band.w) * h, "right edge map", edges_right));
-  const Gray8View el = Gray8View::over(edges_left, w, h);
-  const Gray8View er = Gray8View::over(edges_right, band.w, h);
-  {
-    auto s = canny(in.left, roi, p.canny, arena, el);
-    if (!s) return s.error();
-    st.left_edges = s->edge_pixels;
-  }
-  const long need_edges = std::max(kMinEdgePixels, st.roi_pixels / 500);
-  if (st.left_edges < need_edges)
-    return Error::make(Errc::degenerate,
-                       "match_dp: ROI is textureless (%ld edge pixels, need %ld): nothing to match",
-                       st.left_edges, need_edges);
-  if (p.edge_constraint) {
-    auto s = canny(in.right, band, p.canny, arena, er);
-    if (!s) return s.error();
-    st.right_edges = s->edge_pixels;
-  }
-
-  // Row buffers.
-  std::span<std::uint8_t> ring, census_rows, skip, reasons, cli, clo, gl, cri, cro, gr, ov, t1, t2,
-      neutral;
-  std::span<std::uint16_t> colsum, hs;
-  std::span<std::int16_t> rmin, rk, med, wk, wbest, wsecond;
-  std::span<match::EdgePair> pairs;
-  const std::size_t cells = static_cast<std::size_t>(wc) * Dp;
-  PETRA_TRY(take(arena, kWindowRows * cells, "raw cost ring", ring));
-  PETRA_TRY(take(arena, cells, "column sums", colsum));
-  PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(Dp), "box sums", hs));
-
-  const int Ds = path_lanes(D);
-  PETRA_ASSERT(kPathLanes == 0 || kPathLanes == Ds);
-  const int sp = match::path_row_stride(Ds);
-  // Rows go through in pairs: steps 1-3 for two rows, then both DPs at once
-  // (scanline_dp_pair: the DP is latency-bound, two rows fill each other's
-  // waits), then steps 4-5 for both. Each row in flight has its own cost,
-  // bounds, penalties and path costs.
-  struct RowBuffers {
-    std::span<std::uint16_t> agg, p2;
-    std::span<std::int16_t> lo, hi, S, back;
-  };
-  RowBuffers rows[2];
-  for (RowBuffers& r : rows) {
-    PETRA_TRY(take(arena, static_cast<std::size_t>(w) * Dp, "aggregated cost", r.agg));
-    PETRA_TRY(take(arena, static_cast<std::size_t>(w) * sp, "path costs", r.S));
-    PETRA_TRY(take(arena, static_cast<std::size_t>(w) * sp, "backward path costs", r.back));
-    PETRA_TRY(take(arena, static_cast<std::size_t>(w), "lower bounds", r.lo));
-    PETRA_TRY(take(arena, static_cast<std::size_t>(w), "upper bounds", r.hi));
-    PETRA_TRY(take(arena, static_cast<std::size_t>(w), "jump penalties", r.p2));
-  }
-
-  PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(nrp + 4), "census rows", census_rows));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census inner", cli));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left census outer", clo));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left gray", gl));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(wc), "left neutral", neutral));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right census inner", cri));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right census outer", cro));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right gray", gr));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right override", ov));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right row 1", t1));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(nrp), "right row 2", t2));
-
-  const std::size_t right_len = static_cast<std::size_t>(kRightChains) * (w + Dp);
-  PETRA_TRY(take(arena, right_len, "right winners", rmin));
-  PETRA_TRY(take(arena, right_len, "right winner lanes", rk));
-  std::span<std::int32_t> right_keys;
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w + Dp), "right winner keys", right_keys));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "edge pairs", pairs));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "winner lanes", wk));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "winner costs", wbest));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "second best costs", wsecond));
-  PETRA_TRY(take(arena, median3x3_scratch(w), "median rows", med));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "shadow row", skip));
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "rejection reasons", reasons));
-  std::span<std::uint8_t> rshade;
-  PETRA_TRY(take(arena, static_cast<std::size_t>(w + D - 1), "right shadow row", rshade));
-  std::span<std::int32_t> gathered;
-  PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(w), "winner neighbourhoods", gathered));
-  match::SelectRowScratch select_scratch;
-  select_scratch.below = gathered.data();
-  select_scratch.above = gathered.data() + w;
-  select_scratch.right = gathered.data() + 2 * w;
-  select_scratch.cost = gathered.data() + 3 * w;
-  select_scratch.shade = gathered.data() + 4 * w;
-
-  // Raw cost of image row y into `raw` ([i][k], column i = left x0 - 4 + i).
-  const int xl_first = roi.x - kMarginX;
-  const int xr_hi = roi.x + w - 1 + kMarginX - dmin;  // right column of reversed index 0
-  const int nr = wc + D - 1;                          // reversed indices inside the range
-  auto raw_row = [&](int y, std::uint8_t* raw) {
-    match::census_row(in.left, y, xl_first, wc, cli.data(), clo.data(), census_rows.data());
-    match::gray_row(in.left, y, xl_first, wc, gl.data());
-    match::census_row(in.right, y, xr_hi - nrp + 1, nrp, t1.data(), t2.data(), census_rows.data());
-    reverse_copy(t1.data(), nrp, cri.data());
-    reverse_copy(t2.data(), nrp, cro.data());
-    match::gray_row(in.right, y, xr_hi - nrp + 1, nrp, t1.data());
-    match::apply_gray_map(gray_map, t1.data(), nrp, t1.data());
-    reverse_copy(t1.data(), nrp, gr.data());
-    const int yc = std::clamp(y, 0, H - 1);
-    // Right samples: kRawMax outside the image or the range, kRawNeutral in
-    // shadow (reversed index m is column xr_hi - m).
-    shadow_row(in.right_shadow, yc, xr_hi - nrp + 1, nrp, kRawNeutral, 0, t1.data());
-    reverse_copy(t1.data(), nrp, ov.data());
-    const int m_lo = std::max(0, xr_hi - W + 1), m_hi = std::min(nr - 1, xr_hi);  // inside
-    std::fill(ov.data(), ov.data() + std::clamp(m_lo, 0, nrp), std::uint8_t{kRawMax});
-    std::fill(ov.data() + std::clamp(m_hi + 1, 0, nrp), ov.data() + nrp, std::uint8_t{kRawMax});
-    // Left pixels outside the image or in shadow carry no information.
-    shadow_row(in.left_shadow, yc, xl_first, wc, 1, 0, neutral.data());
-    std::fill(neutral.data(), neutral.data() + std::clamp(-xl_first, 0, wc), std::uint8_t{1});
-    std::fill(neutral.data() + std::clamp(W - xl_first, 0, wc), neutral.data() + wc,
-              std::uint8_t{1});
-    match::RawRowInputs ri{cli.data(), clo.data(), gl.data(),     wc, cri.data(), cro.data(),
-                           gr.data(),  ov.data(),  neutral.data()};
-    match::raw_cost_row<kLanes>(ri, D, raw, colsum.data(), Dp);
-  };
+  c.gray_map = p.normalise_gray
+                   ? match::gray_map_for_roi(in.left, in.right, roi, p.disp_min, p.disp_max)
+                   : match::identity_gray_map();
+  PETRA_TRY(find_edges(c, arena, st));
+  MatchBuffers b;
+  PETRA_TRY(take_buffers(arena, L, c.sp, b));
 
   // Fill the window for the first ROI row (ring and sums start at zero).
   for (int r = 0; r < kWindowRows; ++r)
-    raw_row(roi.y - match::kBoxRadiusY + r, ring.data() + static_cast<std::size_t>(r) * cells);
-
-  // p2 lowered at intensity edges: P2 * 8 / (8 + |dI|), never below P1 + 1.
-  const int p2_floor = std::min(p.p2, p.p1 + 1);
-  std::uint16_t p2_of_step[256];  // by |dI|: one division per level, not per pixel
-  for (int g = 0; g < 256; ++g)
-    p2_of_step[g] = static_cast<std::uint16_t>(std::max(p2_floor, p.p2 * 8 / (8 + g)));
-  const int tol = p.edge_tolerance_px;
-  const bool unsigned_min = unsigned_min_is_native();
-  const int chains = right_chains();
-  PETRA_ASSERT(chains >= 1 && chains <= kRightChains && (chains & (chains - 1)) == 0);
-  const long cost_ceiling = static_cast<long>(p.max_mean_cost) * kWindowPixels;
-  const int zfloor = p.edge_zncc_floor_pct * match::kZnccOne / 100;
-
-  auto prepare = [&](int t, RowBuffers& rb) -> Status {
-    const int y = roi.y + t;
-    if (t > 0) {  // slide the window down one row
-      std::uint8_t* slot = ring.data() + static_cast<std::size_t>((t - 1) % kWindowRows) * cells;
-      raw_row(y + match::kBoxRadiusY, slot);  // replaces the row leaving the window
-    }
-    match::box_and_shift_row<kLanes>(colsum.data(), w, Dp, hs.data(), rb.agg.data());
-
-    // Steps 2-3: edge pairs -> anchors -> bounds (lanes k = d - dmin).
-    for (int i = 0; i < w; ++i) {
-      rb.lo[i] = 0;
-      rb.hi[i] = static_cast<std::int16_t>(D - 1);
-    }
-    if (p.edge_constraint) {
-      match::EdgeRowInputs ei;
-      ei.left = in.left;
-      ei.right = in.right;
-      ei.y = y;
-      ei.left_edges = el.row(t);
-      ei.left_x0 = roi.x;
-      ei.left_n = w;
-      ei.right_edges = er.row(t);
-      ei.right_x0 = band.x;
-      ei.right_n = band.w;
-      ei.disp_min = p.disp_min;
-      ei.disp_max = p.disp_max;
-      ei.zncc_floor_q10 = zfloor;
-      auto n_pairs = match::match_edge_row(ei, arena, pairs);
-      if (!n_pairs) return n_pairs.error();
-      st.edge_pairs += *n_pairs;
-      // Keep pairs the dense cost confirms from both views.
-      int n_anchor = 0;
-      for (int a = 0; a < *n_pairs; ++a) {
-        const match::EdgePair e = pairs[static_cast<std::size_t>(a)];
-        const int i = e.x_left - roi.x;
-        const int kp = e.x_left - e.x_right - dmin;
-        // All Dp lanes: the padding lanes' cost exceeds every real one, so
-        // they win neither the best nor the second best of a real lane.
-        const Winner wl = winner<kLanes>(rb.agg.data() + static_cast<std::size_t>(i) * Dp, Dp);
-        if (std::abs(wl.k - kp) > tol || !unique_enough(wl, p.edge_uniqueness_pct)) continue;
-        // Right view: lanes k whose left column base + k lies in the ROI.
-        const int base = e.x_right - roi.x + dmin;
-        const int k_first = std::max(0, -base), k_last = std::min(D - 1, w - 1 - base);
-        if (k_first > k_last) continue;
-        // First lane of the smallest cost: the minimum of cost * 2^12 + lane
-        // (lanes < 2^12), over four interleaved chains (one chain of
-        // compare-and-selects waited on itself at every lane).
-        const std::uint16_t* diag = rb.agg.data() + static_cast<std::size_t>(base) * Dp;
-        const int dstep = Dp + 1;  // next column, next lane
-        auto key = [&](int k) {
-          return (static_cast<int>(diag[static_cast<std::ptrdiff_t>(k) * dstep]) << kLaneBits) | k;
-        };
-        int c0 = key(k_first), c1 = c0, c2 = c0, c3 = c0;
-        int k = k_first + 1;
-        for (; k + 3 <= k_last; k += 4) {
-          c0 = std::min(c0, key(k));
-          c1 = std::min(c1, key(k + 1));
-          c2 = std::min(c2, key(k + 2));
-          c3 = std::min(c3, key(k + 3));
-        }
-        for (; k <= k_last; ++k) c0 = std::min(c0, key(k));
-        const int kr = std::min(std::min(c0, c1), std::min(c2, c3)) & kNoLane;
-        if (std::abs(kr - kp) > tol) continue;
-        pairs[static_cast<std::size_t>(n_anchor++)] = e;
-      }
-      st.anchors += n_anchor;
-      // Ordering: between anchors a and b the right match lies strictly
-      // between their right points; at an anchor, its disparity.
-      for (int a = 0; a <= n_anchor; ++a) {
-        const bool has_prev = a > 0;
-        const bool has_next = a < n_anchor;
-        const match::EdgePair* pa = has_prev ? &pairs[static_cast<std::size_t>(a - 1)] : nullptr;
-        const match::EdgePair* pb = has_next ? &pairs[static_cast<std::size_t>(a)] : nullptr;
-        const int i0 = has_prev ? pa->x_left - roi.x + 1 : 0;
-        const int i1 = has_next ? pb->x_left - roi.x : w;  // exclusive
-        for (int i = i0; i < i1; ++i) {
-          const int x = roi.x + i;
-          int klo = 0, khi = D - 1;
-          if (has_next) klo = std::max(klo, x - pb->x_right + 1 - tol - dmin);
-          if (has_prev) khi = std::min(khi, x - pa->x_right - 1 + tol - dmin);
-          if (klo <= khi) {
-            rb.lo[i] = static_cast<std::int16_t>(klo);
-            rb.hi[i] = static_cast<std::int16_t>(khi);
-          }
-        }
-        if (has_next) {
-          const int i = pb->x_left - roi.x;
-          const int k = pb->x_left - pb->x_right - dmin;
-          rb.lo[i] = static_cast<std::int16_t>(std::max(0, k - tol));
-          rb.hi[i] = static_cast<std::int16_t>(std::min(D - 1, k + tol));
-        }
-      }
-    }
-
-    // Step 3: scanline DP over the aggregated cost.
-    const std::uint8_t* img_row = in.left.row(y) + roi.x;
-    for (int i = 1; i < w; ++i) {
-      const int g = std::abs(img_row[i] - img_row[i - 1]);
-      rb.p2[i] = p2_of_step[g];
-    }
-    rb.p2[0] = static_cast<std::uint16_t>(p.p2);
-    match::apply_bounds<kLanes>(rb.agg.data(), w, Dp, rb.lo.data(), rb.hi.data(), D - 1);
-
-    return ok_status();
-  };
-  auto finish = [&](int t, RowBuffers& rb) {
-    const int y = roi.y + t;
-    // Steps 4-5: select (row_winners completes S = forward + backward
-    // first: the DP left the sum to it), reject, refine.
-    std::int16_t* const S = rb.S.data() + match::kGuardLanes;
-    const std::int16_t* const back = rb.back.data() + match::kGuardLanes;
-    if (unsigned_min)
-      row_winners<kPathLanes, true>(S, back, w, sp, Ds, wk.data(), wbest.data(), wsecond.data());
-    else
-      row_winners<kPathLanes, false>(S, back, w, sp, Ds, wk.data(), wbest.data(), wsecond.data());
-
-    // Right view winners along the same path costs (reversed index m).
-    shadow_row(in.left_shadow, y, roi.x, w, 1, 0, skip.data());
-    right_winners<kPathLanes>(S, w, sp, Ds, skip.data(), rmin.data(), rk.data(), right_keys.data(),
-                              chains);
-    match::SelectRowInputs si;
-    si.w = w;
-    si.k1 = wk.data();
-    si.best = wbest.data();
-    si.second = wsecond.data();
-    si.S = rb.S.data() + match::kGuardLanes;
-    si.s_stride = sp;
-    si.cost = rb.agg.data();
-    si.c_stride = Dp;
-    si.lo = rb.lo.data();
-    si.hi = rb.hi.data();
-    si.right_lane = rk.data();
-    si.left_shadow = skip.data();
-    shadow_row(in.right_shadow, y, roi.x - p.disp_max, w + D - 1, 1, 0, rshade.data());
-    si.right_shadow = rshade.data();
-    si.lanes = D;
-    si.x0 = roi.x;
-    si.disp_min = dmin;
-    si.image_width = W;
-    si.lr_tolerance_px = p.lr_tolerance_px;
-    si.uniqueness_pct = p.uniqueness_pct;
-    si.cost_ceiling = cost_ceiling;
-    const match::RejectCounts rc =
-        match::select_row(si, select_scratch, out.q4.row(t),
-                          confidence.empty() ? nullptr : confidence.row(t), reasons.data());
-    st.rejected_range += rc.range;
-    st.rejected_lr += rc.lr;
-    st.rejected_uniqueness += rc.uniqueness;
-    st.rejected_cost += rc.cost;
-    st.rejected_shadow_right += rc.shadow_right;
-  };
-  auto run_dp_pair = [&](const match::ScanlineInputs& a, RowBuffers& ra,
-                         const match::ScanlineInputs& b, RowBuffers& rb) {
-    match::scanline_dp_pair<kPathLanes>(a, ra.S.data(), ra.back.data(), b, rb.S.data(),
-                                        rb.back.data());
-  };
-  auto run_dp_one = [&](const match::ScanlineInputs& a, RowBuffers& ra) {
-    match::scanline_dp<kPathLanes>(a, ra.S.data(), ra.back.data());
-  };
+    raw_row<kLanes>(c, b, roi.y - match::kBoxRadiusY + r,
+                    b.ring.data() + static_cast<std::size_t>(r) * c.cells);
   for (int t = 0; t < h; t += 2) {
-    RowBuffers& ra = rows[0];
-    RowBuffers& rb = rows[1];
-    PETRA_TRY(prepare(t, ra));
-    const match::ScanlineInputs sa{ra.agg.data(), w, Dp, ra.p2.data(), p.p1, Ds, false};
+    RowBuffers& ra = b.rows[0];
+    RowBuffers& rb = b.rows[1];
+    PETRA_TRY(prepare_row<kLanes>(c, b, arena, st, t, ra));
+    const match::ScanlineInputs sa{ra.agg.data(), w, Dp, ra.p2.data(), p.p1, c.Ds, false};
     if (t + 1 < h) {
-      PETRA_TRY(prepare(t + 1, rb));
-      const match::ScanlineInputs sb{rb.agg.data(), w, Dp, rb.p2.data(), p.p1, Ds, false};
-      run_dp_pair(sa, ra, sb, rb);
+      PETRA_TRY(prepare_row<kLanes>(c, b, arena, st, t + 1, rb));
+      const match::ScanlineInputs sb{rb.agg.data(), w, Dp, rb.p2.data(), p.p1, c.Ds, false};
+      match::scanline_dp_pair<kPathLanes>(sa, ra.S.data(), ra.back.data(), sb, rb.S.data(),
+                                          rb.back.data());
     } else {
-      run_dp_one(sa, ra);
+      match::scanline_dp<kPathLanes>(sa, ra.S.data(), ra.back.data());
     }
-    finish(t, ra);
-    if (t + 1 < h) finish(t + 1, rb);
+    finish_row<kPathLanes>(c, b, st, out, confidence, t, ra);
+    if (t + 1 < h) finish_row<kPathLanes>(c, b, st, out, confidence, t + 1, rb);
   }
 
-  if (p.median) PETRA_TRY(median3x3_valid(out.q4, med));
+  if (p.median) PETRA_TRY(median3x3_valid(out.q4, b.med));
   for (int t = 0; t < h; ++t) {
     const std::int16_t* o = out.q4.row(t);
     for (int i = 0; i < w; ++i) st.matched += is_valid_disparity(o[i]);

@@ -308,14 +308,12 @@ std::size_t grind_planes_scratch_bytes(std::size_t n) {
          bytes_for<FaceSample>(n) + footprint_scratch_bytes(n);
 }
 
-Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
-                                      std::span<const MeshTriangle> tris,
-                                      const Eigen::Vector3d& camera, int c,
-                                      const GrindParams& params, Arena& arena,
-                                      std::span<std::uint8_t> triangle_plane,
-                                      std::span<const Eigen::Vector3d> point_normals,
-                                      const RigGeometry& rig) {
-  PETRA_TRY(validate(params));
+namespace {
+
+// The mesh and label spans agree with each other and with c.
+Status check_mesh(std::span<const Eigen::Vector3d> xyz, std::span<const MeshTriangle> tris, int c,
+                  std::span<const std::uint8_t> triangle_plane,
+                  std::span<const Eigen::Vector3d> point_normals) {
   const std::size_t n = tris.size();
   if (c < 1 || c > kMaxClasses)
     return Error::make(Errc::out_of_range, "grind planes: c = %d planes, must be 1..%d", c,
@@ -335,15 +333,14 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
       if (tris[i].v[k] < 0 || tris[i].v[k] >= npts || tris[i].n[k] < -1 ||
           tris[i].n[k] >= static_cast<std::int64_t>(n))
         return Error::make(Errc::out_of_range, "grind planes: triangle %zu has a bad index", i);
+  return ok_status();
+}
 
-  for (std::size_t i = 0; i < n; ++i) triangle_plane[i] = kNone;
-  ArenaScope scope(arena);
-  auto scratch = allocate(arena, n);
-  if (!scratch) return scratch.error();
-  const Scratch& s = *scratch;
-
-  // 1. Triangle geometry, normals towards the camera.
-  for (std::size_t i = 0; i < n; ++i) {
+// 1. Triangle geometry, normals towards the camera.
+void triangle_geometry(std::span<const Eigen::Vector3d> xyz, std::span<const MeshTriangle> tris,
+                       const Eigen::Vector3d& camera,
+                       std::span<const Eigen::Vector3d> point_normals, const Scratch& s) {
+  for (std::size_t i = 0; i < tris.size(); ++i) {
     const Eigen::Vector3d& a = xyz[static_cast<std::size_t>(tris[i].v[0])];
     const Eigen::Vector3d& b = xyz[static_cast<std::size_t>(tris[i].v[1])];
     const Eigen::Vector3d& cc = xyz[static_cast<std::size_t>(tris[i].v[2])];
@@ -363,18 +360,12 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     if (nrm.dot(camera - s.centroid[i]) < 0) nrm = -nrm;
     s.normal[i] = nrm;
   }
+}
 
-  GrindResult out;
-  out.footprint_diameter_mm = params.grinder_diameter_mm;
-  // 2. C-means surface classes (eq. 9-12) on the normals, into more classes
-  // than the operator's c: a rock shows more faces than the c it is asked
-  // for, and c classes would merge two of them into a plane of neither.
-  const int k_classes = cluster_count(c);
-  Eigen::Vector3d centres[kMaxClasses];
-  int k_eff = k_classes;
-  // C-means and the angle pass iterate on a regular sample of the triangles
-  // (their cost is per sample and per iteration); then every triangle joins
-  // the nearest final centre.
+// C-means and the angle pass iterate on a regular sample of the triangles
+// (their cost is per sample and per iteration); then every triangle joins
+// the nearest final centre. Returns the sample's size.
+std::size_t take_samples(const Scratch& s, std::size_t n) {
   const std::size_t stride = (n + kCMeansSamples - 1) / kCMeansSamples;
   std::size_t m = 0;
   for (std::size_t i = 0; i < n; i += stride) {
@@ -382,57 +373,79 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     s.sample_area[m] = s.area[i];
     ++m;
   }
-  {
-    auto cm = cmeans<double>(std::span<const Eigen::Vector3d>(s.sample.data(), m), k_classes,
-                             params.cmeans, s.sample_cls.first(m));
-    if (!cm) {
-      // All normals equal (one flat face): one class.
-      if (cm.code() != Errc::degenerate) return cm.error();
-      k_eff = 1;
-      centres[0] = s.normal[0];
-    } else {
-      out.cmeans_iterations = cm->iterations;
-      for (int j = 0; j < k_classes; ++j) centres[j] = cm->classes[j].mean;
-      out.converged = cm->converged;
-    }
+  return m;
+}
+
+// 2. C-means surface classes (eq. 9-12) on the m sampled normals; returns
+// how many centres it leaves (one when all normals are equal).
+Result<int> cmeans_centres(const Scratch& s, std::size_t m, int k_classes,
+                           const GrindParams& params, Eigen::Vector3d* centres, GrindResult& out) {
+  auto cm = cmeans<double>(std::span<const Eigen::Vector3d>(s.sample.data(), m), k_classes,
+                           params.cmeans, s.sample_cls.first(m));
+  if (!cm) {
+    // All normals equal (one flat face): one class.
+    if (cm.code() != Errc::degenerate) return cm.error();
+    centres[0] = s.normal[0];
+    return 1;
   }
+  out.cmeans_iterations = cm->iterations;
+  for (int j = 0; j < k_classes; ++j) centres[j] = cm->classes[j].mean;
+  out.converged = cm->converged;
+  return k_classes;
+}
+
+// Petra adds: C-means can leave two faces in one broad class (its
+// log-determinant term tolerates a wide class) and the angle pass keeps
+// them there, with a centre between the faces. Split the widest class in
+// place of the lightest while that lowers the angular dispersion.
+void split_wide_classes(const Scratch& s, std::size_t m, int k_classes, const GrindParams& params,
+                        AngleClusterResultT<double>& ac, GrindResult& out) {
+  const std::span<const Eigen::Vector3d> sn(s.sample.data(), m);
+  const std::span<const double> sw(s.sample_area.data(), m);
+  std::uint8_t trial_labels[kCMeansSamples];
+  const std::span<std::uint8_t> tl(trial_labels, m);
+  double best = dispersion(sn, sw, s.sample_cls.first(m), ac.centres);
+  const double min_sep = params.angle.min_separation_deg * M_PI / 180.0;
+  for (int attempt = 0; attempt < k_classes; ++attempt) {
+    Eigen::Vector3d seeds[kMaxClasses];
+    if (ac.c < 2 || !split_seeds(sn, sw, s.sample_cls.first(m), ac, min_sep, seeds)) break;
+    auto trial = angle_cluster<double>(
+        sn, sw, std::span<const Eigen::Vector3d>(seeds, static_cast<std::size_t>(ac.c)),
+        params.angle, tl);
+    if (!trial) break;
+    const double d = dispersion(sn, sw, tl, trial->centres);
+    if (!(d < best * (1.0 - kSplitGain))) break;
+    best = d;
+    ac = *trial;
+    std::copy(tl.begin(), tl.end(), s.sample_cls.begin());
+    ++out.splits;
+  }
+}
+
+// 2-3. Surface classes of the normals: c-means into more classes than the
+// operator's c (a rock shows more faces than the c it is asked for, and c
+// classes would merge two of them into a plane of neither), refined by
+// angle clustering and splitting. Every triangle joins the nearest centre
+// (s.cls); members counts them by class.
+Result<AngleClusterResultT<double>> surface_classes(const Scratch& s, std::size_t n, int c,
+                                                    const GrindParams& params, std::size_t* members,
+                                                    GrindResult& out) {
+  const int k_classes = cluster_count(c);
+  Eigen::Vector3d centres[kMaxClasses];
+  const std::size_t m = take_samples(s, n);
+  auto k_eff = cmeans_centres(s, m, k_classes, params, centres, out);
+  if (!k_eff) return k_eff.error();
   // 3. Angle clustering refinement (4b; centres more than 5 deg apart),
   // area-weighted.
   auto ac = angle_cluster<double>(
       std::span<const Eigen::Vector3d>(s.sample.data(), m),
       std::span<const double>(s.sample_area.data(), m),
-      std::span<const Eigen::Vector3d>(centres, static_cast<std::size_t>(k_eff)), params.angle,
+      std::span<const Eigen::Vector3d>(centres, static_cast<std::size_t>(*k_eff)), params.angle,
       s.sample_cls.first(m));
   if (!ac) return ac.error();
   out.angle_iterations = ac->iterations;
-  out.converged = (k_eff == 1 || out.converged) && ac->converged;
-  // Petra adds: C-means can leave two faces in one broad class (its
-  // log-determinant term tolerates a wide class) and the angle pass keeps
-  // them there, with a centre between the faces. Split the widest class in
-  // place of the lightest while that lowers the angular dispersion.
-  {
-    const std::span<const Eigen::Vector3d> sn(s.sample.data(), m);
-    const std::span<const double> sw(s.sample_area.data(), m);
-    std::uint8_t trial_labels[kCMeansSamples];
-    const std::span<std::uint8_t> tl(trial_labels, m);
-    double best = dispersion(sn, sw, s.sample_cls.first(m), ac->centres);
-    const double min_sep = params.angle.min_separation_deg * M_PI / 180.0;
-    for (int attempt = 0; attempt < k_classes; ++attempt) {
-      Eigen::Vector3d seeds[kMaxClasses];
-      if (ac->c < 2 || !split_seeds(sn, sw, s.sample_cls.first(m), *ac, min_sep, seeds)) break;
-      auto trial = angle_cluster<double>(
-          sn, sw, std::span<const Eigen::Vector3d>(seeds, static_cast<std::size_t>(ac->c)),
-          params.angle, tl);
-      if (!trial) break;
-      const double d = dispersion(sn, sw, tl, trial->centres);
-      if (!(d < best * (1.0 - kSplitGain))) break;
-      best = d;
-      ac = trial;
-      std::copy(tl.begin(), tl.end(), s.sample_cls.begin());
-      ++out.splits;
-    }
-  }
-  std::size_t members[kMaxClasses] = {};
+  out.converged = (*k_eff == 1 || out.converged) && ac->converged;
+  split_wide_classes(s, m, k_classes, params, *ac, out);
   for (std::size_t i = 0; i < n; ++i) {
     int best = 0;
     double best_cos = s.normal[i].dot(ac->centres[0]);
@@ -446,38 +459,54 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     s.cls[i] = static_cast<std::uint8_t>(best);
     ++members[best];
   }
+  return ac;
+}
 
-  // 4. One candidate plane per class; coplanar neighbours merged.
-  GrindPlane candidates[kMaxClasses];
-  bool alive[kMaxClasses] = {};
-  const double cos_inlier = std::cos(params.inlier_angle_deg * M_PI / 180.0);
-  const double cos_merge = std::cos(params.merge_angle_deg * M_PI / 180.0);
-  const double cos_grow = std::cos(params.grow_angle_deg * M_PI / 180.0);
-  const DepthNoise noise{rig.focal_px, rig.baseline_mm, params.sigma_disparity_px,
-                         rig.correlation_px};
-  Status failure;
-  auto fit_class = [&](int k) {
-    GrindPlane& plane = candidates[k];
-    plane = GrindPlane{};
-    for (std::size_t i = 0; i < n; ++i)
-      if (triangle_plane[i] == k) triangle_plane[i] = kNone;
-    std::size_t pm = largest_patch(tris, s, static_cast<std::uint8_t>(k));
-    auto vertex = [&](std::size_t j) -> const Eigen::Vector3d& {
-      return xyz[static_cast<std::size_t>(tris[static_cast<std::size_t>(s.patch[j / 3])].v[j % 3])];
-    };
-    auto tri_of = [&](std::size_t j) { return static_cast<std::size_t>(s.patch[j]); };
-    PlaneFitT<double> fit;
+// Step 4's plane of one class and step 5's verdict on it, with what every
+// class shares. A failure other than a degenerate patch (a budget, a bad
+// parameter) is kept in `failure`: the last one is returned.
+struct ClassFitter {
+  std::span<const Eigen::Vector3d> xyz;
+  std::span<const MeshTriangle> tris;
+  const Scratch& s;
+  const Eigen::Vector3d& camera;
+  const GrindParams& params;
+  Arena& arena;
+  std::span<std::uint8_t> triangle_plane;
+  DepthNoise noise;
+  double cos_inlier = 0, cos_grow = 0;
+  bool use_core = false;  // the final fit uses the patch's core only
+  Status failure{};
+
+  // Vertex j % 3 of patch triangle j / 3.
+  const Eigen::Vector3d& vertex(std::size_t j) const {
+    return xyz[static_cast<std::size_t>(tris[static_cast<std::size_t>(s.patch[j / 3])].v[j % 3])];
+  }
+  std::size_t tri_of(std::size_t j) const { return static_cast<std::size_t>(s.patch[j]); }
+  bool in_fit(std::size_t i) const { return s.support[i] == 1 && (!use_core || s.depth[i] == 0); }
+  double band_of(const PlaneFitT<double>& fit) const {
+    return std::max(3.0 * fit.rms, params.min_trim_band_mm);
+  }
+  Eigen::Vector3d up_of(const PlaneFitT<double>& fit) const {
+    Eigen::Vector3d up = fit.plane.normal;
+    if (up.dot(camera - fit.centroid) < 0) up = -up;
+    return up;
+  }
+
+  // Fits the patch's first pm triangles, trimming those that disagree with
+  // the plane, three times. False when no plane fits.
+  bool trimmed_fit(std::size_t pm, PlaneFitT<double>& fit) const {
+    auto vtx = [this](std::size_t j) -> const Eigen::Vector3d& { return vertex(j); };
     bool have = false;
     for (int round = 0; round < 3; ++round) {
       auto f = fit_plane_tls_by<double>(
-          3 * pm, vertex, [&](std::size_t j) { return s.support[tri_of(j / 3)] == 1; });
+          3 * pm, vtx, [&](std::size_t j) { return s.support[tri_of(j / 3)] == 1; });
       if (!f) break;
       fit = *f;
       have = true;
       // Trim the patch to the triangles that agree with the plane.
-      const double band = std::max(3.0 * fit.rms, params.min_trim_band_mm);
-      Eigen::Vector3d up = fit.plane.normal;
-      if (up.dot(camera - fit.centroid) < 0) up = -up;
+      const double band = band_of(fit);
+      const Eigen::Vector3d up = up_of(fit);
       for (std::size_t j = 0; j < pm; ++j) {
         const std::size_t i = tri_of(j);
         if (s.support[i] != 1) continue;
@@ -486,17 +515,22 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
         if (!agrees) s.support[i] = 3;  // dropped
       }
     }
-    // Regrow: a steep face's matched disparity is a staircase, whose treads
-    // and risers cluster into different normal classes, so the class patch
-    // holds the treads only and its plane leans towards them. The face is
-    // taken back by position: edge neighbours of the patch that lie within
-    // the distance band of its plane and within grow_angle_deg of its normal
-    // join it (from any class), and the plane is refitted on the whole set.
+    return have;
+  }
+
+  // Regrow: a steep face's matched disparity is a staircase, whose treads
+  // and risers cluster into different normal classes, so the class patch
+  // holds the treads only and its plane leans towards them. The face is
+  // taken back by position: edge neighbours of the patch that lie within
+  // the distance band of its plane and within grow_angle_deg of its normal
+  // join it (from any class), and the plane is refitted on the whole set.
+  // Returns the patch's new length.
+  std::size_t regrow(std::size_t pm, PlaneFitT<double>& fit) const {
+    auto vtx = [this](std::size_t j) -> const Eigen::Vector3d& { return vertex(j); };
     std::size_t pn = pm;
-    for (int round = 0; have && round < params.grow_rounds; ++round) {
-      const double band = std::max(3.0 * fit.rms, params.min_trim_band_mm);
-      Eigen::Vector3d up = fit.plane.normal;
-      if (up.dot(camera - fit.centroid) < 0) up = -up;
+    for (int round = 0; round < params.grow_rounds; ++round) {
+      const double band = band_of(fit);
+      const Eigen::Vector3d up = up_of(fit);
       // Marks: 1 in the patch, 3 trimmed (listed in s.patch), 4 + round
       // looked at and left out this round (largest_patch clears them all).
       const std::uint8_t looked = static_cast<std::uint8_t>(4 + round);
@@ -522,63 +556,68 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
         }
       }
       auto f = fit_plane_tls_by<double>(
-          3 * pn, vertex, [&](std::size_t j) { return s.support[tri_of(j / 3)] == 1; });
+          3 * pn, vtx, [&](std::size_t j) { return s.support[tri_of(j / 3)] == 1; });
       if (!f) break;
       fit = *f;
     }
-    pm = pn;
-    // The final plane from the patch's core: the matcher's window rounds
-    // depth over a few pixels at every crease, so the rings of triangles
-    // along the patch's border bend towards the neighbouring faces.
+    return pn;
+  }
+
+  // The final plane from the patch's core: the matcher's window rounds
+  // depth over a few pixels at every crease, so the rings of triangles
+  // along the patch's border bend towards the neighbouring faces. Sets
+  // use_core.
+  void choose_core(std::size_t pm) {
     std::size_t patch = 0;
     const std::size_t core = erode(tris, s, pm, params.edge_rings);
     for (std::size_t j = 0; j < pm; ++j) patch += s.support[tri_of(j)] == 1;
-    const bool use_core = core >= 20 && 4 * core >= patch;
-    auto in_fit = [&](std::size_t i) {
-      return s.support[i] == 1 && (!use_core || s.depth[i] == 0);
-    };
-    // The final fit: least squares along the viewing ray to the patch (the
-    // stereo error model, fit_along_ray), or total least squares.
-    if (have) {
-      const Eigen::Vector3d ray = (fit.centroid - camera).normalized();
-      auto use = [&](std::size_t j) { return in_fit(tri_of(j / 3)) ? 1.0 : 0.0; };
-      auto f = params.fit_along_ray ? fit_plane_along_by<double>(3 * pm, vertex, use, ray)
-                                    : fit_plane_wtls_by<double>(3 * pm, vertex, use);
-      if (f) fit = *f;
-      if (fit.plane.normal.dot(camera - fit.centroid) < 0) {
-        fit.plane.normal = -fit.plane.normal;
-        fit.plane.d = -fit.plane.d;
-      }
+    use_core = core >= 20 && 4 * core >= patch;
+  }
+
+  // The final fit: least squares along the viewing ray to the patch (the
+  // stereo error model, fit_along_ray), or total least squares; normal
+  // towards the camera.
+  void final_fit(std::size_t pm, PlaneFitT<double>& fit) const {
+    auto vtx = [this](std::size_t j) -> const Eigen::Vector3d& { return vertex(j); };
+    const Eigen::Vector3d ray = (fit.centroid - camera).normalized();
+    auto use = [&](std::size_t j) { return in_fit(tri_of(j / 3)) ? 1.0 : 0.0; };
+    auto f = params.fit_along_ray ? fit_plane_along_by<double>(3 * pm, vtx, use, ray)
+                                  : fit_plane_wtls_by<double>(3 * pm, vtx, use);
+    if (f) fit = *f;
+    if (fit.plane.normal.dot(camera - fit.centroid) < 0) {
+      fit.plane.normal = -fit.plane.normal;
+      fit.plane.d = -fit.plane.d;
     }
+  }
+
+  struct Claimed {
     double area = 0, core_area = 0;
-    Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+    Eigen::Vector3d weighted = Eigen::Vector3d::Zero();  // core centroids by area
     std::size_t count = 0;
+  };
+
+  // Labels the patch's triangles with class k and sums them up.
+  Claimed claim(int k, std::size_t pm) const {
+    Claimed cl;
     for (std::size_t j = 0; j < pm; ++j) {
       const std::size_t i = tri_of(j);
       if (s.support[i] != 1) continue;
       // A triangle regrown into two faces' patches (at a crease) is counted
       // by the first only.
       if (triangle_plane[i] != kNone && triangle_plane[i] != k) continue;
-      area += s.area[i];
-      ++count;
+      cl.area += s.area[i];
+      ++cl.count;
       triangle_plane[i] = static_cast<std::uint8_t>(k);
       if (in_fit(i)) {
-        weighted += s.area[i] * s.centroid[i];
-        core_area += s.area[i];
+        cl.weighted += s.area[i] * s.centroid[i];
+        cl.core_area += s.area[i];
       }
     }
-    plane.triangles = count;
-    plane.area_mm2 = area;
-    if (!have || count == 0 || !(area > 0) || !(core_area > 0)) {
-      plane.verdict = PlaneVerdict::no_support;
-      return;
-    }
-    plane.normal = fit.plane.normal;
-    const Eigen::Vector3d centre = weighted / core_area;
-    plane.centroid_mm = centre - fit.plane.distance(centre) * fit.plane.normal;  // onto the plane
-    plane.rms_mm = fit.rms;
-    plane.view_angle_deg = plane_view_angle_deg(plane.normal, plane.centroid_mm, camera);
-    // 5. Where the grinder sits, the plane's uncertainty, the verdict.
+    return cl;
+  }
+
+  // 5. Where the grinder sits, the plane's uncertainty, the verdict.
+  void qualify(int k, std::size_t pm, GrindPlane& plane) {
     std::size_t faces = 0, core_faces = 0;
     for (int pass = 0; pass < 2; ++pass)  // the fit's core first, then the border
       for (std::size_t j = 0; j < pm; ++j) {
@@ -592,54 +631,85 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
       plane.verdict = PlaneVerdict::no_support;
       if (q.code() != Errc::degenerate) failure = q;  // a budget or a bad parameter: fail
     }
-  };
-  for (int k = 0; k < ac->c; ++k) {
-    alive[k] = members[k] > 0;
-    if (alive[k]) fit_class(k);
   }
-  // Two classes on one face (its normals spread over both): merge when their
-  // planes agree in direction and each centroid lies on the other's plane.
-  auto coplanar = [&](int i, int j) {
-    const GrindPlane& a = candidates[i];
-    const GrindPlane& b = candidates[j];
-    if (a.verdict == PlaneVerdict::no_support || b.verdict == PlaneVerdict::no_support)
-      return false;
-    // The whole patches' planes (the reported ones may be a footprint's).
-    const Eigen::Vector3d &na = a.face_normal, &nb = b.face_normal;
-    const Eigen::Vector3d &ca = a.face_centroid_mm, &cb = b.face_centroid_mm;
-    return na.dot(nb) >= cos_merge && std::abs(na.dot(cb - ca)) <= params.merge_distance_mm &&
-           std::abs(nb.dot(ca - cb)) <= params.merge_distance_mm;
-  };
+
+  // 4. The plane of class k from its largest patch.
+  void fit_class(int k, GrindPlane& plane) {
+    plane = GrindPlane{};
+    for (std::size_t i = 0; i < triangle_plane.size(); ++i)
+      if (triangle_plane[i] == k) triangle_plane[i] = kNone;
+    std::size_t pm = largest_patch(tris, s, static_cast<std::uint8_t>(k));
+    PlaneFitT<double> fit;
+    const bool have = trimmed_fit(pm, fit);
+    if (have) pm = regrow(pm, fit);
+    choose_core(pm);
+    if (have) final_fit(pm, fit);
+    const Claimed cl = claim(k, pm);
+    plane.triangles = cl.count;
+    plane.area_mm2 = cl.area;
+    if (!have || cl.count == 0 || !(cl.area > 0) || !(cl.core_area > 0)) {
+      plane.verdict = PlaneVerdict::no_support;
+      return;
+    }
+    plane.normal = fit.plane.normal;
+    const Eigen::Vector3d centre = cl.weighted / cl.core_area;
+    plane.centroid_mm = centre - fit.plane.distance(centre) * fit.plane.normal;  // onto the plane
+    plane.rms_mm = fit.rms;
+    plane.view_angle_deg = plane_view_angle_deg(plane.normal, plane.centroid_mm, camera);
+    qualify(k, pm, plane);
+  }
+};
+
+// Two classes on one face (its normals spread over both): true when their
+// planes agree in direction and each centroid lies on the other's plane.
+bool coplanar(const GrindPlane& a, const GrindPlane& b, double cos_merge,
+              const GrindParams& params) {
+  if (a.verdict == PlaneVerdict::no_support || b.verdict == PlaneVerdict::no_support) return false;
+  // The whole patches' planes (the reported ones may be a footprint's).
+  const Eigen::Vector3d &na = a.face_normal, &nb = b.face_normal;
+  const Eigen::Vector3d &ca = a.face_centroid_mm, &cb = b.face_centroid_mm;
+  return na.dot(nb) >= cos_merge && std::abs(na.dot(cb - ca)) <= params.merge_distance_mm &&
+         std::abs(nb.dot(ca - cb)) <= params.merge_distance_mm;
+}
+
+// Merges coplanar classes, one pair at a time (each merge refits the
+// survivor, which may then match another); returns the merges.
+int merge_coplanar(ClassFitter& fitter, int classes, GrindPlane* candidates, bool* alive) {
+  const double cos_merge = std::cos(fitter.params.merge_angle_deg * M_PI / 180.0);
+  const Scratch& s = fitter.s;
+  int merges = 0;
   for (int guard = 0; guard < kMaxClasses; ++guard) {
     bool merged = false;
-    for (int i = 0; i < ac->c && !merged; ++i)
-      for (int j = i + 1; j < ac->c && !merged; ++j) {
-        if (!alive[i] || !alive[j] || !coplanar(i, j)) continue;
-        for (std::size_t t = 0; t < n; ++t) {
+    for (int i = 0; i < classes && !merged; ++i)
+      for (int j = i + 1; j < classes && !merged; ++j) {
+        if (!alive[i] || !alive[j] ||
+            !coplanar(candidates[i], candidates[j], cos_merge, fitter.params))
+          continue;
+        for (std::size_t t = 0; t < s.cls.size(); ++t) {
           if (s.cls[t] == j) s.cls[t] = static_cast<std::uint8_t>(i);
-          if (triangle_plane[t] == j) triangle_plane[t] = kNone;
+          if (fitter.triangle_plane[t] == j) fitter.triangle_plane[t] = kNone;
         }
         alive[j] = false;
-        fit_class(i);
-        ++out.merges;
+        fitter.fit_class(i, candidates[i]);
+        ++merges;
         merged = true;
       }
     if (!merged) break;
   }
-  if (!failure.ok()) return failure.error();
-  int distinct = 0;
-  for (int k = 0; k < ac->c; ++k) distinct += alive[k];
-  out.classes = distinct;
+  return merges;
+}
 
-  // 5. Rank: accepted by area (largest first; beyond c they are surplus),
-  // then the rejected ones.
+// 5. Rank: accepted by area (largest first; beyond c they are surplus),
+// then the rejected ones; triangle labels become ranks.
+void rank_planes(int c, int classes, GrindPlane* candidates, const bool* alive,
+                 std::span<std::uint8_t> triangle_plane, GrindResult& out) {
   int order[kMaxClasses] = {};
   bool qualified[kMaxClasses] = {};  // ranked in pass 0 (accepted or surplus): not again
-  for (int k = 0; k < ac->c; ++k) qualified[k] = candidates[k].verdict == PlaneVerdict::accepted;
+  for (int k = 0; k < classes; ++k) qualified[k] = candidates[k].verdict == PlaneVerdict::accepted;
   int ranked = 0;
   for (int pass = 0; pass < 2; ++pass) {
     const int pass_start = ranked;
-    for (int k = 0; k < ac->c; ++k) {
+    for (int k = 0; k < classes; ++k) {
       if (!alive[k]) continue;
       if ((pass == 0) != qualified[k]) continue;
       int pos = ranked++;
@@ -662,11 +732,62 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
     out.planes[r] = candidates[order[r]];
     rank_of[order[r]] = r;
   }
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < triangle_plane.size(); ++i) {
     const std::uint8_t v = triangle_plane[i];
     triangle_plane[i] =
         v < kMaxClasses && rank_of[v] >= 0 ? static_cast<std::uint8_t>(rank_of[v]) : kNone;
   }
+}
+
+}  // namespace
+
+Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
+                                      std::span<const MeshTriangle> tris,
+                                      const Eigen::Vector3d& camera, int c,
+                                      const GrindParams& params, Arena& arena,
+                                      std::span<std::uint8_t> triangle_plane,
+                                      std::span<const Eigen::Vector3d> point_normals,
+                                      const RigGeometry& rig) {
+  PETRA_TRY(validate(params));
+  PETRA_TRY(check_mesh(xyz, tris, c, triangle_plane, point_normals));
+  const std::size_t n = tris.size();
+  for (std::size_t i = 0; i < n; ++i) triangle_plane[i] = kNone;
+  ArenaScope scope(arena);
+  auto scratch = allocate(arena, n);
+  if (!scratch) return scratch.error();
+  const Scratch& s = *scratch;
+
+  triangle_geometry(xyz, tris, camera, point_normals, s);
+  GrindResult out;
+  out.footprint_diameter_mm = params.grinder_diameter_mm;
+  std::size_t members[kMaxClasses] = {};
+  auto ac = surface_classes(s, n, c, params, members, out);
+  if (!ac) return ac.error();
+
+  // 4. One candidate plane per class; coplanar neighbours merged.
+  GrindPlane candidates[kMaxClasses];
+  bool alive[kMaxClasses] = {};
+  ClassFitter fitter{
+      xyz,
+      tris,
+      s,
+      camera,
+      params,
+      arena,
+      triangle_plane,
+      DepthNoise{rig.focal_px, rig.baseline_mm, params.sigma_disparity_px, rig.correlation_px},
+      std::cos(params.inlier_angle_deg * M_PI / 180.0),
+      std::cos(params.grow_angle_deg * M_PI / 180.0)};
+  for (int k = 0; k < ac->c; ++k) {
+    alive[k] = members[k] > 0;
+    if (alive[k]) fitter.fit_class(k, candidates[k]);
+  }
+  out.merges += merge_coplanar(fitter, ac->c, candidates, alive);
+  if (!fitter.failure.ok()) return fitter.failure.error();
+  int distinct = 0;
+  for (int k = 0; k < ac->c; ++k) distinct += alive[k];
+  out.classes = distinct;
+  rank_planes(c, ac->c, candidates, alive, triangle_plane, out);
   return out;
 }
 
