@@ -151,6 +151,34 @@ std::string quote(const std::string& s) {
   return "'" + s + "'";
 }
 
+// petra-fsw's points budget, from the memory table it prints at boot (the
+// "points" column of its one row), so `petra eval` runs on the same budget;
+// "" when the log has no such table.
+std::string flight_points_budget(const std::string& fsw_log) {
+  auto trim = [](std::string c) {
+    c.erase(0, std::min(c.size(), c.find_first_not_of(' ')));
+    c.erase(c.find_last_not_of(' ') + 1);
+    return c;
+  };
+  std::istringstream lines(fsw_log);
+  std::ptrdiff_t column = -1;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("| ", 0) != 0) continue;  // table rows only, not the |---| rule
+    std::vector<std::string> cells;
+    std::istringstream row(line.substr(1));
+    for (std::string cell; std::getline(row, cell, '|');) cells.push_back(trim(cell));
+    if (column < 0) {  // the header row
+      const auto at = std::find(cells.begin(), cells.end(), "points");
+      if (at != cells.end()) column = at - cells.begin();
+      continue;
+    }
+    const std::string& v = cells[static_cast<std::size_t>(
+        std::min<std::ptrdiff_t>(column, static_cast<std::ptrdiff_t>(cells.size()) - 1))];
+    return !v.empty() && v.find_first_not_of("0123456789") == std::string::npos ? v : "";
+  }
+  return "";
+}
+
 // `petra eval` on the same pair, when this build has it: its planes.json and
 // pictures in dir/eval. Returns its planes.json text, or "" (with a line why).
 std::string run_petra_eval(const Options& o, const Scene& scene, const fs::path& dir,
@@ -167,12 +195,14 @@ std::string run_petra_eval(const Options& o, const Scene& scene, const fs::path&
     std::snprintf(click, sizeof click, " --click %d,%d", scene.click_u, scene.click_v);
   char sf[32];
   std::snprintf(sf, sizeof sf, "%.17g", shadow_fraction);
-  const std::string cmd = quote(o.self_binary) + " eval --calib " + quote(scene.calib.string()) +
-                          " --left " + quote((dir / "pairs/left.pgm").string()) + " --right " +
-                          quote((dir / "pairs/right.pgm").string()) + " --roi " + roi +
-                          " --planes " + std::to_string(scene.planes) + click +
-                          " --shadow-fraction " + sf + " --out " + quote(eval_dir.string()) +
-                          " > " + quote((dir / "eval.txt").string()) + " 2>&1";
+  const std::string points = flight_points_budget(read_all(dir / "fsw.log"));
+  const std::string cmd =
+      quote(o.self_binary) + " eval --calib " + quote(scene.calib.string()) + " --left " +
+      quote((dir / "pairs/left.pgm").string()) + " --right " +
+      quote((dir / "pairs/right.pgm").string()) + " --roi " + roi + " --planes " +
+      std::to_string(scene.planes) + click + " --shadow-fraction " + sf +
+      (points.empty() ? "" : " --points " + points) + " --out " + quote(eval_dir.string()) + " > " +
+      quote((dir / "eval.txt").string()) + " 2>&1";
   if (std::system(cmd.c_str()) != 0) {
     std::fprintf(out, "   `petra eval` on the same pair failed: %s\n",
                  read_all(dir / "eval.txt").c_str());

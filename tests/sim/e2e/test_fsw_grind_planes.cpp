@@ -42,6 +42,8 @@ TEST(FswGrindPlanes, TelemetryEqualsTheOnboardChainOnTheSamePair) {
   const int status = std::system(cmd.c_str());
   const std::string log = read_all(dir.string() + ".txt");
   ASSERT_EQ(status, 0) << log;
+  // `petra eval` on the ground, on the flight's points budget, agrees.
+  EXPECT_NE(log.find("identical grind planes"), std::string::npos) << log;
 
   // What came down as telemetry.
   auto received = sim::parse_planes_json(read_all(dir / "planes.json"));
