@@ -201,6 +201,15 @@ class GraphCutMatcher {
   // band >= 0 only pixels whose guide_ is negative or within band of alpha
   // may change.
   std::int64_t expand(int alpha, std::int64_t& nodes_used, int band = -1);
+  // expand()'s steps (match_graphcut_expansion.cpp: A, R, B, Q, C, the update).
+  struct Expansion;
+  void alpha_assignments(const Expansion& e, int band);
+  void fix_inactive_alphas();
+  void old_assignments(const Expansion& e);
+  void fix_kept_olds();
+  std::int64_t build_graph(const Expansion& e);
+  int apply_cut(const Expansion& e, std::int32_t num_nodes);
+  void refresh_changed(int changed);
 
   GraphCutBudget budget_{};
   MaxFlow<6> maxflow_;       // 4 neighbours + 2 uniqueness links per node
