@@ -38,6 +38,11 @@ MatchBudget dp_budget(const GraphCutBudget& b) {
   return {b.max_width, b.max_height, b.max_disparities};
 }
 
+Error cancelled_error(int cycle, const GraphCutReport& report) {
+  return Error::make(Errc::cancelled, "graphcut: cancelled in cycle %d after %d expansions",
+                     cycle + 1, report.expansions);
+}
+
 }  // namespace
 
 std::size_t GraphCutMatcher::bytes_needed(const GraphCutBudget& budget) {
@@ -362,6 +367,29 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
   prepare(in, roi, params);
 
   GraphCutReport report;
+  PETRA_TRY(choose_weights(params, report));
+  auto started = start_labels(in, roi, params, report);
+  if (!started) return started.error();
+  std::int64_t e = *started;
+
+  GraphCutStep start;
+  start.cycle = -1;
+  start.skipped = true;
+  start.energy_before = start.energy_after = e;
+  notify(params, start);
+
+  std::uint32_t rng = params.seed != 0 ? params.seed : 0x9E3779B9u;
+  PETRA_TRY(run_guided_cycles(params, rng, report, e));
+  PETRA_TRY(run_full_cycles(params, rng, report, e));
+  // The energy tracked from the cut values must be the energy of the result.
+  PETRA_ASSERT(energy() == e);
+  report.energy = e;
+  write_output(roi, out, report);
+  return report;
+}
+
+// K (automatic unless given) and the Potts weights.
+Status GraphCutMatcher::choose_weights(const GraphCutParams& params, GraphCutReport& report) {
   k_ = params.occlusion_k != kGraphCutAuto ? params.occlusion_k : automatic_k();
   if (k_ <= 0) {
     return Error::make(Errc::degenerate,
@@ -376,7 +404,14 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
   report.occlusion_k = k_;
   report.lambda1 = lambda1_;
   report.lambda2 = lambda2_;
+  return ok_status();
+}
 
+// The starting labelling (report.start says which, after the DP's fallback)
+// and the cached terms; returns its energy.
+Result<std::int64_t> GraphCutMatcher::start_labels(const StereoInput& in, Rect roi,
+                                                   const GraphCutParams& params,
+                                                   GraphCutReport& report) {
   const int n = w_ * h_;
   std::int64_t e = 0;  // the all-occluded start
   report.start = params.start;
@@ -396,44 +431,40 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
   report.energy_start = e;
   refresh_all();
   std::fill_n(last_change_.begin(), num_disp_, -1);
+  return e;
+}
 
-  auto notify = [&](GraphCutStep& step) {
-    if (params.observer.on_expansion == nullptr) return;
-    step.labels = std::span<const std::int16_t>(label_.data(), static_cast<std::size_t>(n));
-    step.width = w_;
-    step.height = h_;
-    params.observer.on_expansion(params.observer.context, step);
-  };
-  GraphCutStep start;
-  start.cycle = -1;
-  start.skipped = true;
-  start.energy_before = start.energy_after = e;
-  notify(start);
+void GraphCutMatcher::notify(const GraphCutParams& params, GraphCutStep& step) const {
+  if (params.observer.on_expansion == nullptr) return;
+  step.labels = std::span<const std::int16_t>(label_.data(), static_cast<std::size_t>(w_ * h_));
+  step.width = w_;
+  step.height = h_;
+  params.observer.on_expansion(params.observer.context, step);
+}
 
-  std::uint32_t rng = params.seed != 0 ? params.seed : 0x9E3779B9u;
-  auto shuffle = [&] {
-    for (int i = 0; i < num_disp_; ++i) order_[i] = static_cast<std::int16_t>(i);
-    if (!params.random_order) return;
-    for (int i = num_disp_ - 1; i > 0; --i) {
-      const int j = static_cast<int>(next_random(rng) % static_cast<std::uint32_t>(i + 1));
-      std::swap(order_[i], order_[j]);
-    }
-  };
-  auto cancelled = [&](int cycle) {
-    return Error::make(Errc::cancelled, "graphcut: cancelled in cycle %d after %d expansions",
-                       cycle + 1, report.expansions);
-  };
+// The disparity order of a cycle: a new seeded permutation, or in order.
+void GraphCutMatcher::shuffle_order(const GraphCutParams& params, std::uint32_t& rng) {
+  for (int i = 0; i < num_disp_; ++i) order_[i] = static_cast<std::int16_t>(i);
+  if (!params.random_order) return;
+  for (int i = num_disp_ - 1; i > 0; --i) {
+    const int j = static_cast<int>(next_random(rng) % static_cast<std::uint32_t>(i + 1));
+    std::swap(order_[i], order_[j]);
+  }
+}
 
-  // Guided cycles: moves restricted to the band around the start (their
-  // results are not optimal over every move, so no skip stamps are set).
+// Guided cycles: moves restricted to the band around the start (their
+// results are not optimal over every move, so no skip stamps are set).
+Status GraphCutMatcher::run_guided_cycles(const GraphCutParams& params, std::uint32_t& rng,
+                                          GraphCutReport& report, std::int64_t& e) {
   const int guided = report.start == GraphCutStart::occluded ? 0 : params.guided_cycles;
-  if (guided > 0) std::copy_n(label_.begin(), n, guide_.begin());
+  if (guided > 0) std::copy_n(label_.begin(), w_ * h_, guide_.begin());
   for (int cycle = 0; cycle < guided; ++cycle) {
-    shuffle();
+    shuffle_order(params, rng);
     bool decreased = false;
     for (int i = 0; i < num_disp_; ++i) {
       const int alpha = order_[i];
-      if (params.cancel != nullptr && params.cancel->cancelled()) return cancelled(cycle);
+      if (params.cancel != nullptr && params.cancel->cancelled())
+        return cancelled_error(cycle, report);
       GraphCutStep step;
       step.cycle = cycle;
       step.guided = true;
@@ -447,15 +478,20 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
         step.applied = true;
       }
       step.energy_after = e;
-      notify(step);
+      notify(params, step);
     }
     ++report.guided_cycles;
     if (!decreased) break;
   }
+  return ok_status();
+}
 
+// Full cycles over every disparity until one brings no decrease.
+Status GraphCutMatcher::run_full_cycles(const GraphCutParams& params, std::uint32_t& rng,
+                                        GraphCutReport& report, std::int64_t& e) {
   std::int32_t changes = 0;
   for (int cycle = 0; cycle < params.max_cycles; ++cycle) {
-    shuffle();
+    shuffle_order(params, rng);
     bool decreased = false;
     for (int i = 0; i < num_disp_; ++i) {
       const int alpha = order_[i];
@@ -464,7 +500,7 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
       step.disparity = disp_min_ + alpha;
       step.energy_before = e;
       if (params.cancel != nullptr && params.cancel->cancelled()) {
-        return cancelled(report.guided_cycles + cycle);
+        return cancelled_error(report.guided_cycles + cycle, report);
       }
       if (last_change_[alpha] == changes) {
         // Unchanged since alpha's last expansion, whose result is optimal
@@ -483,7 +519,7 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
         last_change_[alpha] = changes;
       }
       step.energy_after = e;
-      notify(step);
+      notify(params, step);
     }
     ++report.cycles;
     (void)report.cycle_energy.push_back(e);
@@ -492,10 +528,11 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
       break;
     }
   }
-  // The energy tracked from the cut values must be the energy of the result.
-  PETRA_ASSERT(energy() == e);
-  report.energy = e;
+  return ok_status();
+}
 
+// The labelling as Q4 disparities, and the pixel counts of the report.
+void GraphCutMatcher::write_output(Rect roi, DisparityMap& out, GraphCutReport& report) const {
   out.roi = roi;
   for (int y = 0; y < h_; ++y) {
     std::int16_t* row = out.q4.row(y);
@@ -515,7 +552,6 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
       }
     }
   }
-  return report;
 }
 
 }  // namespace petra

@@ -191,6 +191,17 @@ class GraphCutMatcher {
   void prepare(const StereoInput& in, Rect roi, const GraphCutParams& params);
   std::int32_t automatic_k() const;
   void block_matching_labels();
+  // match()'s steps.
+  Status choose_weights(const GraphCutParams& params, GraphCutReport& report);
+  Result<std::int64_t> start_labels(const StereoInput& in, Rect roi, const GraphCutParams& params,
+                                    GraphCutReport& report);
+  void notify(const GraphCutParams& params, GraphCutStep& step) const;
+  void shuffle_order(const GraphCutParams& params, std::uint32_t& rng);
+  Status run_guided_cycles(const GraphCutParams& params, std::uint32_t& rng, GraphCutReport& report,
+                           std::int64_t& e);
+  Status run_full_cycles(const GraphCutParams& params, std::uint32_t& rng, GraphCutReport& report,
+                         std::int64_t& e);
+  void write_output(Rect roi, DisparityMap& out, GraphCutReport& report) const;
   Result<bool> dp_labels(const StereoInput& in, Rect roi, const GraphCutParams& params);
   void labels_from_map(const ConstDisparityMap& map);
   // Cached terms of the active assignment of pixel p (see keep_).
