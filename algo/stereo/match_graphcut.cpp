@@ -38,6 +38,98 @@ MatchBudget dp_budget(const GraphCutBudget& b) {
   return {b.max_width, b.max_height, b.max_disparities};
 }
 
+// The images and their shadow masks.
+Status check_images(const StereoInput& in) {
+  const ConstGray8View& left = in.left;
+  const ConstGray8View& right = in.right;
+  if (left.empty() || right.empty()) {
+    return Error::make(Errc::invalid_argument, "graphcut: empty %s image",
+                       left.empty() ? "left" : "right");
+  }
+  if (right.width() != left.width() || right.height() != left.height()) {
+    return Error::make(Errc::invalid_argument,
+                       "graphcut: right image %dx%d differs from left %dx%d", right.width(),
+                       right.height(), left.width(), left.height());
+  }
+  const ShadowMask* masks[2] = {in.left_shadow, in.right_shadow};
+  for (int k = 0; k < 2; ++k) {
+    const ShadowMask* m = masks[k];
+    if (m == nullptr) continue;
+    if (!m->area.inside(left.width(), left.height()) || m->mask.width() != m->area.w ||
+        m->mask.height() != m->area.h) {
+      return Error::make(Errc::invalid_argument,
+                         "graphcut: %s shadow mask %dx%d for area %d,%d,%d,%d of a %dx%d image",
+                         k == 0 ? "left" : "right", m->mask.width(), m->mask.height(), m->area.x,
+                         m->area.y, m->area.w, m->area.h, left.width(), left.height());
+    }
+  }
+  return ok_status();
+}
+
+// The disparity range, the cycle counts and the energy's weights.
+Status check_range_and_weights(const GraphCutParams& params, const GraphCutBudget& budget) {
+  if (params.disp_min > params.disp_max || params.disp_min < -kMaxDisparityMagnitude ||
+      params.disp_max > kMaxDisparityMagnitude) {
+    return Error::make(Errc::invalid_argument, "graphcut: disparity range %d..%d invalid",
+                       params.disp_min, params.disp_max);
+  }
+  const int count = params.disp_max - params.disp_min + 1;
+  if (count > budget.max_disparities) {
+    return Error::make(Errc::capacity_exceeded, "graphcut: %d disparities above the budget %d",
+                       count, budget.max_disparities);
+  }
+  if (params.max_cycles < 1 || params.max_cycles > kGraphCutMaxCycles) {
+    return Error::make(Errc::out_of_range, "graphcut: max_cycles %d outside 1..%d",
+                       params.max_cycles, kGraphCutMaxCycles);
+  }
+  if (params.occlusion_k != kGraphCutAuto &&
+      (params.occlusion_k <= 0 || params.occlusion_k > kMaxWeight)) {
+    return Error::make(Errc::out_of_range, "graphcut: occlusion_k %d outside 1..%d",
+                       params.occlusion_k, kMaxWeight);
+  }
+  const std::int32_t weights[3] = {params.lambda, params.lambda1, params.lambda2};
+  const char* names[3] = {"lambda", "lambda1", "lambda2"};
+  for (int k = 0; k < 3; ++k) {
+    if (weights[k] != kGraphCutAuto && (weights[k] < 0 || weights[k] > kMaxWeight)) {
+      return Error::make(Errc::out_of_range, "graphcut: %s %d outside 0..%d", names[k], weights[k],
+                         kMaxWeight);
+    }
+  }
+  return ok_status();
+}
+
+// The guided cycles, the start and the data term's parameters.
+Status check_start_and_terms(const GraphCutParams& params, Rect roi) {
+  if (params.guided_cycles < 0 || params.guided_cycles > kGraphCutMaxCycles) {
+    return Error::make(Errc::out_of_range, "graphcut: guided_cycles %d outside 0..%d",
+                       params.guided_cycles, kGraphCutMaxCycles);
+  }
+  if (params.guided_radius < 0 || params.guided_radius > 2 * kMaxDisparityMagnitude) {
+    return Error::make(Errc::out_of_range, "graphcut: guided_radius %d outside 0..%d",
+                       params.guided_radius, 2 * kMaxDisparityMagnitude);
+  }
+  if (params.start != GraphCutStart::occluded && params.start != GraphCutStart::block_matching &&
+      params.start != GraphCutStart::dp && params.start != GraphCutStart::given) {
+    return Error::make(Errc::invalid_argument, "graphcut: start %d unknown",
+                       static_cast<int>(params.start));
+  }
+  if (params.start == GraphCutStart::given &&
+      (params.start_map.q4.data() == nullptr || params.start_map.q4.width() != roi.w ||
+       params.start_map.q4.height() != roi.h)) {
+    return Error::make(Errc::invalid_argument, "graphcut: start_map %dx%d, roi %dx%d",
+                       params.start_map.q4.width(), params.start_map.q4.height(), roi.w, roi.h);
+  }
+  if (params.edge_threshold < 1 || params.edge_threshold > 255) {
+    return Error::make(Errc::out_of_range, "graphcut: edge_threshold %d outside 1..255",
+                       params.edge_threshold);
+  }
+  if (params.data_clip < 1 || params.data_clip > 90) {
+    return Error::make(Errc::out_of_range, "graphcut: data_clip %d outside 1..90",
+                       params.data_clip);
+  }
+  return ok_status();
+}
+
 Error cancelled_error(int cycle, const GraphCutReport& report) {
   return Error::make(Errc::cancelled, "graphcut: cancelled in cycle %d after %d expansions",
                      cycle + 1, report.expansions);
@@ -110,29 +202,8 @@ Status GraphCutMatcher::init(Arena& arena, const GraphCutBudget& budget) {
 Status GraphCutMatcher::validate(const StereoInput& in, Rect roi, const GraphCutParams& params,
                                  const DisparityMap* out) const {
   if (label_.empty()) return Error::make(Errc::not_ready, "graphcut: match() before init()");
+  PETRA_TRY(check_images(in));
   const ConstGray8View& left = in.left;
-  const ConstGray8View& right = in.right;
-  if (left.empty() || right.empty()) {
-    return Error::make(Errc::invalid_argument, "graphcut: empty %s image",
-                       left.empty() ? "left" : "right");
-  }
-  if (right.width() != left.width() || right.height() != left.height()) {
-    return Error::make(Errc::invalid_argument,
-                       "graphcut: right image %dx%d differs from left %dx%d", right.width(),
-                       right.height(), left.width(), left.height());
-  }
-  const ShadowMask* masks[2] = {in.left_shadow, in.right_shadow};
-  for (int k = 0; k < 2; ++k) {
-    const ShadowMask* m = masks[k];
-    if (m == nullptr) continue;
-    if (!m->area.inside(left.width(), left.height()) || m->mask.width() != m->area.w ||
-        m->mask.height() != m->area.h) {
-      return Error::make(Errc::invalid_argument,
-                         "graphcut: %s shadow mask %dx%d for area %d,%d,%d,%d of a %dx%d image",
-                         k == 0 ? "left" : "right", m->mask.width(), m->mask.height(), m->area.x,
-                         m->area.y, m->area.w, m->area.h, left.width(), left.height());
-    }
-  }
   if (!roi.inside(left.width(), left.height())) {
     return Error::make(Errc::out_of_range, "graphcut: roi %d,%d,%d,%d outside the %dx%d image",
                        roi.x, roi.y, roi.w, roi.h, left.width(), left.height());
@@ -141,60 +212,8 @@ Status GraphCutMatcher::validate(const StereoInput& in, Rect roi, const GraphCut
     return Error::make(Errc::capacity_exceeded, "graphcut: roi %dx%d above the budget %dx%d", roi.w,
                        roi.h, budget_.max_width, budget_.max_height);
   }
-  if (params.disp_min > params.disp_max || params.disp_min < -kMaxDisparityMagnitude ||
-      params.disp_max > kMaxDisparityMagnitude) {
-    return Error::make(Errc::invalid_argument, "graphcut: disparity range %d..%d invalid",
-                       params.disp_min, params.disp_max);
-  }
-  const int count = params.disp_max - params.disp_min + 1;
-  if (count > budget_.max_disparities) {
-    return Error::make(Errc::capacity_exceeded, "graphcut: %d disparities above the budget %d",
-                       count, budget_.max_disparities);
-  }
-  if (params.max_cycles < 1 || params.max_cycles > kGraphCutMaxCycles) {
-    return Error::make(Errc::out_of_range, "graphcut: max_cycles %d outside 1..%d",
-                       params.max_cycles, kGraphCutMaxCycles);
-  }
-  if (params.occlusion_k != kGraphCutAuto &&
-      (params.occlusion_k <= 0 || params.occlusion_k > kMaxWeight)) {
-    return Error::make(Errc::out_of_range, "graphcut: occlusion_k %d outside 1..%d",
-                       params.occlusion_k, kMaxWeight);
-  }
-  const std::int32_t weights[3] = {params.lambda, params.lambda1, params.lambda2};
-  const char* names[3] = {"lambda", "lambda1", "lambda2"};
-  for (int k = 0; k < 3; ++k) {
-    if (weights[k] != kGraphCutAuto && (weights[k] < 0 || weights[k] > kMaxWeight)) {
-      return Error::make(Errc::out_of_range, "graphcut: %s %d outside 0..%d", names[k], weights[k],
-                         kMaxWeight);
-    }
-  }
-  if (params.guided_cycles < 0 || params.guided_cycles > kGraphCutMaxCycles) {
-    return Error::make(Errc::out_of_range, "graphcut: guided_cycles %d outside 0..%d",
-                       params.guided_cycles, kGraphCutMaxCycles);
-  }
-  if (params.guided_radius < 0 || params.guided_radius > 2 * kMaxDisparityMagnitude) {
-    return Error::make(Errc::out_of_range, "graphcut: guided_radius %d outside 0..%d",
-                       params.guided_radius, 2 * kMaxDisparityMagnitude);
-  }
-  if (params.start != GraphCutStart::occluded && params.start != GraphCutStart::block_matching &&
-      params.start != GraphCutStart::dp && params.start != GraphCutStart::given) {
-    return Error::make(Errc::invalid_argument, "graphcut: start %d unknown",
-                       static_cast<int>(params.start));
-  }
-  if (params.start == GraphCutStart::given &&
-      (params.start_map.q4.data() == nullptr || params.start_map.q4.width() != roi.w ||
-       params.start_map.q4.height() != roi.h)) {
-    return Error::make(Errc::invalid_argument, "graphcut: start_map %dx%d, roi %dx%d",
-                       params.start_map.q4.width(), params.start_map.q4.height(), roi.w, roi.h);
-  }
-  if (params.edge_threshold < 1 || params.edge_threshold > 255) {
-    return Error::make(Errc::out_of_range, "graphcut: edge_threshold %d outside 1..255",
-                       params.edge_threshold);
-  }
-  if (params.data_clip < 1 || params.data_clip > 90) {
-    return Error::make(Errc::out_of_range, "graphcut: data_clip %d outside 1..90",
-                       params.data_clip);
-  }
+  PETRA_TRY(check_range_and_weights(params, budget_));
+  PETRA_TRY(check_start_and_terms(params, roi));
   if (out != nullptr && (out->q4.width() != roi.w || out->q4.height() != roi.h)) {
     return Error::make(Errc::invalid_argument, "graphcut: output %dx%d, roi %dx%d", out->q4.width(),
                        out->q4.height(), roi.w, roi.h);
