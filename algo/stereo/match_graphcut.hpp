@@ -191,6 +191,10 @@ class GraphCutMatcher {
   void prepare(const StereoInput& in, Rect roi, const GraphCutParams& params);
   std::int32_t automatic_k() const;
   void block_matching_labels();
+  // block_matching_labels()'s steps (match_graphcut_start.cpp).
+  void block_cost_sums(int d);
+  void take_block_winners(int di);
+  void keep_agreeing_winners();
   // match()'s steps.
   Status choose_weights(const GraphCutParams& params, GraphCutReport& report);
   Result<std::int64_t> start_labels(const StereoInput& in, Rect roi, const GraphCutParams& params,
