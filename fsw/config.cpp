@@ -159,6 +159,126 @@ Status object_or_absent(const Document& doc, std::uint32_t t, const char* name) 
   return {};
 }
 
+// uplink (required) and downlink.
+Status parse_links(const Reader& r, std::uint32_t up, std::uint32_t down, FswConfig& c) {
+  PETRA_TRY(r.text(up, "uplink", "host", c.cmd_host, false, false));
+  PETRA_TRY(get_int(r, up, "uplink", "port", 0, 65535, c.cmd_port));
+  PETRA_TRY(r.text(up, "uplink", "key_file", c.key_file, true, true));
+  PETRA_TRY(r.text(up, "uplink", "counter_file", c.counter_file, false, true));
+  PETRA_TRY(get_int(r, up, "uplink", "counter_floor", 0, 4294967295.0, c.counter_floor));
+  if (down != 0) {
+    PETRA_TRY(r.text(down, "downlink", "host", c.tlm_host, false, false));
+    PETRA_TRY(get_int(r, down, "downlink", "port", 1, 65535, c.tlm_port));
+  }
+  return {};
+}
+
+Status parse_loop(const Reader& r, std::uint32_t loop, FswConfig& c) {
+  PETRA_TRY(get_int(r, loop, "loop", "cycle_ms", 1, 1000, c.cycle_ms));
+  PETRA_TRY(get_int(r, loop, "loop", "commands_per_cycle", 1, 256, c.commands_per_cycle));
+  PETRA_TRY(get_int(r, loop, "loop", "health_period_ms", 10, 60000, c.health_period_ms));
+  PETRA_TRY(r.text(loop, "loop", "watchdog_device", c.watchdog_device, false, true));
+  const std::uint32_t lock = r.doc.find(loop, "lock_memory");
+  if (lock != 0) {
+    if (r.doc.token(lock).type != Type::boolean)
+      return Error::make(Errc::wrong_type, "config: loop.lock_memory: expected true or false");
+    c.lock_memory = r.doc.token(lock).number != 0.0;
+  }
+  return {};
+}
+
+Status parse_budget(const Reader& r, std::uint32_t budget, Budget& b) {
+  PETRA_TRY(get_int(r, budget, "budget", "image_width", 16, 8192, b.image_width));
+  PETRA_TRY(get_int(r, budget, "budget", "image_height", 16, 8192, b.image_height));
+  PETRA_TRY(get_int(r, budget, "budget", "roi_width", 16, 8192, b.roi_width));
+  PETRA_TRY(get_int(r, budget, "budget", "roi_height", 16, 8192, b.roi_height));
+  if ((b.roi_width == 0) != (b.roi_height == 0))
+    return Error::make(Errc::missing_field,
+                       "config: budget.roi_width and budget.roi_height go together");
+  double arena_mb = 0;
+  PETRA_TRY(r.number(budget, "budget", "arena_mb", 1, 4096, arena_mb));
+  b.arena_bytes = static_cast<std::size_t>(arena_mb * 1048576.0);
+  PETRA_TRY(get_int(r, budget, "budget", "tlm_queue_packets", 32, 65535, b.tlm_queue_packets));
+  double stack_kb = static_cast<double>(b.worker_stack_bytes >> 10);
+  PETRA_TRY(r.number(budget, "budget", "worker_stack_kb", 64, 65536, stack_kb));
+  b.worker_stack_bytes = static_cast<std::size_t>(stack_kb) << 10;
+  PETRA_TRY(get_int(r, budget, "budget", "cloud_points", 0, 1000000, b.cloud_points));
+  return {};
+}
+
+// camera.kind and that kind's section (hal/ parses the hardware ones).
+Status parse_camera(const Reader& r, std::uint32_t camera, FswConfig& c) {
+  std::array<char, 16> kind{};
+  PETRA_TRY(r.text(camera, "camera", "kind", kind, false, false));
+  if (kind[0] == '\0' || std::strcmp(kind.data(), "file") == 0) {
+    c.camera_kind = CameraKind::file;
+    PETRA_TRY(r.text(camera, "camera", "dir", c.camera_dir, true, true));
+  } else if (std::strcmp(kind.data(), "v4l2") == 0) {
+    c.camera_kind = CameraKind::v4l2;
+    auto v4l2 = hal::parse_v4l2_camera(r.doc, camera);
+    if (!v4l2) return Error::make(v4l2.code(), "config: %s", v4l2.error().message);
+    c.v4l2 = *v4l2;
+  } else if (std::strcmp(kind.data(), "libcamera") == 0) {
+    c.camera_kind = CameraKind::libcamera;
+    auto lc = hal::parse_libcamera_camera(r.doc, camera);
+    if (!lc) return Error::make(lc.code(), "config: %s", lc.error().message);
+    c.libcamera = *lc;
+  } else {
+    return Error::make(Errc::invalid_argument,
+                       "config: camera.kind '%s': expected file, v4l2 or libcamera", kind.data());
+  }
+  return {};
+}
+
+// gpio lines; a triggered camera needs the trigger line.
+Status parse_gpio_lines(const Document& doc, FswConfig& c) {
+  const std::uint32_t gpio = doc.find(0, "gpio");
+  if (gpio != 0) {
+    auto lines = hal::parse_gpio(doc, gpio);
+    if (!lines) return Error::make(lines.code(), "config: %s", lines.error().message);
+    c.gpio = *lines;
+  }
+  const bool triggered = (c.camera_kind == CameraKind::v4l2 && c.v4l2.triggered) ||
+                         (c.camera_kind == CameraKind::libcamera && c.libcamera.triggered);
+  if (triggered && !c.gpio.has_trigger)
+    return Error::make(Errc::missing_field,
+                       "config: camera.triggered needs gpio.trigger (the trigger line)");
+  return {};
+}
+
+Status parse_arm_mount(const Document& doc, std::uint32_t mount, FswConfig& c) {
+  if (doc.token(mount).type != Type::array || doc.token(mount).count != 4)
+    return Error::make(Errc::wrong_type, "config: arm.mount: expected [x_mm, y_mm, z_mm, yaw_deg]");
+  for (std::uint32_t k = 0; k < 4; ++k) {
+    const json::Token& t = doc.token(doc.element(mount, k));
+    if (t.type != Type::number || !(t.number >= -1e5 && t.number <= 1e5))
+      return Error::make(Errc::out_of_range, "config: arm.mount[%u]: expected a number within 1e5",
+                         k);
+    c.arm.mount[k] = t.number;
+  }
+  c.arm.has_mount = true;
+  return {};
+}
+
+// arm (absent: no arm): its CAN link, mount and heartbeat.
+Status parse_arm(const Reader& r, FswConfig& c) {
+  const Document& doc = r.doc;
+  const std::uint32_t arm = doc.find(0, "arm");
+  PETRA_TRY(object_or_absent(doc, arm, "arm"));
+  if (arm == 0) return {};
+  c.arm.enabled = true;
+  PETRA_TRY(r.text(arm, "arm", "can_interface", c.arm.can_interface, true, false));
+  if (hal::is_udp_can_spec(c.arm.can_interface.data())) {
+    if (auto spec = hal::parse_udp_can_spec(c.arm.can_interface.data()); !spec)
+      return Error::make(Errc::invalid_argument, "config: arm.can_interface %s",
+                         spec.error().message);
+  }
+  const std::uint32_t mount = doc.find(arm, "mount");
+  if (mount != 0) PETRA_TRY(parse_arm_mount(doc, mount, c));
+  PETRA_TRY(get_int(r, arm, "arm", "heartbeat_timeout_ms", 200, 60000, c.arm.heartbeat_timeout_ms));
+  return {};
+}
+
 }  // namespace
 
 Result<FswConfig> parse_config(const char* text, std::size_t size, const char* base_dir) {
@@ -190,102 +310,12 @@ Result<FswConfig> parse_config(const char* text, std::size_t size, const char* b
   const std::uint32_t camera_kind = doc->find(camera, "kind");
   PETRA_TRY(check_keys(*doc, camera_kind != 0 ? doc->text_of(camera_kind) : std::string_view()));
 
-  PETRA_TRY(r.text(up, "uplink", "host", c.cmd_host, false, false));
-  PETRA_TRY(get_int(r, up, "uplink", "port", 0, 65535, c.cmd_port));
-  PETRA_TRY(r.text(up, "uplink", "key_file", c.key_file, true, true));
-  PETRA_TRY(r.text(up, "uplink", "counter_file", c.counter_file, false, true));
-  PETRA_TRY(get_int(r, up, "uplink", "counter_floor", 0, 4294967295.0, c.counter_floor));
-  if (down != 0) {
-    PETRA_TRY(r.text(down, "downlink", "host", c.tlm_host, false, false));
-    PETRA_TRY(get_int(r, down, "downlink", "port", 1, 65535, c.tlm_port));
-  }
-  if (loop != 0) {
-    PETRA_TRY(get_int(r, loop, "loop", "cycle_ms", 1, 1000, c.cycle_ms));
-    PETRA_TRY(get_int(r, loop, "loop", "commands_per_cycle", 1, 256, c.commands_per_cycle));
-    PETRA_TRY(get_int(r, loop, "loop", "health_period_ms", 10, 60000, c.health_period_ms));
-    PETRA_TRY(r.text(loop, "loop", "watchdog_device", c.watchdog_device, false, true));
-    const std::uint32_t lock = doc->find(loop, "lock_memory");
-    if (lock != 0) {
-      if (doc->token(lock).type != Type::boolean)
-        return Error::make(Errc::wrong_type, "config: loop.lock_memory: expected true or false");
-      c.lock_memory = doc->token(lock).number != 0.0;
-    }
-  }
-  if (budget != 0) {
-    Budget& b = c.budget;
-    PETRA_TRY(get_int(r, budget, "budget", "image_width", 16, 8192, b.image_width));
-    PETRA_TRY(get_int(r, budget, "budget", "image_height", 16, 8192, b.image_height));
-    PETRA_TRY(get_int(r, budget, "budget", "roi_width", 16, 8192, b.roi_width));
-    PETRA_TRY(get_int(r, budget, "budget", "roi_height", 16, 8192, b.roi_height));
-    if ((b.roi_width == 0) != (b.roi_height == 0))
-      return Error::make(Errc::missing_field,
-                         "config: budget.roi_width and budget.roi_height go together");
-    double arena_mb = 0;
-    PETRA_TRY(r.number(budget, "budget", "arena_mb", 1, 4096, arena_mb));
-    b.arena_bytes = static_cast<std::size_t>(arena_mb * 1048576.0);
-    PETRA_TRY(get_int(r, budget, "budget", "tlm_queue_packets", 32, 65535, b.tlm_queue_packets));
-    double stack_kb = static_cast<double>(b.worker_stack_bytes >> 10);
-    PETRA_TRY(r.number(budget, "budget", "worker_stack_kb", 64, 65536, stack_kb));
-    b.worker_stack_bytes = static_cast<std::size_t>(stack_kb) << 10;
-    PETRA_TRY(get_int(r, budget, "budget", "cloud_points", 0, 1000000, b.cloud_points));
-  }
-  std::array<char, 16> kind{};
-  PETRA_TRY(r.text(camera, "camera", "kind", kind, false, false));
-  if (kind[0] == '\0' || std::strcmp(kind.data(), "file") == 0) {
-    c.camera_kind = CameraKind::file;
-    PETRA_TRY(r.text(camera, "camera", "dir", c.camera_dir, true, true));
-  } else if (std::strcmp(kind.data(), "v4l2") == 0) {
-    c.camera_kind = CameraKind::v4l2;
-    auto v4l2 = hal::parse_v4l2_camera(*doc, camera);
-    if (!v4l2) return Error::make(v4l2.code(), "config: %s", v4l2.error().message);
-    c.v4l2 = *v4l2;
-  } else if (std::strcmp(kind.data(), "libcamera") == 0) {
-    c.camera_kind = CameraKind::libcamera;
-    auto lc = hal::parse_libcamera_camera(*doc, camera);
-    if (!lc) return Error::make(lc.code(), "config: %s", lc.error().message);
-    c.libcamera = *lc;
-  } else {
-    return Error::make(Errc::invalid_argument,
-                       "config: camera.kind '%s': expected file, v4l2 or libcamera", kind.data());
-  }
-  const std::uint32_t gpio = doc->find(0, "gpio");
-  if (gpio != 0) {
-    auto lines = hal::parse_gpio(*doc, gpio);
-    if (!lines) return Error::make(lines.code(), "config: %s", lines.error().message);
-    c.gpio = *lines;
-  }
-  const bool triggered = (c.camera_kind == CameraKind::v4l2 && c.v4l2.triggered) ||
-                         (c.camera_kind == CameraKind::libcamera && c.libcamera.triggered);
-  if (triggered && !c.gpio.has_trigger)
-    return Error::make(Errc::missing_field,
-                       "config: camera.triggered needs gpio.trigger (the trigger line)");
-  const std::uint32_t arm = doc->find(0, "arm");
-  PETRA_TRY(object_or_absent(*doc, arm, "arm"));
-  if (arm != 0) {
-    c.arm.enabled = true;
-    PETRA_TRY(r.text(arm, "arm", "can_interface", c.arm.can_interface, true, false));
-    if (hal::is_udp_can_spec(c.arm.can_interface.data())) {
-      if (auto spec = hal::parse_udp_can_spec(c.arm.can_interface.data()); !spec)
-        return Error::make(Errc::invalid_argument, "config: arm.can_interface %s",
-                           spec.error().message);
-    }
-    const std::uint32_t mount = doc->find(arm, "mount");
-    if (mount != 0) {
-      if (doc->token(mount).type != Type::array || doc->token(mount).count != 4)
-        return Error::make(Errc::wrong_type,
-                           "config: arm.mount: expected [x_mm, y_mm, z_mm, yaw_deg]");
-      for (std::uint32_t k = 0; k < 4; ++k) {
-        const json::Token& t = doc->token(doc->element(mount, k));
-        if (t.type != Type::number || !(t.number >= -1e5 && t.number <= 1e5))
-          return Error::make(Errc::out_of_range,
-                             "config: arm.mount[%u]: expected a number within 1e5", k);
-        c.arm.mount[k] = t.number;
-      }
-      c.arm.has_mount = true;
-    }
-    PETRA_TRY(
-        get_int(r, arm, "arm", "heartbeat_timeout_ms", 200, 60000, c.arm.heartbeat_timeout_ms));
-  }
+  PETRA_TRY(parse_links(r, up, down, c));
+  if (loop != 0) PETRA_TRY(parse_loop(r, loop, c));
+  if (budget != 0) PETRA_TRY(parse_budget(r, budget, c.budget));
+  PETRA_TRY(parse_camera(r, camera, c));
+  PETRA_TRY(parse_gpio_lines(*doc, c));
+  PETRA_TRY(parse_arm(r, c));
   PETRA_TRY(r.text(0, "", "calib", c.calib_file, false, true));
   PETRA_TRY(r.text(0, "", "params", c.param_file, false, true));
   return c;

@@ -120,8 +120,20 @@ Status LibcameraCapture::open(const LibcameraCaptureConfig& cfg) {
     return Error::make(Errc::invalid_argument, "camera.buffers: %d outside 2..%d", cfg.buffers,
                        kMaxBuffers);
   impl_ = std::make_unique<Impl>();
+  impl_->gaps_are_faults = cfg.gaps_are_faults;
+  PETRA_TRY(acquire_camera(cfg));
+  PETRA_TRY(configure_stream(cfg));
+  PETRA_TRY(map_requests());
   Impl& m = *impl_;
-  m.gaps_are_faults = cfg.gaps_are_faults;
+  m.camera->requestCompleted.connect(&m, &Impl::on_complete);
+  m.checker.reset(format_, m.gaps_are_faults);
+  return ok_status();
+}
+
+// The shared camera manager (started by its first user), the first camera
+// whose id contains cfg.camera, acquired for this process.
+Status LibcameraCapture::acquire_camera(const LibcameraCaptureConfig& cfg) {
+  Impl& m = *impl_;
   {
     SharedManager& sm = shared_manager();
     std::lock_guard lock(sm.mutex);
@@ -153,7 +165,13 @@ Status LibcameraCapture::open(const LibcameraCaptureConfig& cfg) {
     return Error::make(Errc::io_error, "libcamera: camera '%s' is in use", id_.data());
   }
   m.acquired = true;
+  return ok_status();
+}
 
+// One video stream in the first configured format the camera offers, at the
+// configured size; format_ is what the camera gave.
+Status LibcameraCapture::configure_stream(const LibcameraCaptureConfig& cfg) {
+  Impl& m = *impl_;
   m.config = m.camera->generateConfiguration({lc::StreamRole::VideoRecording});
   if (!m.config || m.config->empty()) {
     close();
@@ -204,7 +222,12 @@ Status LibcameraCapture::open(const LibcameraCaptureConfig& cfg) {
     return Error::make(Errc::io_error, "libcamera: '%s' refused the configuration", id_.data());
   }
   m.stream = sc.stream();
+  return ok_status();
+}
 
+// The stream's buffers, each mapped and in a request of its own.
+Status LibcameraCapture::map_requests() {
+  Impl& m = *impl_;
   m.allocator = std::make_unique<lc::FrameBufferAllocator>(m.camera);
   const int n = m.allocator->allocate(m.stream);
   if (n < 2 || n > kMaxBuffers) {
@@ -233,8 +256,6 @@ Status LibcameraCapture::open(const LibcameraCaptureConfig& cfg) {
     }
     m.requests.push_back(std::move(req));
   }
-  m.camera->requestCompleted.connect(&m, &Impl::on_complete);
-  m.checker.reset(format_, m.gaps_are_faults);
   return ok_status();
 }
 

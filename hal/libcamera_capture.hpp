@@ -56,6 +56,10 @@ class LibcameraCapture final : public FrameSource {
 
  private:
   struct Impl;  // libcamera objects, kept out of this header
+  // open()'s steps; each closes the camera when it fails.
+  Status acquire_camera(const LibcameraCaptureConfig& cfg);
+  Status configure_stream(const LibcameraCaptureConfig& cfg);
+  Status map_requests();
   std::unique_ptr<Impl> impl_;
   FrameFormat format_{};
   CameraHealth health_;

@@ -83,6 +83,25 @@ Error V4l2Capture::fail_device(const char* what, int err) {
 
 Status V4l2Capture::open(const V4l2CaptureConfig& config) {
   close();
+  PETRA_TRY(check_config(config));
+  gaps_are_faults_ = config.gaps_are_faults;
+  if (config.device[0] == '/') {
+    (void)std::snprintf(path_.data(), path_.size(), "%s", config.device.data());
+  } else {
+    PETRA_TRY(find_video_node(config.device.data(), path_));
+  }
+  PETRA_TRY(open_capture_node());
+  auto chosen = choose_format(config);
+  if (!chosen) return chosen.error();
+  PETRA_TRY(set_format(config, *chosen));
+  PETRA_TRY(set_frame_rate(config));
+  PETRA_TRY(map_buffers(config));
+  checker_.reset(format_, gaps_are_faults_);
+  return ok_status();
+}
+
+// The configuration's own ranges, before any device is touched.
+Status V4l2Capture::check_config(const V4l2CaptureConfig& config) {
   if (config.device[0] == '\0') return Error::make(Errc::missing_field, "camera.device: empty");
   if (config.width <= 0 || config.height <= 0 || config.width > 8192 || config.height > 8192)
     return Error::make(Errc::invalid_argument, "camera: size %dx%d outside 1..8192", config.width,
@@ -92,13 +111,11 @@ Status V4l2Capture::open(const V4l2CaptureConfig& config) {
   if (config.buffers < 2 || config.buffers > kMaxBuffers)
     return Error::make(Errc::invalid_argument, "camera.buffers: %d outside 2..%d", config.buffers,
                        kMaxBuffers);
-  gaps_are_faults_ = config.gaps_are_faults;
-  if (config.device[0] == '/') {
-    (void)std::snprintf(path_.data(), path_.size(), "%s", config.device.data());
-  } else {
-    PETRA_TRY(find_video_node(config.device.data(), path_));
-  }
+  return ok_status();
+}
 
+// Opens path_ and checks it is a streaming video capture node.
+Status V4l2Capture::open_capture_node() {
   fd_ = ::open(path_.data(), O_RDWR | O_NONBLOCK | O_CLOEXEC);
   if (fd_ < 0) return fail_device("open", errno);
 
@@ -116,8 +133,11 @@ Status V4l2Capture::open(const V4l2CaptureConfig& config) {
     return Error::make(Errc::wrong_type, "%s (%s): not a streaming video capture node",
                        path_.data(), card_.data());
   }
+  return ok_status();
+}
 
-  // The first configured format the device lists.
+// The first configured format the device lists.
+Result<PixelFormat> V4l2Capture::choose_format(const V4l2CaptureConfig& config) {
   bool found = false;
   PixelFormat chosen = config.formats[0];
   for (PixelFormat want : config.formats) {
@@ -138,7 +158,11 @@ Status V4l2Capture::open(const V4l2CaptureConfig& config) {
     return Error::make(Errc::wrong_type, "%s (%s): offers none of the configured formats",
                        path_.data(), card_.data());
   }
+  return chosen;
+}
 
+// Sets the size and format; format_ is what the driver gave.
+Status V4l2Capture::set_format(const V4l2CaptureConfig& config, PixelFormat chosen) {
   v4l2_format f{};
   f.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
   f.fmt.pix.width = static_cast<std::uint32_t>(config.width);
@@ -176,36 +200,42 @@ Status V4l2Capture::open(const V4l2CaptureConfig& config) {
     return Error::make(Errc::wrong_type, "%s: interlaced field order %u, need progressive",
                        path_.data(), f.fmt.pix.field);
   }
+  return ok_status();
+}
 
+// The configured frame rate, if any, exactly as the driver runs it.
+Status V4l2Capture::set_frame_rate(const V4l2CaptureConfig& config) {
   if (config.fps < 0 || config.fps > 1000) {
     close();
     return Error::make(Errc::invalid_argument, "camera.fps: %d outside 0..1000", config.fps);
   }
-  if (config.fps > 0) {
-    v4l2_streamparm parm{};
-    parm.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
-    parm.parm.capture.timeperframe.numerator = 1;
-    parm.parm.capture.timeperframe.denominator = static_cast<std::uint32_t>(config.fps);
-    if (xioctl(fd_, VIDIOC_S_PARM, &parm) < 0) {
-      const int err = errno;
-      close();
-      return fail_device("VIDIOC_S_PARM (frame rate)", err);
-    }
-    const auto& tpf = parm.parm.capture.timeperframe;
-    // The driver picks the nearest rate it has: anything else than asked is refused.
-    if ((parm.parm.capture.capability & V4L2_CAP_TIMEPERFRAME) == 0 || tpf.numerator == 0 ||
-        static_cast<std::uint64_t>(tpf.denominator) * 100 <
-            static_cast<std::uint64_t>(tpf.numerator) * static_cast<std::uint64_t>(config.fps) *
-                99 ||
-        static_cast<std::uint64_t>(tpf.denominator) * 100 >
-            static_cast<std::uint64_t>(tpf.numerator) * static_cast<std::uint64_t>(config.fps) *
-                101) {
-      close();
-      return Error::make(Errc::invalid_argument, "%s: device runs at %u/%u fps, configured %d",
-                         path_.data(), tpf.denominator, tpf.numerator, config.fps);
-    }
+  if (config.fps == 0) return ok_status();
+  v4l2_streamparm parm{};
+  parm.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
+  parm.parm.capture.timeperframe.numerator = 1;
+  parm.parm.capture.timeperframe.denominator = static_cast<std::uint32_t>(config.fps);
+  if (xioctl(fd_, VIDIOC_S_PARM, &parm) < 0) {
+    const int err = errno;
+    close();
+    return fail_device("VIDIOC_S_PARM (frame rate)", err);
   }
+  const auto& tpf = parm.parm.capture.timeperframe;
+  // The driver picks the nearest rate it has: anything else than asked is refused.
+  if ((parm.parm.capture.capability & V4L2_CAP_TIMEPERFRAME) == 0 || tpf.numerator == 0 ||
+      static_cast<std::uint64_t>(tpf.denominator) * 100 <
+          static_cast<std::uint64_t>(tpf.numerator) * static_cast<std::uint64_t>(config.fps) * 99 ||
+      static_cast<std::uint64_t>(tpf.denominator) * 100 >
+          static_cast<std::uint64_t>(tpf.numerator) * static_cast<std::uint64_t>(config.fps) *
+              101) {
+    close();
+    return Error::make(Errc::invalid_argument, "%s: device runs at %u/%u fps, configured %d",
+                       path_.data(), tpf.denominator, tpf.numerator, config.fps);
+  }
+  return ok_status();
+}
 
+// Requests the driver's buffers and maps each one.
+Status V4l2Capture::map_buffers(const V4l2CaptureConfig& config) {
   v4l2_requestbuffers req{};
   req.count = static_cast<std::uint32_t>(config.buffers);
   req.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
@@ -240,7 +270,6 @@ Status V4l2Capture::open(const V4l2CaptureConfig& config) {
     memory_[static_cast<std::size_t>(i)] = static_cast<std::uint8_t*>(p);
     length_[static_cast<std::size_t>(i)] = b.length;
   }
-  checker_.reset(format_, gaps_are_faults_);
   return ok_status();
 }
 

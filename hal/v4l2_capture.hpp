@@ -72,6 +72,13 @@ class V4l2Capture final : public FrameSource {
   Status requeue_held();
   Status dequeue(RawFrame& out, bool& got);
   Error fail_device(const char* what, int err);
+  // open()'s steps; each closes the device when it fails.
+  static Status check_config(const V4l2CaptureConfig& config);
+  Status open_capture_node();
+  Result<PixelFormat> choose_format(const V4l2CaptureConfig& config);
+  Status set_format(const V4l2CaptureConfig& config, PixelFormat chosen);
+  Status set_frame_rate(const V4l2CaptureConfig& config);
+  Status map_buffers(const V4l2CaptureConfig& config);
 
   int fd_ = -1;
   bool streaming_ = false;

@@ -118,8 +118,10 @@ Result<RayMeeting> meet_rays(const Ray& a, const Ray& b) {
   return RayMeeting{0.5 * (pa + pb), (pa - pb).norm()};
 }
 
-Result<ClickMatch> transfer_click(const StereoRig& rig, ConstGray8View left, ConstGray8View right,
-                                  const Eigen::Vector2d& left_px, const ClickOptions& o) {
+namespace {
+
+Status check_click(const StereoRig& rig, ConstGray8View left, ConstGray8View right,
+                   const Eigen::Vector2d& left_px, const ClickOptions& o) {
   const int h = o.half_window;
   if (h < 1 || h > kMaxClickHalfWindow)
     return Error::make(Errc::invalid_argument, "click: half window %d outside 1..%d", h,
@@ -137,15 +139,26 @@ Result<ClickMatch> transfer_click(const StereoRig& rig, ConstGray8View left, Con
     return Error::make(Errc::out_of_range,
                        "click (%.1f, %.1f) is outside the left image or within %d px of its border",
                        left_px.x(), left_px.y(), h + 1);
+  return ok_status();
+}
 
-  // The click's window, zero mean.
+// The click's window, zero mean, and its norm.
+struct ClickTemplate {
+  std::array<double, (2 * kMaxClickHalfWindow + 1) * (2 * kMaxClickHalfWindow + 1)> v{};
+  int n = 0;  // pixels of the window
+  double norm = 0;
+};
+
+Status click_template(ConstGray8View left, const Eigen::Vector2d& left_px, const ClickOptions& o,
+                      ClickTemplate& t) {
+  const int h = o.half_window;
   const int side = 2 * h + 1, n = side * side;
-  std::array<double, (2 * kMaxClickHalfWindow + 1) * (2 * kMaxClickHalfWindow + 1)> tmpl{};
+  t.n = n;
   double sum = 0, sum2 = 0;
   for (int j = -h, k = 0; j <= h; ++j)
     for (int i = -h; i <= h; ++i, ++k) {
       const double v = sample(left, left_px.x() + i, left_px.y() + j);
-      tmpl[static_cast<std::size_t>(k)] = v;
+      t.v[static_cast<std::size_t>(k)] = v;
       sum += v;
       sum2 += v * v;
     }
@@ -157,11 +170,47 @@ Result<ClickMatch> transfer_click(const StereoRig& rig, ConstGray8View left, Con
                        std::sqrt(var), o.min_texture);
   double tnorm = 0;
   for (int k = 0; k < n; ++k) {
-    tmpl[static_cast<std::size_t>(k)] -= mean;
-    tnorm += tmpl[static_cast<std::size_t>(k)] * tmpl[static_cast<std::size_t>(k)];
+    t.v[static_cast<std::size_t>(k)] -= mean;
+    tnorm += t.v[static_cast<std::size_t>(k)] * t.v[static_cast<std::size_t>(k)];
   }
-  tnorm = std::sqrt(tnorm);
+  t.norm = std::sqrt(tnorm);
+  return ok_status();
+}
 
+// The searched part of the epipolar curve, in ideal right pixels: count
+// samples `step` apart from p0 + t0 (p1 - p0).
+struct EpipolarSegment {
+  Eigen::Vector2d p0, p1;
+  double t0 = 0;
+  double full = 0;  // |p1 - p0|
+  double step = 0;
+  int count = 0;
+
+  Eigen::Vector2d ideal_at(double k) const {
+    const double t = full > 0 ? t0 + k * step / full : t0;
+    return p0 + t * (p1 - p0);
+  }
+};
+
+// The box of the right camera's ideal image (its border, undistorted).
+void ideal_image_box(const StereoRig& rig, ConstGray8View right, Eigen::Vector2d& lo,
+                     Eigen::Vector2d& hi) {
+  lo = Eigen::Vector2d(1e300, 1e300);
+  hi = Eigen::Vector2d(-1e300, -1e300);
+  for (int k = 0; k <= 8; ++k) {
+    const double fu = k / 8.0 * (right.width() - 1), fv = k / 8.0 * (right.height() - 1);
+    for (const Eigen::Vector2d& b :
+         {Eigen::Vector2d(fu, 0), Eigen::Vector2d(fu, right.height() - 1.0), Eigen::Vector2d(0, fv),
+          Eigen::Vector2d(right.width() - 1.0, fv)}) {
+      const Eigen::Vector2d q = ideal_pixel(rig.right, b);
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+  }
+}
+
+Result<EpipolarSegment> epipolar_segment(const StereoRig& rig, ConstGray8View right,
+                                         const Eigen::Vector2d& left_px, const ClickOptions& o) {
   // The ray at inverse depth rho appears at K_r (R d + rho t): a straight
   // segment in ideal pixels while it stays in front of the right camera.
   const RelativePose rel = relative_pose(rig);
@@ -175,39 +224,34 @@ Result<ClickMatch> transfer_click(const StereoRig& rig, ConstGray8View left, Con
                        "click: the ray is behind the right camera at the far end");
   if (!(z_at(rho1) > 1e-9))
     rho1 = (1e-9 - rd.z()) / rel.t.z() * 0.999;  // stop before the camera plane
-  const Eigen::Vector2d p0 = (kr * (rd + rho0 * rel.t)).hnormalized();
-  const Eigen::Vector2d p1 = (kr * (rd + rho1 * rel.t)).hnormalized();
+  EpipolarSegment seg;
+  seg.p0 = (kr * (rd + rho0 * rel.t)).hnormalized();
+  seg.p1 = (kr * (rd + rho1 * rel.t)).hnormalized();
 
-  // Clip to the ideal image of the right camera (its border, undistorted).
-  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-  for (int k = 0; k <= 8; ++k) {
-    const double fu = k / 8.0 * (right.width() - 1), fv = k / 8.0 * (right.height() - 1);
-    for (const Eigen::Vector2d& b :
-         {Eigen::Vector2d(fu, 0), Eigen::Vector2d(fu, right.height() - 1.0), Eigen::Vector2d(0, fv),
-          Eigen::Vector2d(right.width() - 1.0, fv)}) {
-      const Eigen::Vector2d q = ideal_pixel(rig.right, b);
-      lo = lo.cwiseMin(q);
-      hi = hi.cwiseMax(q);
-    }
-  }
+  // Clip to the ideal image of the right camera.
+  Eigen::Vector2d lo, hi;
+  ideal_image_box(rig, right, lo, hi);
   double t0 = 0, t1 = 0;
-  if (!clip_segment(p0, p1, lo, hi, t0, t1))
+  if (!clip_segment(seg.p0, seg.p1, lo, hi, t0, t1))
     return Error::make(Errc::no_solution, "click: the epipolar segment misses the right image");
-  const double full = (p1 - p0).norm();
-  const double length = full * (t1 - t0);
+  seg.t0 = t0;
+  seg.full = (seg.p1 - seg.p0).norm();
+  const double length = seg.full * (t1 - t0);
   double step = o.step_px;
   if (length / step + 1 > kMaxClickSamples) step = length / (kMaxClickSamples - 1);
-  const int count = std::max(1, static_cast<int>(length / step) + 1);
-  auto ideal_at = [&](double k) -> Eigen::Vector2d {
-    const double t = full > 0 ? t0 + k * step / full : t0;
-    return p0 + t * (p1 - p0);
-  };
+  seg.step = step;
+  seg.count = std::max(1, static_cast<int>(length / step) + 1);
+  return seg;
+}
 
-  std::array<double, kMaxClickSamples> score{};
+// ZNCC of the template at each sample (-2 where the window does not fit);
+// returns the best sample, -1 when none fits.
+int score_segment(const StereoRig& rig, ConstGray8View right, int h, const ClickTemplate& t,
+                  const EpipolarSegment& seg, std::array<double, kMaxClickSamples>& score) {
   int best = -1;
-  for (int k = 0; k < count; ++k) {
+  for (int k = 0; k < seg.count; ++k) {
     score[static_cast<std::size_t>(k)] = -2.0;  // not scored
-    auto c = distorted_pixel(rig.right, ideal_at(k));
+    auto c = distorted_pixel(rig.right, seg.ideal_at(k));
     if (!c || !window_inside(right, *c, h)) continue;
     double s = 0, s2 = 0, cross = 0;
     for (int j = -h, m = 0; j <= h; ++j)
@@ -215,14 +259,46 @@ Result<ClickMatch> transfer_click(const StereoRig& rig, ConstGray8View left, Con
         const double v = sample(right, c->x() + i, c->y() + j);
         s += v;
         s2 += v * v;
-        cross += v * tmpl[static_cast<std::size_t>(m)];
+        cross += v * t.v[static_cast<std::size_t>(m)];
       }
-    const double rvar = s2 - s * s / n;
+    const double rvar = s2 - s * s / t.n;
     // Sum of zero-mean template times (v - mean_v) equals sum of template times v.
-    const double zncc = rvar > 0 ? cross / (tnorm * std::sqrt(rvar)) : 0.0;
+    const double zncc = rvar > 0 ? cross / (t.norm * std::sqrt(rvar)) : 0.0;
     score[static_cast<std::size_t>(k)] = zncc;
     if (best < 0 || zncc > score[static_cast<std::size_t>(best)]) best = k;
   }
+  return best;
+}
+
+// The best sample's parabola offset (its neighbours both scored), in samples.
+double peak_offset(const std::array<double, kMaxClickSamples>& score, int best, int count) {
+  double offset = 0;
+  if (best > 0 && best + 1 < count && score[static_cast<std::size_t>(best) - 1] > -2 &&
+      score[static_cast<std::size_t>(best) + 1] > -2) {
+    const double a = score[static_cast<std::size_t>(best) - 1],
+                 b = score[static_cast<std::size_t>(best)],
+                 c = score[static_cast<std::size_t>(best) + 1];
+    const double den = a - 2 * b + c;
+    if (den < 0) offset = std::clamp(0.5 * (a - c) / den, -0.5, 0.5);
+  }
+  return offset;
+}
+
+}  // namespace
+
+Result<ClickMatch> transfer_click(const StereoRig& rig, ConstGray8View left, ConstGray8View right,
+                                  const Eigen::Vector2d& left_px, const ClickOptions& o) {
+  PETRA_TRY(check_click(rig, left, right, left_px, o));
+  const int h = o.half_window;
+  ClickTemplate tmpl;
+  PETRA_TRY(click_template(left, left_px, o, tmpl));
+  auto segment = epipolar_segment(rig, right, left_px, o);
+  if (!segment) return segment.error();
+  const EpipolarSegment& seg = *segment;
+  const int count = seg.count;
+
+  std::array<double, kMaxClickSamples> score{};
+  const int best = score_segment(rig, right, h, tmpl, seg, score);
   if (best < 0)
     return Error::make(
         Errc::no_solution,
@@ -235,19 +311,11 @@ Result<ClickMatch> transfer_click(const StereoRig& rig, ConstGray8View left, Con
   while (score[static_cast<std::size_t>(last)] < -1.5) --last;
   m.at_search_end = best == first || best == last;
   m.score = score[static_cast<std::size_t>(best)];
-  double offset = 0;
-  if (best > 0 && best + 1 < count && score[static_cast<std::size_t>(best) - 1] > -2 &&
-      score[static_cast<std::size_t>(best) + 1] > -2) {
-    const double a = score[static_cast<std::size_t>(best) - 1],
-                 b = score[static_cast<std::size_t>(best)],
-                 c = score[static_cast<std::size_t>(best) + 1];
-    const double den = a - 2 * b + c;
-    if (den < 0) offset = std::clamp(0.5 * (a - c) / den, -0.5, 0.5);
-  }
-  auto matched = distorted_pixel(rig.right, ideal_at(best + offset));
+  const double offset = peak_offset(score, best, count);
+  auto matched = distorted_pixel(rig.right, seg.ideal_at(best + offset));
   if (!matched) return matched.error();
   m.right_px = *matched;
-  const double apart = (2 * h + 1) / step;  // samples in one window width
+  const double apart = (2 * h + 1) / seg.step;  // samples in one window width
   for (int k = 0; k < count; ++k)
     if (std::abs(k - best) > apart)
       m.runner_up = std::max(m.runner_up, score[static_cast<std::size_t>(k)]);

@@ -114,17 +114,8 @@ std::size_t sz(int w, int h) {
   return static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
 }
 
-}  // namespace
-
-std::size_t canny_scratch_bytes(int w, int h) {
-  if (w <= 0 || h <= 0) return 0;
-  return sz(w + 4, h + 4) + 3 * sizeof(std::int16_t) * sz(w + 2, h + 2) +
-         sizeof(std::uint32_t) * sz(w, h) + (w + 8) + 2 * sizeof(std::uint16_t) * (w + 4) * 5 +
-         7 * kAlignSlack;
-}
-
-Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& params, Arena& scratch,
-                         Gray8View edges) {
+Status check_canny_args(ConstGray8View image, Rect area, const CannyParams& params,
+                        Gray8View edges) {
   if (area.empty())
     return Error::make(Errc::invalid_argument, "canny: area %dx%d is empty", area.w, area.h);
   if (!area.inside(image.width(), image.height()))
@@ -137,18 +128,24 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
     return Error::make(Errc::invalid_argument,
                        "canny: thresholds low %d, high %d (need 0 < low <= high)", params.low,
                        params.high);
-  // The hysteresis stack holds pixels as row << shift | column (w <= 2^shift):
-  // no division to unpack them.
-  const int shift = std::bit_width(static_cast<unsigned>(area.w - 1));
-  if ((static_cast<std::uint64_t>(area.h) << shift) > 0xFFFFFFFFull)
-    return Error::make(Errc::capacity_exceeded, "canny: area %dx%d too large", area.w, area.h);
-  const std::uint32_t column_mask = (std::uint32_t{1} << shift) - 1;
-  ArenaScope scope(scratch);
-  const int w = area.w, h = area.h;
-  const int sw = w + 4, sh = h + 4;  // smoothed: area grown by 2
-  const int gw = w + 2, gh = h + 2;  // gradients: area grown by 1
-  // Every buffer is written whole before it is read (smoothing, Sobel, the
-  // row filters; the stack below its top): no value-initialisation.
+  return ok_status();
+}
+
+// The scratch of one call. Every buffer is written whole before it is read
+// (smoothing, Sobel, the row filters; the stack below its top): no
+// value-initialisation.
+struct CannyBuffers {
+  int w = 0, h = 0;
+  int sw = 0, sh = 0;  // smoothed: area grown by 2
+  int gw = 0, gh = 0;  // gradients: area grown by 1
+  std::span<std::uint8_t> sm, src_row;
+  std::span<std::int16_t> gx, gy;
+  std::span<std::uint16_t> mag, hring;
+  std::span<std::uint32_t> stack;
+};
+
+Status allocate_buffers(Arena& scratch, CannyBuffers& b) {
+  const int w = b.w, h = b.h, sw = b.sw, sh = b.sh, gw = b.gw, gh = b.gh;
   auto sm_buf = scratch.allocate_uninitialised<std::uint8_t>(sz(sw, sh), "canny smoothed image");
   if (!sm_buf) return sm_buf.error();
   auto gx_buf = scratch.allocate_uninitialised<std::int16_t>(sz(gw, gh), "canny gx");
@@ -165,38 +162,54 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
   auto hring =
       scratch.allocate_uninitialised<std::uint16_t>(static_cast<std::size_t>(sw) * 5, "canny ring");
   if (!hring) return hring.error();
+  b.sm = *sm_buf, b.gx = *gx_buf, b.gy = *gy_buf, b.mag = *mag_buf;
+  b.stack = *stack, b.src_row = *src_row, b.hring = *hring;
+  return ok_status();
+}
 
-  // 1. Smoothing, separable binomial [1 4 6 4 1]/16 per axis: horizontal
-  // rows in a ring of five, then the vertical combination.
-  const ImageView<std::uint8_t> sm = ImageView<std::uint8_t>::over(*sm_buf, sw, sh);
+// 1. Smoothing, separable binomial [1 4 6 4 1]/16 per axis: horizontal
+// rows in a ring of five, then the vertical combination.
+void smooth(ConstGray8View image, Rect area, const CannyBuffers& b) {
+  const int w = b.w, sw = b.sw, sh = b.sh;
+  const ImageView<std::uint8_t> sm = ImageView<std::uint8_t>::over(b.sm, sw, sh);
   auto hfilter = [&](int y_img, std::uint16_t* out) {
-    std::uint8_t* s = src_row->data();
+    std::uint8_t* s = b.src_row.data();
     padded_row(image, y_img, area.x - 4, w + 8, s);
     horizontal_binomial(s, sw, out);  // out[i] is column area.x - 2 + i
   };
-  std::uint16_t* ring = hring->data();
+  std::uint16_t* ring = b.hring.data();
   const int y_first = area.y - 4;  // first source row needed
   for (int k = 0; k < 4; ++k) hfilter(y_first + k, ring + (k % 5) * sw);
   for (int r = 0; r < sh; ++r) {
     hfilter(y_first + r + 4, ring + ((r + 4) % 5) * sw);
     const std::uint16_t* a = ring + (r % 5) * sw;
-    const std::uint16_t* b = ring + ((r + 1) % 5) * sw;
+    const std::uint16_t* bb = ring + ((r + 1) % 5) * sw;
     const std::uint16_t* c = ring + ((r + 2) % 5) * sw;
     const std::uint16_t* d = ring + ((r + 3) % 5) * sw;
     const std::uint16_t* e = ring + ((r + 4) % 5) * sw;
-    vertical_binomial(a, b, c, d, e, sw, sm.row(r));
+    vertical_binomial(a, bb, c, d, e, sw, sm.row(r));
   }
+}
 
-  // 2. Sobel on the smoothed image.
-  const ImageView<std::int16_t> gx = ImageView<std::int16_t>::over(*gx_buf, gw, gh);
-  const ImageView<std::int16_t> gy = ImageView<std::int16_t>::over(*gy_buf, gw, gh);
-  const ImageView<std::uint16_t> mg = ImageView<std::uint16_t>::over(*mag_buf, gw, gh);
+// 2. Sobel on the smoothed image.
+void sobel(const CannyBuffers& b) {
+  const int gw = b.gw, gh = b.gh;
+  const ImageView<std::uint8_t> sm = ImageView<std::uint8_t>::over(b.sm, b.sw, b.sh);
+  const ImageView<std::int16_t> gx = ImageView<std::int16_t>::over(b.gx, gw, gh);
+  const ImageView<std::int16_t> gy = ImageView<std::int16_t>::over(b.gy, gw, gh);
+  const ImageView<std::uint16_t> mg = ImageView<std::uint16_t>::over(b.mag, gw, gh);
   for (int j = 0; j < gh; ++j)
     sobel_row(sm.row(j), sm.row(j + 1), sm.row(j + 2), gw, gx.row(j), gy.row(j), mg.row(j));
+}
 
-  // 3. Non-maximum suppression, one row at a time (nms_row, vectorised);
-  // then the strong pixels seed the stack.
-  CannyStats stats;
+// 3. Non-maximum suppression, one row at a time (nms_row, vectorised);
+// then the strong pixels seed the stack. Returns the stack's top.
+std::size_t suppress_and_seed(const CannyBuffers& b, const CannyParams& params, int shift,
+                              Gray8View edges) {
+  const int w = b.w, h = b.h, gw = b.gw, gh = b.gh;
+  const ImageView<std::int16_t> gx = ImageView<std::int16_t>::over(b.gx, gw, gh);
+  const ImageView<std::int16_t> gy = ImageView<std::int16_t>::over(b.gy, gw, gh);
+  const ImageView<std::uint16_t> mg = ImageView<std::uint16_t>::over(b.mag, gw, gh);
   std::size_t top = 0;
   for (int j = 0; j < h; ++j) {
     std::uint8_t* out = edges.row(j);
@@ -204,15 +217,15 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
             mg.row(j + 2) + 1, w, params.low, params.high, out);
     // Branch-free push (the stack holds w h entries, top <= j w + i), eight
     // pixels at a time, skipped when none of them is strong (most are not).
-    std::uint32_t* st = stack->data();
+    std::uint32_t* st = b.stack.data();
     int i = 0;
     for (; i + 8 <= w; i += 8) {
       std::uint64_t word;
       std::memcpy(&word, out + i, sizeof word);
       if ((word & (0x0101010101010101ULL * kEdgeBit)) == 0) continue;
-      for (int b = 0; b < 8; ++b) {
-        st[top] = (static_cast<std::uint32_t>(j) << shift) | static_cast<std::uint32_t>(i + b);
-        top += (out[i + b] & kEdgeBit) != 0;
+      for (int k = 0; k < 8; ++k) {
+        st[top] = (static_cast<std::uint32_t>(j) << shift) | static_cast<std::uint32_t>(i + k);
+        top += (out[i + k] & kEdgeBit) != 0;
       }
     }
     for (; i < w; ++i) {
@@ -220,14 +233,17 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
       top += (out[i] & kEdgeBit) != 0;
     }
   }
+  return top;
+}
 
-  stats.strong_pixels = static_cast<long>(top);
-
-  // 4. Hysteresis: grow strong edges into 8-connected weak pixels. A pixel is
-  // pushed only when it becomes an edge, so the stack never exceeds w*h.
-  const std::size_t capacity = stack->size();
+// 4. Hysteresis: grow strong edges into 8-connected weak pixels. A pixel is
+// pushed only when it becomes an edge, so the stack never exceeds w*h.
+void hysteresis(std::span<std::uint32_t> stack, std::size_t top, int shift, Gray8View edges) {
+  const int w = edges.width(), h = edges.height();
+  const std::uint32_t column_mask = (std::uint32_t{1} << shift) - 1;
+  const std::size_t capacity = stack.size();
   while (top > 0) {
-    const std::uint32_t p = (*stack)[--top];
+    const std::uint32_t p = stack[--top];
     const int j = static_cast<int>(p >> shift);
     const int i = static_cast<int>(p & column_mask);
     const int i0 = i > 0 ? i - 1 : 0, i1 = i < w - 1 ? i + 1 : w - 1;
@@ -242,12 +258,42 @@ Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& par
         if ((row[ii] & kWeak) == 0) continue;
         row[ii] = static_cast<std::uint8_t>((row[ii] & ~kWeak) | kEdgeBit);
         PETRA_ASSERT(top < capacity);
-        (*stack)[top++] =
-            (static_cast<std::uint32_t>(jj) << shift) | static_cast<std::uint32_t>(ii);
+        stack[top++] = (static_cast<std::uint32_t>(jj) << shift) | static_cast<std::uint32_t>(ii);
       }
     }
   }
-  for (int j = 0; j < h; ++j) stats.edge_pixels += drop_weak_row(edges.row(j), w);
+}
+
+}  // namespace
+
+std::size_t canny_scratch_bytes(int w, int h) {
+  if (w <= 0 || h <= 0) return 0;
+  return sz(w + 4, h + 4) + 3 * sizeof(std::int16_t) * sz(w + 2, h + 2) +
+         sizeof(std::uint32_t) * sz(w, h) + (w + 8) + 2 * sizeof(std::uint16_t) * (w + 4) * 5 +
+         7 * kAlignSlack;
+}
+
+Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& params, Arena& scratch,
+                         Gray8View edges) {
+  PETRA_TRY(check_canny_args(image, area, params, edges));
+  // The hysteresis stack holds pixels as row << shift | column (w <= 2^shift):
+  // no division to unpack them.
+  const int shift = std::bit_width(static_cast<unsigned>(area.w - 1));
+  if ((static_cast<std::uint64_t>(area.h) << shift) > 0xFFFFFFFFull)
+    return Error::make(Errc::capacity_exceeded, "canny: area %dx%d too large", area.w, area.h);
+  ArenaScope scope(scratch);
+  CannyBuffers b;
+  b.w = area.w, b.h = area.h;
+  b.sw = b.w + 4, b.sh = b.h + 4;
+  b.gw = b.w + 2, b.gh = b.h + 2;
+  PETRA_TRY(allocate_buffers(scratch, b));
+  smooth(image, area, b);
+  sobel(b);
+  CannyStats stats;
+  const std::size_t top = suppress_and_seed(b, params, shift, edges);
+  stats.strong_pixels = static_cast<long>(top);
+  hysteresis(b.stack, top, shift, edges);
+  for (int j = 0; j < b.h; ++j) stats.edge_pixels += drop_weak_row(edges.row(j), b.w);
   return stats;
 }
 

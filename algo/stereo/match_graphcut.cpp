@@ -38,6 +38,103 @@ MatchBudget dp_budget(const GraphCutBudget& b) {
   return {b.max_width, b.max_height, b.max_disparities};
 }
 
+// The images and their shadow masks.
+Status check_images(const StereoInput& in) {
+  const ConstGray8View& left = in.left;
+  const ConstGray8View& right = in.right;
+  if (left.empty() || right.empty()) {
+    return Error::make(Errc::invalid_argument, "graphcut: empty %s image",
+                       left.empty() ? "left" : "right");
+  }
+  if (right.width() != left.width() || right.height() != left.height()) {
+    return Error::make(Errc::invalid_argument,
+                       "graphcut: right image %dx%d differs from left %dx%d", right.width(),
+                       right.height(), left.width(), left.height());
+  }
+  const ShadowMask* masks[2] = {in.left_shadow, in.right_shadow};
+  for (int k = 0; k < 2; ++k) {
+    const ShadowMask* m = masks[k];
+    if (m == nullptr) continue;
+    if (!m->area.inside(left.width(), left.height()) || m->mask.width() != m->area.w ||
+        m->mask.height() != m->area.h) {
+      return Error::make(Errc::invalid_argument,
+                         "graphcut: %s shadow mask %dx%d for area %d,%d,%d,%d of a %dx%d image",
+                         k == 0 ? "left" : "right", m->mask.width(), m->mask.height(), m->area.x,
+                         m->area.y, m->area.w, m->area.h, left.width(), left.height());
+    }
+  }
+  return ok_status();
+}
+
+// The disparity range, the cycle counts and the energy's weights.
+Status check_range_and_weights(const GraphCutParams& params, const GraphCutBudget& budget) {
+  if (params.disp_min > params.disp_max || params.disp_min < -kMaxDisparityMagnitude ||
+      params.disp_max > kMaxDisparityMagnitude) {
+    return Error::make(Errc::invalid_argument, "graphcut: disparity range %d..%d invalid",
+                       params.disp_min, params.disp_max);
+  }
+  const int count = params.disp_max - params.disp_min + 1;
+  if (count > budget.max_disparities) {
+    return Error::make(Errc::capacity_exceeded, "graphcut: %d disparities above the budget %d",
+                       count, budget.max_disparities);
+  }
+  if (params.max_cycles < 1 || params.max_cycles > kGraphCutMaxCycles) {
+    return Error::make(Errc::out_of_range, "graphcut: max_cycles %d outside 1..%d",
+                       params.max_cycles, kGraphCutMaxCycles);
+  }
+  if (params.occlusion_k != kGraphCutAuto &&
+      (params.occlusion_k <= 0 || params.occlusion_k > kMaxWeight)) {
+    return Error::make(Errc::out_of_range, "graphcut: occlusion_k %d outside 1..%d",
+                       params.occlusion_k, kMaxWeight);
+  }
+  const std::int32_t weights[3] = {params.lambda, params.lambda1, params.lambda2};
+  const char* names[3] = {"lambda", "lambda1", "lambda2"};
+  for (int k = 0; k < 3; ++k) {
+    if (weights[k] != kGraphCutAuto && (weights[k] < 0 || weights[k] > kMaxWeight)) {
+      return Error::make(Errc::out_of_range, "graphcut: %s %d outside 0..%d", names[k], weights[k],
+                         kMaxWeight);
+    }
+  }
+  return ok_status();
+}
+
+// The guided cycles, the start and the data term's parameters.
+Status check_start_and_terms(const GraphCutParams& params, Rect roi) {
+  if (params.guided_cycles < 0 || params.guided_cycles > kGraphCutMaxCycles) {
+    return Error::make(Errc::out_of_range, "graphcut: guided_cycles %d outside 0..%d",
+                       params.guided_cycles, kGraphCutMaxCycles);
+  }
+  if (params.guided_radius < 0 || params.guided_radius > 2 * kMaxDisparityMagnitude) {
+    return Error::make(Errc::out_of_range, "graphcut: guided_radius %d outside 0..%d",
+                       params.guided_radius, 2 * kMaxDisparityMagnitude);
+  }
+  if (params.start != GraphCutStart::occluded && params.start != GraphCutStart::block_matching &&
+      params.start != GraphCutStart::dp && params.start != GraphCutStart::given) {
+    return Error::make(Errc::invalid_argument, "graphcut: start %d unknown",
+                       static_cast<int>(params.start));
+  }
+  if (params.start == GraphCutStart::given &&
+      (params.start_map.q4.data() == nullptr || params.start_map.q4.width() != roi.w ||
+       params.start_map.q4.height() != roi.h)) {
+    return Error::make(Errc::invalid_argument, "graphcut: start_map %dx%d, roi %dx%d",
+                       params.start_map.q4.width(), params.start_map.q4.height(), roi.w, roi.h);
+  }
+  if (params.edge_threshold < 1 || params.edge_threshold > 255) {
+    return Error::make(Errc::out_of_range, "graphcut: edge_threshold %d outside 1..255",
+                       params.edge_threshold);
+  }
+  if (params.data_clip < 1 || params.data_clip > 90) {
+    return Error::make(Errc::out_of_range, "graphcut: data_clip %d outside 1..90",
+                       params.data_clip);
+  }
+  return ok_status();
+}
+
+Error cancelled_error(int cycle, const GraphCutReport& report) {
+  return Error::make(Errc::cancelled, "graphcut: cancelled in cycle %d after %d expansions",
+                     cycle + 1, report.expansions);
+}
+
 }  // namespace
 
 std::size_t GraphCutMatcher::bytes_needed(const GraphCutBudget& budget) {
@@ -105,29 +202,8 @@ Status GraphCutMatcher::init(Arena& arena, const GraphCutBudget& budget) {
 Status GraphCutMatcher::validate(const StereoInput& in, Rect roi, const GraphCutParams& params,
                                  const DisparityMap* out) const {
   if (label_.empty()) return Error::make(Errc::not_ready, "graphcut: match() before init()");
+  PETRA_TRY(check_images(in));
   const ConstGray8View& left = in.left;
-  const ConstGray8View& right = in.right;
-  if (left.empty() || right.empty()) {
-    return Error::make(Errc::invalid_argument, "graphcut: empty %s image",
-                       left.empty() ? "left" : "right");
-  }
-  if (right.width() != left.width() || right.height() != left.height()) {
-    return Error::make(Errc::invalid_argument,
-                       "graphcut: right image %dx%d differs from left %dx%d", right.width(),
-                       right.height(), left.width(), left.height());
-  }
-  const ShadowMask* masks[2] = {in.left_shadow, in.right_shadow};
-  for (int k = 0; k < 2; ++k) {
-    const ShadowMask* m = masks[k];
-    if (m == nullptr) continue;
-    if (!m->area.inside(left.width(), left.height()) || m->mask.width() != m->area.w ||
-        m->mask.height() != m->area.h) {
-      return Error::make(Errc::invalid_argument,
-                         "graphcut: %s shadow mask %dx%d for area %d,%d,%d,%d of a %dx%d image",
-                         k == 0 ? "left" : "right", m->mask.width(), m->mask.height(), m->area.x,
-                         m->area.y, m->area.w, m->area.h, left.width(), left.height());
-    }
-  }
   if (!roi.inside(left.width(), left.height())) {
     return Error::make(Errc::out_of_range, "graphcut: roi %d,%d,%d,%d outside the %dx%d image",
                        roi.x, roi.y, roi.w, roi.h, left.width(), left.height());
@@ -136,60 +212,8 @@ Status GraphCutMatcher::validate(const StereoInput& in, Rect roi, const GraphCut
     return Error::make(Errc::capacity_exceeded, "graphcut: roi %dx%d above the budget %dx%d", roi.w,
                        roi.h, budget_.max_width, budget_.max_height);
   }
-  if (params.disp_min > params.disp_max || params.disp_min < -kMaxDisparityMagnitude ||
-      params.disp_max > kMaxDisparityMagnitude) {
-    return Error::make(Errc::invalid_argument, "graphcut: disparity range %d..%d invalid",
-                       params.disp_min, params.disp_max);
-  }
-  const int count = params.disp_max - params.disp_min + 1;
-  if (count > budget_.max_disparities) {
-    return Error::make(Errc::capacity_exceeded, "graphcut: %d disparities above the budget %d",
-                       count, budget_.max_disparities);
-  }
-  if (params.max_cycles < 1 || params.max_cycles > kGraphCutMaxCycles) {
-    return Error::make(Errc::out_of_range, "graphcut: max_cycles %d outside 1..%d",
-                       params.max_cycles, kGraphCutMaxCycles);
-  }
-  if (params.occlusion_k != kGraphCutAuto &&
-      (params.occlusion_k <= 0 || params.occlusion_k > kMaxWeight)) {
-    return Error::make(Errc::out_of_range, "graphcut: occlusion_k %d outside 1..%d",
-                       params.occlusion_k, kMaxWeight);
-  }
-  const std::int32_t weights[3] = {params.lambda, params.lambda1, params.lambda2};
-  const char* names[3] = {"lambda", "lambda1", "lambda2"};
-  for (int k = 0; k < 3; ++k) {
-    if (weights[k] != kGraphCutAuto && (weights[k] < 0 || weights[k] > kMaxWeight)) {
-      return Error::make(Errc::out_of_range, "graphcut: %s %d outside 0..%d", names[k], weights[k],
-                         kMaxWeight);
-    }
-  }
-  if (params.guided_cycles < 0 || params.guided_cycles > kGraphCutMaxCycles) {
-    return Error::make(Errc::out_of_range, "graphcut: guided_cycles %d outside 0..%d",
-                       params.guided_cycles, kGraphCutMaxCycles);
-  }
-  if (params.guided_radius < 0 || params.guided_radius > 2 * kMaxDisparityMagnitude) {
-    return Error::make(Errc::out_of_range, "graphcut: guided_radius %d outside 0..%d",
-                       params.guided_radius, 2 * kMaxDisparityMagnitude);
-  }
-  if (params.start != GraphCutStart::occluded && params.start != GraphCutStart::block_matching &&
-      params.start != GraphCutStart::dp && params.start != GraphCutStart::given) {
-    return Error::make(Errc::invalid_argument, "graphcut: start %d unknown",
-                       static_cast<int>(params.start));
-  }
-  if (params.start == GraphCutStart::given &&
-      (params.start_map.q4.data() == nullptr || params.start_map.q4.width() != roi.w ||
-       params.start_map.q4.height() != roi.h)) {
-    return Error::make(Errc::invalid_argument, "graphcut: start_map %dx%d, roi %dx%d",
-                       params.start_map.q4.width(), params.start_map.q4.height(), roi.w, roi.h);
-  }
-  if (params.edge_threshold < 1 || params.edge_threshold > 255) {
-    return Error::make(Errc::out_of_range, "graphcut: edge_threshold %d outside 1..255",
-                       params.edge_threshold);
-  }
-  if (params.data_clip < 1 || params.data_clip > 90) {
-    return Error::make(Errc::out_of_range, "graphcut: data_clip %d outside 1..90",
-                       params.data_clip);
-  }
+  PETRA_TRY(check_range_and_weights(params, budget_));
+  PETRA_TRY(check_start_and_terms(params, roi));
   if (out != nullptr && (out->q4.width() != roi.w || out->q4.height() != roi.h)) {
     return Error::make(Errc::invalid_argument, "graphcut: output %dx%d, roi %dx%d", out->q4.width(),
                        out->q4.height(), roi.w, roi.h);
@@ -362,6 +386,29 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
   prepare(in, roi, params);
 
   GraphCutReport report;
+  PETRA_TRY(choose_weights(params, report));
+  auto started = start_labels(in, roi, params, report);
+  if (!started) return started.error();
+  std::int64_t e = *started;
+
+  GraphCutStep start;
+  start.cycle = -1;
+  start.skipped = true;
+  start.energy_before = start.energy_after = e;
+  notify(params, start);
+
+  std::uint32_t rng = params.seed != 0 ? params.seed : 0x9E3779B9u;
+  PETRA_TRY(run_guided_cycles(params, rng, report, e));
+  PETRA_TRY(run_full_cycles(params, rng, report, e));
+  // The energy tracked from the cut values must be the energy of the result.
+  PETRA_ASSERT(energy() == e);
+  report.energy = e;
+  write_output(roi, out, report);
+  return report;
+}
+
+// K (automatic unless given) and the Potts weights.
+Status GraphCutMatcher::choose_weights(const GraphCutParams& params, GraphCutReport& report) {
   k_ = params.occlusion_k != kGraphCutAuto ? params.occlusion_k : automatic_k();
   if (k_ <= 0) {
     return Error::make(Errc::degenerate,
@@ -376,7 +423,14 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
   report.occlusion_k = k_;
   report.lambda1 = lambda1_;
   report.lambda2 = lambda2_;
+  return ok_status();
+}
 
+// The starting labelling (report.start says which, after the DP's fallback)
+// and the cached terms; returns its energy.
+Result<std::int64_t> GraphCutMatcher::start_labels(const StereoInput& in, Rect roi,
+                                                   const GraphCutParams& params,
+                                                   GraphCutReport& report) {
   const int n = w_ * h_;
   std::int64_t e = 0;  // the all-occluded start
   report.start = params.start;
@@ -396,44 +450,40 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
   report.energy_start = e;
   refresh_all();
   std::fill_n(last_change_.begin(), num_disp_, -1);
+  return e;
+}
 
-  auto notify = [&](GraphCutStep& step) {
-    if (params.observer.on_expansion == nullptr) return;
-    step.labels = std::span<const std::int16_t>(label_.data(), static_cast<std::size_t>(n));
-    step.width = w_;
-    step.height = h_;
-    params.observer.on_expansion(params.observer.context, step);
-  };
-  GraphCutStep start;
-  start.cycle = -1;
-  start.skipped = true;
-  start.energy_before = start.energy_after = e;
-  notify(start);
+void GraphCutMatcher::notify(const GraphCutParams& params, GraphCutStep& step) const {
+  if (params.observer.on_expansion == nullptr) return;
+  step.labels = std::span<const std::int16_t>(label_.data(), static_cast<std::size_t>(w_ * h_));
+  step.width = w_;
+  step.height = h_;
+  params.observer.on_expansion(params.observer.context, step);
+}
 
-  std::uint32_t rng = params.seed != 0 ? params.seed : 0x9E3779B9u;
-  auto shuffle = [&] {
-    for (int i = 0; i < num_disp_; ++i) order_[i] = static_cast<std::int16_t>(i);
-    if (!params.random_order) return;
-    for (int i = num_disp_ - 1; i > 0; --i) {
-      const int j = static_cast<int>(next_random(rng) % static_cast<std::uint32_t>(i + 1));
-      std::swap(order_[i], order_[j]);
-    }
-  };
-  auto cancelled = [&](int cycle) {
-    return Error::make(Errc::cancelled, "graphcut: cancelled in cycle %d after %d expansions",
-                       cycle + 1, report.expansions);
-  };
+// The disparity order of a cycle: a new seeded permutation, or in order.
+void GraphCutMatcher::shuffle_order(const GraphCutParams& params, std::uint32_t& rng) {
+  for (int i = 0; i < num_disp_; ++i) order_[i] = static_cast<std::int16_t>(i);
+  if (!params.random_order) return;
+  for (int i = num_disp_ - 1; i > 0; --i) {
+    const int j = static_cast<int>(next_random(rng) % static_cast<std::uint32_t>(i + 1));
+    std::swap(order_[i], order_[j]);
+  }
+}
 
-  // Guided cycles: moves restricted to the band around the start (their
-  // results are not optimal over every move, so no skip stamps are set).
+// Guided cycles: moves restricted to the band around the start (their
+// results are not optimal over every move, so no skip stamps are set).
+Status GraphCutMatcher::run_guided_cycles(const GraphCutParams& params, std::uint32_t& rng,
+                                          GraphCutReport& report, std::int64_t& e) {
   const int guided = report.start == GraphCutStart::occluded ? 0 : params.guided_cycles;
-  if (guided > 0) std::copy_n(label_.begin(), n, guide_.begin());
+  if (guided > 0) std::copy_n(label_.begin(), w_ * h_, guide_.begin());
   for (int cycle = 0; cycle < guided; ++cycle) {
-    shuffle();
+    shuffle_order(params, rng);
     bool decreased = false;
     for (int i = 0; i < num_disp_; ++i) {
       const int alpha = order_[i];
-      if (params.cancel != nullptr && params.cancel->cancelled()) return cancelled(cycle);
+      if (params.cancel != nullptr && params.cancel->cancelled())
+        return cancelled_error(cycle, report);
       GraphCutStep step;
       step.cycle = cycle;
       step.guided = true;
@@ -447,15 +497,20 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
         step.applied = true;
       }
       step.energy_after = e;
-      notify(step);
+      notify(params, step);
     }
     ++report.guided_cycles;
     if (!decreased) break;
   }
+  return ok_status();
+}
 
+// Full cycles over every disparity until one brings no decrease.
+Status GraphCutMatcher::run_full_cycles(const GraphCutParams& params, std::uint32_t& rng,
+                                        GraphCutReport& report, std::int64_t& e) {
   std::int32_t changes = 0;
   for (int cycle = 0; cycle < params.max_cycles; ++cycle) {
-    shuffle();
+    shuffle_order(params, rng);
     bool decreased = false;
     for (int i = 0; i < num_disp_; ++i) {
       const int alpha = order_[i];
@@ -464,7 +519,7 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
       step.disparity = disp_min_ + alpha;
       step.energy_before = e;
       if (params.cancel != nullptr && params.cancel->cancelled()) {
-        return cancelled(report.guided_cycles + cycle);
+        return cancelled_error(report.guided_cycles + cycle, report);
       }
       if (last_change_[alpha] == changes) {
         // Unchanged since alpha's last expansion, whose result is optimal
@@ -483,7 +538,7 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
         last_change_[alpha] = changes;
       }
       step.energy_after = e;
-      notify(step);
+      notify(params, step);
     }
     ++report.cycles;
     (void)report.cycle_energy.push_back(e);
@@ -492,10 +547,11 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
       break;
     }
   }
-  // The energy tracked from the cut values must be the energy of the result.
-  PETRA_ASSERT(energy() == e);
-  report.energy = e;
+  return ok_status();
+}
 
+// The labelling as Q4 disparities, and the pixel counts of the report.
+void GraphCutMatcher::write_output(Rect roi, DisparityMap& out, GraphCutReport& report) const {
   out.roi = roi;
   for (int y = 0; y < h_; ++y) {
     std::int16_t* row = out.q4.row(y);
@@ -515,7 +571,6 @@ Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
       }
     }
   }
-  return report;
 }
 
 }  // namespace petra

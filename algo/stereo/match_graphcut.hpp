@@ -191,6 +191,21 @@ class GraphCutMatcher {
   void prepare(const StereoInput& in, Rect roi, const GraphCutParams& params);
   std::int32_t automatic_k() const;
   void block_matching_labels();
+  // block_matching_labels()'s steps (match_graphcut_start.cpp).
+  void block_cost_sums(int d);
+  void take_block_winners(int di);
+  void keep_agreeing_winners();
+  // match()'s steps.
+  Status choose_weights(const GraphCutParams& params, GraphCutReport& report);
+  Result<std::int64_t> start_labels(const StereoInput& in, Rect roi, const GraphCutParams& params,
+                                    GraphCutReport& report);
+  void notify(const GraphCutParams& params, GraphCutStep& step) const;
+  void shuffle_order(const GraphCutParams& params, std::uint32_t& rng);
+  Status run_guided_cycles(const GraphCutParams& params, std::uint32_t& rng, GraphCutReport& report,
+                           std::int64_t& e);
+  Status run_full_cycles(const GraphCutParams& params, std::uint32_t& rng, GraphCutReport& report,
+                         std::int64_t& e);
+  void write_output(Rect roi, DisparityMap& out, GraphCutReport& report) const;
   Result<bool> dp_labels(const StereoInput& in, Rect roi, const GraphCutParams& params);
   void labels_from_map(const ConstDisparityMap& map);
   // Cached terms of the active assignment of pixel p (see keep_).
@@ -201,6 +216,15 @@ class GraphCutMatcher {
   // band >= 0 only pixels whose guide_ is negative or within band of alpha
   // may change.
   std::int64_t expand(int alpha, std::int64_t& nodes_used, int band = -1);
+  // expand()'s steps (match_graphcut_expansion.cpp: A, R, B, Q, C, the update).
+  struct Expansion;
+  void alpha_assignments(const Expansion& e, int band);
+  void fix_inactive_alphas();
+  void old_assignments(const Expansion& e);
+  void fix_kept_olds();
+  std::int64_t build_graph(const Expansion& e);
+  int apply_cut(const Expansion& e, std::int32_t num_nodes);
+  void refresh_changed(int changed);
 
   GraphCutBudget budget_{};
   MaxFlow<6> maxflow_;       // 4 neighbours + 2 uniqueness links per node

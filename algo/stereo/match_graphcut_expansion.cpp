@@ -44,35 +44,172 @@ constexpr std::int32_t kOutsideBand = INT32_MAX / 2;
 constexpr std::int32_t kNoOld = -1;      // occluded or already at alpha
 constexpr std::int32_t kFixedKept = -2;  // in Q
 
+// Potts weight between p and its right / lower neighbour, from p's edge bits.
+struct Potts {
+  std::int32_t weight[2];  // indexed by the edge bit
+  std::int32_t right(std::uint8_t bits) const { return weight[bits & 1]; }
+  std::int32_t down(std::uint8_t bits) const { return weight[(bits >> 1) & 1]; }
+};
+
+constexpr std::int32_t kInf = MaxFlow<6>::kInfiniteCapacity;
+
+// What the graph's construction reads and writes: locals of build_graph,
+// whose per-pixel steps below are inlined into its loop.
+struct GraphBuild {
+  MaxFlow<6>& maxflow;
+  Potts v;
+  int w, h;
+  int disp_min, d_alpha;
+  std::int32_t k;
+  const std::int16_t* label;
+  const std::int16_t* acost;
+  const std::uint8_t* ae;
+  const std::uint8_t* oe;
+  const std::int32_t* keep;
+  const std::int16_t* owner;
+  std::int32_t* an;
+  std::int32_t* on;
+  std::int32_t* node_pixel;
+  std::int64_t base;  // the cut of "change nothing"
+
+  void link(std::int32_t i, std::int32_t j, std::int32_t cap, std::int32_t rev) {
+    const bool added = maxflow.add_edge(i, j, cap, rev);
+    PETRA_ASSERT(added);  // degree <= 6 by construction
+  }
+};
+
+// The alpha node of free pixel p (row starts at p - x; q is (x, alpha)'s
+// strip pixel): Potts arcs to earlier free alpha nodes, Potts terms of fixed
+// neighbours as terminal weights, and the uniqueness arc from the old node
+// already matched to q.
+[[gnu::always_inline]] inline std::int32_t add_alpha_node(GraphBuild& g, int p, int x, int y,
+                                                          int row, int q) {
+  const int w = g.w;
+  std::int32_t* an = g.an;
+  const std::uint8_t* ae = g.ae;
+  const std::int32_t a_id = g.maxflow.add_node();
+  g.node_pixel[a_id] = 2 * p;
+  std::int32_t if_active = g.acost[p] - g.k;
+  std::int32_t if_inactive = 0;
+  auto pair = [&](std::int32_t st, std::int32_t v) {
+    if (st >= 0) {
+      g.link(a_id, st, v, v);
+    } else if (st == kFixedActive) {
+      if_inactive += v;
+    } else if (st == kFixedInactive) {
+      if_active += v;
+    }
+  };
+  if (x > 0) pair(an[p - 1], g.v.right(ae[p - 1]));
+  if (y > 0) pair(an[p - w], g.v.down(ae[p - w]));
+  // Free right/lower neighbours link back when their turn comes.
+  if (x + 1 < w && an[p + 1] < kInvalid) pair(an[p + 1], g.v.right(ae[p]));
+  if (y + 1 < g.h && an[p + w] < kInvalid) pair(an[p + w], g.v.down(ae[p]));
+  const std::int32_t net = if_active - if_inactive;
+  if (net > 0) {
+    g.maxflow.add_terminal_weights(a_id, net, 0);
+  } else {
+    g.maxflow.add_terminal_weights(a_id, 0, -net);
+    g.base -= net;
+  }
+  an[p] = a_id;
+  // The old node already matched to the same right pixel, if it came first.
+  const int owner = g.owner[q];
+  if (owner >= 0 && owner < x) {
+    PETRA_ASSERT(g.on[row + owner] >= 0);
+    g.link(g.on[row + owner], a_id, kInf, 0);
+  }
+  return a_id;
+}
+
+// The old node of free pixel p: uniqueness arcs to its own alpha node and
+// to the earlier alpha node ending on its right pixel, Potts arcs to earlier
+// free old nodes of its disparity, kept neighbours' terms as terminal weights.
+[[gnu::always_inline]] inline void add_old_node(GraphBuild& g, int p, int x, int y, int row,
+                                                std::int32_t a_id) {
+  const int w = g.w;
+  const std::int16_t* label = g.label;
+  const std::uint8_t* oe = g.oe;
+  const std::int32_t o_id = g.maxflow.add_node();
+  g.node_pixel[o_id] = 2 * p + 1;
+  const int lab = label[p];
+  if (a_id >= 0) g.link(o_id, a_id, kInf, 0);
+  const int xr = x - (g.disp_min + lab) + g.d_alpha;
+  if (xr >= 0 && xr < x && g.an[row + xr] >= 0) g.link(o_id, g.an[row + xr], kInf, 0);
+  std::int32_t if_dropped = 0;
+  auto pair = [&](int n, std::int32_t v, bool earlier) {
+    if (label[n] != lab) return;
+    const std::int32_t st = g.on[n];
+    if (st == kFixedKept) {
+      if_dropped += v;
+    } else if (earlier) {
+      g.link(o_id, st, v, v);
+    }
+  };
+  if (x > 0) pair(p - 1, g.v.right(oe[p - 1]), true);
+  if (y > 0) pair(p - w, g.v.down(oe[p - w]), true);
+  if (x + 1 < w) pair(p + 1, g.v.right(oe[p]), false);
+  if (y + 1 < g.h) pair(p + w, g.v.down(oe[p]), false);
+  const std::int32_t net = g.keep[p] - if_dropped;
+  if (net > 0) {
+    g.maxflow.add_terminal_weights(o_id, 0, net);
+    g.base += net;
+  } else {
+    g.maxflow.add_terminal_weights(o_id, -net, 0);
+  }
+  g.on[p] = o_id;
+}
+
 }  // namespace
 
+// The constants of one expansion on alpha, shared by its steps.
+struct GraphCutMatcher::Expansion {
+  int alpha = 0;
+  int d_alpha = 0;  // alpha's disparity
+  int shift = 0;    // strip column of (x, alpha) is x + shift
+  int x_lo = 0;     // (x, alpha) lands in the image for x in [x_lo, x_hi)
+  int x_hi = 0;
+};
+
 std::int64_t GraphCutMatcher::expand(int alpha, std::int64_t& nodes_used, int band) {
+  Expansion e;
+  e.alpha = alpha;
+  e.d_alpha = disp_min_ + alpha;
+  e.shift = roi_x_ - e.d_alpha - strip_x0_;
+  e.x_lo = std::clamp(e.d_alpha - roi_x_, 0, w_);
+  e.x_hi = std::clamp(image_w_ + e.d_alpha - roi_x_, e.x_lo, w_);
+
+  alpha_assignments(e, band);
+  if (prune_) fix_inactive_alphas();
+  old_assignments(e);
+  if (prune_) fix_kept_olds();
+  const std::int64_t base = build_graph(e);
+  const std::int32_t num_nodes = maxflow_.num_nodes();
+  nodes_used += num_nodes;
+  if (num_nodes == 0) return 0;
+
+  const std::int64_t delta = maxflow_.solve() - base;
+  if (delta >= 0) return 0;  // ties keep the current labelling
+  refresh_changed(apply_cut(e, num_nodes));
+  return delta;
+}
+
+// A: alpha assignments: fixed active, invalid, or candidate (cost, edge bits).
+void GraphCutMatcher::alpha_assignments(const Expansion& e, int band) {
   const int w = w_;
   const int h = h_;
   const int sw = strip_w_;
-  const int d_alpha = disp_min_ + alpha;
-  const int shift = roi_x_ - d_alpha - strip_x0_;       // strip column of (x, alpha) is x + shift
-  const int x_lo = std::clamp(d_alpha - roi_x_, 0, w);  // (x, alpha) lands in the image
-  const int x_hi = std::clamp(image_w_ + d_alpha - roi_x_, x_lo, w);
-  const std::int32_t k = k_;
-  const std::int32_t weight[2] = {lambda1_, lambda2_};  // indexed by the edge bit
+  const int alpha = e.alpha;
+  const int shift = e.shift;
+  const int x_lo = e.x_lo;
+  const int x_hi = e.x_hi;
   const std::uint8_t* lf = left_flags_.data();
   const std::uint8_t* rf = right_flags_.data();
-  std::int16_t* label = label_.data();
+  const std::int16_t* label = label_.data();
   std::int16_t* acost = alpha_cost_.data();
   std::uint8_t* ae = alpha_edges_.data();
-  const std::uint8_t* oe = old_edges_.data();
-  const std::int32_t* keep = keep_.data();
   std::int32_t* an = alpha_node_.data();
-  std::int32_t* on = old_node_.data();
   std::int32_t* aslack = alpha_slack_.data();
-  std::int32_t* oslack = old_slack_.data();
-  std::int32_t* work = worklist_.data();
-  // Potts weight between p and its right / lower neighbour, from p's edge bits.
-  auto v_right = [&](std::uint8_t bits) { return weight[bits & 1]; };
-  auto v_down = [&](std::uint8_t bits) { return weight[(bits >> 1) & 1]; };
-
-  // A: alpha assignments: fixed active, invalid, or candidate (cost, edge bits).
   for (int y = 0; y < h; ++y) {
     const int row = y * w;
     const int qrow = y * sw + shift;
@@ -98,60 +235,81 @@ std::int64_t GraphCutMatcher::expand(int alpha, std::int64_t& nodes_used, int ba
       }
     }
   }
+}
 
+// R: the alpha assignments fixed inactive (the header's reduction).
+void GraphCutMatcher::fix_inactive_alphas() {
+  const int w = w_;
+  const int h = h_;
+  const std::int32_t k = k_;
+  const Potts v{{lambda1_, lambda2_}};
+  const std::int16_t* acost = alpha_cost_.data();
+  const std::uint8_t* ae = alpha_edges_.data();
+  std::int32_t* an = alpha_node_.data();
+  std::int32_t* aslack = alpha_slack_.data();
+  std::int32_t* work = worklist_.data();
   int top = 0;
-  if (prune_) {
-    // R starts as every candidate whose activation costs >= 0 on its own.
-    for (int y = 0; y < h; ++y) {
-      for (int x = 0; x < w; ++x) {
-        const int p = y * w + x;
-        if (an[p] != kFree) continue;
-        std::int32_t s = acost[p] - k;
-        if (x > 0 && an[p - 1] == kFixedActive) s -= v_right(ae[p - 1]);
-        if (x + 1 < w && an[p + 1] == kFixedActive) s -= v_right(ae[p]);
-        if (y > 0 && an[p - w] == kFixedActive) s -= v_down(ae[p - w]);
-        if (y + 1 < h && an[p + w] == kFixedActive) s -= v_down(ae[p]);
-        if (s >= 0) {
-          an[p] = kFixedInactive;
-          aslack[p] = s;
-        }
-      }
-    }
-    // Members must cover their weight towards free neighbours; removing one
-    // may break its neighbours' condition in turn.
-    for (int y = 0; y < h; ++y) {
-      for (int x = 0; x < w; ++x) {
-        const int p = y * w + x;
-        if (an[p] != kFixedInactive) continue;
-        std::int32_t s = aslack[p];
-        if (x > 0 && an[p - 1] == kFree) s -= v_right(ae[p - 1]);
-        if (x + 1 < w && an[p + 1] == kFree) s -= v_right(ae[p]);
-        if (y > 0 && an[p - w] == kFree) s -= v_down(ae[p - w]);
-        if (y + 1 < h && an[p + w] == kFree) s -= v_down(ae[p]);
+  // R starts as every candidate whose activation costs >= 0 on its own.
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const int p = y * w + x;
+      if (an[p] != kFree) continue;
+      std::int32_t s = acost[p] - k;
+      if (x > 0 && an[p - 1] == kFixedActive) s -= v.right(ae[p - 1]);
+      if (x + 1 < w && an[p + 1] == kFixedActive) s -= v.right(ae[p]);
+      if (y > 0 && an[p - w] == kFixedActive) s -= v.down(ae[p - w]);
+      if (y + 1 < h && an[p + w] == kFixedActive) s -= v.down(ae[p]);
+      if (s >= 0) {
+        an[p] = kFixedInactive;
         aslack[p] = s;
-        if (s < 0) work[top++] = p;
       }
-    }
-    auto drop = [&](int n, std::int32_t v) {
-      if (an[n] != kFixedInactive) return;
-      const std::int32_t before = aslack[n];
-      aslack[n] = before - v;
-      if (before >= 0 && aslack[n] < 0) work[top++] = n;
-    };
-    while (top > 0) {
-      const int p = work[--top];
-      an[p] = kFree;
-      const int y = p / w;
-      const int x = p - y * w;
-      if (x > 0) drop(p - 1, v_right(ae[p - 1]));
-      if (x + 1 < w) drop(p + 1, v_right(ae[p]));
-      if (y > 0) drop(p - w, v_down(ae[p - w]));
-      if (y + 1 < h) drop(p + w, v_down(ae[p]));
     }
   }
+  // Members must cover their weight towards free neighbours; removing one
+  // may break its neighbours' condition in turn.
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const int p = y * w + x;
+      if (an[p] != kFixedInactive) continue;
+      std::int32_t s = aslack[p];
+      if (x > 0 && an[p - 1] == kFree) s -= v.right(ae[p - 1]);
+      if (x + 1 < w && an[p + 1] == kFree) s -= v.right(ae[p]);
+      if (y > 0 && an[p - w] == kFree) s -= v.down(ae[p - w]);
+      if (y + 1 < h && an[p + w] == kFree) s -= v.down(ae[p]);
+      aslack[p] = s;
+      if (s < 0) work[top++] = p;
+    }
+  }
+  auto drop = [&](int n, std::int32_t wt) {
+    if (an[n] != kFixedInactive) return;
+    const std::int32_t before = aslack[n];
+    aslack[n] = before - wt;
+    if (before >= 0 && aslack[n] < 0) work[top++] = n;
+  };
+  while (top > 0) {
+    const int p = work[--top];
+    an[p] = kFree;
+    const int y = p / w;
+    const int x = p - y * w;
+    if (x > 0) drop(p - 1, v.right(ae[p - 1]));
+    if (x + 1 < w) drop(p + 1, v.right(ae[p]));
+    if (y > 0) drop(p - w, v.down(ae[p - w]));
+    if (y + 1 < h) drop(p + w, v.down(ae[p]));
+  }
+}
 
-  // B: old assignments. Q candidates have no free alpha competitor (left or
-  // right) and a cost of staying <= 0.
+// B: old assignments. Q candidates have no free alpha competitor (left or
+// right) and a cost of staying <= 0.
+void GraphCutMatcher::old_assignments(const Expansion& e) {
+  const int w = w_;
+  const int h = h_;
+  const int alpha = e.alpha;
+  const int d_alpha = e.d_alpha;
+  const std::int16_t* label = label_.data();
+  const std::int32_t* keep = keep_.data();
+  const std::int32_t* an = alpha_node_.data();
+  std::int32_t* on = old_node_.data();
+  std::int32_t* oslack = old_slack_.data();
   for (int y = 0; y < h; ++y) {
     const int row = y * w;
     for (int x = 0; x < w; ++x) {
@@ -171,136 +329,108 @@ std::int64_t GraphCutMatcher::expand(int alpha, std::int64_t& nodes_used, int ba
       }
     }
   }
-  if (prune_) {
-    for (int y = 0; y < h; ++y) {
-      for (int x = 0; x < w; ++x) {
-        const int p = y * w + x;
-        if (on[p] != kFixedKept) continue;
-        const int lab = label[p];
-        std::int32_t s = oslack[p];
-        if (x > 0 && label[p - 1] == lab && on[p - 1] == kFree) s -= v_right(oe[p - 1]);
-        if (x + 1 < w && label[p + 1] == lab && on[p + 1] == kFree) s -= v_right(oe[p]);
-        if (y > 0 && label[p - w] == lab && on[p - w] == kFree) s -= v_down(oe[p - w]);
-        if (y + 1 < h && label[p + w] == lab && on[p + w] == kFree) s -= v_down(oe[p]);
-        oslack[p] = s;
-        if (s < 0) work[top++] = p;
-      }
-    }
-    auto drop = [&](int n, int lab, std::int32_t v) {
-      if (label[n] != lab || on[n] != kFixedKept) return;
-      const std::int32_t before = oslack[n];
-      oslack[n] = before - v;
-      if (before >= 0 && oslack[n] < 0) work[top++] = n;
-    };
-    while (top > 0) {
-      const int p = work[--top];
-      on[p] = kFree;
-      const int y = p / w;
-      const int x = p - y * w;
+}
+
+// Q: the old assignments fixed kept, reduced as R is.
+void GraphCutMatcher::fix_kept_olds() {
+  const int w = w_;
+  const int h = h_;
+  const Potts v{{lambda1_, lambda2_}};
+  const std::int16_t* label = label_.data();
+  const std::uint8_t* oe = old_edges_.data();
+  std::int32_t* on = old_node_.data();
+  std::int32_t* oslack = old_slack_.data();
+  std::int32_t* work = worklist_.data();
+  int top = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const int p = y * w + x;
+      if (on[p] != kFixedKept) continue;
       const int lab = label[p];
-      if (x > 0) drop(p - 1, lab, v_right(oe[p - 1]));
-      if (x + 1 < w) drop(p + 1, lab, v_right(oe[p]));
-      if (y > 0) drop(p - w, lab, v_down(oe[p - w]));
-      if (y + 1 < h) drop(p + w, lab, v_down(oe[p]));
+      std::int32_t s = oslack[p];
+      if (x > 0 && label[p - 1] == lab && on[p - 1] == kFree) s -= v.right(oe[p - 1]);
+      if (x + 1 < w && label[p + 1] == lab && on[p + 1] == kFree) s -= v.right(oe[p]);
+      if (y > 0 && label[p - w] == lab && on[p - w] == kFree) s -= v.down(oe[p - w]);
+      if (y + 1 < h && label[p + w] == lab && on[p + w] == kFree) s -= v.down(oe[p]);
+      oslack[p] = s;
+      if (s < 0) work[top++] = p;
     }
   }
+  auto drop = [&](int n, int lab, std::int32_t wt) {
+    if (label[n] != lab || on[n] != kFixedKept) return;
+    const std::int32_t before = oslack[n];
+    oslack[n] = before - wt;
+    if (before >= 0 && oslack[n] < 0) work[top++] = n;
+  };
+  while (top > 0) {
+    const int p = work[--top];
+    on[p] = kFree;
+    const int y = p / w;
+    const int x = p - y * w;
+    const int lab = label[p];
+    if (x > 0) drop(p - 1, lab, v.right(oe[p - 1]));
+    if (x + 1 < w) drop(p + 1, lab, v.right(oe[p]));
+    if (y > 0) drop(p - w, lab, v.down(oe[p - w]));
+    if (y + 1 < h) drop(p + w, lab, v.down(oe[p]));
+  }
+}
 
-  // C: the graph, built in scan order. Ids are given as nodes appear, so
-  // each arc is added from the later of its two ends. `base` is the cut of
-  // "change nothing" (every node on the source side), so the energy change
-  // is flow - base.
+// C: the graph, built in scan order. Ids are given as nodes appear, so
+// each arc is added from the later of its two ends. Returns `base`, the cut
+// of "change nothing" (every node on the source side), so the energy change
+// is flow - base.
+std::int64_t GraphCutMatcher::build_graph(const Expansion& e) {
   const Status cleared = maxflow_.reset(0);
   PETRA_ASSERT(cleared.ok());
-  auto link = [&](std::int32_t i, std::int32_t j, std::int32_t cap, std::int32_t rev) {
-    const bool added = maxflow_.add_edge(i, j, cap, rev);
-    PETRA_ASSERT(added);  // degree <= 6 by construction
-  };
-  constexpr std::int32_t kInf = MaxFlow<6>::kInfiniteCapacity;
-  std::int32_t* node_pixel = node_pixel_.data();
-  std::int64_t base = 0;
+  const int w = w_;
+  const int h = h_;
+  const int sw = strip_w_;
+  const int shift = e.shift;
+  GraphBuild g{.maxflow = maxflow_,
+               .v = {{lambda1_, lambda2_}},
+               .w = w,
+               .h = h,
+               .disp_min = disp_min_,
+               .d_alpha = e.d_alpha,
+               .k = k_,
+               .label = label_.data(),
+               .acost = alpha_cost_.data(),
+               .ae = alpha_edges_.data(),
+               .oe = old_edges_.data(),
+               .keep = keep_.data(),
+               .owner = owner_.data(),
+               .an = alpha_node_.data(),
+               .on = old_node_.data(),
+               .node_pixel = node_pixel_.data(),
+               .base = 0};
   for (int y = 0; y < h; ++y) {
     const int row = y * w;
     const int qrow = y * sw + shift;
     for (int x = 0; x < w; ++x) {
       const int p = row + x;
       std::int32_t a_id = -1;
-      if (an[p] == kFree) {
-        a_id = maxflow_.add_node();
-        node_pixel[a_id] = 2 * p;
-        std::int32_t if_active = acost[p] - k;
-        std::int32_t if_inactive = 0;
-        auto pair = [&](std::int32_t st, std::int32_t v) {
-          if (st >= 0) {
-            link(a_id, st, v, v);
-          } else if (st == kFixedActive) {
-            if_inactive += v;
-          } else if (st == kFixedInactive) {
-            if_active += v;
-          }
-        };
-        if (x > 0) pair(an[p - 1], v_right(ae[p - 1]));
-        if (y > 0) pair(an[p - w], v_down(ae[p - w]));
-        // Free right/lower neighbours link back when their turn comes.
-        if (x + 1 < w && an[p + 1] < kInvalid) pair(an[p + 1], v_right(ae[p]));
-        if (y + 1 < h && an[p + w] < kInvalid) pair(an[p + w], v_down(ae[p]));
-        const std::int32_t net = if_active - if_inactive;
-        if (net > 0) {
-          maxflow_.add_terminal_weights(a_id, net, 0);
-        } else {
-          maxflow_.add_terminal_weights(a_id, 0, -net);
-          base -= net;
-        }
-        an[p] = a_id;
-        // The old node already matched to the same right pixel, if it came first.
-        const int owner = owner_[qrow + x];
-        if (owner >= 0 && owner < x) {
-          PETRA_ASSERT(on[row + owner] >= 0);
-          link(on[row + owner], a_id, kInf, 0);
-        }
-      }
-      if (on[p] == kFree) {
-        const std::int32_t o_id = maxflow_.add_node();
-        node_pixel[o_id] = 2 * p + 1;
-        const int lab = label[p];
-        if (a_id >= 0) link(o_id, a_id, kInf, 0);
-        const int xr = x - (disp_min_ + lab) + d_alpha;
-        if (xr >= 0 && xr < x && an[row + xr] >= 0) link(o_id, an[row + xr], kInf, 0);
-        std::int32_t if_dropped = 0;
-        auto pair = [&](int n, std::int32_t v, bool earlier) {
-          if (label[n] != lab) return;
-          const std::int32_t st = on[n];
-          if (st == kFixedKept) {
-            if_dropped += v;
-          } else if (earlier) {
-            link(o_id, st, v, v);
-          }
-        };
-        if (x > 0) pair(p - 1, v_right(oe[p - 1]), true);
-        if (y > 0) pair(p - w, v_down(oe[p - w]), true);
-        if (x + 1 < w) pair(p + 1, v_right(oe[p]), false);
-        if (y + 1 < h) pair(p + w, v_down(oe[p]), false);
-        const std::int32_t net = keep[p] - if_dropped;
-        if (net > 0) {
-          maxflow_.add_terminal_weights(o_id, 0, net);
-          base += net;
-        } else {
-          maxflow_.add_terminal_weights(o_id, -net, 0);
-        }
-        on[p] = o_id;
-      }
+      if (g.an[p] == kFree) a_id = add_alpha_node(g, p, x, y, row, qrow + x);
+      if (g.on[p] == kFree) add_old_node(g, p, x, y, row, a_id);
     }
   }
-  const std::int32_t num_nodes = maxflow_.num_nodes();
-  nodes_used += num_nodes;
-  if (num_nodes == 0) return 0;
+  return g.base;
+}
 
-  const std::int64_t delta = maxflow_.solve() - base;
-  if (delta >= 0) return 0;  // ties keep the current labelling
-
-  // Release the matches that end, then take the new ones (a right pixel
-  // freed and retaken in the same move is released first). One pass over the
-  // nodes: the alpha nodes taken are compacted to the front of node_pixel
-  // (their index never passes the node id being read).
+// Release the matches that end, then take the new ones (a right pixel
+// freed and retaken in the same move is released first). One pass over the
+// nodes: the alpha nodes taken are compacted to the front of node_pixel
+// (their index never passes the node id being read). Returns how many
+// pixels changed (listed in the worklist).
+int GraphCutMatcher::apply_cut(const Expansion& e, std::int32_t num_nodes) {
+  const int w = w_;
+  const int sw = strip_w_;
+  const int alpha = e.alpha;
+  const int shift = e.shift;
+  std::int16_t* label = label_.data();
+  const std::int16_t* acost = alpha_cost_.data();
+  const std::int32_t* on = old_node_.data();
+  std::int32_t* node_pixel = node_pixel_.data();
+  std::int32_t* work = worklist_.data();
   int changed = 0;
   int taken = 0;
   for (std::int32_t id = 0; id < num_nodes; ++id) {
@@ -328,7 +458,14 @@ std::int64_t GraphCutMatcher::expand(int alpha, std::int64_t& nodes_used, int ba
     label[p] = static_cast<std::int16_t>(alpha);
     cost_[p] = acost[p];
   }
-  // The cached terms of the changed pixels and of their neighbours.
+  return changed;
+}
+
+// The cached terms of the changed pixels and of their neighbours.
+void GraphCutMatcher::refresh_changed(int changed) {
+  const int w = w_;
+  const int h = h_;
+  const std::int32_t* work = worklist_.data();
   for (int c = 0; c < changed; ++c) {
     const int p = work[c];
     const int y = p / w;
@@ -339,7 +476,6 @@ std::int64_t GraphCutMatcher::expand(int alpha, std::int64_t& nodes_used, int ba
     if (y > 0) refresh_pixel(p - w, x, y - 1);
     if (y + 1 < h) refresh_pixel(p + w, x, y + 1);
   }
-  return delta;
 }
 
 }  // namespace petra

@@ -13,64 +13,80 @@ namespace petra {
 // occluded. Scratch: alpha_cost_ (costs), keep_ (row sums), alpha_slack_
 // (window sums), old_slack_ (left best), right_best_ (right best).
 void GraphCutMatcher::block_matching_labels() {
-  constexpr int kRadius = 2;
   const int n = w_ * h_;
-  const std::int32_t invalid_cost = clip2_ * clip2_;
   std::fill_n(old_slack_.begin(), n, INT32_MAX);
   std::fill_n(right_best_.begin(), h_ * strip_w_, INT32_MAX);
   std::fill_n(owner_.begin(), h_ * strip_w_, std::int16_t{-1});
   std::fill_n(label_.begin(), n, kOccluded);
+  for (int di = 0; di < num_disp_; ++di) {
+    block_cost_sums(disp_min_ + di);
+    take_block_winners(di);
+  }
+  keep_agreeing_winners();
+}
+
+// The 5x5 window sums of the data cost at disparity d into alpha_slack_.
+void GraphCutMatcher::block_cost_sums(int d) {
+  constexpr int kRadius = 2;
+  const std::int32_t invalid_cost = clip2_ * clip2_;
   std::int32_t* row_sum = keep_.data();
   std::int32_t* window = alpha_slack_.data();
-  for (int di = 0; di < num_disp_; ++di) {
-    const int d = disp_min_ + di;
-    for (int y = 0; y < h_; ++y) {
-      const int qrow = y * strip_w_ + roi_x_ - d - strip_x0_;
-      for (int x = 0; x < w_; ++x) {
-        const int p = y * w_ + x;
-        const int qx = roi_x_ + x - d;
-        const bool valid = qx >= 0 && qx < image_w_ &&
-                           ((left_flags_[p] | right_flags_[qrow + x]) & kUnusable) == 0;
-        alpha_cost_[p] = static_cast<std::int16_t>(
-            valid ? gc::bt_cost(left_[p], right_[qrow + x], clip2_) : invalid_cost);
-      }
-      // Horizontal window sums (clamped at the ROI border).
-      std::int32_t acc = 0;
-      for (int x = 0; x <= std::min(kRadius, w_ - 1); ++x) acc += alpha_cost_[y * w_ + x];
-      for (int x = 0; x < w_; ++x) {
-        row_sum[y * w_ + x] = acc;
-        if (x + kRadius + 1 < w_) acc += alpha_cost_[y * w_ + x + kRadius + 1];
-        if (x - kRadius >= 0) acc -= alpha_cost_[y * w_ + x - kRadius];
-      }
-    }
+  for (int y = 0; y < h_; ++y) {
+    const int qrow = y * strip_w_ + roi_x_ - d - strip_x0_;
     for (int x = 0; x < w_; ++x) {
-      std::int32_t acc = 0;
-      for (int y = 0; y <= std::min(kRadius, h_ - 1); ++y) acc += row_sum[y * w_ + x];
-      for (int y = 0; y < h_; ++y) {
-        window[y * w_ + x] = acc;
-        if (y + kRadius + 1 < h_) acc += row_sum[(y + kRadius + 1) * w_ + x];
-        if (y - kRadius >= 0) acc -= row_sum[(y - kRadius) * w_ + x];
-      }
+      const int p = y * w_ + x;
+      const int qx = roi_x_ + x - d;
+      const bool valid =
+          qx >= 0 && qx < image_w_ && ((left_flags_[p] | right_flags_[qrow + x]) & kUnusable) == 0;
+      alpha_cost_[p] = static_cast<std::int16_t>(
+          valid ? gc::bt_cost(left_[p], right_[qrow + x], clip2_) : invalid_cost);
     }
+    // Horizontal window sums (clamped at the ROI border).
+    std::int32_t acc = 0;
+    for (int x = 0; x <= std::min(kRadius, w_ - 1); ++x) acc += alpha_cost_[y * w_ + x];
+    for (int x = 0; x < w_; ++x) {
+      row_sum[y * w_ + x] = acc;
+      if (x + kRadius + 1 < w_) acc += alpha_cost_[y * w_ + x + kRadius + 1];
+      if (x - kRadius >= 0) acc -= alpha_cost_[y * w_ + x - kRadius];
+    }
+  }
+  for (int x = 0; x < w_; ++x) {
+    std::int32_t acc = 0;
+    for (int y = 0; y <= std::min(kRadius, h_ - 1); ++y) acc += row_sum[y * w_ + x];
     for (int y = 0; y < h_; ++y) {
-      for (int x = 0; x < w_; ++x) {
-        const int p = y * w_ + x;
-        const int qx = roi_x_ + x - d;
-        if (qx < 0 || qx >= image_w_) continue;
-        const std::int32_t c = window[p];
-        if (c < old_slack_[p]) {
-          old_slack_[p] = c;
-          label_[p] = static_cast<std::int16_t>(di);
-        }
-        const int q = y * strip_w_ + qx - strip_x0_;
-        if (c < right_best_[q]) {
-          right_best_[q] = c;
-          owner_[q] = static_cast<std::int16_t>(di);
-        }
+      window[y * w_ + x] = acc;
+      if (y + kRadius + 1 < h_) acc += row_sum[(y + kRadius + 1) * w_ + x];
+      if (y - kRadius >= 0) acc -= row_sum[(y - kRadius) * w_ + x];
+    }
+  }
+}
+
+// The best window sum so far of each left pixel (label_) and of each right
+// pixel (owner_), with disparity index di's sums.
+void GraphCutMatcher::take_block_winners(int di) {
+  const int d = disp_min_ + di;
+  const std::int32_t* window = alpha_slack_.data();
+  for (int y = 0; y < h_; ++y) {
+    for (int x = 0; x < w_; ++x) {
+      const int p = y * w_ + x;
+      const int qx = roi_x_ + x - d;
+      if (qx < 0 || qx >= image_w_) continue;
+      const std::int32_t c = window[p];
+      if (c < old_slack_[p]) {
+        old_slack_[p] = c;
+        label_[p] = static_cast<std::int16_t>(di);
+      }
+      const int q = y * strip_w_ + qx - strip_x0_;
+      if (c < right_best_[q]) {
+        right_best_[q] = c;
+        owner_[q] = static_cast<std::int16_t>(di);
       }
     }
   }
-  // Keep the left winners the right side agrees with; owners become left x.
+}
+
+// Keep the left winners the right side agrees with; owners become left x.
+void GraphCutMatcher::keep_agreeing_winners() {
   for (int y = 0; y < h_; ++y) {
     for (int x = 0; x < w_; ++x) {
       const int p = y * w_ + x;

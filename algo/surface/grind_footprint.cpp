@@ -92,6 +92,184 @@ struct Grid {
   int cy(double y) const { return std::clamp(static_cast<int>((y - y0) / cell), 0, ny - 1); }
 };
 
+// 1. Thinned samples in the face frame (every stride-th), binned by cell:
+// order lists them cell by cell, from start[c] for cell c.
+struct Binned {
+  std::span<Local> local;
+  std::span<std::int32_t> order;
+  std::span<std::int32_t> start;
+  Grid g;
+  double lo_x = 1e300, lo_y = 1e300, hi_x = -1e300, hi_y = -1e300;
+  std::size_t stride = 1;
+};
+
+// Cells of side r, widened until their number fits kFootprintCells.
+Grid cell_grid(const Binned& b, double r) {
+  const double lo_x = b.lo_x, lo_y = b.lo_y, hi_x = b.hi_x, hi_y = b.hi_y;
+  Grid g;
+  g.x0 = lo_x, g.y0 = lo_y, g.cell = r;
+  auto cells_for = [&](double c) {
+    return static_cast<double>(static_cast<int>((hi_x - lo_x) / c) + 1) *
+           static_cast<double>(static_cast<int>((hi_y - lo_y) / c) + 1);
+  };
+  while (cells_for(g.cell) > static_cast<double>(kFootprintCells)) g.cell *= 1.25;
+  g.nx = static_cast<int>((hi_x - lo_x) / g.cell) + 1;
+  g.ny = static_cast<int>((hi_y - lo_y) / g.cell) + 1;
+  return g;
+}
+
+// Counting sort of the samples by cell.
+void sort_by_cell(Binned& b) {
+  const Grid& g = b.g;
+  const std::size_t m = b.local.size();
+  const std::size_t cells = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
+  auto cell_of = [&](const Local& l) {
+    return static_cast<std::size_t>(g.cy(l.y)) * static_cast<std::size_t>(g.nx) +
+           static_cast<std::size_t>(g.cx(l.x));
+  };
+  for (std::size_t i = 0; i < m; ++i) ++b.start[cell_of(b.local[i]) + 1];
+  for (std::size_t c = 0; c < cells; ++c) b.start[c + 1] += b.start[c];
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::size_t c = cell_of(b.local[i]);
+    b.order[static_cast<std::size_t>(b.start[c]++)] = static_cast<std::int32_t>(i);
+  }
+  for (std::size_t c = cells; c > 0; --c) b.start[c] = b.start[c - 1];
+  b.start[0] = 0;
+}
+
+Status bin_samples(std::span<const FaceSample> samples, const Frame& fr, double r, Arena& arena,
+                   Binned& b) {
+  const std::size_t m_all = samples.size();
+  const std::size_t stride = (m_all + kFootprintSamples - 1) / kFootprintSamples;
+  const std::size_t m = (m_all + stride - 1) / stride;
+  auto local = arena.allocate_uninitialised<Local>(m, "footprint samples");
+  if (!local) return local.error();
+  auto order = arena.allocate_uninitialised<std::int32_t>(m, "footprint order");
+  if (!order) return order.error();
+  auto start = arena.allocate<std::int32_t>(kFootprintCells + 1, "footprint cells");
+  if (!start) return start.error();
+  b.local = *local;
+  b.order = *order;
+  b.start = *start;
+  b.stride = stride;
+  double lo_x = 1e300, lo_y = 1e300, hi_x = -1e300, hi_y = -1e300;
+  for (std::size_t i = 0; i < m; ++i) {
+    const Local l = fr.to_local(samples[i * stride]);
+    b.local[i] = l;
+    lo_x = std::min(lo_x, l.x), hi_x = std::max(hi_x, l.x);
+    lo_y = std::min(lo_y, l.y), hi_y = std::max(hi_y, l.y);
+  }
+  b.lo_x = lo_x, b.lo_y = lo_y, b.hi_x = hi_x, b.hi_y = hi_y;
+  b.g = cell_grid(b, r);
+  sort_by_cell(b);
+  return ok_status();
+}
+
+// 2. Candidate centres: a grid over the extent, a radius in from its edges,
+// spaced h apart.
+struct Candidates {
+  double x0 = 0, y0 = 0, h = 0;
+  int ncx = 0, ncy = 0;
+};
+
+// False when no disc fits in the extent.
+bool candidate_grid(const Binned& b, double r, Candidates& c) {
+  const double lo_x = b.lo_x, lo_y = b.lo_y, hi_x = b.hi_x, hi_y = b.hi_y;
+  const double span_x = hi_x - lo_x - 2 * r, span_y = hi_y - lo_y - 2 * r;
+  if (span_x < 0 || span_y < 0) return false;
+  double h = r / 2;
+  auto count_for = [&](double step) {
+    return static_cast<std::size_t>(span_x / step + 1) *
+           static_cast<std::size_t>(span_y / step + 1);
+  };
+  while (count_for(h) > kFootprintCandidates) h *= 1.25;
+  c.h = h;
+  c.ncx = static_cast<int>(span_x / h) + 1, c.ncy = static_cast<int>(span_y / h) + 1;
+  c.x0 = lo_x + r + (span_x - (c.ncx - 1) * h) / 2;
+  c.y0 = lo_y + r + (span_y - (c.ncy - 1) * h) / 2;
+  return true;
+}
+
+// The binned samples within r of (cx, cy).
+DiscSums disc_sums(const Binned& b, double r, double cx, double cy) {
+  const Grid& g = b.g;
+  DiscSums s;
+  const int gx0 = g.cx(cx - r), gx1 = g.cx(cx + r), gy0 = g.cy(cy - r), gy1 = g.cy(cy + r);
+  for (int gy = gy0; gy <= gy1; ++gy)
+    for (int gx = gx0; gx <= gx1; ++gx) {
+      const std::size_t c = static_cast<std::size_t>(gy) * static_cast<std::size_t>(g.nx) +
+                            static_cast<std::size_t>(gx);
+      for (std::int32_t k = b.start[c]; k < b.start[c + 1]; ++k) {
+        const Local& l = b.local[static_cast<std::size_t>(b.order[static_cast<std::size_t>(k)])];
+        const double dx = l.x - cx, dy = l.y - cy;
+        if (dx * dx + dy * dy <= r * r) s.add(dx, dy, l.z, l.a);
+      }
+    }
+  return s;
+}
+
+// 3. Each disc: coverage and flatness (rms -1 where not covered, dist its
+// centre's distance from the face centre). Returns the flattest rms.
+double score_candidates(const Binned& b, double r, const Candidates& c, double min_coverage,
+                        double* rms, double* dist, Footprint& out) {
+  const double disc_area = M_PI * r * r;
+  double flattest = 1e300;
+  for (int j = 0; j < c.ncy; ++j)
+    for (int i = 0; i < c.ncx; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j * c.ncx + i);
+      const double cx = c.x0 + i * c.h, cy = c.y0 + j * c.h;
+      const DiscSums s = disc_sums(b, r, cx, cy);
+      const DiscPlane p = solve(s);
+      rms[k] = -1;
+      ++out.candidates;
+      if (!p.ok || !covers(s, disc_area, static_cast<double>(b.stride), min_coverage)) continue;
+      rms[k] = p.rms;
+      dist[k] = std::hypot(cx, cy);
+      flattest = std::min(flattest, p.rms);
+    }
+  return flattest;
+}
+
+// 4. The flattest, or the most central of the equally flat; -1 if none.
+int flattest_candidate(const double* rms, const double* dist, int n, double flattest) {
+  int best = -1;
+  for (int k = 0; k < n; ++k) {
+    const std::size_t u = static_cast<std::size_t>(k);
+    if (rms[u] < 0 || rms[u] > flattest * (1.0 + kFlatTie)) continue;
+    if (best < 0 || dist[u] < dist[static_cast<std::size_t>(best)]) best = k;
+  }
+  return best;
+}
+
+// 5. The chosen disc, centred (cx, cy) in the face frame, on every sample.
+void fit_chosen_disc(std::span<const FaceSample> samples, const Frame& fr, double r, double cx,
+                     double cy, Footprint& out) {
+  const double disc_area = M_PI * r * r;
+  const Eigen::Vector3d c3 = fr.o + cx * fr.e1 + cy * fr.e2;
+  DiscSums s;
+  for_each_in_disc(samples, fr.n, c3, r, [&](const FaceSample& fs) {
+    const Local l = fr.to_local(fs);
+    s.add(l.x - cx, l.y - cy, l.z, l.a);
+  });
+  const DiscPlane p = solve(s);
+  if (!p.ok) return;
+  out.covered = true;
+  out.coverage = s.w / disc_area;
+  out.samples = s.count;
+  out.rms_mm = p.rms;
+  out.normal = (fr.n - p.a * fr.e1 - p.b * fr.e2).normalized();
+  out.centre_mm = c3 + p.zc * fr.n;
+  double lo = 0, hi = 0;
+  bool first = true;
+  for_each_in_disc(samples, fr.n, c3, r, [&](const FaceSample& fs) {
+    const double d = out.normal.dot(fs.p - out.centre_mm);
+    lo = first ? d : std::min(lo, d);
+    hi = first ? d : std::max(hi, d);
+    first = false;
+  });
+  out.peak_to_valley_mm = hi - lo;
+}
+
 }  // namespace
 
 std::size_t footprint_scratch_bytes(std::size_t samples) {
@@ -115,127 +293,18 @@ Result<Footprint> find_footprint(std::span<const FaceSample> samples,
   if (m_all < 3) return Error::make(Errc::degenerate, "footprint: %zu face samples", m_all);
   ArenaScope scope(arena);
   const Frame fr = frame_of(face_normal, face_centre);
-  const double r = params.diameter_mm / 2.0, disc_area = M_PI * r * r;
-  // 1. Thinned samples in the face frame, binned by cell.
-  const std::size_t stride = (m_all + kFootprintSamples - 1) / kFootprintSamples;
-  const std::size_t m = (m_all + stride - 1) / stride;
-  auto local = arena.allocate_uninitialised<Local>(m, "footprint samples");
-  if (!local) return local.error();
-  auto order = arena.allocate_uninitialised<std::int32_t>(m, "footprint order");
-  if (!order) return order.error();
-  auto start = arena.allocate<std::int32_t>(kFootprintCells + 1, "footprint cells");
-  if (!start) return start.error();
-  double lo_x = 1e300, lo_y = 1e300, hi_x = -1e300, hi_y = -1e300;
-  for (std::size_t i = 0; i < m; ++i) {
-    const Local l = fr.to_local(samples[i * stride]);
-    (*local)[i] = l;
-    lo_x = std::min(lo_x, l.x), hi_x = std::max(hi_x, l.x);
-    lo_y = std::min(lo_y, l.y), hi_y = std::max(hi_y, l.y);
-  }
-  Grid g;
-  g.x0 = lo_x, g.y0 = lo_y, g.cell = r;
-  auto cells_for = [&](double c) {
-    return static_cast<double>(static_cast<int>((hi_x - lo_x) / c) + 1) *
-           static_cast<double>(static_cast<int>((hi_y - lo_y) / c) + 1);
-  };
-  while (cells_for(g.cell) > static_cast<double>(kFootprintCells)) g.cell *= 1.25;
-  g.nx = static_cast<int>((hi_x - lo_x) / g.cell) + 1;
-  g.ny = static_cast<int>((hi_y - lo_y) / g.cell) + 1;
-  const std::size_t cells = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
-  auto cell_of = [&](const Local& l) {
-    return static_cast<std::size_t>(g.cy(l.y)) * static_cast<std::size_t>(g.nx) +
-           static_cast<std::size_t>(g.cx(l.x));
-  };
-  for (std::size_t i = 0; i < m; ++i) ++(*start)[cell_of((*local)[i]) + 1];
-  for (std::size_t c = 0; c < cells; ++c) (*start)[c + 1] += (*start)[c];
-  for (std::size_t i = 0; i < m; ++i) {
-    const std::size_t c = cell_of((*local)[i]);
-    (*order)[static_cast<std::size_t>((*start)[c]++)] = static_cast<std::int32_t>(i);
-  }
-  for (std::size_t c = cells; c > 0; --c) (*start)[c] = (*start)[c - 1];
-  (*start)[0] = 0;
-
-  // 2. Candidate centres: a grid over the extent, a radius in from its edges.
+  const double r = params.diameter_mm / 2.0;
+  Binned b;
+  PETRA_TRY(bin_samples(samples, fr, r, arena, b));
   Footprint out;
-  const double span_x = hi_x - lo_x - 2 * r, span_y = hi_y - lo_y - 2 * r;
-  if (span_x < 0 || span_y < 0) return out;  // no disc fits in the extent
-  double h = r / 2;
-  auto count_for = [&](double step) {
-    return static_cast<std::size_t>(span_x / step + 1) *
-           static_cast<std::size_t>(span_y / step + 1);
-  };
-  while (count_for(h) > kFootprintCandidates) h *= 1.25;
-  const int ncx = static_cast<int>(span_x / h) + 1, ncy = static_cast<int>(span_y / h) + 1;
-  const double x0 = lo_x + r + (span_x - (ncx - 1) * h) / 2;
-  const double y0 = lo_y + r + (span_y - (ncy - 1) * h) / 2;
-
-  // 3. Each disc: coverage and flatness.
-  auto disc_sums = [&](double cx, double cy) {
-    DiscSums s;
-    const int gx0 = g.cx(cx - r), gx1 = g.cx(cx + r), gy0 = g.cy(cy - r), gy1 = g.cy(cy + r);
-    for (int gy = gy0; gy <= gy1; ++gy)
-      for (int gx = gx0; gx <= gx1; ++gx) {
-        const std::size_t c = static_cast<std::size_t>(gy) * static_cast<std::size_t>(g.nx) +
-                              static_cast<std::size_t>(gx);
-        for (std::int32_t k = (*start)[c]; k < (*start)[c + 1]; ++k) {
-          const Local& l =
-              (*local)[static_cast<std::size_t>((*order)[static_cast<std::size_t>(k)])];
-          const double dx = l.x - cx, dy = l.y - cy;
-          if (dx * dx + dy * dy <= r * r) s.add(dx, dy, l.z, l.a);
-        }
-      }
-    return s;
-  };
+  Candidates c;
+  if (!candidate_grid(b, r, c)) return out;  // no disc fits in the extent
   double rms[kFootprintCandidates] = {}, dist[kFootprintCandidates] = {};
-  double flattest = 1e300;
-  for (int j = 0; j < ncy; ++j)
-    for (int i = 0; i < ncx; ++i) {
-      const std::size_t k = static_cast<std::size_t>(j * ncx + i);
-      const double cx = x0 + i * h, cy = y0 + j * h;
-      const DiscSums s = disc_sums(cx, cy);
-      const DiscPlane p = solve(s);
-      rms[k] = -1;
-      ++out.candidates;
-      if (!p.ok || !covers(s, disc_area, static_cast<double>(stride), params.min_coverage))
-        continue;
-      rms[k] = p.rms;
-      dist[k] = std::hypot(cx, cy);
-      flattest = std::min(flattest, p.rms);
-    }
-  // 4. The flattest, or the most central of the equally flat.
-  int best = -1;
-  for (int k = 0; k < ncx * ncy; ++k) {
-    const std::size_t u = static_cast<std::size_t>(k);
-    if (rms[u] < 0 || rms[u] > flattest * (1.0 + kFlatTie)) continue;
-    if (best < 0 || dist[u] < dist[static_cast<std::size_t>(best)]) best = k;
-  }
+  const double flattest = score_candidates(b, r, c, params.min_coverage, rms, dist, out);
+  const int best = flattest_candidate(rms, dist, c.ncx * c.ncy, flattest);
   if (best < 0) return out;
-  const double cx = x0 + (best % ncx) * h, cy = y0 + (best / ncx) * h;
-
-  // 5. The chosen disc on every sample.
-  const Eigen::Vector3d c3 = fr.o + cx * fr.e1 + cy * fr.e2;
-  DiscSums s;
-  for_each_in_disc(samples, fr.n, c3, r, [&](const FaceSample& fs) {
-    const Local l = fr.to_local(fs);
-    s.add(l.x - cx, l.y - cy, l.z, l.a);
-  });
-  const DiscPlane p = solve(s);
-  if (!p.ok) return out;
-  out.covered = true;
-  out.coverage = s.w / disc_area;
-  out.samples = s.count;
-  out.rms_mm = p.rms;
-  out.normal = (fr.n - p.a * fr.e1 - p.b * fr.e2).normalized();
-  out.centre_mm = c3 + p.zc * fr.n;
-  double lo = 0, hi = 0;
-  bool first = true;
-  for_each_in_disc(samples, fr.n, c3, r, [&](const FaceSample& fs) {
-    const double d = out.normal.dot(fs.p - out.centre_mm);
-    lo = first ? d : std::min(lo, d);
-    hi = first ? d : std::max(hi, d);
-    first = false;
-  });
-  out.peak_to_valley_mm = hi - lo;
+  const double cx = c.x0 + (best % c.ncx) * c.h, cy = c.y0 + (best / c.ncx) * c.h;
+  fit_chosen_disc(samples, fr, r, cx, cy, out);
   return out;
 }
 

@@ -119,6 +119,112 @@ Pass gauss_newton_pass(ConstGray8View left, ConstGray8View right, Rect valid,
   return pass;
 }
 
+// The bounding box of the face's pixels: its corners measure how far a
+// plane moved.
+struct Corners {
+  int u_min = std::numeric_limits<int>::max(), u_max = std::numeric_limits<int>::min();
+  int v_min = std::numeric_limits<int>::max(), v_max = std::numeric_limits<int>::min();
+
+  // The largest |q - r| at a corner.
+  double shift(const DisparityPlane& q, const DisparityPlane& r) const {
+    double m = 0;
+    for (int u : {u_min, u_max})
+      for (int v : {v_min, v_max}) m = std::max(m, std::abs(q.at(u, v) - r.at(u, v)));
+    return m;
+  }
+  // The largest |d| at a corner.
+  double largest(const DisparityPlane& d) const {
+    double moved = 0;
+    for (int u : {u_min, u_max})
+      for (int v : {v_min, v_max}) moved = std::max(moved, std::abs(d.at(u, v)));
+    return moved;
+  }
+};
+
+Status check_inputs(ConstGray8View left, ConstGray8View right, Rect right_valid,
+                    const DisparityPlane& initial) {
+  if (left.empty() || left.width() != right.width() || left.height() != right.height())
+    return Error::make(Errc::invalid_argument, "photometric plane: images %dx%d and %dx%d",
+                       left.width(), left.height(), right.width(), right.height());
+  if (!right_valid.inside(right.width(), right.height()))
+    return Error::make(Errc::invalid_argument,
+                       "photometric plane: right area (%d,%d %dx%d) not inside the image",
+                       right_valid.x, right_valid.y, right_valid.w, right_valid.h);
+  if (!(std::isfinite(initial.a) && std::isfinite(initial.b) && std::isfinite(initial.c)))
+    return Error::make(Errc::invalid_argument, "photometric plane: initial plane not finite");
+  return {};
+}
+
+Result<Corners> pixel_corners(ConstGray8View left, std::span<const PixelPos> pixels) {
+  Corners c;
+  for (const PixelPos& p : pixels) {
+    if (p.u < 0 || p.v < 0 || p.u >= left.width() || p.v >= left.height())
+      return Error::make(Errc::out_of_range, "photometric plane: pixel (%d, %d) outside the image",
+                         p.u, p.v);
+    c.u_min = std::min<int>(c.u_min, p.u);
+    c.u_max = std::max<int>(c.u_max, p.u);
+    c.v_min = std::min<int>(c.v_min, p.v);
+    c.v_max = std::max<int>(c.v_max, p.v);
+  }
+  return c;
+}
+
+// What the Gauss-Newton iterations read.
+struct Problem {
+  ConstGray8View left, right;
+  Rect right_valid;
+  std::span<const PixelPos> pixels;
+  const DisparityPlane& initial;
+  const PhotometricPlaneParams& params;
+  Corners corners;
+};
+
+// Gain and offset for the initial plane first (linear in them), so the
+// first trim and the cost compare planes, not exposures. False when they
+// cannot be fitted.
+bool fit_exposure(const Problem& q, State& s) {
+  const double inf = std::numeric_limits<double>::infinity();
+  Pass p = gauss_newton_pass(q.left, q.right, q.right_valid, q.pixels, s, inf);
+  if (p.used < q.params.min_pixels) return false;
+  const Eigen::Matrix2d H2 = p.H.block<2, 2>(3, 3);
+  const Eigen::Vector2d g2 = p.g.segment<2>(3);
+  const Eigen::Vector2d step = H2.ldlt().solve(-g2);
+  if (!step.allFinite()) return false;
+  s.gain += step(0);
+  s.offset += step(1);
+  return true;
+}
+
+// Gauss-Newton on the plane, exposure and blur from s, residuals trimmed
+// from tau on. False when it stopped without a usable iterate (too few
+// pixels, a singular step, or the plane left the basin).
+bool iterate(const Problem& q, double tau, State& s, PhotometricPlaneFit& fit) {
+  const PhotometricPlaneParams& params = q.params;
+  double limit = tau;
+  for (int it = 0; it < params.max_iterations; ++it) {
+    const Pass p = gauss_newton_pass(q.left, q.right, q.right_valid, q.pixels, s, limit);
+    fit.iterations = it + 1;
+    if (p.used < params.min_pixels) return false;
+    const Vec7 step = p.H.ldlt().solve(-p.g);
+    if (!step.allFinite()) return false;
+    s.plane.a += step(0);
+    s.plane.b += step(1);
+    s.plane.c += step(2);
+    s.gain += step(3);
+    s.offset += step(4);
+    s.wx += step(5);
+    s.wy += step(6);
+    if (q.corners.shift(s.plane, q.initial) > 2.0 * params.max_shift_px)
+      return false;  // left the basin
+    fit.pixels = p.used;
+    limit = params.trim_sigma * std::max(p.rms, 0.5);
+    // Converged when no corner of the face moves by a thousandth of a pixel.
+    DisparityPlane d{step(0), step(1), step(2), s.plane.u0, s.plane.v0};
+    if (q.corners.largest(d) < 1e-3) break;
+  }
+  return true;
+}
+
 }  // namespace
 
 Status validate(const PhotometricPlaneParams& p) {
@@ -148,84 +254,27 @@ Result<PhotometricPlaneFit> refine_plane_photometric(ConstGray8View left, ConstG
                                                      const DisparityPlane& initial,
                                                      const PhotometricPlaneParams& params) {
   PETRA_TRY(validate(params));
-  if (left.empty() || left.width() != right.width() || left.height() != right.height())
-    return Error::make(Errc::invalid_argument, "photometric plane: images %dx%d and %dx%d",
-                       left.width(), left.height(), right.width(), right.height());
-  if (!right_valid.inside(right.width(), right.height()))
-    return Error::make(Errc::invalid_argument,
-                       "photometric plane: right area (%d,%d %dx%d) not inside the image",
-                       right_valid.x, right_valid.y, right_valid.w, right_valid.h);
-  if (!(std::isfinite(initial.a) && std::isfinite(initial.b) && std::isfinite(initial.c)))
-    return Error::make(Errc::invalid_argument, "photometric plane: initial plane not finite");
-  int u_min = std::numeric_limits<int>::max(), u_max = std::numeric_limits<int>::min();
-  int v_min = u_min, v_max = u_max;
-  for (const PixelPos& p : pixels) {
-    if (p.u < 0 || p.v < 0 || p.u >= left.width() || p.v >= left.height())
-      return Error::make(Errc::out_of_range, "photometric plane: pixel (%d, %d) outside the image",
-                         p.u, p.v);
-    u_min = std::min<int>(u_min, p.u);
-    u_max = std::max<int>(u_max, p.u);
-    v_min = std::min<int>(v_min, p.v);
-    v_max = std::max<int>(v_max, p.v);
-  }
+  PETRA_TRY(check_inputs(left, right, right_valid, initial));
+  auto corners = pixel_corners(left, pixels);
+  if (!corners) return corners.error();
   PhotometricPlaneFit fit;
   fit.plane = initial;
   if (static_cast<long>(pixels.size()) < params.min_pixels) return fit;
 
-  // Gain and offset for the initial plane first (linear in them), so the
-  // first trim and the cost compare planes, not exposures.
+  const Problem q{left, right, right_valid, pixels, initial, params, *corners};
   State s;
   s.plane = initial;
+  if (!fit_exposure(q, s)) return fit;
   const double inf = std::numeric_limits<double>::infinity();
-  {
-    Pass p = gauss_newton_pass(left, right, right_valid, pixels, s, inf);
-    if (p.used < params.min_pixels) return fit;
-    const Eigen::Matrix2d H2 = p.H.block<2, 2>(3, 3);
-    const Eigen::Vector2d g2 = p.g.segment<2>(3);
-    const Eigen::Vector2d step = H2.ldlt().solve(-g2);
-    if (!step.allFinite()) return fit;
-    s.gain += step(0);
-    s.offset += step(1);
-  }
   const Pass first = gauss_newton_pass(left, right, right_valid, pixels, s, inf);
   const double tau = params.trim_sigma * std::max(first.rms, 0.5);
   const double cost_before = truncated_cost(left, right, right_valid, pixels, s, tau);
   fit.rms_before = std::sqrt(cost_before);
-
-  const auto corner_shift = [&](const DisparityPlane& q) {
-    double m = 0;
-    for (int u : {u_min, u_max})
-      for (int v : {v_min, v_max}) m = std::max(m, std::abs(q.at(u, v) - initial.at(u, v)));
-    return m;
-  };
-  double limit = tau;
-  for (int it = 0; it < params.max_iterations; ++it) {
-    const Pass p = gauss_newton_pass(left, right, right_valid, pixels, s, limit);
-    fit.iterations = it + 1;
-    if (p.used < params.min_pixels) return fit;
-    const Vec7 step = p.H.ldlt().solve(-p.g);
-    if (!step.allFinite()) return fit;
-    s.plane.a += step(0);
-    s.plane.b += step(1);
-    s.plane.c += step(2);
-    s.gain += step(3);
-    s.offset += step(4);
-    s.wx += step(5);
-    s.wy += step(6);
-    if (corner_shift(s.plane) > 2.0 * params.max_shift_px) return fit;  // left the basin
-    fit.pixels = p.used;
-    limit = params.trim_sigma * std::max(p.rms, 0.5);
-    // Converged when no corner of the face moves by a thousandth of a pixel.
-    DisparityPlane d{step(0), step(1), step(2), s.plane.u0, s.plane.v0};
-    double moved = 0;
-    for (int u : {u_min, u_max})
-      for (int v : {v_min, v_max}) moved = std::max(moved, std::abs(d.at(u, v)));
-    if (moved < 1e-3) break;
-  }
+  if (!iterate(q, tau, s, fit)) return fit;
   const double cost_after = truncated_cost(left, right, right_valid, pixels, s, tau);
   fit.rms_after = std::sqrt(cost_after);
-  if (corner_shift(s.plane) <= params.max_shift_px && cost_after < cost_before && s.gain > 0.5 &&
-      s.gain < 2.0) {
+  if (q.corners.shift(s.plane, initial) <= params.max_shift_px && cost_after < cost_before &&
+      s.gain > 0.5 && s.gain < 2.0) {
     fit.plane = s.plane;
     fit.accepted = true;
   }

@@ -59,20 +59,22 @@ int help() {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Args {
   const char* config_path = nullptr;
-  long long floor = -1;
+  long long floor = -1;  // --counter-floor, -1 when not given
+};
+
+// Returns -1 to go on, else the exit status (--help, --version, usage error).
+int parse_args(int argc, char** argv, Args& args) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--config") == 0 && i + 1 < argc) {
-      config_path = argv[++i];
+      args.config_path = argv[++i];
     } else if (std::strcmp(argv[i], "--config") == 0) {
       return usage_error("--config needs a file name", "");
     } else if (std::strcmp(argv[i], "--counter-floor") == 0 && i + 1 < argc) {
       char* end = nullptr;
-      floor = std::strtoll(argv[++i], &end, 10);
-      if (*end != '\0' || floor < 0 || floor > 4294967295LL)
+      args.floor = std::strtoll(argv[++i], &end, 10);
+      if (*end != '\0' || args.floor < 0 || args.floor > 4294967295LL)
         return usage_error("--counter-floor: expected 0..4294967295, got", argv[i]);
     } else if (std::strcmp(argv[i], "--memory-table") == 0) {
       return print_memory_table();
@@ -85,14 +87,82 @@ int main(int argc, char** argv) {
       return usage_error("unknown argument", argv[i]);
     }
   }
-  if (config_path == nullptr) return usage_error("--config FILE is required", "");
+  if (args.config_path == nullptr) return usage_error("--config FILE is required", "");
+  return -1;
+}
 
-  auto config = petra::fsw::load_config(config_path);
+// The arm's drives (docs/arm.md): boot starts here, ARM_READY follows.
+// "udp:L:P" reaches simulated drives in another process (`petra sim-arm
+// --udp`) where the kernel has no CAN; any other name is SocketCAN. Returns
+// false after printing the reason.
+bool start_arm(const petra::fsw::FswConfig& config, petra::fsw::FlightDevices& devices,
+               petra::hal::SystemClock& clock, petra::hal::SocketCanPort& socketcan,
+               petra::hal::UdpCanPort& udp_can, petra::fsw::arm::FlightArm& arm) {
+  const char* iface = config.arm.can_interface.data();
+  petra::hal::CanPort* can = &socketcan;
+  petra::Status opened;
+  if (petra::hal::is_udp_can_spec(iface)) {
+    auto spec = petra::hal::parse_udp_can_spec(iface);
+    opened = spec ? udp_can.open(*spec) : petra::Status(spec.error());
+    can = &udp_can;
+  } else {
+    opened = socketcan.open(iface);
+  }
+  if (!opened) {
+    (void)std::fprintf(stderr, "petra-fsw: arm: %s\n", opened.error().message);
+    return false;
+  }
+  // Drives powered before the master boots them (a boot-up message starts configuration).
+  if (auto s = devices.power_arm(true); !s) {
+    (void)std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
+    return false;
+  }
+  petra::fsw::arm::ArmServiceConfig arm_config;
+  arm_config.heartbeat_timeout_ms = config.arm.heartbeat_timeout_ms;
+  if (config.arm.has_mount) {
+    const auto& m = config.arm.mount;
+    arm_config.geometry.world_from_base =
+        Eigen::Translation3d(m[0], m[1], m[2]) *
+        Eigen::AngleAxisd(m[3] * 3.14159265358979323846 / 180.0, Eigen::Vector3d::UnitZ());
+  }
+  if (auto s = arm.init(arm_config, *can, clock); !s) {
+    (void)std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
+    return false;
+  }
+  return true;
+}
+
+// The one-line summary of what runs, and the pipeline's memory per stage.
+void report_running(const petra::fsw::FswConfig& config, const petra::fsw::Executive& exec,
+                    const petra::fsw::FlightDevices& devices,
+                    const petra::fsw::Dependencies& deps) {
+  (void)std::fprintf(
+      stderr,
+      "petra-fsw: running: commands on udp %s:%u, telemetry to %s:%u, camera %s, "
+      "pipeline %s, arm %s, e-stop %s, %zu bytes allocated at init\n",
+      config.cmd_host.data(), exec.command_port(), config.tlm_host.data(), config.tlm_port,
+      devices.camera_description(), deps.job != nullptr ? deps.job->name() : "none",
+      config.arm.enabled ? config.arm.can_interface.data() : "none",
+      deps.estop != nullptr ? config.gpio.estop.line.data() : "none", exec.memory_bytes());
+  if (deps.job != nullptr) {
+    static char table[2048];  // the arena's share per stage (MiB), docs/memory.md
+    (void)deps.job->describe_memory(table, sizeof(table));
+    (void)std::fprintf(stderr, "petra-fsw: pipeline memory (MiB):\n%s", table);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args args;
+  if (const int status = parse_args(argc, argv, args); status >= 0) return status;
+
+  auto config = petra::fsw::load_config(args.config_path);
   if (!config) {
     (void)std::fprintf(stderr, "petra-fsw: %s\n", config.error().message);
     return 1;
   }
-  if (floor >= 0) config->counter_floor = floor;
+  if (args.floor >= 0) config->counter_floor = args.floor;
   static petra::hal::SystemClock clock;
   static petra::fsw::FlightDevices devices;
   if (auto s = devices.open(*config); !s) {
@@ -108,40 +178,7 @@ int main(int argc, char** argv) {
   static petra::hal::UdpCanPort udp_can;
   static petra::fsw::arm::FlightArm arm;
   if (config->arm.enabled) {
-    // The arm's drives (docs/arm.md): boot starts here, ARM_READY follows.
-    // "udp:L:P" reaches simulated drives in another process (`petra sim-arm
-    // --udp`) where the kernel has no CAN; any other name is SocketCAN.
-    const char* iface = config->arm.can_interface.data();
-    petra::hal::CanPort* can = &socketcan;
-    petra::Status opened;
-    if (petra::hal::is_udp_can_spec(iface)) {
-      auto spec = petra::hal::parse_udp_can_spec(iface);
-      opened = spec ? udp_can.open(*spec) : petra::Status(spec.error());
-      can = &udp_can;
-    } else {
-      opened = socketcan.open(iface);
-    }
-    if (!opened) {
-      (void)std::fprintf(stderr, "petra-fsw: arm: %s\n", opened.error().message);
-      return 1;
-    }
-    // Drives powered before the master boots them (a boot-up message starts configuration).
-    if (auto s = devices.power_arm(true); !s) {
-      (void)std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
-      return 1;
-    }
-    petra::fsw::arm::ArmServiceConfig arm_config;
-    arm_config.heartbeat_timeout_ms = config->arm.heartbeat_timeout_ms;
-    if (config->arm.has_mount) {
-      const auto& m = config->arm.mount;
-      arm_config.geometry.world_from_base =
-          Eigen::Translation3d(m[0], m[1], m[2]) *
-          Eigen::AngleAxisd(m[3] * 3.14159265358979323846 / 180.0, Eigen::Vector3d::UnitZ());
-    }
-    if (auto s = arm.init(arm_config, *can, clock); !s) {
-      (void)std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
-      return 1;
-    }
+    if (!start_arm(*config, devices, clock, socketcan, udp_can, arm)) return 1;
     deps.arm = &arm;
   }
   static petra::fsw::Executive exec;
@@ -151,19 +188,7 @@ int main(int argc, char** argv) {
   }
   if (std::signal(SIGINT, on_signal) == SIG_ERR || std::signal(SIGTERM, on_signal) == SIG_ERR)
     (void)std::fprintf(stderr, "petra-fsw: cannot handle SIGINT/SIGTERM; no orderly stop\n");
-  (void)std::fprintf(
-      stderr,
-      "petra-fsw: running: commands on udp %s:%u, telemetry to %s:%u, camera %s, "
-      "pipeline %s, arm %s, e-stop %s, %zu bytes allocated at init\n",
-      config->cmd_host.data(), exec.command_port(), config->tlm_host.data(), config->tlm_port,
-      devices.camera_description(), deps.job != nullptr ? deps.job->name() : "none",
-      config->arm.enabled ? config->arm.can_interface.data() : "none",
-      deps.estop != nullptr ? config->gpio.estop.line.data() : "none", exec.memory_bytes());
-  if (deps.job != nullptr) {
-    static char table[2048];  // the arena's share per stage (MiB), docs/memory.md
-    (void)deps.job->describe_memory(table, sizeof(table));
-    (void)std::fprintf(stderr, "petra-fsw: pipeline memory (MiB):\n%s", table);
-  }
+  report_running(*config, exec, devices, deps);
   exec.run(&g_stop);
   exec.shutdown();
   devices.close();  // arm power off

@@ -455,13 +455,7 @@ void DriveLink::on_emcy(const CanFrame& frame, LinkOutput& out) {
 
 void DriveLink::step(std::int64_t now_ms, LinkOutput& out) {
   const std::int64_t in_state = now_ms - state_since_ms_;
-  const bool watching = state_ == LinkState::configuring || state_ == LinkState::starting ||
-                        state_ == LinkState::operational || state_ == LinkState::enabling ||
-                        state_ == LinkState::ready || state_ == LinkState::quick_stopped;
-  if (watching && heartbeat_seen_ && now_ms - last_heartbeat_ms_ > config_.heartbeat_timeout_ms) {
-    enter_fault(DriveFault::heartbeat_lost, static_cast<std::uint32_t>(now_ms - last_heartbeat_ms_),
-                out);
-  }
+  check_heartbeat(now_ms, out);
   switch (state_) {
     case LinkState::idle:
     case LinkState::fault:
@@ -470,13 +464,7 @@ void DriveLink::step(std::int64_t now_ms, LinkOutput& out) {
       if (in_state > timing_.boot_timeout_ms) enter_fault(DriveFault::boot_timeout, 0, out);
       return;
     case LinkState::configuring:
-      if (sdo_pending_ && now_ms - sdo_sent_ms_ > timing_.sdo_timeout_ms) {
-        const SdoAddress a = plan_[plan_next_].address;
-        enter_fault(DriveFault::sdo_timeout,
-                    (static_cast<std::uint32_t>(a.index) << 8) | a.subindex, out);
-      } else if (!sdo_pending_) {
-        send_sdo_step(now_ms, out);
-      }
+      step_configuring(now_ms, out);
       return;
     case LinkState::starting:
       if (in_state > timing_.start_timeout_ms) enter_fault(DriveFault::start_timeout, 0, out);
@@ -488,83 +476,117 @@ void DriveLink::step(std::int64_t now_ms, LinkOutput& out) {
       }
       send_rpdo(controlword::kDisableVoltage, out);  // power stage off
       return;
-    case LinkState::enabling: {
-      if (in_state > timing_.enable_timeout_ms) {
-        enter_fault(DriveFault::enable_refused, statusword_, out);
-        return;
-      }
-      if (!have_feedback_) {
-        send_rpdo(controlword::kDisableVoltage, out);
-        return;
-      }
-      std::uint16_t cw = controlword::kDisableVoltage;
-      switch (decode_statusword(statusword_)) {
-        case DriveState::fault:
-          // Fault reset acts on a rising edge of bit 7: alternate.
-          fault_reset_edge_ = !fault_reset_edge_;
-          cw = fault_reset_edge_ ? controlword::kFaultReset : controlword::kDisableVoltage;
-          break;
-        case DriveState::switch_on_disabled:
-          cw = controlword::kShutdown;
-          break;
-        case DriveState::ready_to_switch_on:
-          cw = controlword::kSwitchOn;
-          break;
-        case DriveState::switched_on:
-        case DriveState::quick_stop_active:
-          // Hold where the arm is: the target becomes the actual position.
-          sent_counts_ = wanted_counts_ = position_counts_;
-          cw = controlword::kEnableOperation;
-          break;
-        case DriveState::operation_enabled:
-          sent_counts_ = wanted_counts_ = position_counts_;
-          setpoint_ = SetPoint::idle;
-          state_ = LinkState::ready;
-          out.event(config_.node_id, LinkEvent::enabled, 0);
-          cw = controlword::kEnableOperation;
-          break;
-        default:
-          break;
-      }
-      send_rpdo(cw, out);
+    case LinkState::enabling:
+      step_enabling(in_state, out);
       return;
-    }
-    case LinkState::ready: {
-      std::uint16_t cw = controlword::kEnableOperation;
-      const bool acknowledged = (statusword_ & statusword::kSetPointAcknowledge) != 0;
-      switch (setpoint_) {
-        case SetPoint::idle:
-          if (wanted_valid_ && wanted_counts_ != sent_counts_) {
-            sent_counts_ = wanted_counts_;
-            cw |= controlword::kNewSetPoint | controlword::kChangeSetImmediately;
-            setpoint_ = SetPoint::raised;
-          }
-          break;
-        case SetPoint::raised:
-          if (acknowledged) {
-            setpoint_ = SetPoint::lowering;
-          } else {
-            cw |= controlword::kNewSetPoint | controlword::kChangeSetImmediately;
-          }
-          break;
-        case SetPoint::lowering:
-          if (!acknowledged) setpoint_ = SetPoint::idle;
-          break;
-      }
-      send_rpdo(cw, out);
+    case LinkState::ready:
+      step_ready(out);
       return;
-    }
-    case LinkState::quick_stopped: {
-      const DriveState ds = decode_statusword(statusword_);
-      if (ds == DriveState::quick_stop_active && (statusword_ & statusword::kTargetReached) &&
-          !quick_stop_reported_) {
-        out.event(config_.node_id, LinkEvent::quick_stopped, 0);
-        quick_stop_reported_ = true;
-      }
-      send_rpdo(controlword::kQuickStop, out);
+    case LinkState::quick_stopped:
+      step_quick_stopped(out);
       return;
-    }
   }
+}
+
+// A drive that was heard and then goes silent in a watched state is lost.
+void DriveLink::check_heartbeat(std::int64_t now_ms, LinkOutput& out) {
+  const bool watching = state_ == LinkState::configuring || state_ == LinkState::starting ||
+                        state_ == LinkState::operational || state_ == LinkState::enabling ||
+                        state_ == LinkState::ready || state_ == LinkState::quick_stopped;
+  if (watching && heartbeat_seen_ && now_ms - last_heartbeat_ms_ > config_.heartbeat_timeout_ms) {
+    enter_fault(DriveFault::heartbeat_lost, static_cast<std::uint32_t>(now_ms - last_heartbeat_ms_),
+                out);
+  }
+}
+
+// The configuration plan: the next SDO once the last one is answered.
+void DriveLink::step_configuring(std::int64_t now_ms, LinkOutput& out) {
+  if (sdo_pending_ && now_ms - sdo_sent_ms_ > timing_.sdo_timeout_ms) {
+    const SdoAddress a = plan_[plan_next_].address;
+    enter_fault(DriveFault::sdo_timeout, (static_cast<std::uint32_t>(a.index) << 8) | a.subindex,
+                out);
+  } else if (!sdo_pending_) {
+    send_sdo_step(now_ms, out);
+  }
+}
+
+// The CiA 402 state machine walked up to operation enabled.
+void DriveLink::step_enabling(std::int64_t in_state, LinkOutput& out) {
+  if (in_state > timing_.enable_timeout_ms) {
+    enter_fault(DriveFault::enable_refused, statusword_, out);
+    return;
+  }
+  if (!have_feedback_) {
+    send_rpdo(controlword::kDisableVoltage, out);
+    return;
+  }
+  std::uint16_t cw = controlword::kDisableVoltage;
+  switch (decode_statusword(statusword_)) {
+    case DriveState::fault:
+      // Fault reset acts on a rising edge of bit 7: alternate.
+      fault_reset_edge_ = !fault_reset_edge_;
+      cw = fault_reset_edge_ ? controlword::kFaultReset : controlword::kDisableVoltage;
+      break;
+    case DriveState::switch_on_disabled:
+      cw = controlword::kShutdown;
+      break;
+    case DriveState::ready_to_switch_on:
+      cw = controlword::kSwitchOn;
+      break;
+    case DriveState::switched_on:
+    case DriveState::quick_stop_active:
+      // Hold where the arm is: the target becomes the actual position.
+      sent_counts_ = wanted_counts_ = position_counts_;
+      cw = controlword::kEnableOperation;
+      break;
+    case DriveState::operation_enabled:
+      sent_counts_ = wanted_counts_ = position_counts_;
+      setpoint_ = SetPoint::idle;
+      state_ = LinkState::ready;
+      out.event(config_.node_id, LinkEvent::enabled, 0);
+      cw = controlword::kEnableOperation;
+      break;
+    default:
+      break;
+  }
+  send_rpdo(cw, out);
+}
+
+// Enabled: a new target goes out with the set-point handshake.
+void DriveLink::step_ready(LinkOutput& out) {
+  std::uint16_t cw = controlword::kEnableOperation;
+  const bool acknowledged = (statusword_ & statusword::kSetPointAcknowledge) != 0;
+  switch (setpoint_) {
+    case SetPoint::idle:
+      if (wanted_valid_ && wanted_counts_ != sent_counts_) {
+        sent_counts_ = wanted_counts_;
+        cw |= controlword::kNewSetPoint | controlword::kChangeSetImmediately;
+        setpoint_ = SetPoint::raised;
+      }
+      break;
+    case SetPoint::raised:
+      if (acknowledged) {
+        setpoint_ = SetPoint::lowering;
+      } else {
+        cw |= controlword::kNewSetPoint | controlword::kChangeSetImmediately;
+      }
+      break;
+    case SetPoint::lowering:
+      if (!acknowledged) setpoint_ = SetPoint::idle;
+      break;
+  }
+  send_rpdo(cw, out);
+}
+
+// Quick stop held; reported once the drive stands still.
+void DriveLink::step_quick_stopped(LinkOutput& out) {
+  const DriveState ds = decode_statusword(statusword_);
+  if (ds == DriveState::quick_stop_active && (statusword_ & statusword::kTargetReached) &&
+      !quick_stop_reported_) {
+    out.event(config_.node_id, LinkEvent::quick_stopped, 0);
+    quick_stop_reported_ = true;
+  }
+  send_rpdo(controlword::kQuickStop, out);
 }
 
 }  // namespace petra::canopen

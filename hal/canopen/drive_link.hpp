@@ -152,6 +152,12 @@ class DriveLink {
   void build_sdo_plan();
   void enter_fault(DriveFault fault, std::uint32_t detail, LinkOutput& out);
   void send_sdo_step(std::int64_t now_ms, LinkOutput& out);
+  // step()'s parts.
+  void check_heartbeat(std::int64_t now_ms, LinkOutput& out);
+  void step_configuring(std::int64_t now_ms, LinkOutput& out);
+  void step_enabling(std::int64_t in_state, LinkOutput& out);
+  void step_ready(LinkOutput& out);
+  void step_quick_stopped(LinkOutput& out);
   Status check_upload(const SdoStep& step, std::uint32_t value);
   void send_rpdo(std::uint16_t controlword, LinkOutput& out);
 
