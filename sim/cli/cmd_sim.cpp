@@ -31,6 +31,8 @@ struct SceneArgs {
   std::optional<double> relief, pebbles, stones, slope, slope_azimuth, face_roughness,
       face_curvature, gain_left, gain_right, offset_left, offset_right, vignetting, prnu,
       calib_residual, burial;
+  std::optional<int> neighbours;
+  bool roi_fill = false;
 };
 
 void add_world_options(CLI::App* cmd, SceneArgs& a) {
@@ -100,6 +102,11 @@ void add_scene_options(CLI::App* cmd, SceneArgs& a) {
   cmd->add_option("--edge-supersampling", a.edge_supersampling,
                   "samples per axis in edge pixels, 2..16 (default 8)");
   add_world_options(cmd, a);
+  cmd->add_option("--neighbours", a.neighbours,
+                  "further rocks touching the rock, beside or behind it, 0..3 (default 0)");
+  cmd->add_flag("--roi-fill", a.roi_fill,
+                "truth ROI inside the rock's silhouette: no ground in it (default: rock, "
+                "shadow and a margin of ground)");
 }
 
 // Options as given on the command line over a base (seed or set entry).
@@ -124,6 +131,8 @@ Result<sim::SceneOptions> to_options(const SceneArgs& a, sim::SceneOptions o) {
   if (a.no_texture) o.texture = false;
   if (a.edge_supersampling) o.edge_supersampling = *a.edge_supersampling;
   apply_world(a, o.world);
+  if (a.neighbours) o.neighbours = *a.neighbours;
+  if (a.roi_fill) o.roi_fill = true;
   PETRA_TRY(sim::validate(o));
   return o;
 }

@@ -60,6 +60,12 @@ SceneHit trace_real(const Scene& scene, const Eigen::Vector3d& o, const Eigen::V
     hit.surface = kStone0 + static_cast<int>(k) * kStoneFaces + s.face;
     hit.t = t_max = s.t;
   }
+  for (std::size_t k = 0; k < scene.neighbours.size(); ++k) {
+    const RockEntry n = ray_enter_rock(scene.neighbours[k], o, dir, 0.0, t_max);
+    if (n.face < 0) continue;
+    hit.surface = kNeighbour0 + static_cast<int>(k) * kNeighbourFaces + n.face;
+    hit.t = t_max = n.t;
+  }
   if (hit.surface != kSky) {
     hit.point = o + hit.t * dir;
     if (hit.surface == kGround && !scene.terrain.active) hit.point.z() = 0.0;
@@ -67,11 +73,23 @@ SceneHit trace_real(const Scene& scene, const Eigen::Vector3d& o, const Eigen::V
   return hit;
 }
 
+bool any_meets(const std::vector<ConvexRock>& rocks, const Eigen::Vector3d& p,
+               const Eigen::Vector3d& dir, int skip) {
+  for (std::size_t k = 0; k < rocks.size(); ++k)
+    if (static_cast<int>(k) != skip && ray_meets_rock(rocks[k], p, dir, 0.0)) return true;
+  return false;
+}
+
 bool any_stone_meets(const Scene& scene, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
                      int skip) {
-  for (std::size_t k = 0; k < scene.stones.size(); ++k)
-    if (static_cast<int>(k) != skip && ray_meets_rock(scene.stones[k], p, dir, 0.0)) return true;
-  return false;
+  return any_meets(scene.stones, p, dir, skip);
+}
+
+// Neighbour k's face f.
+const RockFace& neighbour_face(const Scene& scene, int surface) {
+  const int k = (surface - kNeighbour0) / kNeighbourFaces,
+            f = (surface - kNeighbour0) % kNeighbourFaces;
+  return scene.neighbours[static_cast<std::size_t>(k)].faces[static_cast<std::size_t>(f)];
 }
 
 }  // namespace
@@ -84,9 +102,12 @@ Eigen::Vector3d surface_normal(const Scene& scene, const SceneHit& hit) {
   if (hit.surface == kGround)
     return scene.terrain.active ? terrain_normal(scene.terrain, hit.point.x(), hit.point.y())
                                 : Eigen::Vector3d::UnitZ();
+  if (is_neighbour(hit.surface)) return neighbour_face(scene, hit.surface).plane.normal;
   if (hit.surface >= kStone0) {
     const int k = (hit.surface - kStone0) / kStoneFaces, f = (hit.surface - kStone0) % kStoneFaces;
-    return scene.stones[static_cast<std::size_t>(k)].faces[static_cast<std::size_t>(f)].plane.normal;
+    return scene.stones[static_cast<std::size_t>(k)]
+        .faces[static_cast<std::size_t>(f)]
+        .plane.normal;
   }
   if (hit.surface >= kRockFace0) {
     const int face = hit.surface - kRockFace0;
@@ -109,18 +130,29 @@ bool in_shadow_real(const Scene& scene, const SceneHit& hit) {
     const Eigen::Vector3d p = hit.point + 0.01 * n;  // off the surface it starts on
     if (enter_target(scene, p, s, 0.0, INFINITY).face >= 0) return true;
     if (any_stone_meets(scene, p, s, -1)) return true;
+    if (any_meets(scene.neighbours, p, s, -1)) return true;
     double t = 0;
     return scene.terrain.active && ray_hits_terrain(scene.terrain, p, s, 0.0, INFINITY, t);
+  }
+  if (is_neighbour(hit.surface)) {
+    const int k = (hit.surface - kNeighbour0) / kNeighbourFaces;
+    if (surface_normal(scene, hit).dot(s) <= 0) return true;
+    const Eigen::Vector3d p = hit.point + 1e-3 * s;
+    return enter_target(scene, hit.point, s, 1e-3, INFINITY).face >= 0 ||
+           any_stone_meets(scene, p, s, -1) || any_meets(scene.neighbours, p, s, k);
   }
   if (hit.surface >= kStone0) {
     const int k = (hit.surface - kStone0) / kStoneFaces;
     if (surface_normal(scene, hit).dot(s) <= 0) return true;
     return enter_target(scene, hit.point, s, 1e-3, INFINITY).face >= 0 ||
-           any_stone_meets(scene, hit.point + 1e-3 * s, s, k);
+           any_stone_meets(scene, hit.point + 1e-3 * s, s, k) ||
+           any_meets(scene.neighbours, hit.point + 1e-3 * s, s, -1);
   }
-  // A rock face: self-shadowed by its plane's orientation, or under a stone's shadow.
+  // A rock face: self-shadowed by its plane's orientation, or under a stone's
+  // or a neighbour's shadow.
   const HalfSpace& h = scene.rock.faces[static_cast<std::size_t>(hit.surface - kRockFace0)].plane;
-  return h.normal.dot(s) <= 0.0 || any_stone_meets(scene, hit.point, s, -1);
+  return h.normal.dot(s) <= 0.0 || any_stone_meets(scene, hit.point, s, -1) ||
+         any_meets(scene.neighbours, hit.point, s, -1);
 }
 
 }  // namespace
@@ -140,11 +172,14 @@ double radiance(const Scene& scene, const SceneHit& hit, bool shadowed, double p
   // Pixel footprint on the surface, stretched at grazing incidence.
   const double cos_view = std::max(std::abs(n.dot(dir)), 0.2);
   const double footprint = hit.t * pixel_angle / cos_view;
-  const bool ground_like = hit.surface == kGround || hit.surface >= kStone0;
+  const bool ground_like = hit.surface == kGround || is_stone(hit.surface);
   const TextureRecipe& recipe = ground_like ? scene.ground : scene.rock_surface;
   double a = scene.options.texture ? albedo(recipe, hit.point, footprint) : recipe.mean_albedo;
-  if (hit.surface >= kStone0)
+  if (is_stone(hit.surface))
     a *= scene.stone_albedo[static_cast<std::size_t>((hit.surface - kStone0) / kStoneFaces)];
+  if (is_neighbour(hit.surface))
+    a *= scene.neighbour_albedo[static_cast<std::size_t>((hit.surface - kNeighbour0) /
+                                                         kNeighbourFaces)];
   // Sky light falls off on faces turned toward the ground.
   const double sky = scene.ambient * (0.7 + 0.3 * n.z());
   const double sun = shadowed ? 0.0 : std::max(0.0, n.dot(scene.sun_dir));

@@ -15,6 +15,19 @@ inline constexpr int kRockFace0 = 2;
 // Stone k's face f (realistic world) as kStone0 + k * kStoneFaces + f.
 inline constexpr int kStone0 = 1 << 20;
 inline constexpr int kStoneFaces = 64;
+// Neighbouring rock k's face f (options.neighbours) as kNeighbour0 + k * kNeighbourFaces + f.
+inline constexpr int kNeighbour0 = 1 << 24;
+inline constexpr int kNeighbourFaces = 256;
+
+inline bool is_target_face(int surface) {
+  return surface >= kRockFace0 && surface < kStone0;
+}
+inline bool is_stone(int surface) {
+  return surface >= kStone0 && surface < kNeighbour0;
+}
+inline bool is_neighbour(int surface) {
+  return surface >= kNeighbour0;
+}
 
 struct SceneHit {
   int surface = kSky;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "algo/camera/rectify_geometry.hpp"
+#include "sim/scene/neighbours.hpp"
 #include "sim/scene/rig_builder.hpp"
 #include "sim/scene/rng.hpp"
 #include "sim/scene/rock_builder.hpp"
@@ -147,6 +148,7 @@ constexpr const char* kRefusals[] = {
     "shadow outside an image",
     "the sun is below the sloped ground",
     "rig too close to the sloped ground",
+    "no touching neighbour leaves the flat faces in view",
 };
 
 // Why a placement is refused (an entry of kRefusals), or nullptr when it
@@ -205,7 +207,8 @@ Result<Scene> make_scene(const SceneOptions& o) {
   s.options = o;
   resolve_choices(o, s);
   choose_materials(o, s);
-  s.slope_azimuth_deg = o.world.slope_azimuth_deg.value_or(Rng(o.seed, kStreamWorld).uniform(-180, 180));
+  s.slope_azimuth_deg =
+      o.world.slope_azimuth_deg.value_or(Rng(o.seed, kStreamWorld).uniform(-180, 180));
   const double h = s.camera_height_mm;
   const double dist = s.rock_distance_mm;
   Rng geo(o.seed, kStreamGeometry);
@@ -261,6 +264,7 @@ Result<Scene> make_scene(const SceneOptions& o) {
     }
     s.attempts = attempt;
     why = refusal(s);
+    if (!why && o.neighbours > 0 && !add_neighbours(s)) why = kRefusals[12];
     if (!why) {
       set_tone_and_exposure(s);
       add_world_geometry(s);

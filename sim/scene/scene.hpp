@@ -52,7 +52,10 @@ struct Scene {
   Terrain terrain;
   FaceRelief face_relief;
   std::vector<ConvexRock> stones;
-  std::vector<double> stone_albedo;  // relative to the ground's
+  std::vector<double> stone_albedo;      // relative to the ground's
+  std::vector<ConvexRock> neighbours;    // rocks touching the target (options.neighbours)
+  std::vector<double> neighbour_albedo;  // relative to the target's
+  std::vector<double> neighbour_gap_mm;  // slid back this far from first contact
   bool tilted = false;
   Eigen::Matrix3d world_R = Eigen::Matrix3d::Identity();
   Eigen::Vector3d pivot = Eigen::Vector3d::Zero();
@@ -64,7 +67,7 @@ struct Scene {
 
 // True when the geometry is the clean world's (flat ground, planar faces, one rock).
 inline bool clean_geometry(const Scene& s) {
-  return !s.terrain.active && !s.face_relief.active && s.stones.empty();
+  return !s.terrain.active && !s.face_relief.active && s.stones.empty() && s.neighbours.empty();
 }
 // World frame <-> the local rendering frame.
 inline Eigen::Vector3d to_world(const Scene& s, const Eigen::Vector3d& p) {

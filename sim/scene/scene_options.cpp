@@ -55,8 +55,7 @@ Status validate_world(const World& w) {
   PETRA_TRY(in_range(w.slope_deg, 0, kMaxSlopeDeg, "slope", "deg"));
   PETRA_TRY(in_range(w.slope_azimuth_deg, -360, 360, "slope-azimuth", "deg"));
   PETRA_TRY(in_range(w.face_roughness_mm, 0, kMaxFaceRoughnessMm, "face-roughness", "mm"));
-  PETRA_TRY(
-      in_range(w.face_curvature_per_m, 0, kMaxFaceCurvaturePerM, "face-curvature", "1/m"));
+  PETRA_TRY(in_range(w.face_curvature_per_m, 0, kMaxFaceCurvaturePerM, "face-curvature", "1/m"));
   PETRA_TRY(in_range(w.gain_left, kMinCameraGain, kMaxCameraGain, "gain-left", ""));
   PETRA_TRY(in_range(w.gain_right, kMinCameraGain, kMaxCameraGain, "gain-right", ""));
   PETRA_TRY(
@@ -89,10 +88,10 @@ World realistic_world() {
 }
 
 bool is_clean(const World& w) {
-  return w.relief_rms_mm == 0 && w.pebble_cover == 0 && w.stones_per_m2 == 0 &&
-         w.slope_deg == 0 && w.face_roughness_mm == 0 && w.face_curvature_per_m == 0 &&
-         w.gain_left == 1 && w.gain_right == 1 && w.offset_left_dn == 0 &&
-         w.offset_right_dn == 0 && w.vignetting == 0 && w.prnu == 0 && w.calib_residual_px == 0 && !w.burial;
+  return w.relief_rms_mm == 0 && w.pebble_cover == 0 && w.stones_per_m2 == 0 && w.slope_deg == 0 &&
+         w.face_roughness_mm == 0 && w.face_curvature_per_m == 0 && w.gain_left == 1 &&
+         w.gain_right == 1 && w.offset_left_dn == 0 && w.offset_right_dn == 0 &&
+         w.vignetting == 0 && w.prnu == 0 && w.calib_residual_px == 0 && !w.burial;
 }
 
 Status validate(const SceneOptions& o) {
@@ -118,6 +117,9 @@ Status validate(const SceneOptions& o) {
     return Error::make(Errc::out_of_range, "edge supersampling = %d outside 2..16",
                        o.edge_supersampling);
   PETRA_TRY(validate_world(o.world));
+  if (o.neighbours < 0 || o.neighbours > kMaxNeighbours)
+    return Error::make(Errc::out_of_range, "neighbours = %d outside 0..%d", o.neighbours,
+                       kMaxNeighbours);
   // The rock must lie ahead of the rig, not below it: its centre sits at most
   // ~150 mm above the ground, so the distance must clearly exceed the height.
   if (o.rock_distance_mm && o.camera_height_mm && *o.camera_height_mm > 0.85 * *o.rock_distance_mm)

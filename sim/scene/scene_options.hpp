@@ -34,6 +34,7 @@ inline constexpr double kMaxSlopeDeg = 20, kMaxFaceRoughnessMm = 2, kMaxFaceCurv
 inline constexpr double kMinCameraGain = 0.5, kMaxCameraGain = 1.5, kMaxCameraOffsetDn = 40;
 inline constexpr double kMinBurial = 0.15, kMaxBurial = 0.7;
 inline constexpr double kMaxVignetting = 0.6, kMaxPrnu = 0.05, kMaxCalibResidualPx = 2;
+inline constexpr int kMaxNeighbours = 3;
 // Seeds stay exact as JSON numbers (doubles): 0 .. 2^53 - 1.
 inline constexpr std::uint64_t kMaxSeed = (std::uint64_t{1} << 53) - 1;
 
@@ -41,19 +42,19 @@ inline constexpr std::uint64_t kMaxSeed = (std::uint64_t{1} << 53) - 1;
 // gain 1) is today's clean world, rendered byte for byte as before;
 // realistic_world() gives each knob its realistic default (`--real`).
 struct World {
-  double relief_rms_mm = 0;         // terrain height field, wavelengths 8..256 mm
-  double pebble_cover = 0;          // share of the ground under pebbles (height field, 2..7 mm)
-  double stones_per_m2 = 0;         // small convex stones, 10..40 mm, within 0.6 m of the rock
-  double slope_deg = 0;             // ground under the rock against the rover's level
+  double relief_rms_mm = 0;  // terrain height field, wavelengths 8..256 mm
+  double pebble_cover = 0;   // share of the ground under pebbles (height field, 2..7 mm)
+  double stones_per_m2 = 0;  // small convex stones, 10..40 mm, within 0.6 m of the rock
+  double slope_deg = 0;      // ground under the rock against the rover's level
   std::optional<double> slope_azimuth_deg;  // uphill direction from the heading (drawn)
-  double face_roughness_mm = 0;     // RMS of the rock faces' relief, wavelengths 2.5..20 mm
-  double face_curvature_per_m = 0;  // faces bulge with this curvature (1/radius)
-  double gain_left = 1, gain_right = 1;        // per-camera gain on the DN
+  double face_roughness_mm = 0;             // RMS of the rock faces' relief, wavelengths 2.5..20 mm
+  double face_curvature_per_m = 0;          // faces bulge with this curvature (1/radius)
+  double gain_left = 1, gain_right = 1;     // per-camera gain on the DN
   double offset_left_dn = 0, offset_right_dn = 0;
-  double vignetting = 0;            // relative fall-off at the image corners
-  double prnu = 0;                  // pixel response non-uniformity, 1 sigma, relative
-  double calib_residual_px = 0;     // RMS reprojection error of calib.json against the true rig
-  std::optional<double> burial;     // share of the rock's height below the ground (drawn 0.15..0.35)
+  double vignetting = 0;         // relative fall-off at the image corners
+  double prnu = 0;               // pixel response non-uniformity, 1 sigma, relative
+  double calib_residual_px = 0;  // RMS reprojection error of calib.json against the true rig
+  std::optional<double> burial;  // share of the rock's height below the ground (drawn 0.15..0.35)
 };
 World realistic_world();
 bool is_clean(const World& w);
@@ -73,6 +74,9 @@ struct SceneOptions {
   bool texture = true;          // false: uniform albedo (geometry tests only)
   int edge_supersampling = 8;   // samples per axis in pixels crossed by an edge
   World world;                  // clean unless set (realistic_world())
+  // The operator's hard cases (docs/scene.md "Neighbours and a rock filling the ROI").
+  int neighbours = 0;     // further rocks touching the target, 0..kMaxNeighbours
+  bool roi_fill = false;  // truth ROI inside the rock's silhouette: no ground in it
 };
 
 // Errors name the option and its valid range.

@@ -2,17 +2,27 @@
 
 namespace petra::sim {
 
-std::vector<SceneOptions> standard_scene_set() {
+namespace {
+
+// Entry k's boundary x sun elevation x shape x flat faces (all 8 boundary x
+// sun pairs, three times in 24 entries).
+SceneOptions cycle_entry(int k) {
   static constexpr double kSunElevationsDeg[4] = {20, 35, 50, 65};
+  SceneOptions o;
+  o.boundary = k % 2 == 0 ? Boundary::clear : Boundary::weak;
+  o.sun_elevation_deg = kSunElevationsDeg[(k / 2) % 4];
+  o.shape = static_cast<RockShape>(k % 3);
+  o.flat_faces = 2 + (k / 3) % 2;
+  return o;
+}
+
+}  // namespace
+
+std::vector<SceneOptions> standard_scene_set() {
   std::vector<SceneOptions> set;
   for (int k = 0; k < kStandardSetSize; ++k) {
-    SceneOptions o;
+    SceneOptions o = cycle_entry(k);
     o.seed = 1000 + static_cast<std::uint64_t>(k);
-    // Boundary x sun elevation: all 8 pairs, three times each.
-    o.boundary = k % 2 == 0 ? Boundary::clear : Boundary::weak;
-    o.sun_elevation_deg = kSunElevationsDeg[(k / 2) % 4];
-    o.shape = static_cast<RockShape>(k % 3);
-    o.flat_faces = 2 + (k / 3) % 2;
     set.push_back(o);
   }
   return set;
@@ -26,10 +36,9 @@ std::vector<SceneOptions> real_scene_set() {
   static constexpr double kResidualPx[3] = {0.2, 0.3, 0.4};
   static constexpr double kRoughnessMm[3] = {0.2, 0.3, 0.5};
   static constexpr double kCurvaturePerM[3] = {0.3, 0.6, 1.0};
-  std::vector<SceneOptions> set = standard_scene_set();
-  set.resize(kRealSetSize);
+  std::vector<SceneOptions> set;
   for (int k = 0; k < kRealSetSize; ++k) {
-    SceneOptions& o = set[static_cast<std::size_t>(k)];
+    SceneOptions& o = set.emplace_back(cycle_entry(k));
     o.seed = 2000 + static_cast<std::uint64_t>(k);
     World& w = o.world;
     w = realistic_world();
@@ -45,6 +54,10 @@ std::vector<SceneOptions> real_scene_set() {
     w.calib_residual_px = kResidualPx[(k / 8) % 3];
     o.noise_sigma_dn = 2.0;
     o.edge_supersampling = 4;  // pebble shadows make many edge pixels
+    // The operator's hard cases: rocks touching the target, then a rock
+    // that fills the ROI.
+    if (k >= kRealBaseSize && k < kRealBaseSize + 4) o.neighbours = 1 + k % 2;
+    if (k >= kRealBaseSize + 4) o.roi_fill = true;
   }
   return set;
 }

@@ -16,8 +16,10 @@ std::vector<SceneOptions> standard_scene_set();
 
 // The realistic set (`petra sim set --real`, docs/scene.md): entry k has seed
 // 2000 + k, the standard set's boundary x sun x shape x faces cycle, and the
-// realistic world with its knobs varied around their defaults.
-inline constexpr int kRealSetSize = 24;
+// realistic world with its knobs varied around their defaults. Entries
+// kRealBaseSize.. +3 add 1 or 2 touching neighbours, the last 4 fill the ROI.
+inline constexpr int kRealBaseSize = 24;
+inline constexpr int kRealSetSize = 32;
 std::vector<SceneOptions> real_scene_set();
 
 }  // namespace petra::sim

@@ -8,6 +8,7 @@
 
 #include "algo/camera/calib_json.hpp"
 #include "algo/core/json_writer.hpp"
+#include "sim/scene/truth_pixels.hpp"
 
 namespace petra::sim {
 
@@ -111,6 +112,20 @@ void rect(json::Writer& w, const Rect& r) {
   w.begin_array().integer(r.x).integer(r.y).integer(r.w).integer(r.h).end_array();
 }
 
+// The rocks touching the target (never truth facets).
+void write_neighbours(json::Writer& w, const Scene& s) {
+  w.key("neighbours").begin_array();
+  for (std::size_t k = 0; k < s.neighbours.size(); ++k) {
+    w.begin_object();
+    w.key("centre_mm");
+    vec3(w, to_world(s, s.neighbours[k].centre));
+    w.key("radius_mm").number(s.neighbours[k].radius_mm);
+    w.key("gap_max_mm").number(s.neighbour_gap_mm[k]);
+    w.end_object();
+  }
+  w.end_array();
+}
+
 // The realistic world's knobs and what was measured on the rendered scene.
 Status write_world(json::Writer& w, const Scene& s, const SceneTruth& t) {
   const World& o = s.options.world;
@@ -154,6 +169,8 @@ SceneTruth compute_truth(const Scene& s, const RectifiedTruth& rect_truth) {
   t.planes = s.flat_faces;
   t.facets = visible_facets(s);
   t.roi = left_roi(s);
+  if (s.options.roi_fill) t.roi = roi_inside_rock(s, t.roi);
+  t.click = click_on_rock(s, t.roi, t.facets);
   t.roi_rectified = rectified_box(s, rect_truth.pair, t.roi);
   double lo = INFINITY, hi = -INFINITY;
   const auto view = rect_truth.disparity.view();
@@ -224,6 +241,7 @@ Result<std::string> format_truth_json(const Scene& s, const SceneTruth& t) {
       .number(t.disparity_min)
       .number(t.disparity_max)
       .end_array();
+  if (t.click) w.key("click").begin_array().integer(t.click->x()).integer(t.click->y()).end_array();
   w.raw("\n");
   w.key("scene").begin_object();
   w.key("boundary").string(boundary_name(s.boundary));
@@ -239,6 +257,8 @@ Result<std::string> format_truth_json(const Scene& s, const SceneTruth& t) {
   vec3(w, to_world(s, s.rock_centre_mm));
   w.key("noise_dn").number(s.options.noise_sigma_dn);
   w.key("texture").boolean(s.options.texture);
+  if (s.options.roi_fill) w.key("roi_fill").boolean(true);
+  if (!s.neighbours.empty()) write_neighbours(w, s);
   w.end_object();
   if (!is_clean(s.options.world)) PETRA_TRY(write_world(w, s, t));
   w.end_object();

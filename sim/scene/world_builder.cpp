@@ -57,6 +57,13 @@ bool hides_rock(const Scene& s, const Eigen::Vector3d& centre, double r) {
   return false;
 }
 
+// True when a stone at `centre` (radius r) could touch a neighbouring rock.
+bool meets_neighbour(const Scene& s, const Eigen::Vector3d& centre, double r) {
+  for (const auto& n : s.neighbours)
+    if ((n.centre - centre).norm() < n.radius_mm + r) return true;
+  return false;
+}
+
 void add_stones(Scene& s) {
   const double density = s.options.world.stones_per_m2;
   if (density <= 0) return;
@@ -83,6 +90,7 @@ void add_stones(Scene& s) {
     const double z = terrain_height(s.terrain, x, y) - sink * (top - bottom) - bottom;
     translate_rock(*stone, Eigen::Vector3d(x, y, z));
     if (hides_rock(s, stone->centre, stone->radius_mm)) continue;
+    if (meets_neighbour(s, stone->centre, stone->radius_mm)) continue;
     s.stones.push_back(std::move(*stone));
     s.stone_albedo.push_back(albedo);
   }
@@ -96,7 +104,8 @@ void set_slope(Scene& s, double slope_deg, double uphill_azimuth_rad) {
   const double sl = slope_deg * M_PI / 180.0;
   const Eigen::Vector3d uphill(-std::sin(uphill_azimuth_rad), std::cos(uphill_azimuth_rad), 0.0);
   const Eigen::Vector3d n_world = -std::sin(sl) * uphill + std::cos(sl) * Eigen::Vector3d::UnitZ();
-  s.world_R = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n_world).toRotationMatrix();
+  s.world_R =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n_world).toRotationMatrix();
   s.tilted = true;
 }
 
