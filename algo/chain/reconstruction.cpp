@@ -272,7 +272,9 @@ Status normals_step(const RectifiedPair& rect, const ReconstructionParams& param
   auto grid = arena.allocate<Eigen::Vector3d>(
       static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "pixel normals");
   if (!grid) return grid.error();
-  PETRA_TRY(surface_normals(out.filtered, rect.left, params.normals, *grid, arena));
+  // Only the points' pixels (on the stride grid) are read back.
+  PETRA_TRY(surface_normals(out.filtered, rect.left, params.normals, *grid, arena,
+                            out.stats.point_stride));
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t at =
         static_cast<std::size_t>(out.pixels[i].v - roi.y) * static_cast<std::size_t>(w) +
