@@ -45,7 +45,8 @@ Status surface_normals(ConstDisparityMap map, const RectifiedCamera& cam,
   PETRA_TRY(validate(params));
   if (stride < 1) return Error::make(Errc::invalid_argument, "normals: stride %d < 1", stride);
   const int w = map.q4.width(), h = map.q4.height();
-  if (normals.size() < static_cast<std::size_t>(w) * static_cast<std::size_t>(h))
+  const int packed_w = (w + stride - 1) / stride, packed_h = (h + stride - 1) / stride;
+  if (normals.size() < static_cast<std::size_t>(packed_w) * static_cast<std::size_t>(packed_h))
     return Error::make(Errc::invalid_argument, "normals: output holds %zu, map has %dx%d",
                        normals.size(), w, h);
   if (!(cam.f_px > 0)) return Error::make(Errc::non_positive, "normals: f_px must be > 0");
@@ -85,7 +86,9 @@ Status surface_normals(ConstDisparityMap map, const RectifiedCamera& cam,
       if (x + r < w) box.add(col[x + r], 1);
       if (x - r - 1 >= 0) box.add(col[x - r - 1], -1);
       if (x % stride != 0) continue;
-      Eigen::Vector3d& out = normals[static_cast<std::size_t>(y) * w + x];
+      Eigen::Vector3d& out =
+          normals[static_cast<std::size_t>(y / stride) * static_cast<std::size_t>(packed_w) +
+                  static_cast<std::size_t>(x / stride)];
       out.setZero();
       if (!is_valid_disparity(map.q4(x, y)) || box.n < need) continue;
       // Normal equations of d = a x + b y + c about the box's mean position.
