@@ -11,7 +11,7 @@
 //                        512 x 384 ROI centred in the image, click on the grey rock
 // Run (one core, from the repo root):
 //   taskset -c 1 build/release/tests/bench/bench_chain --benchmark_repetitions=5
-// The scene is rendered once into build/release/test-cache (about 40 s), or
+// The scene is rendered once into build/release/test-cache (about 40 s CPU), or
 // read from PETRA_REAL_SET/scene_00 when set (a `petra sim set --real` dir).
 #include <benchmark/benchmark.h>
 
