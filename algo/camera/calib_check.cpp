@@ -14,18 +14,59 @@ constexpr int kMaxDisparities = 1024;  // range bound of the per-disparity cost 
 constexpr int kMaxPatch = 15;          // 2 x max patch_radius + 1
 constexpr int kScoreRadius = 2;        // corner score window 5x5
 
-// min(sum gx^2, sum gy^2) over the 5x5 window: high only where the patch has
-// structure in both directions, so a row offset is measurable.
-long corner_score(ConstGray8View im, int x, int y) {
-  long sxx = 0, syy = 0;
-  for (int v = y - kScoreRadius; v <= y + kScoreRadius; ++v)
-    for (int u = x - kScoreRadius; u <= x + kScoreRadius; ++u) {
-      const long gx = static_cast<long>(im(u + 1, v)) - im(u - 1, v);
-      const long gy = static_cast<long>(im(u, v + 1)) - im(u, v - 1);
-      sxx += gx * gx;
-      syy += gy * gy;
+constexpr int kStrip = 64;  // columns of a cell scored at once (stack buffers)
+
+struct Corner {
+  long score = -1;  // min(sum gx^2, sum gy^2) over the 5x5 window
+  int x = 0, y = 0;
+};
+
+// Adds (sign +1) or removes (-1) row v's squared gradients (central
+// differences) of columns x0 .. x0 + n - 1 to the column sums.
+void add_gradient_row(ConstGray8View im, int v, int x0, int n, long sign, long* sxx, long* syy) {
+  const std::uint8_t* up = im.row(v - 1);
+  const std::uint8_t* row = im.row(v);
+  const std::uint8_t* down = im.row(v + 1);
+  for (int c = 0; c < n; ++c) {
+    const int u = x0 + c;
+    const long gx = static_cast<long>(row[u + 1]) - row[u - 1];
+    const long gy = static_cast<long>(down[u]) - up[u];
+    sxx[c] += sign * gx * gx;
+    syy[c] += sign * gy * gy;
+  }
+}
+
+// The strongest corner of the cell [x0, x1) x [y0, y1), the first in raster
+// order among equals. The score, min(sum gx^2, sum gy^2) over the 5x5
+// window, is high only where the patch has structure in both directions, so
+// a row offset is measurable. Column sums over the window's rows slide down
+// the cell and the window slides along each row: the same integers as
+// summing each window, about a tenth of the work.
+Corner strongest_corner(ConstGray8View im, int x0, int x1, int y0, int y1) {
+  constexpr int k = kScoreRadius, side = 2 * kScoreRadius + 1;
+  Corner best;
+  for (int sx = x0; sx < x1; sx += kStrip) {
+    const int ex = std::min(sx + kStrip, x1), n = ex - sx + 2 * k;
+    long sxx[kStrip + 2 * k] = {}, syy[kStrip + 2 * k] = {};
+    for (int v = y0 - k; v < y0 + k; ++v) add_gradient_row(im, v, sx - k, n, 1, sxx, syy);
+    for (int y = y0; y < y1; ++y) {
+      add_gradient_row(im, y + k, sx - k, n, 1, sxx, syy);
+      long wx = 0, wy = 0;
+      for (int c = 0; c < side - 1; ++c) wx += sxx[c], wy += syy[c];
+      for (int x = sx; x < ex; ++x) {
+        const int c = x - sx;
+        wx += sxx[c + side - 1];
+        wy += syy[c + side - 1];
+        const long sc = std::min(wx, wy);
+        if (sc > best.score || (sc == best.score && (y < best.y || (y == best.y && x < best.x))))
+          best = {sc, x, y};
+        wx -= sxx[c];
+        wy -= syy[c];
+      }
+      add_gradient_row(im, y - k, sx - k, n, -1, sxx, syy);
     }
-  return std::min(sxx, syy);
+  }
+  return best;
 }
 
 struct Patch {
@@ -71,16 +112,65 @@ bool column_fits(const Search& s, int xr) {
   return xr - s.r >= s.right_area.x && xr + s.r < s.right_area.x + s.right_area.w;
 }
 
+// Scratch of the search: per disparity, the best cost over the row offsets,
+// and for one row offset the patch sums and the costs (column sums first).
+struct CostRows {
+  std::span<int> per_d, sums, cost;
+};
+
+// cost[k] = zsad(p, right, j0 + k, yc, r) for k in [0, n): the patch sums by
+// a window slid over column sums, then each patch pixel's absolute
+// differences added across all n positions at once (a loop over
+// contiguous memory the compiler vectorises). The same integers as zsad.
+void patch_costs(const Patch& p, ConstGray8View right, int j0, int yc, int r, int n,
+                 const CostRows& b) {
+  const int side = 2 * r + 1, wide = n + side - 1;
+  int* col = b.cost.data();
+  int* sums = b.sums.data();
+  for (int c = 0; c < wide; ++c) col[c] = 0;
+  for (int v = -r; v <= r; ++v) {
+    const std::uint8_t* row = right.row(yc + v) + j0 - r;
+    for (int c = 0; c < wide; ++c) col[c] += row[c];
+  }
+  int sum = 0;
+  for (int c = 0; c < side - 1; ++c) sum += col[c];
+  for (int k = 0; k < n; ++k) {
+    sum += col[k + side - 1];
+    sums[k] = sum;
+    sum -= col[k];
+  }
+  int* cost = b.cost.data();
+  for (int k = 0; k < n; ++k) cost[k] = 0;
+  for (int v = -r, i = 0; v <= r; ++v) {
+    const std::uint8_t* row = right.row(yc + v) + j0 - r;
+    for (int u = 0; u < side; ++u, ++i) {
+      const int z = p.z[i], pn = p.n;
+      const std::uint8_t* px = row + u;
+      for (int k = 0; k < n; ++k) cost[k] += std::abs(z - (pn * px[k] - sums[k]));
+    }
+  }
+}
+
 // Best cost over the row offsets at each disparity (INT_MAX where the patch
 // leaves the right area), then uniqueness along d and the sub-pixel row offset.
-bool match_feature(const Search& s, const Patch& p, int x, int y, std::span<int> per_d,
+bool match_feature(const Search& s, const Patch& p, int x, int y, const CostRows& b,
                    double& offset) {
+  std::span<int> per_d = b.per_d;
+  for (int& c : per_d) c = INT_MAX;
+  // The disparities whose patch fits the right area (column_fits).
+  const int d_lo = std::max(s.disp_min, x + s.r + 1 - s.right_area.x - s.right_area.w);
+  const int d_hi = std::min(s.disp_max, x - s.r - s.right_area.x);
+  for (int dy = -s.V; dy <= s.V && d_lo <= d_hi; ++dy) {
+    const int n = d_hi - d_lo + 1;
+    patch_costs(p, s.right, x - d_hi, y + dy, s.r, n, b);  // position k: d = d_hi - k
+    for (int k = 0; k < n; ++k) {
+      int& m = per_d[static_cast<std::size_t>(d_hi - k - s.disp_min)];
+      m = std::min(m, b.cost[static_cast<std::size_t>(k)]);
+    }
+  }
   int best = INT_MAX, d1 = 0;
   for (int d = s.disp_min; d <= s.disp_max; ++d) {
-    int m = INT_MAX;
-    if (column_fits(s, x - d))
-      for (int dy = -s.V; dy <= s.V; ++dy) m = std::min(m, zsad(p, s.right, x - d, y + dy, s.r));
-    per_d[static_cast<std::size_t>(d - s.disp_min)] = m;
+    const int m = per_d[static_cast<std::size_t>(d - s.disp_min)];
     if (m < best) best = m, d1 = d;
   }
   if (best == INT_MAX) return false;
@@ -156,7 +246,7 @@ const char* to_string(CalibVerdict v) {
 
 std::size_t calib_check_scratch_bytes(const CalibCheckParams& p) {
   return 2 * static_cast<std::size_t>(p.max_features) * sizeof(float) +
-         kMaxDisparities * sizeof(int) + 3 * 64;
+         (3 * kMaxDisparities + kMaxPatch) * sizeof(int) + 5 * 64;
 }
 
 Result<CalibCheck> check_calibration(ConstGray8View left, ConstGray8View right, Rect left_area,
@@ -179,9 +269,14 @@ Result<CalibCheck> check_calibration(ConstGray8View left, ConstGray8View right, 
   auto devs =
       scratch.allocate<float>(static_cast<std::size_t>(params.max_features), "calib deviations");
   if (!devs) return devs.error();
-  auto per_d =
-      scratch.allocate<int>(static_cast<std::size_t>(disp_max - disp_min + 1), "calib costs");
+  const auto nd = static_cast<std::size_t>(disp_max - disp_min + 1);
+  auto per_d = scratch.allocate<int>(nd, "calib costs");
   if (!per_d) return per_d.error();
+  auto sums = scratch.allocate<int>(nd, "calib patch sums");
+  if (!sums) return sums.error();
+  auto costs = scratch.allocate<int>(nd + kMaxPatch, "calib row costs");
+  if (!costs) return costs.error();
+  const CostRows rows{*per_d, *sums, *costs};
 
   const int r = params.patch_radius, V = params.vertical_search_px;
   // Left margin: patch and corner window; rows also leave room for the row search.
@@ -205,18 +300,13 @@ Result<CalibCheck> check_calibration(ConstGray8View left, ConstGray8View right, 
   int kept = 0;
   for (int cy = top; cy < bottom; cy += cell)
     for (int cx = x0; cx < x1; cx += cell) {
-      long best = -1;
-      int bx = 0, by = 0;
-      for (int y = cy; y < std::min(cy + cell, bottom); ++y)
-        for (int x = cx; x < std::min(cx + cell, x1); ++x) {
-          const long sc = corner_score(left, x, y);
-          if (sc > best) best = sc, bx = x, by = y;
-        }
-      if (best < params.min_corner_score) continue;
+      const Corner c =
+          strongest_corner(left, cx, std::min(cx + cell, x1), cy, std::min(cy + cell, bottom));
+      if (c.score < params.min_corner_score) continue;
       ++out.candidates;
-      load_patch(left, bx, by, r, patch);
+      load_patch(left, c.x, c.y, r, patch);
       double off = 0;
-      if (match_feature(s, patch, bx, by, *per_d, off))
+      if (match_feature(s, patch, c.x, c.y, rows, off))
         (*offsets)[static_cast<std::size_t>(kept++)] = static_cast<float>(off);
     }
   out.features = kept;

@@ -20,7 +20,9 @@
 // count of kept features and a verdict: unknown below min_features kept,
 // drifted when |offset| > drift_px, else ok.
 // Memory: calib_check_scratch_bytes(params) from the caller's arena (one
-// float per feature, twice), released on return. No heap.
+// float per feature, twice; three int rows of the disparity range: the
+// per-disparity best, one row offset's patch sums and costs), released on
+// return. No heap.
 // Work: at most max_features x (2V+1) x (disp range) patch costs.
 #pragma once
 

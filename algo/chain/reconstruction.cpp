@@ -269,14 +269,17 @@ Status normals_step(const RectifiedPair& rect, const ReconstructionParams& param
   PETRA_TRY(checkpoint(clock, PipelineStep::normals));
   StepTimer timer(clock, timings, PipelineStep::normals);
   ArenaScope scope(arena);
+  // Normals only at the points' pixels (the stride grid), packed.
+  const int s = out.stats.point_stride;
+  const int packed_w = (w + s - 1) / s, packed_h = (h + s - 1) / s;
   auto grid = arena.allocate<Eigen::Vector3d>(
-      static_cast<std::size_t>(w) * static_cast<std::size_t>(h), "pixel normals");
+      static_cast<std::size_t>(packed_w) * static_cast<std::size_t>(packed_h), "pixel normals");
   if (!grid) return grid.error();
-  PETRA_TRY(surface_normals(out.filtered, rect.left, params.normals, *grid, arena));
+  PETRA_TRY(surface_normals(out.filtered, rect.left, params.normals, *grid, arena, s));
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t at =
-        static_cast<std::size_t>(out.pixels[i].v - roi.y) * static_cast<std::size_t>(w) +
-        static_cast<std::size_t>(out.pixels[i].u - roi.x);
+    const std::size_t at = static_cast<std::size_t>((out.pixels[i].v - roi.y) / s) *
+                               static_cast<std::size_t>(packed_w) +
+                           static_cast<std::size_t>((out.pixels[i].u - roi.x) / s);
     out.normals[i] = (*grid)[at];
   }
   return ok_status();

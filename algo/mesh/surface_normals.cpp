@@ -41,10 +41,12 @@ std::size_t surface_normals_scratch_bytes(int width) {
 
 Status surface_normals(ConstDisparityMap map, const RectifiedCamera& cam,
                        const NormalParams& params, std::span<Eigen::Vector3d> normals,
-                       Arena& scratch) {
+                       Arena& scratch, int stride) {
   PETRA_TRY(validate(params));
+  if (stride < 1) return Error::make(Errc::invalid_argument, "normals: stride %d < 1", stride);
   const int w = map.q4.width(), h = map.q4.height();
-  if (normals.size() < static_cast<std::size_t>(w) * static_cast<std::size_t>(h))
+  const int packed_w = (w + stride - 1) / stride, packed_h = (h + stride - 1) / stride;
+  if (normals.size() < static_cast<std::size_t>(packed_w) * static_cast<std::size_t>(packed_h))
     return Error::make(Errc::invalid_argument, "normals: output holds %zu, map has %dx%d",
                        normals.size(), w, h);
   if (!(cam.f_px > 0)) return Error::make(Errc::non_positive, "normals: f_px must be > 0");
@@ -77,12 +79,16 @@ Status surface_normals(ConstDisparityMap map, const RectifiedCamera& cam,
   for (int y = 0; y < h; ++y) {
     if (y + r < h) add_row(y + r, 1);
     if (y - r - 1 >= 0) add_row(y - r - 1, -1);
+    if (y % stride != 0) continue;  // the column sums move on; no normal wanted on this row
     Sums box;
     for (int x = 0; x < r && x < w; ++x) box.add(col[x], 1);
     for (int x = 0; x < w; ++x) {
       if (x + r < w) box.add(col[x + r], 1);
       if (x - r - 1 >= 0) box.add(col[x - r - 1], -1);
-      Eigen::Vector3d& out = normals[static_cast<std::size_t>(y) * w + x];
+      if (x % stride != 0) continue;
+      Eigen::Vector3d& out =
+          normals[static_cast<std::size_t>(y / stride) * static_cast<std::size_t>(packed_w) +
+                  static_cast<std::size_t>(x / stride)];
       out.setZero();
       if (!is_valid_disparity(map.q4(x, y)) || box.n < need) continue;
       // Normal equations of d = a x + b y + c about the box's mean position.

@@ -33,9 +33,13 @@ struct NormalParams {
 Status validate(const NormalParams& p);
 std::size_t surface_normals_scratch_bytes(int width);
 
-// normals[y * width + x] for map pixel (x, y).
+// normals[y * width + x] for map pixel (x, y). With stride s > 1 only the
+// pixels whose x and y are multiples of s (the reconstruction's points on a
+// pixel stride) get a normal, each the same as with stride 1, packed as
+// normals[(y / s) * ceil(width / s) + x / s]; the sums still slide over
+// every pixel, so the work left is the column sums.
 Status surface_normals(ConstDisparityMap map, const RectifiedCamera& camera,
                        const NormalParams& params, std::span<Eigen::Vector3d> normals,
-                       Arena& scratch);
+                       Arena& scratch, int stride = 1);
 
 }  // namespace petra

@@ -300,10 +300,20 @@ std::size_t face_pixels(ImageView<const std::uint8_t> classes, Rect roi, std::ui
         row_lo[j] = std::min(row_lo[j], i);
         row_hi[j] = std::max(row_hi[j], i);
       }
+  // A pixel whose box misses the face's bounding box holds none of it and
+  // is not enclosed: the scan covers that box grown by edge_px only.
+  int i_lo = W, i_hi = -1, j_lo = H, j_hi = -1;
+  for (int j = 0; j < H; ++j)
+    if (row_hi[j] >= 0) {
+      i_lo = std::min(i_lo, row_lo[j]), i_hi = std::max(i_hi, row_hi[j]);
+      j_lo = std::min(j_lo, j), j_hi = j;
+    }
+  const int i0 = std::max(0, i_lo - edge_px), i1 = std::min(W - 1, i_hi + edge_px);
+  const int j0 = std::max(0, j_lo - edge_px), j1 = std::min(H - 1, j_hi + edge_px);
   std::size_t n = 0;
   const int box = (2 * edge_px + 1) * (2 * edge_px + 1);
-  for (int j = 0; j < H && n < out.size(); ++j)
-    for (int i = 0; i < W && n < out.size(); ++i) {
+  for (int j = j0; j <= j1 && n < out.size(); ++j)
+    for (int i = i0; i <= i1 && n < out.size(); ++i) {
       const std::uint8_t c0 = classes(i, j);
       if (c0 != cls && c0 != kUnknown) continue;
       if (i < edge_px || j < edge_px || i + edge_px >= W || j + edge_px >= H) continue;

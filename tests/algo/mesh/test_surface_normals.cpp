@@ -84,5 +84,40 @@ TEST(SurfaceNormals, SparseBoxesGiveNoNormalAndBadInputIsNamed) {
       Errc::invalid_argument);
 }
 
+// On a pixel stride (the reconstruction's points above its budget) the
+// normals on the stride grid, packed, are bit for bit those of stride 1.
+TEST(SurfaceNormals, OnAStrideTheGridPixelsMatchStrideOne) {
+  Scene s;
+  const Rect roi = test::rock_box(s.pair, s.rock, 40, 30, 55, 20);
+  s.disp = test::render_disparity(s.pair, roi, s.rock, 0.05, 2);
+  s.normals.resize(s.disp.q4.size());
+  const int stride = 3, packed_w = (roi.w + stride - 1) / stride;
+  const int packed_h = (roi.h + stride - 1) / stride;
+  std::vector<Eigen::Vector3d> packed(static_cast<std::size_t>(packed_w) * packed_h);
+  StaticArena<1 << 16> arena;
+  ASSERT_TRUE(
+      surface_normals(s.disp.view(), s.pair.left, NormalParams{}, s.normals, arena.arena()).ok());
+  ASSERT_TRUE(
+      surface_normals(s.disp.view(), s.pair.left, NormalParams{}, packed, arena.arena(), stride)
+          .ok());
+  int nonzero = 0;
+  for (int y = 0; y < roi.h; y += stride)
+    for (int x = 0; x < roi.w; x += stride) {
+      const Eigen::Vector3d& full = s.normals[static_cast<std::size_t>(y) * roi.w + x];
+      EXPECT_EQ(packed[static_cast<std::size_t>(y / stride) * packed_w + x / stride], full)
+          << x << "," << y;
+      nonzero += full.squaredNorm() > 0;
+    }
+  EXPECT_GT(nonzero, 500);
+  packed.pop_back();  // one short of the packed grid
+  EXPECT_EQ(
+      surface_normals(s.disp.view(), s.pair.left, NormalParams{}, packed, arena.arena(), stride)
+          .code(),
+      Errc::invalid_argument);
+  EXPECT_EQ(surface_normals(s.disp.view(), s.pair.left, NormalParams{}, s.normals, arena.arena(), 0)
+                .code(),
+            Errc::invalid_argument);
+}
+
 }  // namespace
 }  // namespace petra
