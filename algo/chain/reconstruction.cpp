@@ -285,6 +285,23 @@ Status normals_step(const RectifiedPair& rect, const ReconstructionParams& param
   return ok_status();
 }
 
+// A fitted ground whose points mostly lean away from it is a rock's faces
+// (ground_normals.hpp): no ground, so the rock is grown from the click.
+Result<GroundResultT<double>> ground_faces_along_its_plane(const GroundResultT<double>& g,
+                                                           const ReconstructionOutput& out,
+                                                           const GroundNormalParams& params,
+                                                           GroundFailure* why) {
+  PETRA_TRY(validate(params));
+  const GroundNormalShare s =
+      ground_normal_share(out.normals, out.point_class, g.plane.normal, params);
+  if (s.share >= params.min_share) return g;
+  *why = GroundFailure::no_ground;
+  return Error::make(Errc::no_solution,
+                     "no ground in the ROI: only %.0f %% of the best plane's points face along "
+                     "it (the rock's faces, not ground)",
+                     100.0 * s.share);
+}
+
 // Rock / ground; from the click where no ground is found.
 Status segmentation_step(const StereoRig& rig, const RectifiedPair& rect, Rect roi,
                          const ReconstructionRequest& request, const ReconstructionParams& params,
@@ -304,6 +321,7 @@ Status segmentation_step(const StereoRig& rig, const RectifiedPair& rect, Rect r
   auto g = segment_ground<double>(out.xyz_mm, out.pixels, roi, request.click,
                                   camera_centre_world(rig.left), params.ground, out.point_class,
                                   noise, &why);
+  if (g) g = ground_faces_along_its_plane(*g, out, params.ground_normals, &why);
   if (g) {
     out.ground = *g;
   } else if (why != GroundFailure::no_ground) {

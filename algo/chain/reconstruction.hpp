@@ -30,6 +30,7 @@
 #include "algo/mesh/surface_normals.hpp"
 #include "algo/surface/click_region.hpp"
 #include "algo/surface/grind_planes.hpp"
+#include "algo/surface/ground_normals.hpp"
 #include "algo/surface/ground_segment.hpp"
 
 namespace petra {
@@ -47,6 +48,7 @@ struct ReconstructionParams {
   NormalParams normals;
   MeshFilterParams mesh;
   GroundParams ground;
+  GroundNormalParams ground_normals;
   ClickRegionParams click_region;
   GrindParams grind;
 };
