@@ -39,11 +39,11 @@ constexpr long kMinEdgePixels = 8;
 struct Layout {
   int w = 0, h = 0, d = 0, dp = 0, band = 0, wc = 0, nrp = 0;
 
-  Layout(int width, int height, int disparities)
+  Layout(int width, int height, int disparities, int lanes = lane_multiple())
       : w(width),
         h(height),
         d(disparities),
-        dp((disparities + lane_multiple() - 1) / lane_multiple() * lane_multiple()),
+        dp((disparities + lanes - 1) / lanes * lanes),
         band(width + disparities - 1),
         wc(width + 2 * kMarginX),
         nrp(wc + dp - 1) {}
@@ -436,7 +436,9 @@ PETRA_VECTOR_CLONES [[gnu::noinline]] void right_winners(const std::int16_t* __r
 
 std::size_t match_dp_scratch_bytes(const MatchBudget& b) {
   if (b.max_width <= 0 || b.max_height <= 0 || b.max_disparities <= 0) return 0;
-  return Layout(b.max_width, b.max_height, b.max_disparities).total();
+  // The widest lane multiple of any copy: the same budget on every CPU (and
+  // so the same flight memory table), never less than the copy that runs.
+  return Layout(b.max_width, b.max_height, b.max_disparities, kWidestLaneMultiple).total();
 }
 
 Rect right_search_area(Rect roi, int disp_min, int disp_max, int image_width) {

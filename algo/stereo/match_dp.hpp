@@ -31,7 +31,8 @@
 // match_dp_scratch_bytes(budget) bounds it for any ROI and range within the
 // budget. With w x h the ROI, D the disparity count, Dp = D rounded up to 16
 // (to 32 where the AVX-512 copy runs: lane_multiple(), algo/stereo/vector_clones.hpp),
-// B = w + D - 1 the right search width and wc = w + 8, the arena holds
+// B = w + D - 1 the right search width and wc = w + 8, the arena holds (the
+// budget takes Dp at 32 lanes on every CPU: one flight memory table everywhere)
 //   edge maps (whole call)       w h + B h
 //   then Canny (transient)       about 11 B h           (one view at a time)
 //   or the row buffers:

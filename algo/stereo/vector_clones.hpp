@@ -31,6 +31,7 @@ namespace petra {
 // disparities take two vectors as 64 lanes instead of one and a half as 48),
 // 16 elsewhere. The extra lanes are padding that never wins: outputs are the
 // same whatever the multiple.
+inline constexpr int kWidestLaneMultiple = 32;  // lane_multiple() on any CPU is at most this
 inline int lane_multiple() {
 #if PETRA_HAVE_VECTOR_CLONES
   static const int m = __builtin_cpu_supports("x86-64-v4") ? 32 : 16;  // as the clones choose
