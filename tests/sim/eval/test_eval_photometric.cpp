@@ -21,26 +21,15 @@
 #include "sim/score/planes_file.hpp"
 #include "sim/score/truth_file.hpp"
 #include "tests/support/heap_counter.hpp"
+#include "tests/support/rendered_scene.hpp"
 
 namespace petra {
 namespace {
 
-struct Scene {
-  sim::SceneProducts products;
-  sim::TruthFile truth;
-  StereoRig rig;
-};
+using Scene = test::RenderedScene;
 
 const Scene& scene11() {
-  static const Scene s = [] {
-    Scene x;
-    auto p = sim::render_scene(sim::standard_scene_set()[11]);
-    EXPECT_TRUE(p.ok()) << p.error().message;
-    x.products = std::move(*p);
-    x.truth = *sim::parse_truth_json(x.products.truth_json);
-    x.rig = *parse_calib_json(x.products.calib_json);
-    return x;
-  }();
+  static const Scene s = test::render_for_test(sim::standard_scene_set()[11]);
   return s;
 }
 

@@ -23,29 +23,20 @@
 #include "sim/score/planes_file.hpp"
 #include "sim/score/truth_file.hpp"
 #include "tests/support/heap_counter.hpp"
+#include "tests/support/rendered_scene.hpp"
 
 namespace petra {
 namespace {
 
 // Standard-set entry 17 (weak boundary, slab, 3 faces, low sun); fewer edge
 // samples than the set so the Debug build renders it in seconds.
-struct Fixture {
-  sim::SceneProducts scene;
-  sim::TruthFile truth;
-  StereoRig rig;
-};
+using Fixture = test::RenderedScene;
 
 const Fixture& fixture() {
   static const Fixture f = [] {
-    Fixture x;
     sim::SceneOptions o = sim::standard_scene_set()[17];
     o.edge_supersampling = 2;
-    auto p = sim::render_scene(o);
-    EXPECT_TRUE(p.ok()) << p.error().message;
-    x.scene = std::move(*p);
-    x.truth = *sim::parse_truth_json(x.scene.truth_json);
-    x.rig = *parse_calib_json(x.scene.calib_json);
-    return x;
+    return test::render_for_test(o);
   }();
   return f;
 }
@@ -149,8 +140,8 @@ void products_are_well_formed(const PipelineOutput& run_out, const RectifiedPair
 TEST(EvalPipeline, FindsTheSceneFacesWithinTheTargetsWithoutHeap) {
   const Fixture& f = fixture();
   auto run = make_run(f);
-  auto out =
-      run->pipeline->run(f.scene.left.image.view(), f.scene.right.image.view(), request(f), {});
+  auto out = run->pipeline->run(f.products.left.image.view(), f.products.right.image.view(),
+                                request(f), {});
   ASSERT_TRUE(out.ok()) << out.error().message;
   const sim::PlaneScore score = sim::score_planes(f.truth, to_planes_file(*out));
   EXPECT_TRUE(score.count_agrees) << score.output_planes << " planes for " << score.truth_planes;
@@ -164,15 +155,15 @@ TEST(EvalPipeline, FindsTheSceneFacesWithinTheTargetsWithoutHeap) {
   EXPECT_LT(score.ground->normal_error_deg, 0.5);
   EXPECT_LE(run->arena.high_water(), run->arena.capacity());
   // The disparity range the coarse pass chose covers the truth's.
-  EXPECT_LE(out->range.min_px, f.scene.truth.disparity_min);
-  EXPECT_GE(out->range.max_px, f.scene.truth.disparity_max);
+  EXPECT_LE(out->range.min_px, f.products.truth.disparity_min);
+  EXPECT_GE(out->range.max_px, f.products.truth.disparity_max);
 
   // Steady state: the next run allocates nothing and gives the same planes.
   const int accepted = out->result.planes.accepted;
   const Eigen::Vector3d first_normal = out->result.planes.planes[0].normal;
   test::HeapScope scope;
-  auto again =
-      run->pipeline->run(f.scene.left.image.view(), f.scene.right.image.view(), request(f), {});
+  auto again = run->pipeline->run(f.products.left.image.view(), f.products.right.image.view(),
+                                  request(f), {});
   EXPECT_EQ(scope.allocations(), 0u);
   ASSERT_TRUE(again.ok());
   EXPECT_EQ(again->result.planes.accepted, accepted);
@@ -188,7 +179,7 @@ TEST(EvalPipeline, GraphCutMatcherFindsTheSceneFacesWithoutHeap) {
             Pipeline::run_bytes(budget_for(f.rig), PipelineParams{}));
   PipelineRequest q = request(f);
   q.method = MatchMethod::graph_cut;
-  auto out = run->pipeline->run(f.scene.left.image.view(), f.scene.right.image.view(), q, {});
+  auto out = run->pipeline->run(f.products.left.image.view(), f.products.right.image.view(), q, {});
   ASSERT_TRUE(out.ok()) << out.error().message;
   EXPECT_EQ(out->method, MatchMethod::graph_cut);
   EXPECT_GT(out->graph_cut.expansions, 0);
@@ -207,13 +198,14 @@ TEST(EvalPipeline, GraphCutMatcherFindsTheSceneFacesWithoutHeap) {
   // (the graph cut's random disparity order is seeded).
   const Eigen::Vector3d first_normal = out->result.planes.planes[0].normal;
   test::HeapScope scope;
-  auto again = run->pipeline->run(f.scene.left.image.view(), f.scene.right.image.view(), q, {});
+  auto again =
+      run->pipeline->run(f.products.left.image.view(), f.products.right.image.view(), q, {});
   EXPECT_EQ(scope.allocations(), 0u);
   ASSERT_TRUE(again.ok()) << again.error().message;
   EXPECT_EQ(again->result.planes.planes[0].normal, first_normal);
   // The DP matcher stays available in a pipeline that reserved the graph cut.
-  auto dp =
-      run->pipeline->run(f.scene.left.image.view(), f.scene.right.image.view(), request(f), {});
+  auto dp = run->pipeline->run(f.products.left.image.view(), f.products.right.image.view(),
+                               request(f), {});
   ASSERT_TRUE(dp.ok()) << dp.error().message;
   EXPECT_EQ(dp->method, MatchMethod::dp);
 }
@@ -225,7 +217,7 @@ std::string error_of(const Result<PipelineOutput>& r) {
 TEST(EvalPipeline, BadRequestsAreRefusedWithTheReason) {
   const Fixture& f = fixture();
   auto run = make_run(f);
-  const ConstGray8View l = f.scene.left.image.view(), r = f.scene.right.image.view();
+  const ConstGray8View l = f.products.left.image.view(), r = f.products.right.image.view();
   PipelineRequest q = request(f);
   q.has_click = true;
   q.click_u = q.roi.x - 3;

@@ -10,35 +10,25 @@
 #include <memory>
 #include <vector>
 
-#include "algo/camera/calib_json.hpp"
 #include "algo/chain/pipeline.hpp"
 #include "sim/eval/planes_json.hpp"
-#include "sim/scene/scene_render.hpp"
 #include "sim/scene/scene_set.hpp"
 #include "sim/score/plane_score.hpp"
 #include "sim/score/planes_file.hpp"
 #include "sim/score/truth_file.hpp"
+#include "tests/support/eval_budget.hpp"
+#include "tests/support/rendered_scene.hpp"
 
 namespace petra {
 namespace {
 
-struct Fixture {
-  sim::SceneProducts scene;
-  sim::TruthFile truth;
-  StereoRig rig;
-};
+using Fixture = test::RenderedScene;
 
 const Fixture& fixture() {
   static const Fixture f = [] {
-    Fixture x;
     sim::SceneOptions o = sim::real_scene_set()[31];
     o.edge_supersampling = 2;
-    auto p = sim::render_scene(o);
-    EXPECT_TRUE(p.ok()) << p.error().message;
-    x.scene = std::move(*p);
-    x.truth = *sim::parse_truth_json(x.scene.truth_json);
-    x.rig = *parse_calib_json(x.scene.calib_json);
-    return x;
+    return test::render_for_test(o);
   }();
   return f;
 }
@@ -50,12 +40,7 @@ struct Outcome {
 
 // The chain on the fixture with the truth's ROI, c and click.
 Outcome evaluate(const Fixture& f, const PipelineParams& params) {
-  PipelineBudget b;
-  b.image_width = f.rig.left.width;
-  b.image_height = f.rig.left.height;
-  b.max_roi_width = 320;
-  b.max_roi_height = 320;
-  b.max_disparities = 128;
+  const PipelineBudget b = test::eval_budget(f.rig.left.width, f.rig.left.height, 320, params);
   std::vector<std::byte> block(Pipeline::arena_bytes(b, params));
   Arena arena(block);
   auto pipeline = Pipeline::create(f.rig, b, params, arena);
@@ -63,13 +48,13 @@ Outcome evaluate(const Fixture& f, const PipelineParams& params) {
   PipelineRequest q;
   q.roi = f.truth.roi;
   q.planes = f.truth.planes;
-  q.has_click = f.scene.truth.click.has_value();
+  q.has_click = f.products.truth.click.has_value();
   if (q.has_click) {
-    q.click_u = f.scene.truth.click->x();
-    q.click_v = f.scene.truth.click->y();
+    q.click_u = f.products.truth.click->x();
+    q.click_v = f.products.truth.click->y();
   }
   Outcome o;
-  o.out = pipeline->run(f.scene.left.image.view(), f.scene.right.image.view(), q, {});
+  o.out = pipeline->run(f.products.left.image.view(), f.products.right.image.view(), q, {});
   if (o.out.ok()) {
     auto planes = sim::parse_planes_json(eval::format_planes_json(o.out->result));
     EXPECT_TRUE(planes.ok());
@@ -80,7 +65,7 @@ Outcome evaluate(const Fixture& f, const PipelineParams& params) {
 
 TEST(EvalRoiFill, TwoFacesAreNotTakenForGround) {
   const Fixture& f = fixture();
-  ASSERT_TRUE(f.scene.truth.click.has_value());
+  ASSERT_TRUE(f.products.truth.click.has_value());
   // Without the normals' check the two faces pass as ground (the trap).
   PipelineParams off;
   off.reconstruction.ground_normals.min_share = 0.0;
