@@ -212,6 +212,12 @@ Result<GroundResultT<double>> ground_step(const Rectifier& rectifier, const Grid
   GroundFailure why = GroundFailure::none;
   auto g = segment_ground<double>(c.xyz, c.pixels, region, ClickPx{}, camera, p.ground, labels,
                                   noise, &why);
+  if (!g && why == GroundFailure::none && g.code() == Errc::degenerate &&
+      c.xyz.size() >= p.ground.min_points) {
+    // The points lie on one plane: ground, and no rock in view.
+    std::fill(labels.begin(), labels.end(), PointClass::ground);
+    return GroundResultT<double>{};
+  }
   if (!g) return Error::make(g.code(), "detection: %s", g.error().message);
   auto normals = grid_normals(c, grid_of(b), camera, arena);
   if (!normals) return normals.error();
@@ -409,6 +415,34 @@ Status regions_step(const Rectifier& rectifier, const GridCloud& c,
 
 }  // namespace
 
+Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
+                                                  ConstDisparityMap disparity,
+                                                  const DetectionBudget& b,
+                                                  const DetectionParams& p, Arena& arena) {
+  PETRA_TRY(validate(b));
+  PETRA_TRY(validate(p));
+  const Grid g = grid_of(b);
+  const Rect& r = disparity.roi;
+  if (r.empty() || !r.inside(g.w, g.h) || disparity.q4.width() != r.w ||
+      disparity.q4.height() != r.h)
+    return Error::make(Errc::invalid_argument,
+                       "detection: disparity map (%d,%d %dx%d) not within the %dx%d grid", r.x, r.y,
+                       r.w, r.h, g.w, g.h);
+  const ArenaScope scope(arena);
+  DetectionResult out;
+  out.region_coarse = r;
+  auto c = grid_cloud(rectifier, disparity, b, arena);
+  if (!c) return c.error();
+  out.points = static_cast<long>(c->xyz.size());
+  auto labels = arena.allocate<PointClass>(c->xyz.size(), "detection: labels");
+  if (!labels) return labels.error();
+  auto ground = ground_step(rectifier, *c, r, b, p, *labels, arena);
+  if (!ground) return ground.error();
+  out.ground = *ground;
+  PETRA_TRY(regions_step(rectifier, *c, *labels, b, p, arena, out));
+  return out;
+}
+
 Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View left,
                                      ConstGray8View right, Rect region, const DetectionBudget& b,
                                      const DetectionParams& p, Arena& arena,
@@ -425,10 +459,8 @@ Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View 
     return Error::make(Errc::out_of_range, "detection: region (%d,%d %dx%d) not inside %dx%d",
                        region.x, region.y, region.w, region.h, b.image_width, b.image_height);
   const ArenaScope scope(arena);
-  DetectionResult out;
   auto coarse = coarse_region(rectifier, region, b);
   if (!coarse) return coarse.error();
-  out.region_coarse = *coarse;
   PETRA_TRY(checkpoint(clock, PipelineStep::rectify));
   auto v = coarse_pair(rectifier, left, right, *coarse, b, arena);
   if (!v) return v.error();
@@ -436,17 +468,9 @@ Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View 
   const StereoInput in{v->left, v->right, nullptr, nullptr};
   auto m = match_dp(in, *coarse, coarse_match(b, p), match_budget(b), arena, v->disparity);
   if (!m) return Error::make(m.code(), "detection: %s", m.error().message);
-  out.match = *m;
   PETRA_TRY(checkpoint(clock, PipelineStep::segmentation));
-  auto c = grid_cloud(rectifier, v->disparity, b, arena);
-  if (!c) return c.error();
-  out.points = static_cast<long>(c->xyz.size());
-  auto labels = arena.allocate<PointClass>(c->xyz.size(), "detection: labels");
-  if (!labels) return labels.error();
-  auto g = ground_step(rectifier, *c, *coarse, b, p, *labels, arena);
-  if (!g) return g.error();
-  out.ground = *g;
-  PETRA_TRY(regions_step(rectifier, *c, *labels, b, p, arena, out));
+  auto out = detect_rocks_in_disparity(rectifier, v->disparity, b, p, arena);
+  if (out) out->match = *m;
   return out;
 }
 

@@ -91,4 +91,12 @@ Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View 
                                      const DetectionParams& p, Arena& arena,
                                      const StepClock& clock);
 
+// The back half on a given map at 1 / factor resolution (downsampled
+// rectified left pixels, inside the grid): from triangulation on. A
+// truth, a recorded or another matcher's map.
+Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
+                                                  ConstDisparityMap disparity,
+                                                  const DetectionBudget& b,
+                                                  const DetectionParams& p, Arena& arena);
+
 }  // namespace petra

@@ -3,9 +3,8 @@
 // rock proposals over the whole pair as the rover would make them
 // (algo/propose/proposer, docs/proposals.md): writes DIR/proposals.json (the
 // issue-26 contract) and DIR/proposals.png, and prints the ranked list.
-// Chain defaults as `petra eval` (PipelineParams{}, one 3-D point per ROI
-// pixel); candidate ROIs up to the flight default 512 x 384; the arm's
-// reach from the stowed pose.
+// Chain defaults as `petra eval` (sim/eval/propose_budget); the arm's reach
+// from the stowed pose.
 #include <time.h>
 
 #include <algorithm>
@@ -20,14 +19,13 @@
 #include "sim/cli/commands.hpp"
 #include "sim/eval/proposals_json.hpp"
 #include "sim/eval/proposals_picture.hpp"
+#include "sim/eval/propose_budget.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/io/parse_roi.hpp"
 
 namespace petra::cli {
 
 namespace {
-
-constexpr int kRoiWidth = 512, kRoiHeight = 384;  // SELECT_ROI's flight default
 
 struct ProposeOptions {
   std::string calib, left, right, region, weights, out;
@@ -58,29 +56,6 @@ Result<ProposalWeights> parse_weights(const std::string& text) {
     return Error::make(Errc::invalid_argument, "--weights '%s': expected g,r,c,s (4 numbers)",
                        text.c_str());
   return ProposalWeights{v[0], v[1], v[2], v[3]};
-}
-
-// The rectified box any kRoiWidth x kRoiHeight ROI maps to: its largest over
-// the image's corners and centre, plus a pixel.
-PipelineBudget chain_budget(const StereoRig& rig, const RectifiedPair& pair,
-                            const PipelineParams& params) {
-  const int W = rig.left.width, H = rig.left.height;
-  const int w = std::min(kRoiWidth, W), h = std::min(kRoiHeight, H);
-  PipelineBudget b;
-  b.image_width = W;
-  b.image_height = H;
-  int bw = w, bh = h;
-  for (const auto& [x, y] :
-       {std::pair{0, 0}, {W - w, 0}, {0, H - h}, {W - w, H - h}, {(W - w) / 2, (H - h) / 2}}) {
-    auto r = roi_to_rectified(rig.left, pair.left, Rect{x, y, w, h}, W, H);
-    if (r) bw = std::max(bw, r->w), bh = std::max(bh, r->h);
-  }
-  b.max_roi_width = std::min(bw + 1, W);
-  b.max_roi_height = std::min(bh + 1, H);
-  b.max_points =
-      static_cast<std::size_t>(b.max_roi_width) * static_cast<std::size_t>(b.max_roi_height);
-  b.max_disparities = params.range.search_max_px - params.range.search_min_px + 1;
-  return b;
 }
 
 void print_list(const ProposalList& list, const DetectionResult& d, int factor, double ms) {
@@ -124,13 +99,10 @@ int run(const ProposeOptions& o) {
   if (!right) return fail("propose", right.error().message);
   const Status valid = validate(req, left->width, left->height);
   if (!valid.ok()) return fail("propose", valid.error().message);
-  auto geometry = rectify_geometry(*rig, rig->left.width, rig->left.height);
-  if (!geometry) return fail("propose", geometry.error().message);
   const PipelineParams params;
-  ProposerBudget budget;
-  budget.pipeline = chain_budget(*rig, *geometry, params);
-  budget.max_roi_width = std::min(kRoiWidth, left->width);
-  budget.max_roi_height = std::min(kRoiHeight, left->height);
+  auto sized = eval::ground_proposer_budget(*rig, params);
+  if (!sized) return fail("propose", sized.error().message);
+  const ProposerBudget budget = *sized;
   std::vector<std::byte> block(Proposer::arena_bytes(budget, params));
   Arena arena(block);
   auto proposer = Proposer::create(*rig, budget, params, arm::rover_arm_geometry(),
