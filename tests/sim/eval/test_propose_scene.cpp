@@ -28,13 +28,13 @@ const test::RenderedScene& fixture() {
   return f;
 }
 
-struct Run {
+struct ProposerRun {
   std::vector<std::byte> block;
   Arena arena;
   Result<Proposer> proposer = Error::make(Errc::not_ready, "not created");
 };
 
-void create(const test::RenderedScene& f, Run& run) {
+void create(const test::RenderedScene& f, ProposerRun& run) {
   auto budget = eval::ground_proposer_budget(f.rig, PipelineParams{});
   ASSERT_TRUE(budget.ok()) << budget.error().message;
   run.block.resize(Proposer::arena_bytes(*budget, PipelineParams{}));
@@ -60,7 +60,7 @@ FacetError nearest_facet(const sim::TruthFile& truth, const GrindPlane& p) {
 TEST(ProposeScene, TheTargetRockIsOfferedWithATruePlane) {
   const test::RenderedScene& f = fixture();
   ASSERT_TRUE(f.products.truth.click.has_value());
-  Run run;
+  ProposerRun run;
   create(f, run);
   ASSERT_TRUE(run.proposer.ok());
   auto list = run.proposer->run(f.products.left.image.view(), f.products.right.image.view(),
@@ -87,19 +87,6 @@ TEST(ProposeScene, TheTargetRockIsOfferedWithATruePlane) {
     EXPECT_LT(e.distance_mm, 2.0) << "plane " << k + 1;
   }
   EXPECT_GE(offered, 1);
-}
-
-TEST(ProposeScene, ARequestIsRefusedByFieldName) {
-  const test::RenderedScene& f = fixture();
-  Run run;
-  create(f, run);
-  ASSERT_TRUE(run.proposer.ok());
-  ProposalRequest bad;
-  bad.region = {900, 700, 200, 100};  // past the image's corner
-  auto r = run.proposer->run(f.products.left.image.view(), f.products.right.image.view(), bad,
-                             arm::stow_pose(), {});
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(std::string(r.error().message).find("region"), std::string::npos);
 }
 
 }  // namespace
