@@ -147,6 +147,10 @@ void BM_Detect(benchmark::State& state) {
     benchmark::DoNotOptimize(*d);
     state.counters["rocks"] = d->count;
   }
+  state.counters["detection_MiB"] =
+      static_cast<double>(detection_arena_bytes(db)) / (1024.0 * 1024.0);
+  state.counters["chain_run_MiB"] =
+      static_cast<double>(Pipeline::run_bytes(f.budget.pipeline, f.params)) / (1024.0 * 1024.0);
 }
 
 }  // namespace
