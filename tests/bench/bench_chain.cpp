@@ -29,6 +29,7 @@
 #include "fsw/flight_pipeline_job.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/score/truth_file.hpp"
+#include "tests/bench/bench_common.hpp"
 #include "tests/support/cached_dir.hpp"
 
 namespace {
@@ -39,22 +40,15 @@ namespace fs = std::filesystem;
 constexpr int kRoiWidth = 512, kRoiHeight = 384;  // the flight default ROI budget
 constexpr int kSceneIndex = 0;                    // realistic set entry: clear, blocky, 2 faces
 
-std::uint64_t thread_cpu_ns(void*) {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<std::uint64_t>(ts.tv_sec) * 1000000000ull +
-         static_cast<std::uint64_t>(ts.tv_nsec);
-}
+using bench::thread_cpu_ns;
 
 [[noreturn]] void die(const std::string& what) {
-  std::fprintf(stderr, "bench_chain: %s\n", what.c_str());
-  std::exit(1);
+  bench::die("bench_chain", what);
 }
 
 template <class T>
 T must(Result<T> r, const std::string& what) {
-  if (!r) die(what + ": " + r.error().message);
-  return std::move(*r);
+  return bench::must("bench_chain", std::move(r), what);
 }
 
 struct Case {

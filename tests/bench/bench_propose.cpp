@@ -12,12 +12,11 @@
 // each), or read from PETRA_REAL_SET/scene_NN when set.
 #include <benchmark/benchmark.h>
 
-#include <time.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -25,6 +24,7 @@
 #include "algo/propose/proposer.hpp"
 #include "fsw/flight_pipeline_job.hpp"
 #include "sim/io/image_io.hpp"
+#include "tests/bench/bench_common.hpp"
 #include "tests/support/cached_dir.hpp"
 
 namespace {
@@ -32,22 +32,15 @@ namespace {
 using namespace petra;
 namespace fs = std::filesystem;
 
-std::uint64_t thread_cpu_ns(void*) {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<std::uint64_t>(ts.tv_sec) * 1000000000ull +
-         static_cast<std::uint64_t>(ts.tv_nsec);
-}
+using bench::thread_cpu_ns;
 
 [[noreturn]] void die(const std::string& what) {
-  std::fprintf(stderr, "bench_propose: %s\n", what.c_str());
-  std::exit(1);
+  bench::die("bench_propose", what);
 }
 
 template <class T>
 T must(Result<T> r, const std::string& what) {
-  if (!r) die(what + ": " + r.error().message);
-  return std::move(*r);
+  return bench::must("bench_propose", std::move(r), what);
 }
 
 struct Pair {
@@ -79,38 +72,42 @@ const Pair& scene(int index) {
   return pairs.emplace(index, std::move(p)).first->second;
 }
 
+// The proposer as the flight service would size it, in its own arena.
 struct Flight {
   ProposerBudget budget;
   PipelineParams params;
+  std::vector<std::byte> block;
+  Arena arena;
+  Proposer proposer;
 };
 
-Flight flight(const Pair& p) {
+std::unique_ptr<Flight> flight(const Pair& p) {
   fsw::JobBudget job;
   job.max_width = p.left.width;
   job.max_height = p.left.height;
   job.rig = &p.rig;
   const fsw::FlightPipelineJob::Sizing s = fsw::FlightPipelineJob::sizing(job);
-  Flight f;
-  f.budget.pipeline = s.pipeline;
-  f.budget.max_roi_width = s.roi_width;
-  f.budget.max_roi_height = s.roi_height;
-  f.params = fsw::FlightPipelineJob::pipeline_params(fsw::FlightPipelineJob::default_settings());
+  auto f = std::make_unique<Flight>();
+  f->budget.pipeline = s.pipeline;
+  f->budget.max_roi_width = s.roi_width;
+  f->budget.max_roi_height = s.roi_height;
+  f->params = fsw::FlightPipelineJob::pipeline_params(fsw::FlightPipelineJob::default_settings());
+  f->block.resize(Proposer::arena_bytes(f->budget, f->params));
+  f->arena = Arena(f->block);
+  f->proposer = must(Proposer::create(p.rig, f->budget, f->params, arm::rover_arm_geometry(),
+                                      arm::default_joint_limits(), f->arena),
+                     "Proposer::create");
   return f;
 }
 
 void BM_Propose(benchmark::State& state) {
   const Pair& p = scene(static_cast<int>(state.range(0)));
-  const Flight f = flight(p);
-  std::vector<std::byte> block(Proposer::arena_bytes(f.budget, f.params));
-  Arena arena(block);
-  auto proposer = must(Proposer::create(p.rig, f.budget, f.params, arm::rover_arm_geometry(),
-                                        arm::default_joint_limits(), arena),
-                       "Proposer::create");
+  const std::unique_ptr<Flight> f = flight(p);
   const StepClock clock{thread_cpu_ns, nullptr};
   ProposalList last;
   for (auto _ : state) {
     auto r =
-        proposer.run(p.left.view(), p.right.view(), ProposalRequest{}, arm::stow_pose(), clock);
+        f->proposer.run(p.left.view(), p.right.view(), ProposalRequest{}, arm::stow_pose(), clock);
     if (!r) {
       state.SkipWithError(r.error().message);
       return;
@@ -122,24 +119,19 @@ void BM_Propose(benchmark::State& state) {
   for (int i = 0; i < last.count; ++i) offered += last.items[i].note == ProposalNote::ok ? 1 : 0;
   state.counters["candidates"] = last.candidates;
   state.counters["offered"] = offered;
-  state.counters["arena_MiB"] = static_cast<double>(block.size()) / (1024.0 * 1024.0);
+  state.counters["arena_MiB"] = static_cast<double>(f->block.size()) / (1024.0 * 1024.0);
 }
 
 void BM_Detect(benchmark::State& state) {
   const Pair& p = scene(static_cast<int>(state.range(0)));
-  const Flight f = flight(p);
-  std::vector<std::byte> block(Proposer::arena_bytes(f.budget, f.params));
-  Arena arena(block);
-  auto proposer = must(Proposer::create(p.rig, f.budget, f.params, arm::rover_arm_geometry(),
-                                        arm::default_joint_limits(), arena),
-                       "Proposer::create");
+  const std::unique_ptr<Flight> f = flight(p);
   DetectionBudget db;
   db.image_width = p.left.width;
   db.image_height = p.left.height;
-  db.factor = f.budget.detection_factor;
+  db.factor = f->budget.detection_factor;
   for (auto _ : state) {
-    auto d = detect_rocks(proposer.pipeline().rectifier(), p.left.view(), p.right.view(), {}, db,
-                          DetectionParams{}, arena, {});
+    auto d = detect_rocks(f->proposer.pipeline().rectifier(), p.left.view(), p.right.view(), {}, db,
+                          DetectionParams{}, f->arena, {});
     if (!d) {
       state.SkipWithError(d.error().message);
       return;
@@ -150,7 +142,7 @@ void BM_Detect(benchmark::State& state) {
   state.counters["detection_MiB"] =
       static_cast<double>(detection_arena_bytes(db)) / (1024.0 * 1024.0);
   state.counters["chain_run_MiB"] =
-      static_cast<double>(Pipeline::run_bytes(f.budget.pipeline, f.params)) / (1024.0 * 1024.0);
+      static_cast<double>(Pipeline::run_bytes(f->budget.pipeline, f->params)) / (1024.0 * 1024.0);
 }
 
 }  // namespace
