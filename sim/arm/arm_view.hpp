@@ -24,7 +24,7 @@ struct ArmViewInput {
   std::vector<OutputPlane> planes;
   std::size_t chosen = 0;
   std::optional<GroundPlane> ground;
-  double standoff_mm = 50.0;
+  double standoff_mm = arm::kDefaultStandoffMm;
   arm::JointVector start = arm::stow_pose();
 };
 

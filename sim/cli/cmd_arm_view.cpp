@@ -50,7 +50,7 @@ void add_arm_view(CLI::App& app, Outcome& outcome) {
   static std::string planes_path, centroid_text, normal_text, ground_text, mount_text, from_text,
       out_path;
   static int plane_number = 1;
-  static double standoff_mm = 50.0;
+  static double standoff_mm = arm::kDefaultStandoffMm;
   auto* planes_opt =
       cmd->add_option("--planes", planes_path, "planes.json (grind planes, world frame)");
   cmd->add_option("--plane", plane_number, "which plane of planes.json, 1 = best (default 1)");

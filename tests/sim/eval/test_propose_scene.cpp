@@ -2,7 +2,8 @@
 // touching neighbour rocks (realistic set entry 25: `petra sim scene --real
 // --set-index 25`, docs/scene.md "Neighbours"), the whole 1024 x 768 pair, no
 // ROI or click given: the target rock is detected and offered, and its
-// offered plane lies within 3 deg and 2 mm of one of its truth facets.
+// offered plane lies within 3 deg and 2 mm of one of its truth facets; sent
+// back as SELECT_ROI, the proposal gives the same planes.
 // Rendered with fewer edge samples than the set so the check build renders it
 // in seconds (as test_eval_roi_fill).
 #include <gtest/gtest.h>
@@ -87,6 +88,27 @@ TEST(ProposeScene, TheTargetRockIsOfferedWithATruePlane) {
     EXPECT_LT(e.distance_mm, 2.0) << "plane " << k + 1;
   }
   EXPECT_GE(offered, 1);
+  // Sent back as SELECT_ROI (its roi, click and planes_c) to the chain with
+  // the same budget: the same planes, bit for bit.
+  auto budget = eval::ground_proposer_budget(f.rig, PipelineParams{});
+  ASSERT_TRUE(budget.ok());
+  std::vector<std::byte> block(Pipeline::arena_bytes(budget->pipeline, PipelineParams{}));
+  Arena arena(block);
+  auto chain = Pipeline::create(f.rig, budget->pipeline, PipelineParams{}, arena);
+  ASSERT_TRUE(chain.ok()) << chain.error().message;
+  PipelineRequest select;
+  select.roi = target->rock.roi;
+  select.has_click = true;
+  select.click_u = target->rock.click_u;
+  select.click_v = target->rock.click_v;
+  select.planes = target->planes_c;
+  auto again = chain->run(f.products.left.image.view(), f.products.right.image.view(), select, {});
+  ASSERT_TRUE(again.ok()) << again.error().message;
+  const GrindResult& g = again->result.planes;
+  for (int k = 0; k < std::min(g.accepted, target->plane_count); ++k) {
+    EXPECT_EQ(g.planes[k].normal, target->planes[k].normal) << "plane " << k + 1;
+    EXPECT_EQ(g.planes[k].centroid_mm, target->planes[k].centroid_mm) << "plane " << k + 1;
+  }
 }
 
 }  // namespace
