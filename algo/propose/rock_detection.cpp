@@ -71,8 +71,8 @@ Status validate(const DetectionParams& p) {
   PETRA_TRY(validate(p.ground));
   PETRA_TRY(validate(p.ground_normals));
   if (!(p.band_rms >= 0) || !(p.min_band_mm >= 0) || !(p.band_sigmas >= 0) ||
-      !(p.min_height_mm >= 0) || !(p.min_size_mm >= 0) || p.min_pixels < 1 || !(p.pad >= 0) ||
-      p.min_pad_px < 0)
+      !(p.max_range_mm > 0) || !(p.min_height_mm >= 0) || !(p.min_size_mm >= 0) ||
+      p.min_pixels < 1 || !(p.pad >= 0) || p.min_pad_px < 0)
     return Error::make(Errc::invalid_argument,
                        "detection: band, height, size, pixels and padding must be >= 0 "
                        "(min_pixels >= 1)");
@@ -233,10 +233,11 @@ Result<GroundResultT<double>> ground_step(const Rectifier& rectifier, const Grid
   const double band = std::max(p.min_band_mm, p.band_rms * g->rms_mm);
   const double per_r2 =
       p.band_sigmas * p.ground.sigma_disparity_px / (noise.focal_px * noise.baseline_mm);
+  const double max_r2 = p.max_range_mm * p.max_range_mm;
   for (std::size_t i = 0; i < labels.size(); ++i) {
     const double r2 = (c.xyz[i] - camera).squaredNorm();
     if (labels[i] == PointClass::rock &&
-        !(g->plane.distance(c.xyz[i]) > std::max(band, per_r2 * r2)))
+        (!(g->plane.distance(c.xyz[i]) > std::max(band, per_r2 * r2)) || r2 > max_r2))
       labels[i] = PointClass::ground;
   }
   return *g;

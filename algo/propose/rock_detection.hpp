@@ -10,8 +10,8 @@
 //   normals from the point grid's neighbours)
 //   -> rocks: 8-connected regions of the grid whose points stand more than
 //   max(min_band_mm, band_rms x ground RMS, band_sigmas x sigma_Z(range))
-//   above the ground, each kept when its highest interior point (all 8
-//   neighbours in the region: never the silhouette's mismatched fringe) is
+//   above the ground and lie within max_range_mm of the left camera, each kept when its highest
+//   interior point (all 8 neighbours in the region: never the silhouette's mismatched fringe) is
 //   min_height_mm above the ground, its largest horizontal extent is at
 //   least min_size_mm and it holds min_pixels.
 // Each rock: its ROI in original left pixels (the interior's box padded so
@@ -60,9 +60,13 @@ struct DetectionParams {
     return g;
   }();
   GroundNormalParams ground_normals;
-  double band_rms = 3.0;       // a rock point: this many ground RMS above the plane ...
-  double min_band_mm = 4.0;    // ... and at least this far
-  double band_sigmas = 3.0;    // ... and this many of the point's own depth noise sigma_Z
+  double band_rms = 3.0;     // a rock point: this many ground RMS above the plane ...
+  double min_band_mm = 4.0;  // ... and at least this far
+  double band_sigmas = 3.0;  // ... and this many of the point's own depth noise sigma_Z
+  // Rock points no farther than this from the left camera: the arm reaches
+  // about 0.8 m from its base beside the cameras (docs/arm.md); beyond, the
+  // 1/4 resolution's depth noise passes the far field's relief for rocks.
+  double max_range_mm = 1500.0;
   double min_height_mm = 8.0;  // a rock's highest point above the ground
   double min_size_mm = 20.0;   // its largest horizontal extent (the grinder's disc)
   long min_pixels = 12;        // at the detection's resolution
