@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace petra {
 
@@ -256,8 +257,10 @@ const char* empty_reason(const RockProposal* items, int n) {
 void Proposer::rank(const ProposalRequest& request, int evaluated) {
   int order[kMaxProposals];
   for (int i = 0; i < evaluated; ++i) order[i] = i;
-  std::stable_sort(order, order + evaluated,
-                   [&](int a, int b) { return ranks_before(evaluated_[a], evaluated_[b]); });
+  // Insertion sort: stable, at most kMaxProposals, no heap (std::stable_sort takes a buffer).
+  for (int i = 1; i < evaluated; ++i)
+    for (int j = i; j > 0 && ranks_before(evaluated_[order[j]], evaluated_[order[j - 1]]); --j)
+      std::swap(order[j], order[j - 1]);
   list_ = ProposalList{};
   list_.candidates = detection_.count;
   list_.count = std::min(evaluated, request.max_proposals);

@@ -3,7 +3,8 @@
 // --set-index 25`, docs/scene.md "Neighbours"), the whole 1024 x 768 pair, no
 // ROI or click given: the target rock is detected and offered, and its
 // offered plane lies within 3 deg and 2 mm of one of its truth facets; sent
-// back as SELECT_ROI, the proposal gives the same planes.
+// back as SELECT_ROI, the proposal gives the same planes; the run takes no
+// heap.
 // Rendered with fewer edge samples than the set so the check build renders it
 // in seconds (as test_eval_roi_fill).
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@
 #include "sim/eval/proposals_json.hpp"
 #include "sim/eval/propose_budget.hpp"
 #include "sim/scene/scene_set.hpp"
+#include "tests/support/heap_counter.hpp"
 #include "tests/support/rendered_scene.hpp"
 
 namespace petra {
@@ -64,8 +66,13 @@ TEST(ProposeScene, TheTargetRockIsOfferedWithATruePlane) {
   ProposerRun run;
   create(f, run);
   ASSERT_TRUE(run.proposer.ok());
-  auto list = run.proposer->run(f.products.left.image.view(), f.products.right.image.view(),
-                                ProposalRequest{}, arm::stow_pose(), {});
+  Result<const ProposalList*> list = Error::make(Errc::not_ready, "not run");
+  {
+    const test::HeapScope heap;  // no heap after create
+    list = run.proposer->run(f.products.left.image.view(), f.products.right.image.view(),
+                             ProposalRequest{}, arm::stow_pose(), {});
+    EXPECT_EQ(heap.allocations(), 0u);
+  }
   ASSERT_TRUE(list.ok()) << list.error().message;
   const ProposalList& l = **list;
   ASSERT_GE(l.count, 1) << l.empty_reason;
