@@ -137,8 +137,8 @@ Result<Proposer> Proposer::create(const StereoRig& rig, const ProposerBudget& bu
 
 namespace {
 
-// The candidate's ROI cut to at most max_w x max_h around its centre, the
-// click kept inside, within the image.
+// The candidate's ROI cut to at most max_w x max_h (>= 16) around its
+// centre, the click kept 8 px inside, within the image.
 Rect cut_roi(Rect roi, int click_u, int click_v, int max_w, int max_h, int W, int H) {
   auto cut = [](int x, int w, int limit, int click, int image) {
     if (w <= limit) return std::pair{x, w};
@@ -168,8 +168,8 @@ PipelineRequest Proposer::chain_request(const RockCandidate& rock) const {
   for (int attempt = 0; attempt < 4; ++attempt) {
     auto r = pipeline_.rectifier().roi_to_rectified(StereoSide::left, q.roi);
     if (!r || (r->w <= pb.max_roi_width && r->h <= pb.max_roi_height)) break;
-    max_w = std::min(q.roi.w, q.roi.w - (r->w - pb.max_roi_width) - 1);
-    max_h = std::min(q.roi.h, q.roi.h - (r->h - pb.max_roi_height) - 1);
+    max_w = std::max(16, std::min(q.roi.w, q.roi.w - (r->w - pb.max_roi_width) - 1));
+    max_h = std::max(16, std::min(q.roi.h, q.roi.h - (r->h - pb.max_roi_height) - 1));
     q.roi = cut_roi(q.roi, q.click_u, q.click_v, max_w, max_h, pb.image_width, pb.image_height);
   }
   return q;
@@ -181,8 +181,7 @@ namespace {
 // the refused ones that say why (never the surplus: qualified, but c larger did).
 int copy_planes(const GrindResult& g, GrindPlane (&out)[kMaxProposalPlanes]) {
   int n = 0;
-  for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k)
-    if (k < g.accepted) out[n++] = g.planes[k];
+  for (int k = 0; k < g.accepted && n < kMaxProposalPlanes; ++k) out[n++] = g.planes[k];
   for (int k = g.accepted; k < g.count && n < kMaxProposalPlanes; ++k)
     if (g.planes[k].verdict != PlaneVerdict::surplus) out[n++] = g.planes[k];
   return n;
