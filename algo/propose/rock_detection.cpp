@@ -175,20 +175,25 @@ Result<GridCloud> grid_cloud(const Rectifier& rectifier, ConstDisparityMap dispa
   return c;
 }
 
-// Normals from the grid's four neighbours (central differences), towards
-// the camera; zero where a neighbour has no point.
+// Normals from the grid's neighbours kNormalReach pixels away (central
+// differences over 2 kNormalReach + 1 grid pixels: the pebbles' relief at one
+// pixel's spacing would lean most near-ground normals past the check's
+// angle), towards the camera; zero where a neighbour has no point.
+constexpr int kNormalReach = 2;
+
 Result<std::span<Eigen::Vector3d>> grid_normals(const GridCloud& c, const Grid& g,
                                                 const Eigen::Vector3d& camera, Arena& arena) {
   auto normals = arena.allocate<Eigen::Vector3d>(c.xyz.size(), "detection: normals");
   if (!normals) return normals.error();
+  const int k = kNormalReach;
   for (std::size_t i = 0; i < c.xyz.size(); ++i) {
     const int x = c.pixels[i].u, y = c.pixels[i].v;
-    if (x < 1 || y < 1 || x + 1 >= g.w || y + 1 >= g.h) continue;
-    const std::int32_t l = c.at(x - 1, y), r = c.at(x + 1, y), u = c.at(x, y - 1),
-                       d = c.at(x, y + 1);
+    if (x < k || y < k || x + k >= g.w || y + k >= g.h) continue;
+    const std::int32_t l = c.at(x - k, y), r = c.at(x + k, y), u = c.at(x, y - k),
+                       d = c.at(x, y + k);
     if (l == kNone || r == kNone || u == kNone || d == kNone) continue;
-    const auto p = [&](std::int32_t k) -> const Eigen::Vector3d& {
-      return c.xyz[static_cast<std::size_t>(k)];
+    const auto p = [&](std::int32_t j) -> const Eigen::Vector3d& {
+      return c.xyz[static_cast<std::size_t>(j)];
     };
     Eigen::Vector3d n = (p(r) - p(l)).cross(p(d) - p(u));
     if (!(n.norm() > 0)) continue;
