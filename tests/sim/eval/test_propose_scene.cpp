@@ -4,7 +4,7 @@
 // ROI or click given: the target rock is detected and offered, and its
 // offered plane lies within 3 deg and 2 mm of one of its truth facets; sent
 // back as SELECT_ROI, the proposal gives the same planes; the run takes no
-// heap.
+// heap; a region of bare ground gives an empty list with its reason.
 // Rendered with fewer edge samples than the set so the check build renders it
 // in seconds (as test_eval_roi_fill).
 #include <gtest/gtest.h>
@@ -116,6 +116,15 @@ TEST(ProposeScene, TheTargetRockIsOfferedWithATruePlane) {
     EXPECT_EQ(g.planes[k].normal, target->planes[k].normal) << "plane " << k + 1;
     EXPECT_EQ(g.planes[k].centroid_mm, target->planes[k].centroid_mm) << "plane " << k + 1;
   }
+  // Last (the list is the proposer's, rewritten by each run): a region of bare near ground (below
+  // the rocks) gives an empty list with its reason.
+  ProposalRequest bare;
+  bare.region = {450, 500, 400, 268};
+  auto none = run.proposer->run(f.products.left.image.view(), f.products.right.image.view(), bare,
+                                arm::stow_pose(), {});
+  ASSERT_TRUE(none.ok()) << none.error().message;
+  EXPECT_EQ((*none)->count, 0);
+  EXPECT_STREQ((*none)->empty_reason, "no rock stands out of the ground");
 }
 
 }  // namespace
