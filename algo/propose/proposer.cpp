@@ -189,9 +189,30 @@ int copy_planes(const GrindResult& g, GrindPlane (&out)[kMaxProposalPlanes]) {
 
 }  // namespace
 
-Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, const RockCandidate& rock,
+// Later candidates whose click lies on this run's rock points (within 3
+// rectified px): the same rock, or a touching one the chain took with it
+// (ground-plane segmentation keeps everything standing out of the ROI's
+// ground); evaluating them again would offer the same planes twice.
+void Proposer::mark_covered(int index, const PipelineOutput& out) {
+  const ReconstructionOutput& r = out.result;
+  for (int j = index + 1; j < detection_.count; ++j) {
+    const RockCandidate& k = detection_.rocks[j];
+    auto c =
+        pipeline_.rectifier().to_rectified(StereoSide::left, {k.click_u + 0.0, k.click_v + 0.0});
+    if (covered_[j] || !c) continue;
+    const long u = std::lround(c->x()), v = std::lround(c->y());
+    if (!out.roi_rectified.contains(static_cast<int>(u), static_cast<int>(v))) continue;
+    for (std::size_t p = 0; p < r.pixels.size() && !covered_[j]; ++p) {
+      const long du = r.pixels[p].u - u, dv = r.pixels[p].v - v;
+      covered_[j] = r.point_class[p] == PointClass::rock && du * du + dv * dv <= 9;
+    }
+  }
+}
+
+Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
                           const arm::JointVector& current, const ProposalWeights& weights,
                           const StepClock& clock, RockProposal& out) {
+  const RockCandidate& rock = detection_.rocks[index];
   const PipelineRequest q = chain_request(rock);
   out = RockProposal{};
   out.rock = rock;
@@ -204,6 +225,7 @@ Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, const RockC
     out.chain_error = r.error();
     return {};
   }
+  mark_covered(index, *r);
   const GrindResult& g = r->result.planes;
   out.plane_count = copy_planes(g, out.planes);
   const GrindPlane* best = nullptr;
@@ -280,10 +302,12 @@ Result<const ProposalList*> Proposer::run(ConstGray8View left, ConstGray8View ri
                         params_.detection, *arena_, clock);
   if (!d) return d.error();
   detection_ = *d;
-  const int evaluated = std::min(detection_.count, budget_.max_evaluated);
-  for (int i = 0; i < evaluated; ++i)
-    PETRA_TRY(
-        evaluate(left, right, detection_.rocks[i], current, request.weights, clock, evaluated_[i]));
+  int evaluated = 0;
+  for (bool& c : covered_) c = false;
+  for (int i = 0; i < detection_.count && evaluated < budget_.max_evaluated; ++i) {
+    if (covered_[i]) continue;
+    PETRA_TRY(evaluate(left, right, i, current, request.weights, clock, evaluated_[evaluated++]));
+  }
   rank(request, evaluated);
   return &list_;
 }

@@ -1,8 +1,10 @@
 // Rock proposals over a whole stereo pair (issue 26; docs/proposals.md):
 //   detection (algo/propose/rock_detection: the ground over the field of view,
 //   the rocks standing out of it) -> each candidate, largest first, up to
-//   budget.max_evaluated, through the chain (algo/chain/pipeline: its ROI
-//   clipped to the budget's ROI, its click, c = kProposalPlanesC, DP matcher)
+//   budget.max_evaluated, skipping those whose click lies on an earlier
+//   run's rock points (a touching rock the chain already took), through the chain
+//   (algo/chain/pipeline: its ROI clipped to the budget's ROI, its click, c = kProposalPlanesC, DP
+//   matcher)
 //   -> each accepted plane's approach (algo/arm plan_approach from `current`,
 //   standoff arm::kDefaultStandoffMm) -> the score's terms and weighted total
 //   -> ranking (offered proposals first, then by total) and truncation.
@@ -82,9 +84,10 @@ class Proposer {
   PipelineRequest chain_request(const RockCandidate& rock) const;
 
  private:
-  Status evaluate(ConstGray8View left, ConstGray8View right, const RockCandidate& rock,
+  Status evaluate(ConstGray8View left, ConstGray8View right, int index,
                   const arm::JointVector& current, const ProposalWeights& weights,
                   const StepClock& clock, RockProposal& out);
+  void mark_covered(int index, const PipelineOutput& out);
   void rank(const ProposalRequest& request, int evaluated);
 
   Pipeline pipeline_;
@@ -95,6 +98,7 @@ class Proposer {
   arm::ArmGeometry geometry_;
   arm::JointLimits limits_;
   DetectionResult detection_;
+  bool covered_[kMaxRockCandidates] = {};  // on an earlier candidate's rock: not evaluated
   RockProposal evaluated_[kMaxProposals];
   ProposalList list_;
 };
