@@ -261,6 +261,8 @@ Status FlightPipelineJob::create(const Settings& settings) {
 Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
                               const std::atomic<bool>& cancel, EvalOutput& out) {
   out.failed_step = Step::RECTIFY;
+  if (request.kind == JobKind::PROPOSE)  // can_propose() is false: the executive refuses first
+    return Error::make(Errc::not_ready, "no rock proposer in this job yet");
   if (rig_ == nullptr)
     return Error::make(Errc::not_ready, "no calib.json configured: the pipeline needs the rig");
   if (&arena != arena_)

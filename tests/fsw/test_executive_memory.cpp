@@ -28,6 +28,9 @@ TEST(ExecutiveMemory, ThousandCommandsOfEveryKindAllocateNothingAfterInit) {
   p.normal = {0, 0, -1};
   (void)o.planes.push_back(p);
   h.job.script = o;
+  h.job.proposals.count = 1;  // PROPOSE lists one rock: packet, picture, pick
+  h.job.proposals.items[0].rock = RockCandidate{Rect{10, 10, 64, 48}, 40, 30, 20.0, 80.0, 500};
+  h.job.proposals.items[0].planes_c = 2;
   ASSERT_TRUE(h.boot().ok());
 
   // Every packet is built before measuring (the ground side may allocate).
@@ -39,6 +42,10 @@ TEST(ExecutiveMemory, ThousandCommandsOfEveryKindAllocateNothingAfterInit) {
       if (code == FunctionCode::SELECT_ROI) args = roi(10, 10, 64, 48, 2);
       if (code == FunctionCode::SET_PARAM) args = cmd::SetParamArgs{5, 0.2};
       if (code == FunctionCode::GET_PARAM) args = cmd::GetParamArgs{1};
+      if (code == FunctionCode::PROPOSE) args = cmd::ProposeArgs{0, 0, 0, 0, 0, 2, 1, 1, 0, 0};
+      // Picks name the list of the PROPOSE before them (ids count from 1 at boot).
+      if (code == FunctionCode::SELECT_PROPOSAL)
+        args = cmd::SelectProposalArgs{static_cast<std::uint32_t>(round + 1), 1};
       if (code == FunctionCode::SET_MODE)
         args = cmd::SetModeArgs{static_cast<std::uint8_t>(round % 2 ? 1 : 5)};
       auto pk = h.packet(h.make(code, args));
