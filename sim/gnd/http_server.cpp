@@ -14,6 +14,7 @@
 #include "cmd/commands.hpp"
 #include "sim/gnd/command_request.hpp"
 #include "sim/gnd/json_text.hpp"
+#include "sim/gnd/proposal_pick.hpp"
 #include "sim/gnd/telemetry_history.hpp"
 
 namespace petra::gnd {
@@ -21,7 +22,7 @@ namespace petra::gnd {
 namespace {
 
 std::uint8_t product_kind(const std::string& name) {
-  for (std::uint8_t k = 1; k <= 4; ++k)
+  for (std::uint8_t k = 1; k <= 5; ++k)
     if (name == ground::product_name(k)) return k;
   return 0;
 }
@@ -166,6 +167,18 @@ struct HttpServer::Impl {
           "application/json");
     });
 
+    server.Post("/api/proposals/pick", [this](const httplib::Request& req, httplib::Response& res) {
+      const std::optional<tlm::Proposals> list = station.last_proposals();
+      auto command = parse_pick_request(req.body, list ? &*list : nullptr);
+      if (!command) return answer_error(res, 400, command.error().message);
+      auto counter = station.send(*command);
+      if (!counter) return answer_error(res, 503, counter.error().message);
+      const cmd::CommandDesc* d = cmd::find_command(static_cast<std::uint8_t>(command->code));
+      res.set_content(
+          "{\"command\":" + json_string(d->name) + ",\"counter\":" + std::to_string(*counter) + "}",
+          "application/json");
+    });
+
     server.Get("/api/arm", [this](const httplib::Request&, httplib::Response& res) {
       res.set_content(station.arm_model().geometry_json(), "application/json");
     });
@@ -182,8 +195,8 @@ struct HttpServer::Impl {
       if (kind == 0)
         return answer_error(res, 400,
                             "product: '" + std::string(req.matches[1]) +
-                                "' is not left_image, disparity, overlay or "
-                                "point_cloud");
+                                "' is not left_image, disparity, overlay, "
+                                "point_cloud or proposals");
       auto p = station.product(kind);
       if (!p) return answer_error(res, 404, "product: none received yet");
       res.set_header("Cache-Control", "no-store");
