@@ -73,8 +73,8 @@ class EvaluationService final : public EvaluationPort {
   tlm::EvalResult result_summary() const;
   void push_planes(const EvalOutput& out, tlm::TmTime t);
   void stage_products(const EvalOutput& out);
-  bool publish_proposals();  // false: the run failed
-  void stage_picture(const ProposalList& list);
+  bool publish_proposals();                     // false: the run failed
+  int stage_picture(const ProposalList& list);  // the step, 0: not staged
 
   EvaluationWiring w_;
   PipelineRunner runner_;

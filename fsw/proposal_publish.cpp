@@ -75,8 +75,8 @@ bool EvaluationService::publish_proposals() {
                      static_cast<std::int32_t>(s ? Errc::not_ready : s.code()));
     return false;
   }
+  p.picture_step = static_cast<std::uint8_t>(stage_picture(listed_));
   w_.queue->push(p, t);
-  stage_picture(listed_);
   int offered = 0;
   for (int i = 0; i < p.count; ++i) offered += offered_plane(listed_.items[i]) >= 0 ? 1 : 0;
   if (p.status == 0)
@@ -86,13 +86,16 @@ bool EvaluationService::publish_proposals() {
   return true;
 }
 
-// The left image at the thumbnails' decimation (at least half size a side), the proposals drawn.
-void EvaluationService::stage_picture(const ProposalList& list) {
+// The left image at the thumbnails' decimation (at least half size a side),
+// the proposals drawn; returns the step (0: refused, PRODUCT_REFUSED says why).
+int EvaluationService::stage_picture(const ProposalList& list) {
   const int step =
       std::max(kProposalsPictureMinStep, w_.params->get_int(ParamId::THUMB_DECIMATION));
   const ImageView<std::uint8_t> rgb =
       w_.products->stage_gray_as_rgb(ProductKind::PROPOSALS, proposal_id_, proposal_left_, step);
-  if (!rgb.empty()) draw_proposals(rgb, step, list);
+  if (rgb.empty()) return 0;
+  draw_proposals(rgb, step, list);
+  return step;
 }
 
 }  // namespace petra::fsw

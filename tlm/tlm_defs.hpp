@@ -175,6 +175,8 @@
   F(u16, candidates, 1, "", 0, 65535, "rocks detected before ranking and truncation")              \
   F(u16, region_px, 4, "px", 0, 8192, "region x, y, w, h searched (the whole image: 0, 0, W, H)")  \
   F(u32, total_ms, 1, "ms", 0, PETRA_U32_MAX, "wall time of the run")                              \
+  F(u8, picture_step, 1, "", 0, 16,                                                                \
+    "the picture (PRODUCT 5, same id): left image px = picture px x step (0: no picture)")         \
   F(u8, rank, PETRA_MAX_PROPOSALS, "", 0, PETRA_MAX_PROPOSALS, "1 = best; 0: empty slot")          \
   F(u16, roi_px, 4 * PETRA_MAX_PROPOSALS, "px", 0, 8192,                                           \
     "per proposal: ROI x, y, w, h in the left image (what SELECT_PROPOSAL selects)")               \

@@ -116,6 +116,7 @@ TEST(ExecutivePropose, RoutesToTheProposerAndDownlinksTheRankedList) {
   EXPECT_EQ(p.verdict[1], static_cast<std::uint8_t>(PlaneVerdict::too_rough));
   EXPECT_TRUE(h.has_event(static_cast<std::uint16_t>(EventId::PROPOSE_STARTED)));
   EXPECT_TRUE(h.has_event(static_cast<std::uint16_t>(EventId::PROPOSE_COMPLETED)));
+  EXPECT_EQ(p.picture_step, 4);  // THUMB_DECIMATION's default
 
   // The picture: the left image at THUMB_DECIMATION 4, rank 1's frame in its colour.
   std::map<int, std::vector<std::uint8_t>> chunks;

@@ -21,6 +21,7 @@ Proposals full_list() {
   p.candidates = 513;
   p.region_px = {16, 32, 992, 704};
   p.total_ms = 812;
+  p.picture_step = 4;
   for (std::size_t i = 0; i < PETRA_MAX_PROPOSALS; ++i) {
     const auto k = static_cast<float>(i);
     p.rank[i] = static_cast<std::uint8_t>(i + 1);
@@ -78,8 +79,8 @@ TEST(ProposalsPacket, AFullListRoundTripsFieldByField) {
 }
 
 TEST(ProposalsPacket, FitsWithinTheLargestPacketAndChecksItsRanges) {
-  // 690 payload bytes (26 + 8 x 83): within PRODUCT's (the downlink's buffers and queue slots).
-  EXPECT_EQ(Proposals::wire_bytes(), 690u);
+  // 691 payload bytes (27 + 8 x 83): within PRODUCT's (the downlink's buffers and queue slots).
+  EXPECT_EQ(Proposals::wire_bytes(), 691u);
   EXPECT_LE(Proposals::wire_bytes(), Product::wire_bytes());
   Proposals p = full_list();
   p.score_total[3] = 1.5f;  // a score is in [0, 1]
