@@ -52,10 +52,15 @@ std::size_t joint_move_sample_count(const JointMove& move, double dt_s);
 Result<std::size_t> sample_joint_move(const JointMove& move, double dt_s,
                                       std::span<JointVector> out);
 
+// The approach waypoint's distance out along the plane's normal that the
+// flight software plans with unless ARM_GOTO says otherwise (its ArmGoal
+// default), and that rock proposals judge reachability with.
+inline constexpr double kDefaultStandoffMm = 50.0;
+
 struct ApproachRequest {
   Eigen::Vector3d centroid_mm = Eigen::Vector3d::Zero();  // plane centroid, world frame
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();      // unit, out of the rock
-  double standoff_mm = 50.0;                              // (0, 500]
+  double standoff_mm = kDefaultStandoffMm;                // (0, 500]
   double max_tool_speed_mm_s = 10.0;                      // along the approach line
   double max_tool_accel_mm_s2 = 20.0;
 };

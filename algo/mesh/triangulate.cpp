@@ -5,12 +5,15 @@ namespace petra {
 Result<TriangulationStats> triangulate_disparity(const StereoRig& rig, const RectifiedPair& rect,
                                                  ConstDisparityMap disparity,
                                                  std::span<Eigen::Vector3d> xyz_mm,
-                                                 std::span<PixelPos> pixels) {
+                                                 std::span<PixelPos> pixels, int factor) {
   const std::size_t capacity = xyz_mm.size() < pixels.size() ? xyz_mm.size() : pixels.size();
   const Rect& roi = disparity.roi;
   if (roi.x < 0 || roi.y < 0 || roi.x + roi.w > 32767 || roi.y + roi.h > 32767)
     return Error::make(Errc::out_of_range, "triangulate: ROI (%d,%d %dx%d) outside 0..32767", roi.x,
                        roi.y, roi.w, roi.h);
+  if (factor < 1 || factor > 8)
+    return Error::make(Errc::invalid_argument, "triangulate: factor %d not within 1..8", factor);
+  const double f = factor, centre = 0.5 * (factor - 1);
   const Eq8Camera<double> left = eq8_camera<double>(rig.left);
   const Eq8Camera<double> right = eq8_camera<double>(rig.right);
   TriangulationStats stats;
@@ -27,9 +30,9 @@ Result<TriangulationStats> triangulate_disparity(const StereoRig& rig, const Rec
         return Error::make(Errc::capacity_exceeded,
                            "triangulate: more valid disparities than the point budget %zu",
                            capacity);
-      const double u = roi.x + x, v = roi.y + y;
+      const double u = (roi.x + x) * f + centre, v = (roi.y + y) * f + centre;
       auto ol = rectified_to_original(rig.left, rect.left, {u, v});
-      auto orr = rectified_to_original(rig.right, rect.right, {u - disparity_px(q), v});
+      auto orr = rectified_to_original(rig.right, rect.right, {u - disparity_px(q) * f, v});
       if (!ol || !orr) {
         ++stats.rejected;
         continue;

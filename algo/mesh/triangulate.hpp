@@ -98,9 +98,13 @@ struct TriangulationStats {
 // Rejected (counted, not written): d <= 0, a pixel that maps outside the
 // camera model, parallel rays. The output spans must hold every valid pixel
 // of the map; otherwise capacity_exceeded names the budget.
+// `factor` > 1: the map was matched on the pair box-downsampled by it
+// (algo/stereo/downsample): pixel x stands for the rectified pixels
+// x f .. x f + f - 1 (centre x f + (f - 1) / 2) and its disparity is d f;
+// `pixels` stay in the map's own (downsampled) coordinates.
 Result<TriangulationStats> triangulate_disparity(const StereoRig& rig, const RectifiedPair& rect,
                                                  ConstDisparityMap disparity,
                                                  std::span<Eigen::Vector3d> xyz_mm,
-                                                 std::span<PixelPos> pixels);
+                                                 std::span<PixelPos> pixels, int factor = 1);
 
 }  // namespace petra

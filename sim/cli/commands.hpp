@@ -27,6 +27,7 @@ void add_calib(CLI::App& app, Outcome& outcome);
 void add_click(CLI::App& app, Outcome& outcome);
 void add_gnd(CLI::App& app, Outcome& outcome);
 void add_eval(CLI::App& app, Outcome& outcome);
+void add_propose(CLI::App& app, Outcome& outcome);
 // Registers `name` on `app`; `petra sim arm` = add_arm_sim(sim_subcommand, outcome, "arm").
 void add_arm_sim(CLI::App& app, Outcome& outcome, const char* name = "sim-arm");
 void add_arm_view(CLI::App& app, Outcome& outcome);

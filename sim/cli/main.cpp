@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
   petra::cli::add_click(app, outcome);
   petra::cli::add_gnd(app, outcome);
   petra::cli::add_eval(app, outcome);
+  petra::cli::add_propose(app, outcome);
   petra::cli::add_arm_sim(app, outcome);
   petra::cli::add_arm_view(app, outcome);
   petra::cli::add_archive(app, outcome);

@@ -1,0 +1,289 @@
+#include "algo/propose/proposer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace petra {
+
+const char* proposal_note_name(ProposalNote note) {
+  switch (note) {
+    case ProposalNote::ok:
+      return "ok";
+    case ProposalNote::no_grindable_plane:
+      return "no_grindable_plane";
+    case ProposalNote::chain_refused:
+      return "chain_refused";
+    case ProposalNote::unreachable:
+      return "unreachable";
+  }
+  return "unknown";
+}
+
+namespace {
+
+bool weight_ok(double w) {
+  return w >= 0.0 && w <= 1.0;  // false for NaN
+}
+
+DetectionBudget detection_budget(const ProposerBudget& b, const PipelineParams& params) {
+  DetectionBudget d;
+  d.image_width = b.pipeline.image_width;
+  d.image_height = b.pipeline.image_height;
+  d.factor = b.detection_factor;
+  d.search_min_px = params.range.search_min_px;
+  d.search_max_px = params.range.search_max_px;
+  return d;
+}
+
+double clamp01(double x) {
+  return std::clamp(x, 0.0, 1.0);
+}
+
+}  // namespace
+
+Status validate(const ProposerBudget& b) {
+  PETRA_TRY(validate(b.pipeline));
+  if (b.max_roi_width < 16 || b.max_roi_width > b.pipeline.image_width || b.max_roi_height < 16 ||
+      b.max_roi_height > b.pipeline.image_height)
+    return Error::make(Errc::invalid_argument,
+                       "proposer: max ROI %dx%d not within 16 px..the image", b.max_roi_width,
+                       b.max_roi_height);
+  if (b.max_evaluated < 1 || b.max_evaluated > kMaxProposals)
+    return Error::make(Errc::invalid_argument, "proposer: max_evaluated %d not within 1..%d",
+                       b.max_evaluated, kMaxProposals);
+  return {};
+}
+
+Status validate(const ProposalRequest& r, int width, int height) {
+  if (!r.region.empty() && !r.region.inside(width, height))
+    return Error::make(Errc::out_of_range, "region: (%d,%d %dx%d) is not inside the %dx%d image",
+                       r.region.x, r.region.y, r.region.w, r.region.h, width, height);
+  if (r.region.w < 0 || r.region.h < 0)
+    return Error::make(Errc::out_of_range, "region: negative size %dx%d", r.region.w, r.region.h);
+  if (r.max_proposals < 1 || r.max_proposals > kMaxProposals)
+    return Error::make(Errc::out_of_range, "max_proposals: %d not within 1..%d", r.max_proposals,
+                       kMaxProposals);
+  const ProposalWeights& w = r.weights;
+  const struct {
+    const char* name;
+    double value;
+  } terms[] = {{"weights.grindable", w.grindable},
+               {"weights.reach", w.reach},
+               {"weights.certainty", w.certainty},
+               {"weights.size", w.size}};
+  for (const auto& t : terms)
+    if (!weight_ok(t.value))
+      return Error::make(Errc::out_of_range, "%s: %g not within 0..1", t.name, t.value);
+  if (w.grindable + w.reach + w.certainty + w.size <= 0.0)
+    return Error::make(Errc::out_of_range, "weights: all four are 0");
+  return {};
+}
+
+ProposalScore score_plane(const GrindPlane* best, bool reachable, double footprint_diameter_mm,
+                          const GrindParams& grind, const ProposalWeights& w) {
+  ProposalScore s;
+  if (best == nullptr) return s;
+  if (best->verdict == PlaneVerdict::accepted)
+    s.grindable = 1.0 - 0.5 * clamp01(best->footprint_rms_mm / grind.max_footprint_rms_mm);
+  s.reach = reachable ? 1.0 : 0.0;
+  s.certainty = 1.0 - 0.5 * (clamp01(best->normal_sigma_deg / grind.max_normal_sigma_deg) +
+                             clamp01(best->offset_sigma_mm / grind.max_offset_sigma_mm));
+  const double disc = std::numbers::pi / 4.0 * footprint_diameter_mm * footprint_diameter_mm;
+  s.size = disc > 0 ? clamp01(best->area_mm2 / (4.0 * disc)) : 0.0;
+  const double sum = w.grindable + w.reach + w.certainty + w.size;
+  s.total = sum > 0 ? (w.grindable * s.grindable + w.reach * s.reach + w.certainty * s.certainty +
+                       w.size * s.size) /
+                          sum
+                    : 0.0;
+  return s;
+}
+
+std::size_t Proposer::arena_bytes(const ProposerBudget& b, const PipelineParams& params) {
+  return Pipeline::init_bytes(b.pipeline) +
+         std::max(Pipeline::run_bytes(b.pipeline, params),
+                  detection_arena_bytes(detection_budget(b, params)));
+}
+
+Result<Proposer> Proposer::create(const StereoRig& rig, const ProposerBudget& budget,
+                                  const PipelineParams& params, const arm::ArmGeometry& geometry,
+                                  const arm::JointLimits& limits, Arena& arena,
+                                  const ProposerParams& proposer) {
+  PETRA_TRY(validate(budget));
+  PETRA_TRY(validate(proposer.detection));
+  const DetectionBudget db = detection_budget(budget, params);
+  PETRA_TRY(validate(db));
+  if (!(proposer.standoff_mm > 0.0 && proposer.standoff_mm <= 500.0))
+    return Error::make(Errc::invalid_argument, "proposer: standoff %g mm not within (0, 500]",
+                       proposer.standoff_mm);
+  if (arena.remaining() < arena_bytes(budget, params))
+    return Error::make(Errc::capacity_exceeded,
+                       "proposer: arena holds %zu bytes, the budget needs %zu", arena.remaining(),
+                       arena_bytes(budget, params));
+  // The chain checks its own share; detection uses the same space after it.
+  auto p = Pipeline::create(rig, budget.pipeline, params, arena);
+  if (!p) return p.error();
+  Proposer out;
+  out.pipeline_ = *p;
+  out.arena_ = &arena;
+  out.budget_ = budget;
+  out.params_ = proposer;
+  out.detection_budget_ = db;
+  out.geometry_ = geometry;
+  out.limits_ = limits;
+  return out;
+}
+
+namespace {
+
+// The candidate's ROI cut to at most max_w x max_h around its centre, the
+// click kept inside, within the image.
+Rect cut_roi(Rect roi, int click_u, int click_v, int max_w, int max_h, int W, int H) {
+  auto cut = [](int x, int w, int limit, int click, int image) {
+    if (w <= limit) return std::pair{x, w};
+    int nx = x + (w - limit) / 2;
+    nx = std::clamp(nx, click - limit + 8, click - 8);  // the click 8 px inside
+    nx = std::clamp(nx, 0, image - limit);
+    return std::pair{nx, limit};
+  };
+  const auto [x, w] = cut(roi.x, roi.w, max_w, click_u, W);
+  const auto [y, h] = cut(roi.y, roi.h, max_h, click_v, H);
+  return {x, y, w, h};
+}
+
+}  // namespace
+
+PipelineRequest Proposer::chain_request(const RockCandidate& rock) const {
+  const PipelineBudget& pb = budget_.pipeline;
+  PipelineRequest q;
+  q.has_click = true;
+  q.click_u = rock.click_u;
+  q.click_v = rock.click_v;
+  q.planes = kProposalPlanesC;
+  q.method = MatchMethod::dp;
+  int max_w = budget_.max_roi_width, max_h = budget_.max_roi_height;
+  q.roi = cut_roi(rock.roi, q.click_u, q.click_v, max_w, max_h, pb.image_width, pb.image_height);
+  // Rectified, an ROI near the image's corners grows: cut it by the excess.
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    auto r = pipeline_.rectifier().roi_to_rectified(StereoSide::left, q.roi);
+    if (!r || (r->w <= pb.max_roi_width && r->h <= pb.max_roi_height)) break;
+    max_w = std::min(q.roi.w, q.roi.w - (r->w - pb.max_roi_width) - 1);
+    max_h = std::min(q.roi.h, q.roi.h - (r->h - pb.max_roi_height) - 1);
+    q.roi = cut_roi(q.roi, q.click_u, q.click_v, max_w, max_h, pb.image_width, pb.image_height);
+  }
+  return q;
+}
+
+namespace {
+
+// Planes for the proposal: the accepted ones (the chain's ranking), then
+// the refused ones that say why (never the surplus: qualified, but c larger did).
+int copy_planes(const GrindResult& g, GrindPlane (&out)[kMaxProposalPlanes]) {
+  int n = 0;
+  for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k)
+    if (k < g.accepted) out[n++] = g.planes[k];
+  for (int k = g.accepted; k < g.count && n < kMaxProposalPlanes; ++k)
+    if (g.planes[k].verdict != PlaneVerdict::surplus) out[n++] = g.planes[k];
+  return n;
+}
+
+}  // namespace
+
+Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, const RockCandidate& rock,
+                          const arm::JointVector& current, const ProposalWeights& weights,
+                          const StepClock& clock, RockProposal& out) {
+  const PipelineRequest q = chain_request(rock);
+  out = RockProposal{};
+  out.rock = rock;
+  out.rock.roi = q.roi;  // what SELECT_ROI sends back
+  out.planes_c = q.planes;
+  auto r = pipeline_.run(left, right, q, clock);
+  if (!r) {
+    if (r.code() == Errc::cancelled) return r.error();
+    out.note = ProposalNote::chain_refused;
+    out.chain_error = r.error();
+    return {};
+  }
+  const GrindResult& g = r->result.planes;
+  out.plane_count = copy_planes(g, out.planes);
+  const GrindPlane* best = nullptr;
+  bool reachable = false;
+  for (int k = 0; k < out.plane_count; ++k) {
+    arm::ApproachRequest a;
+    a.centroid_mm = out.planes[k].centroid_mm;
+    a.normal = out.planes[k].normal;
+    a.standoff_mm = params_.standoff_mm;
+    out.reach[k] = arm::plan_approach(geometry_, limits_, a, current).refusal.reason;
+    const bool grindable = out.planes[k].verdict == PlaneVerdict::accepted;
+    const bool offered = grindable && out.reach[k] == arm::ArmReason::ok;
+    if (offered && !reachable) best = &out.planes[k], reachable = true;
+    if (best == nullptr && grindable) best = &out.planes[k];
+  }
+  if (best == nullptr && out.plane_count > 0) best = &out.planes[0];
+  out.note = reachable        ? ProposalNote::ok
+             : g.accepted > 0 ? ProposalNote::unreachable
+                              : ProposalNote::no_grindable_plane;
+  out.score = score_plane(best, reachable, g.footprint_diameter_mm,
+                          pipeline_.params().reconstruction.grind, weights);
+  return {};
+}
+
+namespace {
+
+// Offered proposals first, then by total score, then the larger rock.
+bool ranks_before(const RockProposal& a, const RockProposal& b) {
+  const bool ao = a.note == ProposalNote::ok, bo = b.note == ProposalNote::ok;
+  if (ao != bo) return ao;
+  if (a.score.total != b.score.total) return a.score.total > b.score.total;
+  return a.rock.pixels > b.rock.pixels;
+}
+
+// Why no proposal is offered (static text).
+const char* empty_reason(const RockProposal* items, int n) {
+  if (n == 0) return "no rock stands out of the ground";
+  bool any_ran = false, any_grindable = false;
+  for (int i = 0; i < n; ++i) {
+    any_ran = any_ran || items[i].note != ProposalNote::chain_refused;
+    any_grindable = any_grindable || items[i].note == ProposalNote::unreachable;
+  }
+  if (!any_ran) return "the chain refused every rock found";
+  if (!any_grindable) return "no rock found has a grindable face";
+  return "no grindable face is within the arm's reach";
+}
+
+}  // namespace
+
+void Proposer::rank(const ProposalRequest& request, int evaluated) {
+  int order[kMaxProposals];
+  for (int i = 0; i < evaluated; ++i) order[i] = i;
+  std::stable_sort(order, order + evaluated,
+                   [&](int a, int b) { return ranks_before(evaluated_[a], evaluated_[b]); });
+  list_ = ProposalList{};
+  list_.candidates = detection_.count;
+  list_.count = std::min(evaluated, request.max_proposals);
+  for (int i = 0; i < list_.count; ++i) list_.items[i] = evaluated_[order[i]];
+  if (evaluated == 0 || evaluated_[order[0]].note != ProposalNote::ok)
+    list_.empty_reason = empty_reason(evaluated_, evaluated);
+}
+
+Result<const ProposalList*> Proposer::run(ConstGray8View left, ConstGray8View right,
+                                          const ProposalRequest& request,
+                                          const arm::JointVector& current, const StepClock& clock) {
+  if (arena_ == nullptr) return Error::make(Errc::not_ready, "proposer: not created");
+  const PipelineBudget& pb = budget_.pipeline;
+  PETRA_TRY(validate(request, pb.image_width, pb.image_height));
+  if (!current.allFinite())
+    return Error::make(Errc::invalid_argument, "current: the arm's pose is not finite");
+  auto d = detect_rocks(pipeline_.rectifier(), left, right, request.region, detection_budget_,
+                        params_.detection, *arena_, clock);
+  if (!d) return d.error();
+  detection_ = *d;
+  const int evaluated = std::min(detection_.count, budget_.max_evaluated);
+  for (int i = 0; i < evaluated; ++i)
+    PETRA_TRY(
+        evaluate(left, right, detection_.rocks[i], current, request.weights, clock, evaluated_[i]));
+  rank(request, evaluated);
+  return &list_;
+}
+
+}  // namespace petra

@@ -1,0 +1,102 @@
+// Rock proposals over a whole stereo pair (issue 26; docs/proposals.md):
+//   detection (algo/propose/rock_detection: the ground over the field of view,
+//   the rocks standing out of it) -> each candidate, largest first, up to
+//   budget.max_evaluated, through the chain (algo/chain/pipeline: its ROI
+//   clipped to the budget's ROI, its click, c = kProposalPlanesC, DP matcher)
+//   -> each accepted plane's approach (algo/arm plan_approach from `current`,
+//   standoff arm::kDefaultStandoffMm) -> the score's terms and weighted total
+//   -> ranking (offered proposals first, then by total) and truncation.
+// c: the chain is run once per rock with c = kMaxProposalPlanes (3, the most
+// faces a proposal carries); the planes it accepts (qualified, not surplus:
+// grind_planes ranks by area and keeps at most c) are the rock's answer, so
+// the normal clustering's own evidence (classes it found, merges, the
+// qualification) decides how many planes a rock offers, from 0 to 3. The
+// operator sending a proposal back as SELECT_ROI with its roi, click and
+// planes_c reruns exactly this chain request.
+// Memory: one caller arena of arena_bytes(): the chain's remap tables, then
+// one space that detection and each chain run use in turn (the chain's run
+// releases the arena to its own mark). The list lives in the Proposer. No
+// heap after create.
+#pragma once
+
+#include <cstddef>
+
+#include "algo/arm/arm_trajectory.hpp"
+#include "algo/arm/kinematics.hpp"
+#include "algo/chain/pipeline.hpp"
+#include "algo/core/arena.hpp"
+#include "algo/core/result.hpp"
+#include "algo/core/step_clock.hpp"
+#include "algo/propose/proposals.hpp"
+#include "algo/propose/rock_detection.hpp"
+
+namespace petra {
+
+// c the proposer asks of the chain for every rock (see above).
+inline constexpr int kProposalPlanesC = kMaxProposalPlanes;
+
+struct ProposerBudget {
+  PipelineBudget pipeline;  // the chain's (its max ROI is in rectified px)
+  // The largest candidate ROI in original left px (SELECT_ROI's limit);
+  // a larger padded rock box is cut to it around the rock's box centre.
+  int max_roi_width = 512;
+  int max_roi_height = 384;
+  int max_evaluated = kMaxProposals;  // candidates run through the chain, largest first
+  int detection_factor = 4;           // the whole pair matched at 1 / this resolution
+};
+Status validate(const ProposerBudget& b);
+
+struct ProposerParams {
+  DetectionParams detection;
+  double standoff_mm = arm::kDefaultStandoffMm;
+};
+
+// Field-named refusal of a request for an image of width x height.
+Status validate(const ProposalRequest& r, int width, int height);
+
+// The score's terms of a proposal's best plane (docs/proposals.md "Score").
+ProposalScore score_plane(const GrindPlane* best, bool reachable, double footprint_diameter_mm,
+                          const GrindParams& grind, const ProposalWeights& w);
+
+class Proposer {
+ public:
+  Proposer() = default;
+
+  static std::size_t arena_bytes(const ProposerBudget& budget, const PipelineParams& params);
+  static Result<Proposer> create(const StereoRig& rig, const ProposerBudget& budget,
+                                 const PipelineParams& params, const arm::ArmGeometry& geometry,
+                                 const arm::JointLimits& limits, Arena& arena,
+                                 const ProposerParams& proposer = {});
+
+  // Bounded; no heap. `current` = the arm's pose now (IK branch hint). The
+  // list is valid until the next run; the detection's ground and counts
+  // until then too (detection()).
+  Result<const ProposalList*> run(ConstGray8View left, ConstGray8View right,
+                                  const ProposalRequest& request, const arm::JointVector& current,
+                                  const StepClock& clock);
+
+  const DetectionResult& detection() const { return detection_; }
+  const Pipeline& pipeline() const { return pipeline_; }
+  const ProposerBudget& budget() const { return budget_; }
+  // The chain request a candidate is evaluated with (and SELECT_ROI repeats).
+  PipelineRequest chain_request(const RockCandidate& rock) const;
+
+ private:
+  Status evaluate(ConstGray8View left, ConstGray8View right, const RockCandidate& rock,
+                  const arm::JointVector& current, const ProposalWeights& weights,
+                  const StepClock& clock, RockProposal& out);
+  void rank(const ProposalRequest& request, int evaluated);
+
+  Pipeline pipeline_;
+  Arena* arena_ = nullptr;
+  ProposerBudget budget_;
+  ProposerParams params_;
+  DetectionBudget detection_budget_;
+  arm::ArmGeometry geometry_;
+  arm::JointLimits limits_;
+  DetectionResult detection_;
+  RockProposal evaluated_[kMaxProposals];
+  ProposalList list_;
+};
+
+}  // namespace petra

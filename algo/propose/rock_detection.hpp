@@ -1,0 +1,102 @@
+// Rocks over a whole stereo pair (issue 26, step 1; docs/proposals.md):
+//   rectify the whole pair (the chain's rectifier) -> box-downsample both by
+//   `factor` (algo/stereo/downsample) -> scanline-DP match of the region at
+//   that resolution over the rig's envelope / factor (algo/stereo/match_dp)
+//   -> triangulate every matched pixel (algo/mesh/triangulate, eq. 8)
+//   -> the ground over the field of view: the chain's robust fit
+//   (algo/surface/ground_segment: MSAC seed on the border band, k-means and
+//   least-squares refit, depth-noise tolerance at this resolution's
+//   disparity noise) and its normals check (algo/surface/ground_normals, on
+//   normals from the point grid's neighbours)
+//   -> rocks: 8-connected regions of the grid whose points stand more than
+//   max(min_band_mm, band_rms x ground RMS, band_sigmas x sigma_Z(range))
+//   above the ground, each kept when its highest interior point (all 8
+//   neighbours in the region: never the silhouette's mismatched fringe) is
+//   min_height_mm above the ground, its largest horizontal extent is at
+//   least min_size_mm and it holds min_pixels.
+// Each rock: its ROI in original left pixels (the interior's box padded so
+// the chain sees ground all round), a click (the interior point nearest the
+// box's centre: on the rock, never its outline), height and size.
+// Memory: the caller's arena, sized by detection_arena_bytes(budget), all
+// released on return; outputs are values. No heap, no I/O.
+#pragma once
+
+#include <cstddef>
+
+#include "algo/camera/rectify.hpp"
+#include "algo/core/arena.hpp"
+#include "algo/core/chain_defaults.hpp"
+#include "algo/core/image_view.hpp"
+#include "algo/core/result.hpp"
+#include "algo/core/step_clock.hpp"
+#include "algo/propose/proposals.hpp"
+#include "algo/stereo/match_dp.hpp"
+#include "algo/surface/ground_normals.hpp"
+#include "algo/surface/ground_segment.hpp"
+
+namespace petra {
+
+// Rocks one detection keeps (the largest first).
+inline constexpr int kMaxRockCandidates = 16;
+
+// Sizes fixed at init.
+struct DetectionBudget {
+  int image_width = 1024;  // px, calib.json's
+  int image_height = 768;
+  int factor = 4;                      // downsampling of the pair, 1..8
+  int search_min_px = kEnvelopeMinPx;  // full-resolution disparity envelope
+  int search_max_px = kEnvelopeMaxPx;
+};
+Status validate(const DetectionBudget& b);
+
+struct DetectionParams {
+  MatchDpParams match;  // disp_min/max set from the budget's envelope / factor
+  // The chain's ground fit; the rock checks are detection's own (below): over
+  // the whole view rocks are a small share and a view may hold none.
+  GroundParams ground = [] {
+    GroundParams g;
+    g.min_rock_height_mm = 0.5;  // must be > 0; the band (min_band_mm) decides
+    g.min_rock_height_rms = 0;
+    return g;
+  }();
+  GroundNormalParams ground_normals;
+  double band_rms = 3.0;       // a rock point: this many ground RMS above the plane ...
+  double min_band_mm = 4.0;    // ... and at least this far
+  double band_sigmas = 3.0;    // ... and this many of the point's own depth noise sigma_Z
+  double min_height_mm = 8.0;  // a rock's highest point above the ground
+  double min_size_mm = 20.0;   // its largest horizontal extent (the grinder's disc)
+  long min_pixels = 12;        // at the detection's resolution
+  double pad = 0.5;            // ROI margin each side, times the rock's larger box side
+  int min_pad_px = 24;         // ... at least this many original pixels
+};
+Status validate(const DetectionParams& p);
+
+struct DetectionResult {
+  RockCandidate rocks[kMaxRockCandidates];  // largest (pixels) first
+  int count = 0;
+  int regions = 0;  // connected regions above the band, before the size checks
+  GroundResultT<double> ground;
+  long points = 0;     // triangulated points at the detection's resolution
+  Rect region_coarse;  // the matched region, downsampled rectified pixels
+  MatchDpStats match;
+};
+
+std::size_t detection_arena_bytes(const DetectionBudget& b);
+
+// Detects the rocks in `region` (original left pixels; empty: the whole
+// image). Errors: images not the rectifier's size, a region outside the
+// image, no ground over the field of view (named), cancelled, arena short.
+Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View left,
+                                     ConstGray8View right, Rect region, const DetectionBudget& b,
+                                     const DetectionParams& p, Arena& arena,
+                                     const StepClock& clock);
+
+// The back half on a given map at 1 / factor resolution (downsampled
+// rectified left pixels, inside the grid): from triangulation on. A
+// truth, a recorded or another matcher's map.
+Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
+                                                  ConstDisparityMap disparity,
+                                                  const DetectionBudget& b,
+                                                  const DetectionParams& p, Arena& arena);
+
+}  // namespace petra
