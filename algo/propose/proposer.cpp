@@ -256,8 +256,11 @@ const char* empty_reason(const RockProposal* items, int n) {
 void Proposer::rank(const ProposalRequest& request, int evaluated) {
   int order[kMaxProposals];
   for (int i = 0; i < evaluated; ++i) order[i] = i;
-  std::stable_sort(order, order + evaluated,
-                   [&](int a, int b) { return ranks_before(evaluated_[a], evaluated_[b]); });
+  // Insertion sort of at most kMaxProposals: stable, and no heap
+  // (std::stable_sort takes a temporary buffer from the heap).
+  for (int i = 1; i < evaluated; ++i)
+    for (int j = i; j > 0 && ranks_before(evaluated_[order[j]], evaluated_[order[j - 1]]); --j)
+      std::swap(order[j], order[j - 1]);
   list_ = ProposalList{};
   list_.candidates = detection_.count;
   list_.count = std::min(evaluated, request.max_proposals);
