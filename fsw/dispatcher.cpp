@@ -274,11 +274,11 @@ void Executive::on_propose(const cmd::Command& c) {
 }
 
 // The measured joints when the arm reports them, else the stowed pose.
-arm::JointVector Executive::arm_pose() const {
+::petra::arm::JointVector Executive::arm_pose() const {
   tlm::ArmStatus st;
-  if (deps_.arm == nullptr || !deps_.arm->status(st)) return arm::stow_pose();
-  arm::JointVector q;
-  for (int j = 0; j < arm::kJointCount; ++j)
+  if (deps_.arm == nullptr || !deps_.arm->status(st)) return ::petra::arm::stow_pose();
+  ::petra::arm::JointVector q;
+  for (int j = 0; j < ::petra::arm::kJointCount; ++j)
     q[j] =
         static_cast<double>(st.joint_deg[static_cast<std::size_t>(j)]) * std::numbers::pi / 180.0;
   return q;

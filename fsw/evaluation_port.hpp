@@ -65,7 +65,7 @@ class EvaluationPort {
   virtual Reason propose_refusal() const = 0;
   // Starts a proposal run on the pair (PROPOSE_STARTED); an error: it did not start.
   virtual Status start_proposals(const EvalFrame& frame, const ProposalRequest& request,
-                                 const arm::JointVector& arm_pose) = 0;
+                                 const ::petra::arm::JointVector& arm_pose) = 0;
   // A proposal of the last list published, by its proposal_id and rank (1 =
   // best); nullptr when that list is not the last one or has no such rank.
   virtual const RockProposal* proposal(std::uint32_t proposal_id, int rank) const = 0;

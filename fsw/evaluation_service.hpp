@@ -63,7 +63,7 @@ class EvaluationService final : public EvaluationPort {
 
   Reason propose_refusal() const override;
   Status start_proposals(const EvalFrame& frame, const ProposalRequest& request,
-                         const arm::JointVector& arm_pose) override;
+                         const ::petra::arm::JointVector& arm_pose) override;
   const RockProposal* proposal(std::uint32_t proposal_id, int rank) const override;
 
  private:

@@ -120,7 +120,7 @@ class Executive {
   void on_propose(const cmd::Command& c);
   void on_select_proposal(const cmd::Command& c);
   cmd::SelectionRefusal pick_refusal(const cmd::Command& c) const;
-  arm::JointVector arm_pose() const;
+  ::petra::arm::JointVector arm_pose() const;
   void on_arm(const cmd::Command& c);
   void on_abort(const cmd::Command& c);
   void on_set_mode(const cmd::Command& c);

@@ -49,6 +49,8 @@ struct JobBudget {
   int max_roi_width = 0;
   int max_roi_height = 0;
   const StereoRig* rig = nullptr;  // sizes the rectified ROI; nullptr: no calib.json
+  // Where the arm is (arm.mount): the proposer judges reach with it.
+  ::petra::arm::ArmGeometry arm_geometry = ::petra::arm::rover_arm_geometry();
 };
 
 // What a job can take, fixed at init; the executive refuses commands beyond
@@ -82,7 +84,7 @@ struct EvalRequest {
   // PROPOSE only: the operator's request (region empty: the whole image) and
   // the arm's pose now (measured joints, or stowed when no arm reports them).
   ProposalRequest proposal;
-  arm::JointVector arm_pose = arm::JointVector::Zero();
+  ::petra::arm::JointVector arm_pose = ::petra::arm::JointVector::Zero();
 };
 
 struct EvalOutput {

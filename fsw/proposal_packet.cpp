@@ -59,7 +59,8 @@ void put_slot(const RockProposal& p, std::size_t i, tlm::Proposals& t) {
 int offered_plane(const RockProposal& p) {
   const int n = std::min(p.plane_count, kMaxProposalPlanes);
   for (int k = 0; k < n; ++k)
-    if (p.planes[k].verdict == PlaneVerdict::accepted && p.reach[k] == arm::ArmReason::ok) return k;
+    if (p.planes[k].verdict == PlaneVerdict::accepted && p.reach[k] == ::petra::arm::ArmReason::ok)
+      return k;
   return -1;
 }
 

@@ -20,7 +20,7 @@ Reason EvaluationService::propose_refusal() const {
 }
 
 Status EvaluationService::start_proposals(const EvalFrame& frame, const ProposalRequest& request,
-                                          const arm::JointVector& arm_pose) {
+                                          const ::petra::arm::JointVector& arm_pose) {
   if (propose_refusal() != Reason::NONE)
     return Error::make(Errc::not_ready, "proposals: no pipeline or no proposer");
   ++proposal_id_;  // used up even when the worker refuses: ids stay unique

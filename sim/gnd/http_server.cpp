@@ -115,6 +115,18 @@ struct HttpServer::Impl {
   GroundStation& station;
   httplib::Server server;
 
+  // Signs and sends a command the request made: {"command":..,"counter":n},
+  // HTTP 400 naming the request's problem, or 503 when it could not be sent.
+  void send_and_answer(const Result<cmd::Command>& command, httplib::Response& res) {
+    if (!command) return answer_error(res, 400, command.error().message);
+    auto counter = station.send(*command);
+    if (!counter) return answer_error(res, 503, counter.error().message);
+    const cmd::CommandDesc* d = cmd::find_command(static_cast<std::uint8_t>(command->code));
+    res.set_content(
+        "{\"command\":" + json_string(d->name) + ",\"counter\":" + std::to_string(*counter) + "}",
+        "application/json");
+  }
+
   void routes(const ServerOptions& options) {
     // One thread per connected page (its event stream) plus the requests.
     server.new_task_queue = [] { return new httplib::ThreadPool(16); };
@@ -157,26 +169,12 @@ struct HttpServer::Impl {
     });
 
     server.Post("/api/command", [this](const httplib::Request& req, httplib::Response& res) {
-      auto command = parse_command_request(req.body);
-      if (!command) return answer_error(res, 400, command.error().message);
-      auto counter = station.send(*command);
-      if (!counter) return answer_error(res, 503, counter.error().message);
-      const cmd::CommandDesc* d = cmd::find_command(static_cast<std::uint8_t>(command->code));
-      res.set_content(
-          "{\"command\":" + json_string(d->name) + ",\"counter\":" + std::to_string(*counter) + "}",
-          "application/json");
+      send_and_answer(parse_command_request(req.body), res);
     });
 
     server.Post("/api/proposals/pick", [this](const httplib::Request& req, httplib::Response& res) {
       const std::optional<tlm::Proposals> list = station.last_proposals();
-      auto command = parse_pick_request(req.body, list ? &*list : nullptr);
-      if (!command) return answer_error(res, 400, command.error().message);
-      auto counter = station.send(*command);
-      if (!counter) return answer_error(res, 503, counter.error().message);
-      const cmd::CommandDesc* d = cmd::find_command(static_cast<std::uint8_t>(command->code));
-      res.set_content(
-          "{\"command\":" + json_string(d->name) + ",\"counter\":" + std::to_string(*counter) + "}",
-          "application/json");
+      send_and_answer(parse_pick_request(req.body, list ? &*list : nullptr), res);
     });
 
     server.Get("/api/arm", [this](const httplib::Request&, httplib::Response& res) {

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "algo/arm/kinematics.hpp"
+#include "algo/propose/proposals.hpp"
 #include "algo/surface/grind_planes.hpp"
 #include "algo/wire/reasons.hpp"
 
@@ -26,8 +27,7 @@ std::string proposal_empty_name(long code) {
 }
 
 const char* proposal_note_key(std::uint8_t note) {
-  static const char* keys[] = {"ok", "no_grindable_plane", "chain_refused", "unreachable"};
-  return note < 4 ? keys[note] : "?";
+  return proposal_note_name(static_cast<ProposalNote>(note));
 }
 
 namespace {

@@ -14,7 +14,7 @@ namespace petra::ground {
 
 // "no_rock", "none_grindable", ... of PROPOSALS empty_reason (lower case).
 std::string proposal_empty_name(long code);
-// "ok", "no_grindable_plane", "chain_refused", "unreachable" of a note.
+// A note's key ("ok", "no_grindable_plane", ...): algo's proposal_note_name.
 const char* proposal_note_key(std::uint8_t note);
 // The summary and one indented line per proposal (no trailing newline).
 std::string format_proposals(const tlm::Proposals& p);
