@@ -1,44 +1,64 @@
 // PROPOSE with the flight job (fsw/flight_pipeline_job: algo/propose's
-// Proposer in the pipeline's place) in an executive in this process, on a
-// realistic scene with two touching neighbour rocks (realistic set entry 25,
-// as tests/sim/eval/test_propose_scene.cpp, fewer edge samples): the rock
-// under the truth click is listed first and offers a plane; SELECT_PROPOSAL
-// then EVALUATE (the chain rebuilt in the proposer's place) downlinks that
-// very plane (the same chain request: identical up to the PROPOSALS packet's
-// f32); the picture follows.
+// Proposer in the pipeline's place) in an executive in this process, on the
+// simulated scene of seed 3 (rendered once per build tree, shared with
+// test_flight_job_memory), in a region around its rock: the rock is listed
+// first and offers a plane; SELECT_PROPOSAL then EVALUATE (the chain rebuilt
+// in the proposer's place) downlinks that very plane (the same chain request:
+// identical up to the PROPOSALS packet's f32); the picture follows. The whole
+// 1024 x 768 view with neighbour rocks is algo/propose's own test
+// (tests/sim/eval/test_propose_scene.cpp).
 #include <gtest/gtest.h>
 
-#include <cmath>
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "fsw/pipeline_factory.hpp"
-#include "sim/scene/scene_set.hpp"
+#include "sim/io/image_io.hpp"
+#include "sim/score/truth_file.hpp"
 #include "tests/fsw/executive_harness.hpp"
-#include "tests/support/rendered_scene.hpp"
+#include "tests/support/cached_dir.hpp"
 
 namespace petra {
 namespace {
 
+namespace fs = std::filesystem;
 using cmd::FunctionCode;
 
-TEST(FswPropose, TheTargetRockIsProposedAndItsSelectionGivesTheSamePlane) {
-  test::ExecutiveHarness h(R"(,"calib":"scene/calib.json")");
-  sim::SceneOptions o = sim::real_scene_set()[25];
-  o.edge_supersampling = 2;
-  const test::RenderedScene scene = test::render_for_test(o);
-  ASSERT_TRUE(scene.products.truth.click.has_value());
-  const std::filesystem::path dir = h.dir();
-  ASSERT_TRUE(sim::write_scene(scene.products, (dir / "scene").string()).ok());
-  for (const char* side : {"left", "right"})
-    std::filesystem::copy_file(dir / "scene" / (std::string(side) + ".pgm"),
-                               dir / "camera" / (std::string(side) + "_000.pgm"),
-                               std::filesystem::copy_options::overwrite_existing);
+std::string read_all(const fs::path& p) {
+  std::stringstream s;
+  s << std::ifstream(p).rdbuf();
+  return s.str();
+}
+
+TEST(FswPropose, TheRockIsProposedAndItsSelectionGivesTheSamePlane) {
+  const fs::path scene =
+      test::cached_petra_output("scene_seed3", PETRA_CLI_BIN, "sim scene --seed 3");
+  ASSERT_FALSE(scene.empty()) << "petra sim scene --seed 3 failed";
+  auto truth = sim::parse_truth_json(read_all(scene / "truth.json"));
+  ASSERT_TRUE(truth.ok());
+  test::ExecutiveHarness h(R"(,"calib":"calib.json")");
+  const fs::path dir = h.dir();
+  fs::copy_file(scene / "calib.json", dir / "calib.json");
+  for (const char* side : {"left", "right"}) {
+    auto img = io::read_gray_image((scene / (std::string(side) + ".png")).string());
+    ASSERT_TRUE(img.ok());
+    ASSERT_TRUE(
+        io::write_pgm((dir / "camera" / (std::string(side) + "_000.pgm")).string(), img->view())
+            .ok());
+  }
   static hal::SystemClock clock;  // the job outlives the harness: static, as flight_pipeline() is
   h.pipeline = fsw::flight_pipeline(clock);
   h.budget = R"({"image_width":1024,"image_height":768})";  // the flight default
   ASSERT_TRUE(h.boot().ok());
 
+  const Rect t = truth->roi;  // the region: the rock's box and 64 px around it
   cmd::ProposeArgs a;
+  a.x_px = static_cast<std::uint16_t>(std::max(t.x - 64, 0));
+  a.y_px = static_cast<std::uint16_t>(std::max(t.y - 64, 0));
+  a.w_px = static_cast<std::uint16_t>(std::min(t.x + t.w + 64, 1024) - a.x_px);
+  a.h_px = static_cast<std::uint16_t>(std::min(t.y + t.h + 64, 768) - a.y_px);
   a.acquire = 1;
   a.count = 4;
   a.weight_grindable = 1.0f;
@@ -57,7 +77,7 @@ TEST(FswPropose, TheTargetRockIsProposedAndItsSelectionGivesTheSamePlane) {
   const tlm::Proposals& l = lists[0];
   ASSERT_GE(l.count, 1);
   EXPECT_EQ(l.status, 0) << "empty reason " << int{l.empty_reason};
-  const double cu = scene.products.truth.click->x(), cv = scene.products.truth.click->y();
+  const double cu = t.x + t.w / 2.0, cv = t.y + t.h / 2.0;  // the rock's box centre
   EXPECT_GE(cu, l.roi_px[0]);
   EXPECT_LT(cu, l.roi_px[0] + l.roi_px[2]);
   EXPECT_GE(cv, l.roi_px[1]);
