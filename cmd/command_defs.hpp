@@ -10,6 +10,8 @@
 #include "algo/wire/field.hpp"
 #include "cmd/mode.hpp"
 
+#define PETRA_CMD_U32_MAX 4294967295.0
+
 #define PETRA_SET_PARAM_FIELDS(F)                                             \
   F(u16, param_id, 1, "", 1, 65535, "parameter id (docs/icd.md: parameters)") \
   F(f64, value, 1, "param", -1e9, 1e9, "new value, in the parameter's unit and range")
@@ -34,6 +36,29 @@
   F(u8, plane_rank, 1, "", 0, 7, "grind plane by rank in the last evaluation (0 = best)") \
   F(f32, standoff_mm, 1, "mm", 0, 300, "approach waypoint distance along the plane normal")
 
+// The region is in left image pixels; 0, 0, 0, 0 asks for the whole image.
+// The weights say how much each term counts in a proposal's score (not all 0).
+#define PETRA_PROPOSE_FIELDS(F)                                                                  \
+  F(u8, acquire, 1, "bool", 0, 1, "1: take a new stereo pair first; 0: use the last pair")       \
+  F(u16, x_px, 1, "px", 0, 8191, "region left column (0 with w_px = h_px = 0: the whole image)") \
+  F(u16, y_px, 1, "px", 0, 8191, "region top row")                                               \
+  F(u16, w_px, 1, "px", 0, 8192, "region width: 0 (whole image) or 32.. inside the image")       \
+  F(u16, h_px, 1, "px", 0, 8192, "region height: 0 (whole image) or 32.. inside the image")      \
+  F(u8, count, 1, "", 1, 8, "proposals wanted, best first (at most kMaxProposals = 8)")          \
+  F(f32, weight_grindable, 1, "1", 0, 1, "score weight: the best plane's verdict and flatness")  \
+  F(f32, weight_reach, 1, "1", 0, 1, "score weight: the arm reaches the plane along its normal") \
+  F(f32, weight_certainty, 1, "1", 0, 1, "score weight: the plane's normal and offset 1-sigma")  \
+  F(f32, weight_size, 1, "1", 0, 1, "score weight: the plane's area against the tool footprint")
+
+#define PETRA_SELECT_PROPOSAL_FIELDS(F)                                                  \
+  F(u32, proposal_id, 1, "", 1, PETRA_CMD_U32_MAX, "the PROPOSALS packet's proposal_id") \
+  F(u8, rank, 1, "", 1, 8, "proposal by rank in that list (1 = best)")
+
+#define PETRA_ARM_GOTO_PROPOSAL_FIELDS(F)                                                      \
+  F(u32, proposal_id, 1, "", 1, PETRA_CMD_U32_MAX, "the PROPOSALS packet's proposal_id")       \
+  F(u8, rank, 1, "", 1, 8, "proposal by rank in that list (1 = best); its best offered plane") \
+  F(f32, standoff_mm, 1, "mm", 0, 300, "approach waypoint distance along the plane normal")
+
 #define PETRA_SET_MODE_FIELDS(F) \
   F(u8, mode, 1, "enum", 0, 5, "target mode: 1 IDLE (only from SAFE) or 5 SAFE (from any mode)")
 
@@ -55,8 +80,17 @@
   X(Evaluate, EVALUATE, 0x12, ::petra::kInIdle,                                                   \
     "run the pipeline on the selected ROI; grind planes return as telemetry",                     \
     PETRA_EVALUATE_FIELDS)                                                                        \
+  X(Propose, PROPOSE, 0x13, ::petra::kInIdle,                                                     \
+    "find and rank the grindable rocks in a region of the pair; PROPOSALS returns as telemetry",  \
+    PETRA_PROPOSE_FIELDS)                                                                         \
+  X(SelectProposal, SELECT_PROPOSAL, 0x14, ::petra::kInIdle,                                      \
+    "choose a proposal's ROI, click and c for the next EVALUATE, with SELECT_ROI's checks",       \
+    PETRA_SELECT_PROPOSAL_FIELDS)                                                                 \
   X(ArmGoto, ARM_GOTO, 0x20, ::petra::kInIdle,                                                    \
     "move the grinder to a grind plane of the last evaluation", PETRA_ARM_GOTO_FIELDS)            \
+  X(ArmGotoProposal, ARM_GOTO_PROPOSAL, 0x22, ::petra::kInIdle,                                   \
+    "move the grinder to a proposal's best offered plane, with ARM_GOTO's checks",                \
+    PETRA_ARM_GOTO_PROPOSAL_FIELDS)                                                               \
   X(ArmStow, ARM_STOW, 0x21, ::petra::kInIdleOrSafe, "move the arm to its stowed pose",           \
     PETRA_NO_FIELDS)                                                                              \
   X(Abort, ABORT, 0x30, ::petra::kInAnyMode,                                                      \

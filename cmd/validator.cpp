@@ -38,16 +38,35 @@ Verdict check_envelope_budget(Verdict v, const SetParamArgs& set, const Validati
   return v;
 }
 
+// PROPOSE's region: all 0 (the whole image) or at least kMinRegionPx a side
+// inside the image; detail names the field to change.
+constexpr int kMinRegionPx = 32;
+Verdict check_propose(Verdict v, const ProposeArgs& p, const ValidationContext& ctx) {
+  enum : std::uint16_t { kX = 1, kY = 2, kW = 3, kH = 4, kWeightGrindable = 6 };
+  if (p.w_px == 0 && p.h_px == 0) {
+    if (p.x_px != 0) return reject(v, Reason::INVALID_ARGUMENT, kX);
+    if (p.y_px != 0) return reject(v, Reason::INVALID_ARGUMENT, kY);
+  } else {
+    if (p.w_px < kMinRegionPx) return reject(v, Reason::INVALID_ARGUMENT, kW);
+    if (p.h_px < kMinRegionPx) return reject(v, Reason::INVALID_ARGUMENT, kH);
+    if (p.x_px + p.w_px > ctx.image_width)
+      return reject(v, Reason::INVALID_ARGUMENT, p.x_px >= ctx.image_width ? kX : kW);
+    if (p.y_px + p.h_px > ctx.image_height)
+      return reject(v, Reason::INVALID_ARGUMENT, p.y_px >= ctx.image_height ? kY : kH);
+  }
+  if (p.weight_grindable == 0 && p.weight_reach == 0 && p.weight_certainty == 0 &&
+      p.weight_size == 0)
+    return reject(v, Reason::INVALID_ARGUMENT, kWeightGrindable);  // "the weights are all 0"
+  return v;
+}
+
 // Checks that need more than one field or the context; returns NONE when fine.
 Verdict check_consistency(Verdict v, const ValidationContext& ctx) {
   if (const auto* roi = std::get_if<SelectRoiArgs>(&v.command.args)) {
-    if (roi->x_px + roi->w_px > ctx.image_width || roi->y_px + roi->h_px > ctx.image_height)
-      return reject(v, Reason::INVALID_ARGUMENT, 0);
-    if (roi->has_click != 0 &&
-        (roi->click_u_px < roi->x_px || roi->click_u_px >= roi->x_px + roi->w_px ||
-         roi->click_v_px < roi->y_px || roi->click_v_px >= roi->y_px + roi->h_px))
-      return reject(v, Reason::INVALID_ARGUMENT, 6);
-    return check_roi_budget(v, *roi, ctx);
+    const SelectionRefusal r = selection_refusal(*roi, ctx);
+    return r.reason == Reason::NONE ? v : reject(v, r.reason, r.detail);
+  } else if (const auto* propose = std::get_if<ProposeArgs>(&v.command.args)) {
+    return check_propose(v, *propose, ctx);
   } else if (const auto* set = std::get_if<SetParamArgs>(&v.command.args)) {
     const ParamDesc* p = find_param(set->param_id);
     if (p == nullptr) return reject(v, Reason::INVALID_ARGUMENT, set->param_id);
@@ -64,6 +83,18 @@ Verdict check_consistency(Verdict v, const ValidationContext& ctx) {
 }
 
 }  // namespace
+
+SelectionRefusal selection_refusal(const SelectRoiArgs& roi, const ValidationContext& ctx) {
+  const int bad_field = roi.out_of_range();
+  if (bad_field >= 0) return {Reason::OUT_OF_RANGE, static_cast<std::uint16_t>(bad_field)};
+  if (roi.x_px + roi.w_px > ctx.image_width || roi.y_px + roi.h_px > ctx.image_height)
+    return {Reason::INVALID_ARGUMENT, 0};
+  if (roi.has_click != 0 && (roi.click_u_px < roi.x_px || roi.click_u_px >= roi.x_px + roi.w_px ||
+                             roi.click_v_px < roi.y_px || roi.click_v_px >= roi.y_px + roi.h_px))
+    return {Reason::INVALID_ARGUMENT, 6};
+  Verdict v = check_roi_budget(Verdict{}, roi, ctx);
+  return {v.reason, v.detail};
+}
 
 Verdict validate_command(std::span<const std::uint8_t> datagram, const ValidationContext& ctx) {
   Verdict v;

@@ -44,4 +44,13 @@ struct Verdict {
 
 Verdict validate_command(std::span<const std::uint8_t> datagram, const ValidationContext& ctx);
 
+// SELECT_ROI's argument checks (ranges, ROI inside the image, click inside
+// the ROI, the memory budget), also applied on board to a selection not sent
+// by the ground (SELECT_PROPOSAL). reason NONE: fine.
+struct SelectionRefusal {
+  Reason reason = Reason::NONE;
+  std::uint16_t detail = 0;  // field index, or the budget's limit (as the Verdict's)
+};
+SelectionRefusal selection_refusal(const SelectRoiArgs& roi, const ValidationContext& ctx);
+
 }  // namespace petra::cmd

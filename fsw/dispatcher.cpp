@@ -2,8 +2,10 @@
 // code, and the handlers. Every handler either completes, fails with a
 // reason, or leaves a Pending entry that a rate group completes later.
 #include <cstring>
+#include <numbers>
 
 #include "fsw/executive.hpp"
+#include "fsw/proposal_packet.hpp"
 
 namespace petra::fsw {
 
@@ -87,10 +89,15 @@ void Executive::handle_datagram(std::span<const std::uint8_t> datagram) {
 
 void Executive::dispatch(const cmd::Command& c) {
   // Rejections a handler can still make, before anything changes.
-  const bool needs_worker =
-      c.code == cmd::FunctionCode::ACQUIRE || c.code == cmd::FunctionCode::EVALUATE;
+  const bool needs_worker = c.code == cmd::FunctionCode::ACQUIRE ||
+                            c.code == cmd::FunctionCode::EVALUATE ||
+                            c.code == cmd::FunctionCode::PROPOSE;
   if (needs_worker && evaluation_.status().running) {  // an aborted run is still unwinding
     handler_rejects(c, Reason::BUSY, 0);
+    return;
+  }
+  if (const cmd::SelectionRefusal r = pick_refusal(c); r.reason != Reason::NONE) {
+    handler_rejects(c, r.reason, r.detail);  // what SELECT_ROI with its values would get
     return;
   }
   ++cmd_.accepted;
@@ -143,7 +150,14 @@ void Executive::dispatch(const cmd::Command& c) {
     case FC::EVALUATE:
       on_evaluate(c);
       return;
+    case FC::PROPOSE:
+      on_propose(c);
+      return;
+    case FC::SELECT_PROPOSAL:
+      on_select_proposal(c);
+      return;
     case FC::ARM_GOTO:
+    case FC::ARM_GOTO_PROPOSAL:
     case FC::ARM_STOW:
       on_arm(c);
       return;
@@ -211,27 +225,86 @@ void Executive::on_acquire(const cmd::Command& c) {
     fail(fc_of(c), c.counter, Reason::CAMERA_ERROR);
 }
 
+// EVALUATE and PROPOSE: into EVALUATE and, when asked, a new pair first.
+// False: the command failed (CAMERA_ERROR) and the mode is IDLE again.
+bool Executive::enter_evaluate(const cmd::Command& c, bool acquire, std::uint32_t& acquire_us) {
+  modes_.request(Mode::EVALUATE, fc_of(c));
+  acquire_us = 0;
+  if (!acquire) return true;
+  auto us = acquire_pair();
+  if (!us) {
+    modes_.request(Mode::IDLE, 0);
+    fail(fc_of(c), c.counter, Reason::CAMERA_ERROR);
+    return false;
+  }
+  acquire_us = *us;
+  return true;
+}
+
 void Executive::on_evaluate(const cmd::Command& c) {
   const auto& a = std::get<cmd::EvaluateArgs>(c.args);
   const Reason refused = evaluation_.refusal();
   if (refused != Reason::NONE) return fail(fc_of(c), c.counter, refused);
   if (a.acquire == 0 && !has_frame_) return fail(fc_of(c), c.counter, Reason::NO_FRAME);
-  modes_.request(Mode::EVALUATE, fc_of(c));
   std::uint32_t acquire_us = 0;
-  if (a.acquire != 0) {
-    auto us = acquire_pair();
-    if (!us) {
-      modes_.request(Mode::IDLE, 0);
-      return fail(fc_of(c), c.counter, Reason::CAMERA_ERROR);
-    }
-    acquire_us = *us;
-  }
+  if (!enter_evaluate(c, a.acquire != 0, acquire_us)) return;
   if (!evaluation_.start(EvalFrame{frame_seq_, left_, right_, acquire_us})) {
     modes_.request(Mode::IDLE, 0);
     return fail(fc_of(c), c.counter, Reason::PIPELINE_ERROR);
   }
   ++loop_.evaluations;
   pending_eval_ = {true, fc_of(c), c.counter};
+}
+
+// The proposer runs as an evaluation does (mode EVALUATE, the same worker,
+// EVAL_TIMEOUT_S, ABORT): while either runs, the other is refused WRONG_MODE.
+void Executive::on_propose(const cmd::Command& c) {
+  const auto& a = std::get<cmd::ProposeArgs>(c.args);
+  const Reason refused = evaluation_.propose_refusal();
+  if (refused != Reason::NONE) return fail(fc_of(c), c.counter, refused);
+  if (a.acquire == 0 && !has_frame_) return fail(fc_of(c), c.counter, Reason::NO_FRAME);
+  std::uint32_t acquire_us = 0;
+  if (!enter_evaluate(c, a.acquire != 0, acquire_us)) return;
+  if (!evaluation_.start_proposals(EvalFrame{frame_seq_, left_, right_, acquire_us},
+                                   proposal_request_from(a), arm_pose())) {
+    modes_.request(Mode::IDLE, 0);
+    return fail(fc_of(c), c.counter, Reason::PIPELINE_ERROR);
+  }
+  pending_eval_ = {true, fc_of(c), c.counter};
+}
+
+// The measured joints when the arm reports them, else the stowed pose.
+::petra::arm::JointVector Executive::arm_pose() const {
+  tlm::ArmStatus st;
+  if (deps_.arm == nullptr || !deps_.arm->status(st)) return ::petra::arm::stow_pose();
+  ::petra::arm::JointVector q;
+  for (int j = 0; j < ::petra::arm::kJointCount; ++j)
+    q[j] =
+        static_cast<double>(st.joint_deg[static_cast<std::size_t>(j)]) * std::numbers::pi / 180.0;
+  return q;
+}
+
+// SELECT_PROPOSAL of a listed proposal whose ROI SELECT_ROI would refuse
+// (outside the image, beyond the memory budget): that refusal, before
+// acceptance. NONE otherwise (an unlisted proposal fails NO_SUCH_PROPOSAL).
+cmd::SelectionRefusal Executive::pick_refusal(const cmd::Command& c) const {
+  const auto* a = std::get_if<cmd::SelectProposalArgs>(&c.args);
+  if (a == nullptr) return {};
+  const RockProposal* p = evaluation_.proposal(a->proposal_id, a->rank);
+  if (p == nullptr) return {};
+  return cmd::selection_refusal(selection_args(*p), validation_context());
+}
+
+void Executive::on_select_proposal(const cmd::Command& c) {
+  const auto& a = std::get<cmd::SelectProposalArgs>(c.args);
+  const RockProposal* p = evaluation_.proposal(a.proposal_id, a.rank);
+  if (p == nullptr) return fail(fc_of(c), c.counter, Reason::NO_SUCH_PROPOSAL);
+  const cmd::SelectRoiArgs roi = selection_args(*p);  // checked by pick_refusal
+  evaluation_.select(selection_from(roi));
+  events_.raise(EventId::ROI_SELECTED, roi.x_px, roi.y_px, roi.w_px, roi.h_px);
+  events_.raise(EventId::PROPOSAL_SELECTED, static_cast<std::int32_t>(a.proposal_id), a.rank,
+                roi.planes);
+  complete(fc_of(c), c.counter);
 }
 
 // The evaluation publishes its own result; the command's ack and the mode are ours.
@@ -261,6 +334,15 @@ void Executive::on_arm(const cmd::Command& c) {
     const tlm::GrindPlane* p = evaluation_.plane(a.plane_rank);
     if (p == nullptr) return fail(fc_of(c), c.counter, Reason::NO_SUCH_PLANE);
     s = deps_.arm->start_goto(ArmTarget{p->normal, p->centroid_mm, a.standoff_mm});
+  } else if (c.code == cmd::FunctionCode::ARM_GOTO_PROPOSAL) {
+    const auto& a = std::get<cmd::ArmGotoProposalArgs>(c.args);
+    const RockProposal* p = evaluation_.proposal(a.proposal_id, a.rank);
+    const int k = p != nullptr ? offered_plane(*p) : -1;
+    if (k < 0) return fail(fc_of(c), c.counter, Reason::NO_SUCH_PROPOSAL);
+    const GrindPlane& g = p->planes[k];
+    s = deps_.arm->start_goto(ArmTarget{{g.normal.x(), g.normal.y(), g.normal.z()},
+                                        {g.centroid_mm.x(), g.centroid_mm.y(), g.centroid_mm.z()},
+                                        a.standoff_mm});
   } else {
     s = deps_.arm->start_stow();
   }

@@ -1,6 +1,7 @@
 // EvaluationPort: what the executive needs from the evaluation (implemented
 // by fsw/evaluation_service: the selection, the pipeline worker, the step
-// times, the last planes and their telemetry). As with fsw/arm_port.hpp, the
+// times, the last planes and their telemetry; and the rock proposals, which
+// run on the same worker, one run at a time). As with fsw/arm_port.hpp, the
 // executive starts, polls every cycle, aborts and reads a status; it keeps
 // the command's acknowledgement and the mode, the service does the rest.
 #pragma once
@@ -22,7 +23,8 @@ enum class EvalProgress : std::uint8_t {
   IDLE,       // nothing awaited (an aborted run may still be unwinding: status().running)
   RUNNING,    // the worker is on it
   COMPLETED,  // published: EVAL_RESULT, planes, products, EVAL_COMPLETED
-  FAILED,     // published: EVAL_RESULT (status 2) and EVAL_FAILED
+              // (a proposal run: PROPOSALS, the picture, PROPOSE_COMPLETED or _EMPTY)
+  FAILED,  // published: EVAL_RESULT (status 2) and EVAL_FAILED (PROPOSALS status 2, PROPOSE_FAILED)
   TIMED_OUT,  // EVAL_TIMEOUT raised; still running until abort()
 };
 
@@ -58,6 +60,15 @@ class EvaluationPort {
   virtual EvalStatus status() const = 0;
   // A plane of the last evaluation by rank (ARM_GOTO); nullptr: no such plane.
   virtual const tlm::GrindPlane* plane(std::size_t rank) const = 0;
+
+  // PROPOSE: why it cannot start (NO_PIPELINE, NO_PROPOSER); Reason::NONE when it can.
+  virtual Reason propose_refusal() const = 0;
+  // Starts a proposal run on the pair (PROPOSE_STARTED); an error: it did not start.
+  virtual Status start_proposals(const EvalFrame& frame, const ProposalRequest& request,
+                                 const ::petra::arm::JointVector& arm_pose) = 0;
+  // A proposal of the last list published, by its proposal_id and rank (1 =
+  // best); nullptr when that list is not the last one or has no such rank.
+  virtual const RockProposal* proposal(std::uint32_t proposal_id, int rank) const = 0;
 };
 
 }  // namespace petra::fsw

@@ -16,6 +16,14 @@ PipelineRequest selection_from(const cmd::SelectRoiArgs& a) {
   return r;  // the method is the MATCH_METHOD in force at EVALUATE
 }
 
+ProposalRequest proposal_request_from(const cmd::ProposeArgs& a) {
+  ProposalRequest r;
+  r.region = Rect{a.x_px, a.y_px, a.w_px, a.h_px};
+  r.max_proposals = a.count;
+  r.weights = {a.weight_grindable, a.weight_reach, a.weight_certainty, a.weight_size};
+  return r;
+}
+
 Status EvaluationService::init(const EvaluationWiring& wiring) {
   PETRA_ASSERT(wiring.clock != nullptr && wiring.params != nullptr && wiring.events != nullptr &&
                wiring.queue != nullptr && wiring.products != nullptr);
@@ -30,7 +38,8 @@ Reason EvaluationService::refusal() const {
   return Reason::NONE;
 }
 
-EvalRequest EvaluationService::request_for(const EvalFrame& frame) const {
+EvalRequest EvaluationService::request_for(const EvalFrame& frame) {
+  frame_ = frame.sequence;
   const ParamTable& p = *w_.params;
   EvalRequest r;
   r.eval_id = eval_id_;
@@ -38,7 +47,7 @@ EvalRequest EvaluationService::request_for(const EvalFrame& frame) const {
   r.left = frame.left;
   r.right = frame.right;
   r.rig = w_.rig;
-  r.selection = *selection_;
+  r.selection = selection_.value_or(PipelineRequest{});  // none for PROPOSE
   r.selection.method = static_cast<MatchMethod>(p.get_int(ParamId::MATCH_METHOD));
   r.disp_min_px = p.get_int(ParamId::DISP_MIN_PX);
   r.disp_max_px = p.get_int(ParamId::DISP_MAX_PX);
@@ -51,12 +60,12 @@ Status EvaluationService::start(const EvalFrame& frame) {
   if (refusal() != Reason::NONE)
     return Error::make(Errc::not_ready, "evaluation: no selection or no pipeline");
   ++eval_id_;  // used up even when the worker refuses: ids stay unique
-  frame_ = frame.sequence;
   acquire_us_ = frame.acquire_us;
   const EvalRequest r = request_for(frame);
   // Stamped before the worker can start: the total then always covers its steps.
   started_ns_ = w_.clock->monotonic_ns();
   PETRA_TRY(runner_.start(r));
+  kind_ = JobKind::EVALUATE;
   awaiting_ = true;
   w_.events->raise(EventId::EVAL_STARTED, static_cast<std::int32_t>(r.eval_id),
                    static_cast<std::int32_t>(r.frame), r.selection.planes,
@@ -65,25 +74,33 @@ Status EvaluationService::start(const EvalFrame& frame) {
 }
 
 EvalProgress EvaluationService::poll() {
-  if (awaiting_) {
+  if (awaiting_) {  // EVAL_TIMEOUT_S bounds a proposal run too
     const std::int64_t limit = w_.params->get_int(ParamId::EVAL_TIMEOUT_S) * 1000 * kMs;
     if (elapsed_ns() > limit) {
-      w_.events->raise(EventId::EVAL_TIMEOUT, static_cast<std::int32_t>(eval_id_),
-                       w_.params->get_int(ParamId::EVAL_TIMEOUT_S));
+      const bool propose = kind_ == JobKind::PROPOSE;
+      const auto fc = static_cast<std::int32_t>(propose ? cmd::FunctionCode::PROPOSE
+                                                        : cmd::FunctionCode::EVALUATE);
+      w_.events->raise(EventId::EVAL_TIMEOUT,
+                       static_cast<std::int32_t>(propose ? proposal_id_ : eval_id_),
+                       w_.params->get_int(ParamId::EVAL_TIMEOUT_S), fc);
       return EvalProgress::TIMED_OUT;
     }
   }
   if (!runner_.poll_done()) return awaiting_ ? EvalProgress::RUNNING : EvalProgress::IDLE;
   if (!awaiting_) return EvalProgress::IDLE;  // aborted: its late result is dropped
   awaiting_ = false;
-  return publish() ? EvalProgress::COMPLETED : EvalProgress::FAILED;
+  const bool ok = kind_ == JobKind::PROPOSE ? publish_proposals() : publish();
+  return ok ? EvalProgress::COMPLETED : EvalProgress::FAILED;
 }
 
 void EvaluationService::abort() {
   if (!awaiting_) return;
   runner_.cancel();
   awaiting_ = false;
-  w_.events->raise(EventId::EVAL_ABORTED, static_cast<std::int32_t>(eval_id_));
+  if (kind_ == JobKind::PROPOSE)
+    w_.events->raise(EventId::PROPOSE_ABORTED, static_cast<std::int32_t>(proposal_id_));
+  else
+    w_.events->raise(EventId::EVAL_ABORTED, static_cast<std::int32_t>(eval_id_));
 }
 
 EvalStatus EvaluationService::status() const {

@@ -195,6 +195,7 @@ Status Executive::init(const FswConfig& config, const Dependencies& deps) {
   pb.max_roi_width = b.roi_width;
   pb.max_roi_height = b.roi_height;
   pb.rig = has_rig_ ? &rig_ : nullptr;
+  pb.arm_geometry = arm_geometry(config);
   // The arena is what the job needs for the budget, or budget.arena_mb when given.
   const std::size_t need = deps.job != nullptr ? deps.job->arena_bytes(pb) : 0;
   if (b.arena_bytes != 0 && need > b.arena_bytes)

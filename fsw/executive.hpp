@@ -115,7 +115,12 @@ class Executive {
   void handler_rejects(const cmd::Command& c, Reason reason, std::uint16_t detail);
   void on_set_param(const cmd::Command& c);
   void on_acquire(const cmd::Command& c);
+  bool enter_evaluate(const cmd::Command& c, bool acquire, std::uint32_t& acquire_us);
   void on_evaluate(const cmd::Command& c);
+  void on_propose(const cmd::Command& c);
+  void on_select_proposal(const cmd::Command& c);
+  cmd::SelectionRefusal pick_refusal(const cmd::Command& c) const;
+  ::petra::arm::JointVector arm_pose() const;
   void on_arm(const cmd::Command& c);
   void on_abort(const cmd::Command& c);
   void on_set_mode(const cmd::Command& c);

@@ -203,8 +203,19 @@ petra::PipelineParams FlightPipelineJob::pipeline_params(const Settings& setting
   return p;
 }
 
+ProposerBudget FlightPipelineJob::proposer_budget(const Sizing& s) {
+  ProposerBudget b;
+  b.pipeline = s.pipeline;
+  b.max_roi_width = s.roi_width;
+  b.max_roi_height = s.roi_height;
+  return b;
+}
+
+// The larger of the evaluation's and the proposer's: one of them at a time.
 std::size_t FlightPipelineJob::arena_bytes(const JobBudget& budget) const {
-  return need_bytes(pipeline_budget(budget), budget.max_cloud_points);
+  const Sizing s = sizing(budget);
+  return std::max(need_bytes(s.pipeline, budget.max_cloud_points),
+                  Proposer::arena_bytes(proposer_budget(s), pipeline_params(default_settings())));
 }
 
 JobLimits FlightPipelineJob::limits() const {
@@ -237,7 +248,13 @@ Status FlightPipelineJob::init(const JobBudget& budget, const StereoRig* rig, Ar
   budget_ = s.pipeline;
   roi_width_ = s.roi_width;
   roi_height_ = s.roi_height;
-  return create(default_settings());
+  proposer_budget_ = proposer_budget(s);
+  arm_geometry_ = budget.arm_geometry;
+  proposer_fits_ = arena.remaining() >=
+                   Proposer::arena_bytes(proposer_budget_, pipeline_params(default_settings()));
+  PETRA_TRY(create(default_settings()));
+  tables_end_ = arena.mark();
+  return {};
 }
 
 Status FlightPipelineJob::create(const Settings& settings) {
@@ -249,6 +266,7 @@ Status FlightPipelineJob::create(const Settings& settings) {
                        "DISP_MIN_PX %d .. DISP_MAX_PX %d: wider than the budget's %d disparities",
                        settings.disp_min_px, settings.disp_max_px, budget_.max_disparities);
   ready_ = false;
+  proposer_ready_ = false;  // the pipeline takes its place
   arena_->release_to(base_mark_);
   auto p = Pipeline::create(*rig_, budget_, pipeline_params(settings), *arena_);
   if (!p) return p.error();
@@ -271,14 +289,20 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
                        static_cast<int>(method));
   if (request.left.empty() || request.right.empty())
     return Error::make(Errc::invalid_argument, "run: no stereo pair");
-  const Settings wanted{request.shadow_fraction, request.disp_min_px, request.disp_max_px};
-  if (!ready_ || !(wanted == settings_)) PETRA_TRY(create(wanted));
   if (cancel.load(std::memory_order_relaxed))
     return Error::make(Errc::cancelled, "evaluation cancelled");
 
   StepTracker tracker{clock_, Step::RECTIFY, &cancel};
   const StepClock clock{&StepTracker::now_ns, &tracker, &StepTracker::on_step,
                         &StepTracker::cancel_requested};
+  if (request.kind == JobKind::PROPOSE) {
+    const Status s = propose(request, clock, out);
+    if (!s) out.failed_step = tracker.current;
+    return s;
+  }
+  // Rebuilt when the parameters changed, or when a proposal run took its place.
+  const Settings wanted{request.shadow_fraction, request.disp_min_px, request.disp_max_px};
+  if (!ready_ || !(wanted == settings_)) PETRA_TRY(create(wanted));
   auto result = pipeline_.run(request.left, request.right, request.selection, clock);
   if (!result) {
     out.failed_step = tracker.current;
@@ -321,6 +345,36 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   PETRA_TRY(make_products(p, pipeline_.rectifier().geometry(), max_cloud_points_, arena, out));
   out.step_us[static_cast<std::size_t>(Step::PRODUCTS)] =
       to_us(static_cast<std::uint64_t>(clock_->monotonic_ns() - t0));
+  return {};
+}
+
+// The proposer in the pipeline's place: the same tables' bytes, so every run
+// still starts where init() left the arena.
+Status FlightPipelineJob::create_proposer(const Settings& settings) {
+  if (!proposer_fits_)
+    return Error::make(Errc::capacity_exceeded, "proposer: the arena is smaller than it needs");
+  ready_ = false;
+  proposer_ready_ = false;
+  arena_->release_to(base_mark_);
+  auto p = Proposer::create(*rig_, proposer_budget_, pipeline_params(settings), arm_geometry_,
+                            ::petra::arm::default_joint_limits(), *arena_);
+  if (!p) return p.error();
+  if (arena_->mark() != tables_end_)
+    return Error::make(Errc::capacity_exceeded, "proposer: its tables end at %zu, not at %zu",
+                       arena_->mark(), tables_end_);
+  proposer_ = *p;
+  proposer_settings_ = settings;
+  proposer_ready_ = true;
+  return {};
+}
+
+Status FlightPipelineJob::propose(const EvalRequest& request, const StepClock& clock,
+                                  EvalOutput& out) {
+  const Settings wanted{request.shadow_fraction, request.disp_min_px, request.disp_max_px};
+  if (!proposer_ready_ || !(wanted == proposer_settings_)) PETRA_TRY(create_proposer(wanted));
+  auto list = proposer_.run(request.left, request.right, request.proposal, request.arm_pose, clock);
+  if (!list) return list.error();
+  out.proposals = *list;
   return {};
 }
 

@@ -22,13 +22,20 @@
 // (same bytes), so a parameter change costs one rebuild, never memory. An
 // envelope that is empty or wider than the budget's disparity count (the
 // default envelope's) is refused naming both parameters.
-// Memory: arena_bytes(budget) = tables + the pipeline's largest run + the
-// products; nothing else, no heap.
+// PROPOSE (JobKind::PROPOSE): the rock proposer (algo/propose/proposer) built
+// in the same place as the pipeline, when it is asked for, with the same
+// budget, ROI limits (its ROIs pass SELECT_ROI's check) and parameters in
+// force, and the arm geometry of the budget; the next EVALUATE rebuilds the
+// pipeline there (one of them at a time, as their runs are).
+// Memory: arena_bytes(budget) = the larger of the tables + the pipeline's
+// largest run + the products, and the proposer's (tables + the larger of a
+// chain run and the whole-pair detection); nothing else, no heap.
 #pragma once
 
 #include <cstddef>
 
 #include "algo/chain/pipeline.hpp"
+#include "algo/propose/proposer.hpp"
 #include "fsw/pipeline_job.hpp"
 #include "hal/clock.hpp"
 
@@ -47,6 +54,7 @@ class FlightPipelineJob final : public PipelineJob {
              EvalOutput& out) override;
 
   JobLimits limits() const override;
+  bool can_propose() const override { return proposer_fits_; }
   int describe_memory(char* buf, std::size_t size) const override;
 
   // The pipeline's sizes for an executive budget and the ROI (original px) they admit.
@@ -68,9 +76,13 @@ class FlightPipelineJob final : public PipelineJob {
   };
   static Settings default_settings();  // the parameter table's defaults
   static petra::PipelineParams pipeline_params(const Settings& settings);
+  // The proposer's budget for a sizing: its chain's, and the ROI limits.
+  static ProposerBudget proposer_budget(const Sizing& s);
 
  private:
   Status create(const Settings& settings);
+  Status create_proposer(const Settings& settings);
+  Status propose(const EvalRequest& request, const StepClock& clock, EvalOutput& out);
 
   const hal::Clock* clock_;
   const StereoRig* rig_ = nullptr;
@@ -83,6 +95,14 @@ class FlightPipelineJob final : public PipelineJob {
   Pipeline pipeline_;
   Settings settings_;
   bool ready_ = false;
+  // The proposer, in the pipeline's place when built (never both ready).
+  std::size_t tables_end_ = 0;  // where the pipeline's tables end: the proposer's must too
+  ProposerBudget proposer_budget_;
+  ::petra::arm::ArmGeometry arm_geometry_;
+  Proposer proposer_;
+  Settings proposer_settings_;
+  bool proposer_ready_ = false;
+  bool proposer_fits_ = false;  // the arena holds it (init)
 };
 
 }  // namespace petra::fsw

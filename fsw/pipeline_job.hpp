@@ -18,6 +18,7 @@
 #include "algo/core/fixed_vector.hpp"
 #include "algo/core/image_view.hpp"
 #include "algo/core/result.hpp"
+#include "algo/propose/proposals.hpp"
 #include "tlm/telemetry.hpp"
 #include "tlm/tlm_defs.hpp"
 
@@ -48,6 +49,8 @@ struct JobBudget {
   int max_roi_width = 0;
   int max_roi_height = 0;
   const StereoRig* rig = nullptr;  // sizes the rectified ROI; nullptr: no calib.json
+  // Where the arm is (arm.mount): the proposer judges reach with it.
+  ::petra::arm::ArmGeometry arm_geometry = ::petra::arm::rover_arm_geometry();
 };
 
 // What a job can take, fixed at init; the executive refuses commands beyond
@@ -58,9 +61,15 @@ struct JobLimits {
   int disparities = 0;  // DISP_MAX_PX - DISP_MIN_PX + 1
 };
 
+// What a run computes: the chain on the selected ROI (EVALUATE), or the rock
+// proposals over a region of the whole pair (PROPOSE). One at a time: both
+// run on the same worker and arena.
+enum class JobKind : std::uint8_t { EVALUATE, PROPOSE };
+
 // One evaluation request: the pair, the operator's selection and the
-// parameters in force when EVALUATE was accepted.
+// parameters in force when EVALUATE (or PROPOSE) was accepted.
 struct EvalRequest {
+  JobKind kind = JobKind::EVALUATE;
   std::uint32_t eval_id = 0;
   std::uint32_t frame = 0;
   ConstGray8View left;
@@ -72,6 +81,10 @@ struct EvalRequest {
   int disp_max_px = 0;
   double shadow_fraction = 0;
   double min_plane_area_mm2 = 0;
+  // PROPOSE only: the operator's request (region empty: the whole image) and
+  // the arm's pose now (measured joints, or stowed when no arm reports them).
+  ProposalRequest proposal;
+  ::petra::arm::JointVector arm_pose = ::petra::arm::JointVector::Zero();
 };
 
 struct EvalOutput {
@@ -98,6 +111,8 @@ struct EvalOutput {
   ConstGray8View disparity_gray;              // disparity as 8-bit gray, ROI-sized
   ImageView<const std::uint8_t> overlay_rgb;  // width = 3 * pixels, interleaved RGB
   std::span<const float> cloud_xyz_mm;        // x, y, z per point
+  // PROPOSE: the ranked list, in the job's memory (valid until the next run).
+  const ProposalList* proposals = nullptr;
 };
 
 class PipelineJob {
@@ -115,6 +130,8 @@ class PipelineJob {
     (void)arena;
     return {};
   }
+  // True when run() serves JobKind::PROPOSE (a proposer was built at init).
+  virtual bool can_propose() const { return false; }
   // Valid after init(); read by the loop thread while a run goes on.
   virtual JobLimits limits() const { return {}; }
   // Its memory per stage as text (printed at boot); snprintf-like.
@@ -122,7 +139,8 @@ class PipelineJob {
     if (size > 0) buf[0] = '\0';
     return 0;
   }
-  // Runs one evaluation on the worker thread. `out` starts cleared.
+  // Runs one evaluation (request.kind) on the worker thread. `out` starts
+  // cleared. A job without a proposer fails a PROPOSE run not_supported.
   virtual Status run(const EvalRequest& request, Arena& arena, const std::atomic<bool>& cancel,
                      EvalOutput& out) = 0;
 };

@@ -43,7 +43,22 @@ void ProductStreamer::finish(Stream& s) {
 std::array<std::size_t, kProductKinds> ProductStreamer::bytes_needed(int max_width, int max_height,
                                                                      std::size_t cloud_points) {
   const auto pixels = static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height);
-  return {pixels, pixels, 3 * pixels, 12 * cloud_points};
+  const int pw = (max_width + kProposalsPictureMinStep - 1) / kProposalsPictureMinStep;
+  const int ph = (max_height + kProposalsPictureMinStep - 1) / kProposalsPictureMinStep;
+  const std::size_t picture = 3 * static_cast<std::size_t>(pw) * static_cast<std::size_t>(ph);
+  return {pixels, pixels, 3 * pixels, 12 * cloud_points, picture};
+}
+
+void ProductStreamer::open(Stream& s, std::uint32_t id, int w, int h, ProductFormat format,
+                           std::size_t bytes) {
+  s.size = bytes;
+  s.id = id;
+  s.width = static_cast<std::uint16_t>(w);
+  s.height = static_cast<std::uint16_t>(h);
+  s.format = format;
+  s.chunks = static_cast<std::uint16_t>((bytes + kChunk - 1) / kChunk);
+  s.next_chunk = 0;
+  s.active = true;
 }
 
 bool ProductStreamer::stage_image(ProductKind kind, std::uint32_t id,
@@ -66,15 +81,34 @@ bool ProductStreamer::stage_image(ProductKind kind, std::uint32_t id,
     for (int x = 0; x < pixels_w; x += step)
       for (int c = 0; c < channels; ++c) s.buffer[o++] = row[x * channels + c];
   }
-  s.size = bytes;
-  s.id = id;
-  s.width = static_cast<std::uint16_t>(w);
-  s.height = static_cast<std::uint16_t>(h);
-  s.format = channels == 3 ? ProductFormat::RGB8 : ProductFormat::GRAY8;
-  s.chunks = static_cast<std::uint16_t>((bytes + kChunk - 1) / kChunk);
-  s.next_chunk = 0;
-  s.active = true;
+  open(s, id, w, h, channels == 3 ? ProductFormat::RGB8 : ProductFormat::GRAY8, bytes);
   return true;
+}
+
+ImageView<std::uint8_t> ProductStreamer::stage_gray_as_rgb(ProductKind kind, std::uint32_t id,
+                                                           ConstGray8View gray, int step) {
+  if (step < 1) {
+    (void)refuse(kind, id, Refusal::EMPTY);
+    return {};
+  }
+  Stream* free = free_stream(kind, id);
+  if (free == nullptr) return {};
+  Stream& s = *free;
+  const int w = (gray.width() + step - 1) / step;
+  const int h = (gray.height() + step - 1) / step;
+  const std::size_t bytes = 3 * static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  if (bytes == 0 || bytes > s.buffer.size() || bytes > 0xFFFFu * kChunk) {
+    (void)refuse(kind, id, bytes == 0 ? Refusal::EMPTY : Refusal::TOO_LARGE);
+    return {};
+  }
+  std::size_t o = 0;
+  for (int y = 0; y < gray.height(); y += step) {
+    const std::uint8_t* row = gray.row(y);
+    for (int x = 0; x < gray.width(); x += step)
+      for (int c = 0; c < 3; ++c) s.buffer[o++] = row[x];
+  }
+  open(s, id, w, h, ProductFormat::RGB8, bytes);
+  return ImageView<std::uint8_t>(s.buffer.data(), 3 * w, h);
 }
 
 bool ProductStreamer::stage_cloud(std::uint32_t id, std::span<const float> xyz,
@@ -99,14 +133,7 @@ bool ProductStreamer::stage_cloud(std::uint32_t id, std::span<const float> xyz,
       s.buffer[o++] = static_cast<std::uint8_t>(b);
     }
   }
-  s.size = o;
-  s.id = id;
-  s.width = static_cast<std::uint16_t>(keep);
-  s.height = 1;
-  s.format = ProductFormat::XYZ_F32;
-  s.chunks = static_cast<std::uint16_t>((o + kChunk - 1) / kChunk);
-  s.next_chunk = 0;
-  s.active = true;
+  open(s, id, static_cast<int>(keep), 1, ProductFormat::XYZ_F32, o);
   return true;
 }
 

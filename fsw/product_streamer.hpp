@@ -1,5 +1,5 @@
 // ProductStreamer: downlinks products (left image, disparity and overlay
-// thumbnails, point cloud) as PRODUCT packets of 1024 data bytes, a few per
+// thumbnails, point cloud, the proposals picture) as PRODUCT packets of 1024 data bytes, a few per
 // cycle and only while the downlink queue has room beyond a reserve, so a
 // large product never crowds out events and housekeeping. Each kind has its
 // own buffer sized at init. A product of a kind still streaming is refused
@@ -23,10 +23,13 @@ enum class ProductKind : std::uint8_t {
   LEFT_IMAGE = 1,
   DISPARITY = 2,
   OVERLAY = 3,
-  POINT_CLOUD = 4
+  POINT_CLOUD = 4,
+  PROPOSALS = 5  // the left image with the proposals drawn (fsw/proposal_picture)
 };
 enum class ProductFormat : std::uint8_t { GRAY8 = 1, RGB8 = 2, XYZ_F32 = 3 };
-inline constexpr std::size_t kProductKinds = 4;
+inline constexpr std::size_t kProductKinds = 5;
+// The proposals picture is at most half the image's size a side.
+inline constexpr int kProposalsPictureMinStep = 2;
 
 class ProductStreamer {
  public:
@@ -42,6 +45,11 @@ class ProductStreamer {
   // (and PRODUCT_REFUSED) when that kind is still streaming or it does not fit.
   bool stage_image(ProductKind kind, std::uint32_t id, ImageView<const std::uint8_t> image,
                    int channels, int step);
+  // Copies a gray image subsampled by `step` as RGB into the stream of `kind`
+  // and returns it, writable until the next pump(), so the caller can draw
+  // on it; an empty view (and PRODUCT_REFUSED) as stage_image refuses.
+  ImageView<std::uint8_t> stage_gray_as_rgb(ProductKind kind, std::uint32_t id, ConstGray8View gray,
+                                            int step);
   // Copies up to max_points points (uniformly subsampled) as big-endian f32.
   bool stage_cloud(std::uint32_t id, std::span<const float> xyz, std::size_t max_points);
 
@@ -70,6 +78,7 @@ class ProductStreamer {
   Stream* free_stream(ProductKind kind, std::uint32_t id);
   bool refuse(ProductKind kind, std::uint32_t id, Refusal why, std::uint32_t busy_id = 0);
   void finish(Stream& s);
+  void open(Stream& s, std::uint32_t id, int w, int h, ProductFormat format, std::size_t bytes);
 
   std::array<Stream, kProductKinds> streams_{};
   EventLog* events_ = nullptr;

@@ -22,7 +22,7 @@
   X(EVAL_COMPLETED, 9, INFO, "evaluation {0}: {1} of {2} grind planes in {3} ms")             \
   X(EVAL_FAILED, 10, WARNING, "evaluation {0} failed: {1:errc} in step {2:step}")             \
   X(EVAL_ABORTED, 11, INFO, "evaluation {0} aborted")                                         \
-  X(EVAL_TIMEOUT, 12, ERROR, "evaluation {0} exceeded EVAL_TIMEOUT_S ({1} s): aborted, SAFE") \
+  X(EVAL_TIMEOUT, 12, ERROR, "{2:fc} run {0} exceeded EVAL_TIMEOUT_S ({1} s): aborted, SAFE") \
   X(HEARTBEAT_LOST, 13, ERROR, "component {0:component} silent for {1} ms: SAFE")             \
   X(CYCLE_OVERRUN, 14, WARNING, "loop cycle took {0} us (period {1} us)")                     \
   X(TLM_DROPPED, 15, WARNING, "telemetry queue full: {0} packets dropped so far")             \
@@ -59,7 +59,16 @@
     "command port: {0} datagrams dropped by the kernel (receive buffer full) so far")         \
   X(PRODUCT_REFUSED, 35, WARNING,                                                             \
     "product {0} of id {1} refused: {2} (1 product {0} of id {3} still streaming, 2 too "     \
-    "large for its buffer, 3 empty)")
+    "large for its buffer, 3 empty)")                                                         \
+  X(PROPOSE_STARTED, 36, INFO,                                                                \
+    "proposals {0} started on pair {1}: up to {2}, over {3} (0 the whole image, 1 a region)") \
+  X(PROPOSE_COMPLETED, 37, INFO,                                                              \
+    "proposals {0}: {1} listed, {2} offering a plane, of {3} rocks detected")                 \
+  X(PROPOSE_EMPTY, 38, INFO,                                                                  \
+    "proposals {0}: nothing offered: {1:empty} ({2} listed, {3} rocks detected)")             \
+  X(PROPOSE_FAILED, 39, WARNING, "proposals {0} failed: {1:errc}")                            \
+  X(PROPOSE_ABORTED, 40, INFO, "proposals {0} aborted")                                       \
+  X(PROPOSAL_SELECTED, 41, INFO, "proposal {1} of list {0} selected (c = {2})")
 
 // Each rejection reason has its own event, id 0x100 + reason code:
 // "command {0:fc} rejected: <reason> (detail {1}, counter {2})", severity WARNING.

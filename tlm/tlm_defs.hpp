@@ -150,11 +150,71 @@
   F(f64, d_mm, 1, "mm", -1e7, 1e7, "plane offset")                          \
   F(u32, points, 1, "", 0, PETRA_U32_MAX, "3D points classified as ground")
 
+// PROPOSALS: one packet per PROPOSE run, the ranked list as parallel arrays
+// of PETRA_MAX_PROPOSALS slots (slot i = rank i + 1; slots from `count` on are
+// 0). The plane shown per proposal is its best offered one (verdict grindable,
+// reach ok) when it has one (plane_offered 1), else its first plane (verdict
+// and reach say why it is not offered); none when plane_count is 0.
+#define PETRA_MAX_PROPOSALS 8
+#define PETRA_PROPOSAL_EMPTY_REASONS(X)                                                \
+  X(NONE, 0, "at least one proposal offers a plane")                                   \
+  X(NO_ROCK, 1, "no rock stands out of the ground in the region")                      \
+  X(NONE_KEPT, 2, "rocks were detected but none could be proposed")                    \
+  X(NONE_GRINDABLE, 3, "the proposals listed have no grindable plane (notes say why)") \
+  X(NONE_REACHABLE, 4, "grindable planes were found; the arm reaches none of them")    \
+  X(FAILED, 5, "the run failed (reason)")
+#define PETRA_PROPOSALS_FIELDS(F)                                                                  \
+  F(u32, proposal_id, 1, "", 0, PETRA_U32_MAX, "PROPOSE run number since boot")                    \
+  F(u32, frame, 1, "", 0, PETRA_U32_MAX, "stereo pair it ran on")                                  \
+  F(u8, status, 1, "enum", 0, 2,                                                                   \
+    "0 proposals, 1 nothing offered (empty_reason), 2 failed (an aborted run sends nothing)")      \
+  F(u8, reason, 1, "enum", 0, 255, "failure reason when status is 2")                              \
+  F(u8, empty_reason, 1, "enum", 0, 5,                                                             \
+    "0 none, 1 no rock, 2 none kept, 3 none grindable, 4 none reachable, 5 failed")                \
+  F(u8, count, 1, "", 0, PETRA_MAX_PROPOSALS, "proposals in the list")                             \
+  F(u16, candidates, 1, "", 0, 65535, "rocks detected before ranking and truncation")              \
+  F(u16, region_px, 4, "px", 0, 8192, "region x, y, w, h searched (the whole image: 0, 0, W, H)")  \
+  F(u32, total_ms, 1, "ms", 0, PETRA_U32_MAX, "wall time of the run")                              \
+  F(u8, picture_step, 1, "", 0, 16,                                                                \
+    "the picture (PRODUCT 5, same id): left image px = picture px x step (0: no picture)")         \
+  F(u8, rank, PETRA_MAX_PROPOSALS, "", 0, PETRA_MAX_PROPOSALS, "1 = best; 0: empty slot")          \
+  F(u16, roi_px, 4 * PETRA_MAX_PROPOSALS, "px", 0, 8192,                                           \
+    "per proposal: ROI x, y, w, h in the left image (what SELECT_PROPOSAL selects)")               \
+  F(u16, click_px, 2 * PETRA_MAX_PROPOSALS, "px", 0, 8191, "per proposal: click u, v on the rock") \
+  F(f32, height_mm, PETRA_MAX_PROPOSALS, "mm", 0, 1e6, "rock's highest point above the ground")    \
+  F(f32, size_mm, PETRA_MAX_PROPOSALS, "mm", 0, 1e6, "rock's largest horizontal extent")           \
+  F(u8, planes_c, PETRA_MAX_PROPOSALS, "", 0, 8, "c the proposer chose for the chain run")         \
+  F(u8, note, PETRA_MAX_PROPOSALS, "enum", 0, 3,                                                   \
+    "0 ok, 1 no grindable plane, 2 chain refused, 3 unreachable")                                  \
+  F(u8, plane_count, PETRA_MAX_PROPOSALS, "", 0, 3, "planes the proposal carries on board")        \
+  F(u8, plane_offered, PETRA_MAX_PROPOSALS, "bool", 0, 1,                                          \
+    "1: the plane shown is offered (grindable and reached; ARM_GOTO_PROPOSAL's target)")           \
+  F(f32, score_total, PETRA_MAX_PROPOSALS, "1", 0, 1,                                              \
+    "weighted sum of the terms / sum of weights")                                                  \
+  F(f32, score_grindable, PETRA_MAX_PROPOSALS, "1", 0, 1, "score term: grindable")                 \
+  F(f32, score_reach, PETRA_MAX_PROPOSALS, "1", 0, 1, "score term: reach")                         \
+  F(f32, score_certainty, PETRA_MAX_PROPOSALS, "1", 0, 1, "score term: certainty")                 \
+  F(f32, score_size, PETRA_MAX_PROPOSALS, "1", 0, 1, "score term: size")                           \
+  F(f32, normal, 3 * PETRA_MAX_PROPOSALS, "1", -1, 1,                                              \
+    "plane shown: unit normal out of the rock, calibration world frame")                           \
+  F(f32, centroid_mm, 3 * PETRA_MAX_PROPOSALS, "mm", -1e7, 1e7,                                    \
+    "plane shown: where the grinder goes, world frame")                                            \
+  F(f32, area_mm2, PETRA_MAX_PROPOSALS, "mm2", 0, 1e12, "plane shown: supporting area")            \
+  F(f32, normal_sigma_deg, PETRA_MAX_PROPOSALS, "deg", 0, 180, "plane shown: normal 1-sigma")      \
+  F(f32, offset_sigma_mm, PETRA_MAX_PROPOSALS, "mm", 0, 1e6, "plane shown: offset 1-sigma")        \
+  F(u8, verdict, PETRA_MAX_PROPOSALS, "enum", 0, 6,                                                \
+    "plane shown: 0 grindable, 1 faces away, 2 too small, 3 too rough, 4 no support, 5 surplus, "  \
+    "6 too uncertain")                                                                             \
+  F(u8, reach, PETRA_MAX_PROPOSALS, "enum", 0, 6,                                                  \
+    "plane shown: arm reach, 0 ok, 1 bad target, 2 beyond reach, 3 inside reach, 4 joint "         \
+    "limit, 5 path blocked, 6 bad request (ARM_STATUS refusal)")
+
 #define PETRA_PRODUCT_DATA_BYTES 1024
 #define PETRA_PRODUCT_FIELDS(F)                                                                  \
-  F(u8, product, 1, "enum", 1, 4, "1 LEFT_IMAGE, 2 DISPARITY, 3 OVERLAY, 4 POINT_CLOUD")         \
+  F(u8, product, 1, "enum", 1, 5,                                                                \
+    "1 LEFT_IMAGE, 2 DISPARITY, 3 OVERLAY, 4 POINT_CLOUD, 5 PROPOSALS (the picture)")            \
   F(u8, format, 1, "enum", 1, 3, "1 gray8 rows, 2 rgb8 rows, 3 xyz f32 mm triples (big-endian)") \
-  F(u32, id, 1, "", 0, PETRA_U32_MAX, "frame (LEFT_IMAGE) or evaluation id")                     \
+  F(u32, id, 1, "", 0, PETRA_U32_MAX, "frame (LEFT_IMAGE), evaluation id or proposal_id")        \
   F(u16, chunk, 1, "", 0, 65535, "chunk index, 0 first")                                         \
   F(u16, chunks, 1, "", 1, 65535, "chunks in the product")                                       \
   F(u32, total_bytes, 1, "bytes", 0, PETRA_U32_MAX, "product size")                              \
@@ -180,6 +240,8 @@
   X(GrindPlane, GRIND_PLANE, 0x021, "one ranked grind plane", PETRA_GRIND_PLANE_FIELDS)          \
   X(GroundPlane, GROUND_PLANE, 0x022, "the ground plane of one evaluation",                      \
     PETRA_GROUND_PLANE_FIELDS)                                                                   \
+  X(Proposals, PROPOSALS, 0x023, "the ranked rock proposals of one PROPOSE run",                 \
+    PETRA_PROPOSALS_FIELDS)                                                                      \
   X(Product, PRODUCT, 0x030,                                                                     \
     "one chunk of a product (image or point cloud); sequence flags mark first/last chunk",       \
     PETRA_PRODUCT_FIELDS)

@@ -119,12 +119,7 @@ bool start_arm(const petra::fsw::FswConfig& config, petra::fsw::FlightDevices& d
   }
   petra::fsw::arm::ArmServiceConfig arm_config;
   arm_config.heartbeat_timeout_ms = config.arm.heartbeat_timeout_ms;
-  if (config.arm.has_mount) {
-    const auto& m = config.arm.mount;
-    arm_config.geometry.world_from_base =
-        Eigen::Translation3d(m[0], m[1], m[2]) *
-        Eigen::AngleAxisd(m[3] * 3.14159265358979323846 / 180.0, Eigen::Vector3d::UnitZ());
-  }
+  arm_config.geometry = petra::fsw::arm_geometry(config);
   if (auto s = arm.init(arm_config, *can, clock); !s) {
     (void)std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);
     return false;

@@ -8,6 +8,7 @@
 #include "cmd/command_packet.hpp"
 #include "cmd/mode.hpp"
 #include "sim/gnd/json_text.hpp"
+#include "sim/gnd/proposal_pick.hpp"
 #include "sim/ground/command_builder.hpp"
 #include "sim/ground/tlm_format.hpp"
 #include "sim/io/image_io.hpp"
@@ -35,6 +36,9 @@ std::string names_of(const tlm::TmPacket& p) {
     const EventDesc* d = find_event(e->event_id);
     o << "\"event\":" << json_string(d != nullptr ? d->name : "?")
       << ",\"severity\":" << json_string(severity_name(static_cast<Severity>(e->severity)));
+  } else if (const auto* l = std::get_if<tlm::Proposals>(&p.body)) {
+    const std::string names = proposals_names_json(*l);  // {...}: its members join these
+    o << names.substr(1, names.size() - 2);
   } else if (const auto* h = std::get_if<tlm::Housekeeping>(&p.body)) {
     o << "\"mode\":" << json_string(mode_name(static_cast<Mode>(h->mode)))
       << ",\"last_command\":" << json_string(command_name(h->last_function_code))
@@ -179,6 +183,10 @@ void GroundStation::publish_packet(const tlm::TmPacket& p) {
     return;
   }
   std::string extra;
+  if (const auto* l = std::get_if<tlm::Proposals>(&p.body)) {
+    std::lock_guard lock(proposals_mutex_);
+    proposals_ = *l;
+  }
   if (const auto* a = std::get_if<tlm::ArmStatus>(&p.body)) {
     std::array<double, arm::kJointCount> q{};
     for (std::size_t k = 0; k < q.size(); ++k) q[k] = static_cast<double>(a->joint_deg[k]);
@@ -191,6 +199,11 @@ void GroundStation::publish_packet(const tlm::TmPacket& p) {
   hub_.publish("tlm", "{\"tlm\":" + ground::format_json(p, missing) +
                           ",\"line\":" + json_string(ground::format_line(p, missing)) +
                           ",\"names\":" + names_of(p) + extra + "}");
+}
+
+std::optional<tlm::Proposals> GroundStation::last_proposals() const {
+  std::lock_guard lock(proposals_mutex_);
+  return proposals_;
 }
 
 void GroundStation::receive_loop() {

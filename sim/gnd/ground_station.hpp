@@ -61,8 +61,11 @@ class GroundStation {
   // Signs `c` with the next counter and sends it; returns the counter.
   Result<std::uint32_t> send(cmd::Command c);
 
-  // Latest complete product of a kind (1 LEFT_IMAGE .. 4 POINT_CLOUD).
+  // Latest complete product of a kind (1 LEFT_IMAGE .. 5 PROPOSALS).
   std::optional<ground::Product> product(std::uint8_t kind) const;
+
+  // The last PROPOSALS packet received (what a pick refers to); nullopt before one.
+  std::optional<tlm::Proposals> last_proposals() const;
 
   EventHub& hub() { return hub_; }
   const std::string& archive_path() const { return options_.archive_path; }
@@ -93,6 +96,8 @@ class GroundStation {
   ArmModel arm_model_;
   mutable std::mutex arm_mutex_;
   std::array<double, arm::kJointCount> arm_joints_deg_{0, 0, 145, 35, 0};
+  mutable std::mutex proposals_mutex_;
+  std::optional<tlm::Proposals> proposals_;
   std::thread thread_;
   std::atomic<bool> running_{false};
   std::atomic<std::uint64_t> packets_{0};

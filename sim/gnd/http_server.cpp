@@ -14,6 +14,7 @@
 #include "cmd/commands.hpp"
 #include "sim/gnd/command_request.hpp"
 #include "sim/gnd/json_text.hpp"
+#include "sim/gnd/proposal_pick.hpp"
 #include "sim/gnd/telemetry_history.hpp"
 
 namespace petra::gnd {
@@ -21,7 +22,7 @@ namespace petra::gnd {
 namespace {
 
 std::uint8_t product_kind(const std::string& name) {
-  for (std::uint8_t k = 1; k <= 4; ++k)
+  for (std::uint8_t k = 1; k <= 5; ++k)
     if (name == ground::product_name(k)) return k;
   return 0;
 }
@@ -114,6 +115,18 @@ struct HttpServer::Impl {
   GroundStation& station;
   httplib::Server server;
 
+  // Signs and sends a command the request made: {"command":..,"counter":n},
+  // HTTP 400 naming the request's problem, or 503 when it could not be sent.
+  void send_and_answer(const Result<cmd::Command>& command, httplib::Response& res) {
+    if (!command) return answer_error(res, 400, command.error().message);
+    auto counter = station.send(*command);
+    if (!counter) return answer_error(res, 503, counter.error().message);
+    const cmd::CommandDesc* d = cmd::find_command(static_cast<std::uint8_t>(command->code));
+    res.set_content(
+        "{\"command\":" + json_string(d->name) + ",\"counter\":" + std::to_string(*counter) + "}",
+        "application/json");
+  }
+
   void routes(const ServerOptions& options) {
     // One thread per connected page (its event stream) plus the requests.
     server.new_task_queue = [] { return new httplib::ThreadPool(16); };
@@ -156,14 +169,12 @@ struct HttpServer::Impl {
     });
 
     server.Post("/api/command", [this](const httplib::Request& req, httplib::Response& res) {
-      auto command = parse_command_request(req.body);
-      if (!command) return answer_error(res, 400, command.error().message);
-      auto counter = station.send(*command);
-      if (!counter) return answer_error(res, 503, counter.error().message);
-      const cmd::CommandDesc* d = cmd::find_command(static_cast<std::uint8_t>(command->code));
-      res.set_content(
-          "{\"command\":" + json_string(d->name) + ",\"counter\":" + std::to_string(*counter) + "}",
-          "application/json");
+      send_and_answer(parse_command_request(req.body), res);
+    });
+
+    server.Post("/api/proposals/pick", [this](const httplib::Request& req, httplib::Response& res) {
+      const std::optional<tlm::Proposals> list = station.last_proposals();
+      send_and_answer(parse_pick_request(req.body, list ? &*list : nullptr), res);
     });
 
     server.Get("/api/arm", [this](const httplib::Request&, httplib::Response& res) {
@@ -182,8 +193,8 @@ struct HttpServer::Impl {
       if (kind == 0)
         return answer_error(res, 400,
                             "product: '" + std::string(req.matches[1]) +
-                                "' is not left_image, disparity, overlay or "
-                                "point_cloud");
+                                "' is not left_image, disparity, overlay, "
+                                "point_cloud or proposals");
       auto p = station.product(kind);
       if (!p) return answer_error(res, 404, "product: none received yet");
       res.set_header("Cache-Control", "no-store");

@@ -10,11 +10,15 @@
 //   GET  /api/events            server-sent events (see ground_station.hpp)
 //   POST /api/command           {"command": NAME, "args": {...}} -> {"counter": n}
 //                               or HTTP 400 {"error": "<field>: <problem>"}
+//   POST /api/proposals/pick    {"u":U,"v":V} or {"rank":K} [,"as":"select_roi"]: sends
+//                               SELECT_PROPOSAL (or SELECT_ROI) for the proposal of the
+//                               last PROPOSALS at that point (proposal_pick.hpp)
+//                               -> {"command":..,"counter":n} or HTTP 400 naming the member
 //   GET  /api/arm               the arm's geometry, limits and stowed skeleton
 //   POST /api/arm/plan          {"centroid_mm":[..],"normal":[..],"standoff_mm":S}
 //                               -> the approach from the current joints, or the
 //                               refusal and its reason (arm_model.hpp)
-//   GET  /api/product/<kind>    latest left_image | disparity | overlay | point_cloud,
+//   GET  /api/product/<kind>    latest left_image | disparity | overlay | point_cloud | proposals,
 //                               raw bytes; X-Petra-Width/Height/Format/Id headers
 #pragma once
 

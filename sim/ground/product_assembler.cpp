@@ -16,6 +16,8 @@ const char* product_name(std::uint8_t kind) {
       return "overlay";
     case 4:
       return "point_cloud";
+    case 5:
+      return "proposals";
   }
   return "product";
 }

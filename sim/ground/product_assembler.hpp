@@ -13,7 +13,7 @@
 namespace petra::ground {
 
 struct Product {
-  std::uint8_t kind = 0;  // 1 LEFT_IMAGE, 2 DISPARITY, 3 OVERLAY, 4 POINT_CLOUD
+  std::uint8_t kind = 0;  // 1 LEFT_IMAGE, 2 DISPARITY, 3 OVERLAY, 4 POINT_CLOUD, 5 PROPOSALS
   std::uint8_t format = 0;
   std::uint32_t id = 0;
   int width = 0;

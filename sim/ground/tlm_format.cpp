@@ -2,10 +2,12 @@
 
 #include <cstdio>
 #include <sstream>
+#include <string_view>
 #include <type_traits>
 
 #include "cmd/commands.hpp"
 #include "cmd/param_defs.hpp"
+#include "sim/ground/proposals_format.hpp"
 #include "tlm/event_defs.hpp"
 
 namespace petra::ground {
@@ -38,6 +40,7 @@ std::string kind_name(const std::string& kind, long v) {
     return v >= 0 && v < kModeCount ? mode_name(static_cast<Mode>(v)) : std::to_string(v);
   if (kind == "reason") return reason_name(static_cast<Reason>(v));
   if (kind == "fc") return fc_name(v);
+  if (kind == "empty") return proposal_empty_name(v);
   if (kind == "errc") return errc_name(static_cast<Errc>(v));
   if (kind == "param") {
     const ParamDesc* p = find_param(static_cast<std::uint16_t>(v));
@@ -69,17 +72,29 @@ const char* packet_name(std::uint16_t apid) {
 std::string refusal_detail(std::uint8_t function_code, std::uint8_t reason, std::uint16_t detail) {
   const cmd::CommandDesc* c = cmd::find_command(function_code);
   auto field = [&]() -> std::string {
-    if (c != nullptr && detail < c->fields.size()) return std::string("field ") + c->fields[detail].name;
+    if (c != nullptr && detail < c->fields.size())
+      return std::string("field ") + c->fields[detail].name;
     return "field " + std::to_string(detail);
   };
   const bool param_command =
       function_code == static_cast<std::uint8_t>(cmd::FunctionCode::SET_PARAM) ||
       function_code == static_cast<std::uint8_t>(cmd::FunctionCode::GET_PARAM);
+  const bool propose = function_code == static_cast<std::uint8_t>(cmd::FunctionCode::PROPOSE);
   switch (static_cast<Reason>(reason)) {
     case Reason::OUT_OF_RANGE:
       return field();
     case Reason::INVALID_ARGUMENT:
       if (param_command) return "unknown parameter id " + std::to_string(detail);
+      if (propose && c != nullptr && detail < c->fields.size() &&
+          std::string_view(c->fields[detail].name) == "weight_grindable")
+        return "fields weight_grindable .. weight_size: all 0";
+      if (propose) return field() + ": region not all 0, under 32 px or outside the image";
+      if (function_code == static_cast<std::uint8_t>(cmd::FunctionCode::SELECT_PROPOSAL)) {
+        const cmd::CommandDesc* roi = cmd::find_command("SELECT_ROI");
+        return std::string("the proposal's ") +
+               (detail < roi->fields.size() ? roi->fields[detail].name : "ROI") +
+               " (SELECT_ROI's check)";
+      }
       return field();
     case Reason::WRONG_MODE:
       return "in mode " + kind_name("mode", detail);
@@ -105,8 +120,8 @@ std::string event_text(const tlm::Event& e) {
       if (close != std::string::npos && close > i + 1 && text[i + 1] >= '0' && text[i + 1] <= '3') {
         const int n = text[i + 1] - '0';
         const std::string kind = close > i + 3 ? text.substr(i + 3, close - i - 3) : "";
-        const bool rejection = e.event_id > PETRA_REJECT_EVENT_BASE &&
-                               e.event_id < PETRA_REJECT_EVENT_BASE + 32;
+        const bool rejection =
+            e.event_id > PETRA_REJECT_EVENT_BASE && e.event_id < PETRA_REJECT_EVENT_BASE + 32;
         if (rejection && n == 1 && i >= 7 && text.compare(i - 7, 7, "detail ") == 0) {
           out.erase(out.size() - 7);  // "detail 2" becomes "field planes"
           out += refusal_detail(static_cast<std::uint8_t>(e.args[0]),
@@ -154,6 +169,8 @@ std::string format_line(const tlm::TmPacket& p, std::uint32_t missing_before) {
           o << "product " << unsigned{b.product} << " id " << b.id << " chunk " << b.chunk + 1
             << "/" << b.chunks << " (" << b.total_bytes << " bytes, " << b.width << "x" << b.height
             << ")";
+        } else if constexpr (std::is_same_v<B, tlm::Proposals>) {
+          o << format_proposals(b);
         } else if constexpr (std::is_same_v<B, tlm::GrindPlane>) {
           char buf[384];
           std::snprintf(

@@ -19,7 +19,16 @@ class ScriptedPipelineJob final : public fsw::PipelineJob {
   std::atomic<bool> hold{false};
   std::atomic<int> runs{0};
   std::atomic<bool> saw_cancel{false};
+  // While held, keep running after a cancel (an abort still unwinding: BUSY).
+  std::atomic<bool> ignore_cancel{false};
   fsw::EvalRequest last_request;
+  // PROPOSE: the list the next proposal runs return (hand-built by the test).
+  ProposalList proposals;
+  bool proposes = true;       // can_propose()
+  fsw::JobLimits job_limits;  // limits() (0: none)
+
+  bool can_propose() const override { return proposes; }
+  fsw::JobLimits limits() const override { return job_limits; }
 
   void release() { hold.store(false); }
 
@@ -33,7 +42,7 @@ class ScriptedPipelineJob final : public fsw::PipelineJob {
     last_request = request;
     runs.fetch_add(1);
     while (hold.load()) {
-      if (cancel.load()) {
+      if (cancel.load() && !ignore_cancel.load()) {
         saw_cancel.store(true);
         return Error::make(Errc::not_ready, "cancelled");
       }
@@ -45,6 +54,10 @@ class ScriptedPipelineJob final : public fsw::PipelineJob {
     if (fail) {
       out.failed_step = fsw::Step::MATCH;
       return Error::make(Errc::no_solution, "scripted failure");
+    }
+    if (request.kind == fsw::JobKind::PROPOSE) {
+      out.proposals = &proposals;
+      return {};
     }
     out = script;
     // A disparity "product": the ROI of the left image, copied through the arena.

@@ -136,6 +136,31 @@ TEST(ProductStreamer, AProductTooLargeForItsBufferIsRefusedWithAnEvent) {
   EXPECT_TRUE(f.streamer.idle());
 }
 
+// The proposals picture: gray staged as RGB at half size or less, writable
+// for the drawing until pumped; a full-size one does not fit its buffer.
+TEST(ProductStreamer, TheProposalsPictureIsGrayAsRgbAtHalfSizeOrLess) {
+  Fixture f(64);
+  std::vector<std::uint8_t> img(64 * 48);
+  for (std::size_t i = 0; i < img.size(); ++i) img[i] = static_cast<std::uint8_t>(i % 251);
+  const ConstGray8View gray(img.data(), 64, 48);
+  EXPECT_TRUE(f.streamer.stage_gray_as_rgb(ProductKind::PROPOSALS, 9, gray, 1).empty());
+  f.drain();
+  ASSERT_EQ(f.raised_with(EventId::PRODUCT_REFUSED).size(), 1u);  // too large at full size
+  const ImageView<std::uint8_t> rgb =
+      f.streamer.stage_gray_as_rgb(ProductKind::PROPOSALS, 9, gray, 2);
+  ASSERT_EQ(rgb.width(), 3 * 32);
+  ASSERT_EQ(rgb.height(), 24);
+  rgb(0, 0) = 255;  // the caller draws on it before the pump
+  f.streamer.pump(f.queue, {}, 100, 0);
+  const auto chunks = f.drain();
+  ASSERT_EQ(chunks.size(), 3u);  // 32 x 24 x 3 = 2304 bytes
+  EXPECT_EQ(chunks[0].product, 5);
+  EXPECT_EQ(chunks[0].format, static_cast<std::uint8_t>(ProductFormat::RGB8));
+  EXPECT_EQ(chunks[0].data[0], 255);
+  EXPECT_EQ(chunks[0].data[1], img[0]);
+  EXPECT_EQ(chunks[0].data[3 * 5 + 2], img[2 * 5]);  // pixel (5, 0) is image (10, 0)
+}
+
 TEST(ProductStreamer, PointCloudIsSubsampledToItsLimitAsBigEndianFloats) {
   Fixture f(64);
   std::vector<float> xyz;

@@ -3,6 +3,7 @@
 // exposes the decoded state for inspection (and for the end-to-end test).
 import { RoiCanvas } from './roi_canvas.js';
 import { fetchProduct, toImageData, drawImageProduct, drawDisparity, drawColourBar, toPoints } from './products.js';
+import { ProposalsPanel } from './proposals.js';
 
 const $ = (id) => document.getElementById(id);
 const fmt = (x, d = 1) => Number(x).toFixed(d);
@@ -117,6 +118,17 @@ $('send-goto').addEventListener('click', () => {
 });
 $('standoff').addEventListener('change', () => pick(state.picked));
 
+// A pick sends SELECT_PROPOSAL (server side); EVALUATE follows on the operator's word.
+const proposals = new ProposalsPanel(
+  { table: $('proposal-table'), status: $('proposals-status'), picture: $('proposals-picture'), caption: $('proposals-caption') },
+  send, palette, (answer) => {
+    if (answer) noteCommand(answer.counter, { command: answer.command });
+    $('send-eval-picked').disabled = !answer;
+  });
+state.proposals = proposals;
+$('send-propose').addEventListener('click', () => send('PROPOSE', proposals.request($('propose-form').elements)));
+$('send-eval-picked').addEventListener('click', () => send('EVALUATE', { acquire: 0 }));
+
 // ---- telemetry --------------------------------------------------------------
 const events = new EventSource('/api/events');
 events.addEventListener('sent', (e) => {
@@ -148,6 +160,7 @@ function onTlm(m) {
       renderPlanes();
       break;
     case 'GROUND_PLANE': state.ground = f; break;
+    case 'PROPOSALS': proposals.onPacket(f, m.names); break;
     case 'ARM_STATUS': onArmStatus(f, m.skeleton); break;
     case 'PARAM_VALUE': addEvent('INFO', m.line); break;
   }
@@ -181,6 +194,8 @@ async function onProduct(info) {
   } else if (info.kind === 'overlay') {
     if (drawImageProduct($('overlay'), p))
       $('overlay-caption').textContent = `overlay of evaluation ${p.id}, ${p.width} × ${p.height} px`;
+  } else if (info.kind === 'proposals') {
+    proposals.onPicture(p);
   } else if (info.kind === 'point_cloud') {
     const xyz = toPoints(p);
     const v = await get3d();

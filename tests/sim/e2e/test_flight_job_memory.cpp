@@ -189,6 +189,48 @@ TEST_F(FlightJob, TheLargestRoiOfTheDefaultBudgetRunsBothMatchersWithoutHeap) {
   }
 }
 
+// PROPOSE and EVALUATE take turns in the same arena (the proposer built in
+// the pipeline's place and back): after a first turn of each, neither
+// allocates, the proposal list and the planes repeat, and every run starts
+// where init left the arena.
+TEST_F(FlightJob, ProposalsAndEvaluationsTakeTurnsWithoutHeap) {
+  ASSERT_TRUE(job_.init(budget_, &rig_, arena_).ok());
+  ASSERT_TRUE(job_.can_propose());
+  const std::size_t after_init = arena_.mark();
+  fsw::EvalRequest propose = request_;
+  propose.kind = fsw::JobKind::PROPOSE;
+  const Rect& t = request_.selection.roi;  // around the rock: a quicker detection
+  propose.proposal.region = Rect{std::max(t.x - 64, 0), std::max(t.y - 64, 0), 0, 0};
+  propose.proposal.region.w = std::min(t.w + 128, left_.width - propose.proposal.region.x);
+  propose.proposal.region.h = std::min(t.h + 128, left_.height - propose.proposal.region.y);
+  propose.arm_pose = arm::stow_pose();
+  auto turn = [&](const fsw::EvalRequest& r, fsw::EvalOutput& out) {
+    arena_.release_to(after_init);  // what the runner does before each run
+    const Status s = job_.run(r, arena_, cancel_, out);
+    EXPECT_TRUE(s.ok()) << s.error().message;
+    EXPECT_EQ(arena_.mark() >= after_init, true);
+  };
+  fsw::EvalOutput first, listed;
+  turn(request_, first);
+  turn(propose, listed);
+  ASSERT_NE(listed.proposals, nullptr);
+  ASSERT_GE(listed.proposals->count, 1) << listed.proposals->empty_reason;
+  const ProposalList list = *listed.proposals;
+  petra::test::HeapScope scope;
+  fsw::EvalOutput again, relisted;
+  turn(request_, again);
+  turn(propose, relisted);
+  EXPECT_EQ(scope.allocations(), 0u);
+  ASSERT_EQ(again.planes.size(), first.planes.size());
+  for (std::size_t k = 0; k < first.planes.size(); ++k)
+    EXPECT_EQ(again.planes[k].normal, first.planes[k].normal);
+  ASSERT_NE(relisted.proposals, nullptr);
+  ASSERT_EQ(relisted.proposals->count, list.count);
+  EXPECT_EQ(relisted.proposals->items[0].rock.roi, list.items[0].rock.roi);
+  EXPECT_EQ(relisted.proposals->items[0].planes[0].normal, list.items[0].planes[0].normal);
+  EXPECT_LE(arena_.high_water(), arena_.capacity());
+}
+
 TEST_F(FlightJob, WithoutCalibrationItBootsAndSaysWhyItCannotRun) {
   ASSERT_TRUE(job_.init(budget_, nullptr, arena_).ok());
   fsw::EvalOutput out;
