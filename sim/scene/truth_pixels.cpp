@@ -65,15 +65,15 @@ Rect roi_inside_rock(const Scene& s, const Rect& a) {
 }
 
 std::optional<Eigen::Vector2i> click_on_rock(const Scene& s, const Rect& roi,
-                                             const std::vector<VisibleFacet>& facets) {
+                                             const std::vector<VisibleFacet>& facets, int rock) {
   const CameraRays rays(s.rig.left);
   // Sunlit pixels per rock face.
-  std::vector<std::vector<Eigen::Vector2i>> lit(s.rock.faces.size());
+  std::vector<std::vector<Eigen::Vector2i>> lit(rock_at(s, rock).faces.size());
   for (int v = roi.y; v < roi.y + roi.h; v += 2)
     for (int u = roi.x; u < roi.x + roi.w; u += 2) {
       const SceneHit hit = trace(s, rays.origin(), rays.direction(u, v));
-      if (is_target_face(hit.surface) && !in_shadow(s, hit))
-        lit[static_cast<std::size_t>(hit.surface - kRockFace0)].emplace_back(u, v);
+      const int face = face_of_rock(hit.surface, rock);
+      if (face >= 0 && !in_shadow(s, hit)) lit[static_cast<std::size_t>(face)].emplace_back(u, v);
     }
   // A well-lit facet first (a face lit at grazing incidence looks like shadow).
   const std::vector<Eigen::Vector2i>* chosen = nullptr;
