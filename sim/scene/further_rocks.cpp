@@ -21,6 +21,7 @@ constexpr double kTouchShare = 0.3;  // slid against a placed rock until they to
 constexpr double kHiddenStepMm = 6;
 constexpr double kSmallSizeMm[2] = {28, 40};  // too small: no grinder disc fits a face
 constexpr double kSizeMm[2] = {90, 200};
+constexpr double kRoughSizeMm[2] = {80, 130};  // sphere-traced rough faces cost render time
 // Too rough: face roughness 2.5..3.5 mm RMS (beyond the option's 2 mm: at 2 mm
 // the flattest of a face's discs often stays within the 1 mm tolerance).
 constexpr double kRoughMm[2] = {2.5, 3.5};
@@ -65,7 +66,9 @@ Result<Drawn> draw_rock(const Scene& s, Rng& rng, RockKind kind, const FractalSt
   RockSpec spec;
   spec.shape = static_cast<RockShape>(rng.integer(0, 2));
   spec.flat_faces = rng.integer(2, 3);
-  const double* size = kind == RockKind::too_small ? kSmallSizeMm : kSizeMm;
+  const double* size = kind == RockKind::too_small   ? kSmallSizeMm
+                       : kind == RockKind::too_rough ? kRoughSizeMm
+                                                     : kSizeMm;
   spec.size_mm = rng.uniform(size[0], size[1]);
   World w = s.options.world;
   const double rough = rng.uniform(kRoughMm[0], kRoughMm[1]);

@@ -161,12 +161,22 @@ FacetJudgement judge_facet(const Scene& s, int r, const VisibleFacet& f) {
     j.reason = "faces_away";
     return j;
   }
-  const FaceRelief& relief = relief_at(s, r);
-  j.disc_rms_mm = flattest_disc_rms_mm(rock_at(s, r), relief, f.face, flight.grinder_diameter_mm,
-                                       flight.max_footprint_rms_mm);
-  if (j.disc_rms_mm < 0) {
+  // A disc of the tool's diameter inside the polygon at all (planar test).
+  const ConvexRock& rock = rock_at(s, r);
+  if (flattest_disc_rms_mm(rock, FaceRelief{}, f.face, flight.grinder_diameter_mm, 0) < 0) {
     j.reason = "too_small";
-  } else if (j.disc_rms_mm > flight.max_footprint_rms_mm) {
+    return j;
+  }
+  // The generator's other facets are the tangent planes that shape the
+  // rock's rounded body: the rock curves at the tool's scale there.
+  if (!f.grind_face) {
+    j.reason = "too_curved";
+    return j;
+  }
+  const FaceRelief& relief = relief_at(s, r);
+  j.disc_rms_mm = flattest_disc_rms_mm(rock, relief, f.face, flight.grinder_diameter_mm,
+                                       flight.max_footprint_rms_mm);
+  if (j.disc_rms_mm > flight.max_footprint_rms_mm) {
     const double bulge = bulge_rms_mm(relief.curvature_per_mm, 0.5 * flight.grinder_diameter_mm);
     j.reason = bulge > flight.max_footprint_rms_mm ? "too_curved" : "too_rough";
   } else {

@@ -2,9 +2,11 @@
 // could the flight chain's grinder work the facet, and does the arm reach it.
 // Grindable: not hidden from either camera by another rock, facing the left
 // camera within the chain's view limit, a disc of the grinder's diameter
-// inside the exposed polygon, and the flattest such disc of the rendered
-// (rough, curved) surface within the flatness tolerance: the flight defaults
-// of GrindParams{}. Reachable: algo/arm plan_approach from the stowed pose
+// inside the exposed polygon, one of the rock's designed flat faces (the
+// generator's other facets are the tangent planes of its rounded body:
+// "too_curved" when they hold a disc), and the flattest disc of the
+// rendered (rough, curved) surface within the flatness tolerance: the
+// flight defaults of GrindParams{}. Reachable: algo/arm plan_approach from the stowed pose
 // with the flight standoff (ApproachRequest{}), on the facet's centroid and
 // outward normal in the world frame of calib.json.
 #pragma once
@@ -22,7 +24,7 @@ namespace petra::sim {
 struct FacetJudgement {
   bool grindable = false;
   const char* reason = "hidden";  // grindable|too_small|too_rough|too_curved|faces_away|hidden
-  double disc_rms_mm = -1;        // flattest footprint disc's RMS (-1: none fits)
+  double disc_rms_mm = -1;        // flattest footprint disc's RMS (-1: not measured)
   bool reachable = false;
   arm::ArmReason reach = arm::ArmReason::ok;
 };
