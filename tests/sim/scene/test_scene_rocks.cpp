@@ -272,8 +272,8 @@ TEST(SceneRocks, DISABLED_SetComposition) {
   }
   std::printf("further rocks: %d grindable, %d too small, %d too rough, %d out of reach\n",
               kinds[0], kinds[1], kinds[2], kinds[3]);
-  std::printf("targets: %d grindable and reachable facets on %d rocks; %d facets in all\n",
-              targets, target_rocks, facets);
+  std::printf("targets: %d grindable and reachable facets on %d rocks; %d facets in all\n", targets,
+              target_rocks, facets);
 }
 
 }  // namespace
