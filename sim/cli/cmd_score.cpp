@@ -174,6 +174,10 @@ struct ProposalArgs {
 Status run_proposals(const ProposalArgs& a) {
   auto truth = load_truth(a.truth);
   if (!truth) return truth.error();
+  if (truth->rocks.empty())
+    return Error::make(Errc::missing_field,
+                       "%s: rocks: missing (a multi-rock scene: petra sim scene --rocks N)",
+                       a.truth.c_str());
   auto text = io::read_text_file(a.proposals);
   if (!text) return text.error();
   auto props = sim::parse_proposals_json(*text, a.proposals.c_str());
