@@ -86,6 +86,19 @@ void rect(json::Writer& w, const Rect& r) {
   w.begin_array().integer(r.x).integer(r.y).integer(r.w).integer(r.h).end_array();
 }
 
+// A facet's geometry in the world frame (the contract's facet fields).
+void write_facet(json::Writer& w, const Scene& s, const VisibleFacet& f) {
+  w.key("normal");
+  vec3(w, dir_to_world(s, f.normal));
+  w.key("centroid_mm");
+  vec3(w, to_world(s, f.centroid));
+  w.key("polygon_mm").begin_array();
+  for (const auto& p : f.polygon) vec3(w, to_world(s, p));
+  w.end_array();
+  w.key("visible_area_mm2").number(f.area_mm2);
+  w.key("grind_face").boolean(f.grind_face);
+}
+
 // The rocks touching the target (never truth facets).
 void write_neighbours(json::Writer& w, const Scene& s) {
   w.key("neighbours").begin_array();
@@ -169,15 +182,7 @@ void write_rock(json::Writer& w, const Scene& s, const RockTruth& r, int id) {
     const FacetJudgement& j = r.judged[i];
     w.raw("\n  ");
     w.begin_object();
-    w.key("normal");
-    vec3(w, dir_to_world(s, f.normal));
-    w.key("centroid_mm");
-    vec3(w, to_world(s, f.centroid));
-    w.key("polygon_mm").begin_array();
-    for (const auto& p : f.polygon) vec3(w, to_world(s, p));
-    w.end_array();
-    w.key("visible_area_mm2").number(f.area_mm2);
-    w.key("grind_face").boolean(f.grind_face);
+    write_facet(w, s, f);
     w.key("grindable").boolean(j.grindable);
     w.key("reason").string(j.reason);
     w.key("disc_rms_mm").number(j.disc_rms_mm);
@@ -232,15 +237,7 @@ Result<std::string> format_truth_json(const Scene& s, const SceneTruth& t) {
   for (const auto& f : t.facets) {
     w.raw("\n ");
     w.begin_object();
-    w.key("normal");
-    vec3(w, dir_to_world(s, f.normal));
-    w.key("centroid_mm");
-    vec3(w, to_world(s, f.centroid));
-    w.key("polygon_mm").begin_array();
-    for (const auto& p : f.polygon) vec3(w, to_world(s, p));
-    w.end_array();
-    w.key("visible_area_mm2").number(f.area_mm2);
-    w.key("grind_face").boolean(f.grind_face);
+    write_facet(w, s, f);
     const std::size_t i = static_cast<std::size_t>(&f - t.facets.data());
     if (i < t.fits.size() && t.fits[i].fitted) {
       w.key("flatness_rms_mm").number(t.fits[i].flatness_rms_mm);

@@ -20,30 +20,10 @@
 #include "sim/scene/scene_geometry.hpp"
 #include "sim/scene/scene_rocks.hpp"
 #include "sim/scene/scene_set.hpp"
+#include "tests/sim/scene/independent_scene_check.hpp"
 
 namespace petra::sim {
 namespace {
-
-// How deep p lies inside the rock (<= 0 outside).
-double depth_inside(const ConvexRock& r, const Eigen::Vector3d& p) {
-  double worst = -INFINITY;
-  for (const auto& f : r.faces) worst = std::max(worst, f.plane.normal.dot(p) - f.plane.offset_mm);
-  return -worst;
-}
-
-// Points every ~0.5 mm along the edges of the rock's part above the ground.
-std::vector<Eigen::Vector3d> exposed_edge_points(const ConvexRock& r) {
-  std::vector<Eigen::Vector3d> pts;
-  for (const auto& f : r.faces) {
-    const Polygon3 p = exposed_polygon(f);
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const Eigen::Vector3d &a = p[i], &b = p[(i + 1) % p.size()];
-      const int n = std::max(1, static_cast<int>((b - a).norm() / 0.5));
-      for (int k = 0; k < n; ++k) pts.push_back(a + (b - a) * (double(k) / n));
-    }
-  }
-  return pts;
-}
 
 // Radius of the largest circle inside a planar convex polygon, on a 0.25 mm
 // grid; stops once it exceeds `enough`.
@@ -168,8 +148,8 @@ TEST(SceneRocks, RocksDoNotOverlapAndAreOfTheirKinds) {
       for (int b = 0; b < rock_count(s); ++b) {
         if (a == b) continue;
         double deepest = 0;
-        for (const auto& p : exposed_edge_points(rock_at(s, a)))
-          deepest = std::max(deepest, depth_inside(rock_at(s, b), p));
+        for (const auto& p : check::exposed_edge_points(rock_at(s, a)))
+          deepest = std::max(deepest, check::depth_inside(rock_at(s, b), p));
         EXPECT_LT(deepest, 0.01) << "entry " << k << ": rock " << a << " inside rock " << b;
       }
     for (const RockKind kind : s.neighbour_kind) seen.insert(kind);
