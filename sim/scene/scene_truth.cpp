@@ -161,6 +161,7 @@ void add_rock_truths(const Scene& s, SceneTruth& t) {
     RockTruth rt = further_rock_truth(s, r);
     rt.roi = left_roi(s, rock_at(s, r));
     rt.click = click_on_rock(s, rt.roi, rt.facets, r);
+    if (!rt.click) rt.click = pixel_on_rock(s, rt.roi, r);
     t.rocks.push_back(std::move(rt));
   }
 }
