@@ -125,6 +125,23 @@ TEST(SceneRocks, CountIsValidatedByName) {
   EXPECT_FALSE(validate(o).ok());
 }
 
+TEST(SceneRocks, TwoRocksInTheCleanWorld) {
+  SceneOptions o;
+  o.seed = 5;
+  o.rocks = 2;
+  auto s = make_scene(o);
+  ASSERT_TRUE(s) << s.error().message;
+  ASSERT_EQ(rock_count(*s), 2);
+  EXPECT_EQ(s->neighbour_kind[0], static_cast<RockKind>((o.seed + 1) % kRockKinds));
+  // Rock 0 is the one rock of the same seed (its placement took the further rock).
+  o.rocks = 1;
+  auto one = make_scene(o);
+  ASSERT_TRUE(one);
+  ASSERT_EQ(s->attempts, one->attempts);
+  EXPECT_EQ(s->rock_centre_mm, one->rock_centre_mm);
+  EXPECT_EQ(s->rock.faces.size(), one->rock.faces.size());
+}
+
 TEST(SceneRocks, TheSetHoldsEveryKindByDesign) {
   const auto set = multi_rock_scene_set();
   ASSERT_EQ(set.size(), static_cast<std::size_t>(kMultiSetSize));
