@@ -70,6 +70,7 @@ Result<Drawn> draw_rock(const Scene& s, Rng& rng, RockKind kind, const FractalSt
                        : kind == RockKind::too_rough ? kRoughSizeMm
                                                      : kSizeMm;
   spec.size_mm = rng.uniform(size[0], size[1]);
+  spec.burial = s.options.world.burial;  // --burial holds for every rock
   World w = s.options.world;
   const double rough = rng.uniform(kRoughMm[0], kRoughMm[1]);
   if (kind == RockKind::too_rough) w.face_roughness_mm = rough;
