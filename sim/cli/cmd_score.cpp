@@ -2,6 +2,8 @@
 // --disparity-truth T.pfm] [--shadow M.pgm --shadow-truth S.pgm] [limits]
 // [--json]`: compares outputs with the simulator's truth (docs/scene.md).
 // Exit status: 0 scored and every limit met, 2 a limit exceeded, 1 bad input.
+// `petra score proposals --truth truth.json --proposals proposals.json
+// [--top K] [--json]`: rock proposals against a multi-rock scene's truth.
 #include <cstdio>
 #include <exception>
 #include <optional>
@@ -12,6 +14,8 @@
 #include "sim/cli/commands.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/score/planes_file.hpp"
+#include "sim/score/proposal_score.hpp"
+#include "sim/score/proposals_file.hpp"
 #include "sim/score/score_report.hpp"
 #include "sim/score/truth_file.hpp"
 
@@ -161,6 +165,51 @@ Status run(const ScoreArgs& a, int& exit_code) {
   return {};
 }
 
+struct ProposalArgs {
+  std::string truth, proposals;
+  std::optional<int> top;
+  bool json = false;
+};
+
+Status run_proposals(const ProposalArgs& a) {
+  auto truth = load_truth(a.truth);
+  if (!truth) return truth.error();
+  if (truth->rocks.empty())
+    return Error::make(Errc::missing_field,
+                       "%s: rocks: missing (a multi-rock scene: petra sim scene --rocks N)",
+                       a.truth.c_str());
+  auto text = io::read_text_file(a.proposals);
+  if (!text) return text.error();
+  auto props = sim::parse_proposals_json(*text, a.proposals.c_str());
+  if (!props) return props.error();
+  auto rep = sim::score_proposals(*truth, *props, a.top);
+  if (!rep) return rep.error();
+  const std::string out =
+      a.json ? sim::format_proposal_score_json(*rep) : sim::format_proposal_score_text(*rep);
+  std::fputs(out.c_str(), stdout);
+  return {};
+}
+
+CLI::App* add_score_proposals(CLI::App& score, Outcome& outcome) {
+  static ProposalArgs a;
+  auto* cmd = score.add_subcommand(
+      "proposals", "Score rock proposals (proposals.json) against a multi-rock scene's truth");
+  cmd->add_option("--truth", a.truth, "truth.json of petra sim scene --rocks N")->required();
+  cmd->add_option("--proposals", a.proposals, "proposals.json of petra propose")->required();
+  cmd->add_option("--top", a.top, "score the best K proposals (default: all)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--json", a.json, "print the figures as JSON instead of a table");
+  cmd->callback([&outcome] {
+    try {
+      auto st = run_proposals(a);
+      outcome.exit_code = st ? 0 : fail("score proposals", st.error().message);
+    } catch (const std::exception& e) {
+      outcome.exit_code = fail("score proposals", e.what());
+    }
+  });
+  return cmd;
+}
+
 }  // namespace
 
 void add_score(CLI::App& app, Outcome& outcome) {
@@ -201,7 +250,9 @@ void add_score(CLI::App& app, Outcome& outcome) {
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--min-shadow-recall", a.limits.min_shadow_recall, "limit: 0..1")
       ->check(CLI::Range(0.0, 1.0));
-  cmd->callback([&outcome] {
+  const CLI::App* proposals = add_score_proposals(*cmd, outcome);
+  cmd->callback([&outcome, proposals] {
+    if (proposals->parsed()) return;  // its own callback scored
     try {
       int code = 0;
       auto st = run(a, code);

@@ -28,10 +28,12 @@ struct SceneArgs {
   std::optional<int> edge_supersampling;
   // The realistic world (docs/scene.md): --real sets every knob's realistic default.
   bool real = false;
+  bool multi = false;  // --set-index K of the multi-rock set
   std::optional<double> relief, pebbles, stones, slope, slope_azimuth, face_roughness,
       face_curvature, gain_left, gain_right, offset_left, offset_right, vignetting, prnu,
       calib_residual, burial;
   std::optional<int> neighbours;
+  std::optional<int> rocks;
   bool roi_fill = false;
 };
 
@@ -104,6 +106,9 @@ void add_scene_options(CLI::App* cmd, SceneArgs& a) {
   add_world_options(cmd, a);
   cmd->add_option("--neighbours", a.neighbours,
                   "further rocks touching the rock, beside or behind it, 0..3 (default 0)");
+  cmd->add_option("--rocks", a.rocks,
+                  "full rocks in view, 2..6, some not grindable or not reachable by design "
+                  "(default: the one rock)");
   cmd->add_flag("--roi-fill", a.roi_fill,
                 "truth ROI inside the rock's silhouette: no ground in it (default: rock, "
                 "shadow and a margin of ground)");
@@ -133,6 +138,7 @@ Result<sim::SceneOptions> to_options(const SceneArgs& a, sim::SceneOptions o) {
   apply_world(a, o.world);
   if (a.neighbours) o.neighbours = *a.neighbours;
   if (a.roi_fill) o.roi_fill = true;
+  if (a.rocks) o.rocks = *a.rocks;
   PETRA_TRY(sim::validate(o));
   return o;
 }
@@ -154,6 +160,11 @@ Status render_and_write(const sim::SceneOptions& o, const std::string& dir) {
       sim::shape_name(s.shape), s.rock_size_mm, s.rock_distance_mm, s.flat_faces,
       s.sun_elevation_deg, r.x, r.y, r.w, r.h, p->truth.disparity_min, p->truth.disparity_max,
       dir.c_str(), secs);
+  if (!s.neighbour_kind.empty()) {
+    std::printf("  rocks:");
+    for (const auto kind : s.neighbour_kind) std::printf(" %s", sim::rock_kind_name(kind));
+    std::printf("\n");
+  }
   return {};
 }
 
@@ -169,7 +180,9 @@ void add_sim(CLI::App& app, Outcome& outcome) {
   auto* index_opt = scene->add_option("--set-index", scene_args.set_index,
                                       "render entry K of the standard set (0.." +
                                           std::to_string(sim::kStandardSetSize - 1) +
-                                          "), or with --real of the realistic set");
+                                          "), or with --real of the realistic set, with "
+                                          "--multi of the multi-rock set");
+  scene->add_flag("--multi", scene_args.multi, "--set-index K is of the multi-rock set");
   seed_opt->excludes(index_opt);
   scene->add_option("--out", scene_args.out, "output directory (created)")->required();
   add_scene_options(scene, scene_args);
@@ -178,15 +191,19 @@ void add_sim(CLI::App& app, Outcome& outcome) {
       sim::SceneOptions base;
       if (scene_args.set_index) {
         const int k = *scene_args.set_index;
-        const int size = scene_args.real ? sim::kRealSetSize : sim::kStandardSetSize;
+        const int size = scene_args.multi  ? sim::kMultiSetSize
+                         : scene_args.real ? sim::kRealSetSize
+                                           : sim::kStandardSetSize;
         if (k < 0 || k >= size) {
           const std::string msg =
               "--set-index " + std::to_string(k) + " outside 0.." + std::to_string(size - 1);
           outcome.exit_code = fail("sim scene", msg.c_str());
           return;
         }
-        base = scene_args.real ? sim::real_scene_set()[static_cast<std::size_t>(k)]
-                               : sim::standard_scene_set()[static_cast<std::size_t>(k)];
+        const auto entries = scene_args.multi  ? sim::multi_rock_scene_set()
+                             : scene_args.real ? sim::real_scene_set()
+                                               : sim::standard_scene_set();
+        base = entries[static_cast<std::size_t>(k)];
       } else if (scene_args.seed) {
         const long long seed = *scene_args.seed;
         if (seed < 0 || static_cast<unsigned long long>(seed) > sim::kMaxSeed) {
@@ -215,14 +232,20 @@ void add_sim(CLI::App& app, Outcome& outcome) {
 
   static std::string set_out;
   static bool set_real = false;
+  static bool set_multi = false;
   auto* set = sim_cmd->add_subcommand("set", "Render the standard scene set into DIR/scene_KK");
   set->add_option("--out", set_out, "output directory (created)")->required();
   set->add_flag("--real", set_real,
                 "the realistic set (" + std::to_string(sim::kRealSetSize) +
                     " scenes, docs/scene.md) instead of the clean one");
+  set->add_flag("--multi", set_multi,
+                "the multi-rock set (" + std::to_string(sim::kMultiSetSize) +
+                    " realistic scenes of 3..6 rocks, docs/scene.md \"Several rocks\")");
   set->callback([&outcome] {
     try {
-      const auto entries = set_real ? sim::real_scene_set() : sim::standard_scene_set();
+      const auto entries = set_multi  ? sim::multi_rock_scene_set()
+                           : set_real ? sim::real_scene_set()
+                                      : sim::standard_scene_set();
       for (std::size_t k = 0; k < entries.size(); ++k) {
         char name[32];
         std::snprintf(name, sizeof name, "/scene_%02zu", k);

@@ -69,38 +69,60 @@ double rough_field(const ConvexRock& rock, const FaceRelief& r, const Eigen::Vec
 
 }  // namespace
 
-FaceRelief make_face_relief(const World& world, std::uint64_t seed, const ConvexRock& rock) {
+FractalStats fractal_stats(std::uint64_t seed) {
+  Rng rng(seed, kStreamFaces);
+  FractalStats st;
+  st.perm = make_permutation(rng.next());
+  double sum2 = 0;
+  const double h = 0.01;
+  for (int k = 0; k < kCalibrationSamples; ++k) {
+    const Eigen::Vector3d x(rng.uniform(-500, 500), rng.uniform(-500, 500), rng.uniform(-500, 500));
+    const double v = fractal(st.perm, x);
+    sum2 += v * v;
+    st.v_max = std::max(st.v_max, std::abs(v));
+    const Eigen::Vector3d g(fractal(st.perm, x + Eigen::Vector3d(h, 0, 0)) - v,
+                            fractal(st.perm, x + Eigen::Vector3d(0, h, 0)) - v,
+                            fractal(st.perm, x + Eigen::Vector3d(0, 0, h)) - v);
+    st.grad_max = std::max(st.grad_max, g.norm() / h);
+  }
+  st.rms = std::sqrt(sum2 / kCalibrationSamples);
+  return st;
+}
+
+FaceRelief make_face_relief(const World& world, const FractalStats& st, const ConvexRock& rock) {
   FaceRelief r;
   r.active = world.face_roughness_mm > 0 || world.face_curvature_per_m > 0;
   if (!r.active) return r;
-  Rng rng(seed, kStreamFaces);
-  r.perm = make_permutation(rng.next());
+  r.perm = st.perm;
   r.curvature_per_mm = world.face_curvature_per_m / 1000.0;
   for (const auto& f : rock.faces) {
     const Polygon3 exposed = exposed_polygon(f);
     r.bulge_centre.push_back(exposed.size() >= 3 ? polygon_centroid(exposed)
                                                  : polygon_centroid(f.polygon));
   }
-  double grad_max = 0, v_max = 0, sum2 = 0;
+  double grad_max = 0;
   if (world.face_roughness_mm > 0) {
-    const double h = 0.01;
-    for (int k = 0; k < kCalibrationSamples; ++k) {
-      const Eigen::Vector3d x(rng.uniform(-500, 500), rng.uniform(-500, 500), rng.uniform(-500, 500));
-      const double v = fractal(r.perm, x);
-      sum2 += v * v;
-      v_max = std::max(v_max, std::abs(v));
-      const Eigen::Vector3d g(fractal(r.perm, x + Eigen::Vector3d(h, 0, 0)) - v,
-                              fractal(r.perm, x + Eigen::Vector3d(0, h, 0)) - v,
-                              fractal(r.perm, x + Eigen::Vector3d(0, 0, h)) - v);
-      grad_max = std::max(grad_max, g.norm() / h);
-    }
-    r.rough_scale = world.face_roughness_mm / std::sqrt(sum2 / kCalibrationSamples);
-    r.rough_floor = 1.2 * v_max * r.rough_scale;
+    r.rough_scale = world.face_roughness_mm / st.rms;
+    r.rough_floor = 1.2 * st.v_max * r.rough_scale;
+    grad_max = st.grad_max;
   }
   const double reach = 2 * rock.radius_mm;  // farthest a face point lies from its centre
   r.max_depth_mm = 2 * r.rough_floor + 0.5 * r.curvature_per_mm * reach * reach;
   r.lipschitz = 1.5 * grad_max * r.rough_scale + r.curvature_per_mm * reach;
   return r;
+}
+
+FaceRelief make_face_relief(const World& world, std::uint64_t seed, const ConvexRock& rock) {
+  const bool active = world.face_roughness_mm > 0 || world.face_curvature_per_m > 0;
+  if (!active) return {};
+  FractalStats st;
+  if (world.face_roughness_mm > 0) {
+    st = fractal_stats(seed);
+  } else {
+    Rng rng(seed, kStreamFaces);
+    st.perm = make_permutation(rng.next());
+  }
+  return make_face_relief(world, st, rock);
 }
 
 double face_depth(const FaceRelief& r, int face, const HalfSpace& plane, const Eigen::Vector3d& x) {

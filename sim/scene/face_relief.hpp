@@ -17,7 +17,7 @@
 namespace petra::sim {
 
 struct FaceRelief {
-  bool active = false;  // false: the faces are exact planes
+  bool active = false;     // false: the faces are exact planes
   double rough_scale = 0;  // multiplies the unit-RMS fractal
   double rough_floor = 0;  // added so the depth stays >= 0
   double curvature_per_mm = 0;
@@ -29,6 +29,16 @@ struct FaceRelief {
 
 // Relief for `rock`'s faces (bulge centres: the exposed polygons' centroids).
 FaceRelief make_face_relief(const World& world, std::uint64_t seed, const ConvexRock& rock);
+
+// The seed's unit fractal (its permutation, RMS, peak and steepest slope,
+// measured on samples): what make_face_relief measures, for reuse over the
+// rocks of one scene.
+struct FractalStats {
+  Permutation perm{};
+  double rms = 1, v_max = 0, grad_max = 0;
+};
+FractalStats fractal_stats(std::uint64_t seed);
+FaceRelief make_face_relief(const World& world, const FractalStats& stats, const ConvexRock& rock);
 
 // Depth s_i(x) of face i below its plane at x (mm, >= 0).
 double face_depth(const FaceRelief& relief, int face, const HalfSpace& plane,

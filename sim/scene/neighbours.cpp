@@ -20,7 +20,12 @@ constexpr double kMaxBesideDeg = 120;  // 0 = straight behind the rock, 90 = bes
 constexpr double kSampleStepMm = 4;
 constexpr double kMinVisibleShare = 0.15;  // of the neighbour's samples facing the left camera
 
-// True when the parts of a and b above the ground z = 0 share a volume.
+Eigen::Vector3d horizontal(const Eigen::Vector3d& v) {
+  return Eigen::Vector3d(v.x(), v.y(), 0.0).normalized();
+}
+
+}  // namespace
+
 bool overlap_above_ground(const ConvexRock& a, const ConvexRock& b) {
   std::vector<HalfSpace> planes;
   for (const auto& f : a.faces) planes.push_back(f.plane);
@@ -29,13 +34,6 @@ bool overlap_above_ground(const ConvexRock& a, const ConvexRock& b) {
   return static_cast<bool>(make_convex_rock(planes, a.centre, a.radius_mm + b.radius_mm));
 }
 
-Eigen::Vector3d horizontal(const Eigen::Vector3d& v) {
-  return Eigen::Vector3d(v.x(), v.y(), 0.0).normalized();
-}
-
-// Slide along -dir (horizontal, unit) that brings b into first contact with a:
-// the smallest s with b - s dir overlapping a, or a negative value when b
-// never meets a within `reach`.
 double contact_slide(const ConvexRock& a, const ConvexRock& b, const Eigen::Vector3d& dir,
                      double reach) {
   auto overlaps_at = [&](double s) {
@@ -53,19 +51,7 @@ double contact_slide(const ConvexRock& a, const ConvexRock& b, const Eigen::Vect
   return lo;
 }
 
-// Points on a convex polygon about step_mm apart (fan triangles, barycentric grid).
-std::vector<Eigen::Vector3d> polygon_samples(const Polygon3& poly, double step_mm) {
-  std::vector<Eigen::Vector3d> pts;
-  for (std::size_t i = 1; i + 1 < poly.size(); ++i) {
-    const Eigen::Vector3d &a = poly[0], &b = poly[i], &c = poly[i + 1];
-    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    const int n = std::max(1, static_cast<int>(std::ceil(longest / step_mm)));
-    for (int p = 0; p <= n; ++p)
-      for (int q = 0; p + q <= n; ++q)
-        pts.push_back(a + (b - a) * (double(p) / n) + (c - a) * (double(q) / n));
-  }
-  return pts;
-}
+namespace {
 
 // Share of b's exposed surface facing the left camera that no other rock hides.
 double visible_share(const Scene& s, const ConvexRock& b) {

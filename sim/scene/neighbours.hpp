@@ -20,6 +20,15 @@ inline constexpr double kMaxNeighbourGapMm = 1.5;
 // cameras; the caller then tries another placement of the target.
 Status add_neighbours(Scene& scene);
 
+// The placement machinery, shared with the multi-rock scenes (further_rocks.hpp).
+// True when the parts of a and b above the ground z = 0 share a volume.
+bool overlap_above_ground(const ConvexRock& a, const ConvexRock& b);
+// Slide along -dir (horizontal, unit) that brings b into first contact with
+// a: the smallest s with b - s dir overlapping a, or a negative value when b
+// never meets a within `reach`.
+double contact_slide(const ConvexRock& a, const ConvexRock& b, const Eigen::Vector3d& dir,
+                     double reach);
+
 // True when a point of the target's grind faces (sampled every ~step_mm) is
 // hidden from either camera by `other`.
 bool hides_grind_face(const Scene& scene, const ConvexRock& other, double step_mm);

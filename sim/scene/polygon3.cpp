@@ -101,4 +101,17 @@ double distance_to_polygon(const Polygon3& poly, const Eigen::Vector3d& normal,
   return std::sqrt(h * h + r * r);
 }
 
+std::vector<Eigen::Vector3d> polygon_samples(const Polygon3& poly, double step_mm) {
+  std::vector<Eigen::Vector3d> pts;
+  for (std::size_t i = 1; i + 1 < poly.size(); ++i) {
+    const Eigen::Vector3d &a = poly[0], &b = poly[i], &c = poly[i + 1];
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const int n = std::max(1, static_cast<int>(std::ceil(longest / step_mm)));
+    for (int p = 0; p <= n; ++p)
+      for (int q = 0; p + q <= n; ++q)
+        pts.push_back(a + (b - a) * (double(p) / n) + (c - a) * (double(q) / n));
+  }
+  return pts;
+}
+
 }  // namespace petra::sim

@@ -29,4 +29,8 @@ double in_plane_distance_to_polygon(const Polygon3& poly, const Eigen::Vector3d&
 double distance_to_polygon(const Polygon3& poly, const Eigen::Vector3d& normal,
                            const Eigen::Vector3d& p);
 
+// Points on a convex polygon about step_mm apart (fan triangles, barycentric
+// grid; shared edges give repeated points).
+std::vector<Eigen::Vector3d> polygon_samples(const Polygon3& poly, double step_mm);
+
 }  // namespace petra::sim

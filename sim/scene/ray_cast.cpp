@@ -35,6 +35,14 @@ RockEntry enter_target(const Scene& scene, const Eigen::Vector3d& o, const Eigen
              : ray_enter_rock(scene.rock, o, dir, t_min, t_max);
 }
 
+// Further rock k: rough faces of its own in a multi-rock scene, else a polyhedron.
+RockEntry enter_neighbour(const Scene& scene, std::size_t k, const Eigen::Vector3d& o,
+                          const Eigen::Vector3d& dir, double t_max) {
+  if (k < scene.neighbour_relief.size() && scene.neighbour_relief[k].active)
+    return ray_enter_rough_rock(scene.neighbours[k], scene.neighbour_relief[k], o, dir, 0.0, t_max);
+  return ray_enter_rock(scene.neighbours[k], o, dir, 0.0, t_max);
+}
+
 // The realistic world: relief, rough faces, stones.
 SceneHit trace_real(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& dir) {
   SceneHit hit;
@@ -61,7 +69,7 @@ SceneHit trace_real(const Scene& scene, const Eigen::Vector3d& o, const Eigen::V
     hit.t = t_max = s.t;
   }
   for (std::size_t k = 0; k < scene.neighbours.size(); ++k) {
-    const RockEntry n = ray_enter_rock(scene.neighbours[k], o, dir, 0.0, t_max);
+    const RockEntry n = enter_neighbour(scene, k, o, dir, t_max);
     if (n.face < 0) continue;
     hit.surface = kNeighbour0 + static_cast<int>(k) * kNeighbourFaces + n.face;
     hit.t = t_max = n.t;
@@ -102,7 +110,14 @@ Eigen::Vector3d surface_normal(const Scene& scene, const SceneHit& hit) {
   if (hit.surface == kGround)
     return scene.terrain.active ? terrain_normal(scene.terrain, hit.point.x(), hit.point.y())
                                 : Eigen::Vector3d::UnitZ();
-  if (is_neighbour(hit.surface)) return neighbour_face(scene, hit.surface).plane.normal;
+  if (is_neighbour(hit.surface)) {
+    const int k = (hit.surface - kNeighbour0) / kNeighbourFaces;
+    const std::size_t kk = static_cast<std::size_t>(k);
+    if (kk < scene.neighbour_relief.size() && scene.neighbour_relief[kk].active)
+      return rough_face_normal(scene.neighbours[kk], scene.neighbour_relief[kk],
+                               (hit.surface - kNeighbour0) % kNeighbourFaces, hit.point);
+    return neighbour_face(scene, hit.surface).plane.normal;
+  }
   if (hit.surface >= kStone0) {
     const int k = (hit.surface - kStone0) / kStoneFaces, f = (hit.surface - kStone0) % kStoneFaces;
     return scene.stones[static_cast<std::size_t>(k)]

@@ -28,6 +28,12 @@ inline bool is_stone(int surface) {
 inline bool is_neighbour(int surface) {
   return surface >= kNeighbour0;
 }
+// Face index of rock `rock` (rock_at()'s index) a surface label is on, or -1.
+inline int face_of_rock(int surface, int rock) {
+  if (rock == 0) return is_target_face(surface) ? surface - kRockFace0 : -1;
+  if (!is_neighbour(surface) || (surface - kNeighbour0) / kNeighbourFaces != rock - 1) return -1;
+  return (surface - kNeighbour0) % kNeighbourFaces;
+}
 
 struct SceneHit {
   int surface = kSky;

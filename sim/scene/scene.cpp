@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "algo/camera/rectify_geometry.hpp"
+#include "sim/scene/further_rocks.hpp"
 #include "sim/scene/neighbours.hpp"
 #include "sim/scene/rig_builder.hpp"
 #include "sim/scene/rng.hpp"
@@ -134,6 +135,46 @@ double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) / kDeg;
 }
 
+}  // namespace
+
+bool in_both_views(const Scene& s, const RectifiedPair& pair,
+                   const std::vector<Eigen::Vector3d>& pts) {
+  for (const auto& p : pts) {
+    if (!in_image(s.rig.left, p, kMarginPx) || !in_image(s.rig.right, p, kMarginPx)) return false;
+    auto r = rectified_project(pair, p);
+    const double m = kMarginPx / 2;
+    if (!r || r->uv_left.x() < m || r->uv_left.x() - r->disparity < m ||
+        r->uv_left.x() > kImageWidth - 1 - m || r->uv_left.y() < m ||
+        r->uv_left.y() > kImageHeight - 1 - m)
+      return false;
+  }
+  return true;
+}
+
+const char* rock_kind_name(RockKind kind) {
+  switch (kind) {
+    case RockKind::grindable:
+      return "grindable";
+    case RockKind::too_small:
+      return "too_small";
+    case RockKind::too_rough:
+      return "too_rough";
+    case RockKind::out_of_reach:
+      return "out_of_reach";
+  }
+  return "?";
+}
+
+const FaceRelief& relief_at(const Scene& s, int r) {
+  if (r == 0 || s.neighbour_relief.empty()) {
+    static const FaceRelief kNone;
+    return r == 0 ? s.face_relief : kNone;
+  }
+  return s.neighbour_relief[static_cast<std::size_t>(r - 1)];
+}
+
+namespace {
+
 // Why a placement is refused, in the order the checks run.
 constexpr const char* kRefusals[] = {
     "degenerate rock",
@@ -149,6 +190,7 @@ constexpr const char* kRefusals[] = {
     "the sun is below the sloped ground",
     "rig too close to the sloped ground",
     "no touching neighbour leaves the flat faces in view",
+    "the further rocks find no place in view",
 };
 
 // Why a placement is refused (an entry of kRefusals), or nullptr when it
@@ -181,16 +223,7 @@ const char* refusal(const Scene& s) {
   auto pair = rectify_geometry(s.rig, kImageWidth, kImageHeight);
   if (!pair) return kRefusals[7];
   auto in_views = [&](const std::vector<Eigen::Vector3d>& pts) {
-    for (const auto& p : pts) {
-      if (!in_image(s.rig.left, p, kMarginPx) || !in_image(s.rig.right, p, kMarginPx)) return false;
-      auto r = rectified_project(*pair, p);
-      const double m = kMarginPx / 2;
-      if (!r || r->uv_left.x() < m || r->uv_left.x() - r->disparity < m ||
-          r->uv_left.x() > kImageWidth - 1 - m || r->uv_left.y() < m ||
-          r->uv_left.y() > kImageHeight - 1 - m)
-        return false;
-    }
-    return true;
+    return in_both_views(s, *pair, pts);
   };
   if (!in_views(rock_outline_points(s.rock, 8))) return kRefusals[8];
   if (!in_views(polygon_edge_points(shadow_region(s.rock, s.sun_dir), 8))) return kRefusals[9];
@@ -265,8 +298,9 @@ Result<Scene> make_scene(const SceneOptions& o) {
     s.attempts = attempt;
     why = refusal(s);
     if (!why && o.neighbours > 0 && !add_neighbours(s)) why = kRefusals[12];
+    if (!why) set_tone_and_exposure(s);
+    if (!why && o.rocks > 1 && !add_rocks(s)) why = kRefusals[13];
     if (!why) {
-      set_tone_and_exposure(s);
       add_world_geometry(s);
       set_calibration(s);
       return s;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "algo/camera/camera_model.hpp"
+#include "algo/camera/rectify_geometry.hpp"
 #include "algo/core/result.hpp"
 #include "sim/scene/convex_rock.hpp"
 #include "sim/scene/face_relief.hpp"
@@ -20,6 +21,13 @@ namespace petra::sim {
 
 inline constexpr int kImageWidth = 1024;
 inline constexpr int kImageHeight = 768;
+
+// Why a further rock of a multi-rock scene is there: the kind it was drawn
+// as (its truth flags are computed, scene_rocks.hpp; drawing keeps a rock
+// only when they agree).
+enum class RockKind { grindable, too_small, too_rough, out_of_reach };
+inline constexpr int kRockKinds = 4;
+const char* rock_kind_name(RockKind kind);
 
 struct Scene {
   SceneOptions options;  // as given
@@ -56,6 +64,11 @@ struct Scene {
   std::vector<ConvexRock> neighbours;    // rocks touching the target (options.neighbours)
   std::vector<double> neighbour_albedo;  // relative to the target's
   std::vector<double> neighbour_gap_mm;  // slid back this far from first contact
+  // Multi-rock scenes (options.rocks >= 2): the further rocks are neighbours
+  // 1.. (rock k is neighbours[k - 1]), each with its own rough faces and the
+  // kind it was drawn as; empty otherwise (plain polyhedra, as before).
+  std::vector<FaceRelief> neighbour_relief;
+  std::vector<RockKind> neighbour_kind;
   bool tilted = false;
   Eigen::Matrix3d world_R = Eigen::Matrix3d::Identity();
   Eigen::Vector3d pivot = Eigen::Vector3d::Zero();
@@ -77,11 +90,25 @@ inline Eigen::Vector3d dir_to_world(const Scene& s, const Eigen::Vector3d& d) {
   return s.tilted ? Eigen::Vector3d(s.world_R * d) : d;
 }
 
+// Rock r of the scene: 0 the target, k >= 1 neighbours[k - 1]; its faces' relief.
+inline const ConvexRock& rock_at(const Scene& s, int r) {
+  return r == 0 ? s.rock : s.neighbours[static_cast<std::size_t>(r - 1)];
+}
+inline int rock_count(const Scene& s) {
+  return 1 + static_cast<int>(s.neighbours.size());
+}
+const FaceRelief& relief_at(const Scene& s, int r);
+
 // Builds the scene for options.seed and the options; deterministic. Fails
 // with a message naming the option when the options are invalid or no
 // placement meets the requirements (rock and shadow in both views, flat faces
 // visible and larger than every other facet).
 Result<Scene> make_scene(const SceneOptions& options);
+
+// True when every point lies 40 px inside both original images and half
+// that inside both rectified images (`pair`: the rig's rectification).
+bool in_both_views(const Scene& scene, const RectifiedPair& pair,
+                   const std::vector<Eigen::Vector3d>& points);
 
 // Camera's ray angle per pixel (mm on a surface 1 mm away, at normal incidence).
 inline double pixel_angle(const TsaiCamera& cam) {

@@ -10,11 +10,15 @@ bool faces_point(const RockFace& face, const Eigen::Vector3d& centre) {
 }
 
 std::vector<VisibleFacet> visible_facets(const Scene& scene) {
+  return visible_facets(scene, scene.rock);
+}
+
+std::vector<VisibleFacet> visible_facets(const Scene& scene, const ConvexRock& rock) {
   const Eigen::Vector3d cl = camera_centre_world(scene.rig.left);
   const Eigen::Vector3d cr = camera_centre_world(scene.rig.right);
   std::vector<VisibleFacet> out;
-  for (std::size_t i = 0; i < scene.rock.faces.size(); ++i) {
-    const RockFace& f = scene.rock.faces[i];
+  for (std::size_t i = 0; i < rock.faces.size(); ++i) {
+    const RockFace& f = rock.faces[i];
     if (!faces_point(f, cl) || !faces_point(f, cr)) continue;
     VisibleFacet v;
     v.polygon = exposed_polygon(f);

@@ -30,6 +30,8 @@ bool faces_point(const RockFace& face, const Eigen::Vector3d& centre);
 // Facets front-facing to both cameras with at least kMinFacetAreaMm2 above
 // the ground, largest first (ties by face index).
 std::vector<VisibleFacet> visible_facets(const Scene& scene);
+// The same for any rock of the scene (rock_at()).
+std::vector<VisibleFacet> visible_facets(const Scene& scene, const ConvexRock& rock);
 
 // Points along every edge of the rock's exposed surface (per_edge per edge).
 std::vector<Eigen::Vector3d> rock_outline_points(const ConvexRock& rock, int per_edge);

@@ -120,6 +120,11 @@ Status validate(const SceneOptions& o) {
   if (o.neighbours < 0 || o.neighbours > kMaxNeighbours)
     return Error::make(Errc::out_of_range, "neighbours = %d outside 0..%d", o.neighbours,
                        kMaxNeighbours);
+  if (o.rocks < 1 || o.rocks > kMaxRocks)
+    return Error::make(Errc::out_of_range, "rocks = %d outside 1..%d", o.rocks, kMaxRocks);
+  if (o.rocks > 1 && (o.neighbours > 0 || o.roi_fill))
+    return Error::make(Errc::invalid_argument, "rocks = %d: not with neighbours or roi-fill",
+                       o.rocks);
   // The rock must lie ahead of the rig, not below it: its centre sits at most
   // ~150 mm above the ground, so the distance must clearly exceed the height.
   if (o.rock_distance_mm && o.camera_height_mm && *o.camera_height_mm > 0.85 * *o.rock_distance_mm)

@@ -35,6 +35,7 @@ inline constexpr double kMinCameraGain = 0.5, kMaxCameraGain = 1.5, kMaxCameraOf
 inline constexpr double kMinBurial = 0.15, kMaxBurial = 0.7;
 inline constexpr double kMaxVignetting = 0.6, kMaxPrnu = 0.05, kMaxCalibResidualPx = 2;
 inline constexpr int kMaxNeighbours = 3;
+inline constexpr int kMaxRocks = 6;  // multi-rock scenes: 2..kMaxRocks full rocks
 // Seeds stay exact as JSON numbers (doubles): 0 .. 2^53 - 1.
 inline constexpr std::uint64_t kMaxSeed = (std::uint64_t{1} << 53) - 1;
 
@@ -77,6 +78,10 @@ struct SceneOptions {
   // The operator's hard cases (docs/scene.md "Neighbours and a rock filling the ROI").
   int neighbours = 0;     // further rocks touching the target, 0..kMaxNeighbours
   bool roi_fill = false;  // truth ROI inside the rock's silhouette: no ground in it
+  // Multi-rock scenes (docs/scene.md "Several rocks"): 1 = the one rock of
+  // every other scene; 2..kMaxRocks = further full rocks over the ground in
+  // view, some not grindable or not reachable by design.
+  int rocks = 1;
 };
 
 // Errors name the option and its valid range.

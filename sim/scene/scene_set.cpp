@@ -62,4 +62,17 @@ std::vector<SceneOptions> real_scene_set() {
   return set;
 }
 
+std::vector<SceneOptions> multi_rock_scene_set() {
+  std::vector<SceneOptions> set;
+  for (int k = 0; k < kMultiSetSize; ++k) {
+    SceneOptions& o = set.emplace_back(cycle_entry(k));
+    o.seed = 3000 + static_cast<std::uint64_t>(k);
+    o.world = realistic_world();
+    o.noise_sigma_dn = 2.0;
+    o.edge_supersampling = 4;
+    o.rocks = 3 + k % 4;
+  }
+  return set;
+}
+
 }  // namespace petra::sim

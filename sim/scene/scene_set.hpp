@@ -22,4 +22,11 @@ inline constexpr int kRealBaseSize = 24;
 inline constexpr int kRealSetSize = 32;
 std::vector<SceneOptions> real_scene_set();
 
+// The multi-rock set (`petra sim set --multi`, docs/scene.md "Several
+// rocks"): entry k has seed 3000 + k, the standard cycle, the realistic
+// world's defaults (noise 2 DN, edge supersampling 4) and 3 + k mod 4 rocks;
+// further rock r is of kind (k + r) mod 4, so every kind is in the set.
+inline constexpr int kMultiSetSize = 24;
+std::vector<SceneOptions> multi_rock_scene_set();
+
 }  // namespace petra::sim

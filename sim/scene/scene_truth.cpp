@@ -4,8 +4,6 @@
 #include <cmath>
 #include <vector>
 
-#include <Eigen/Eigenvalues>
-
 #include "algo/camera/calib_json.hpp"
 #include "algo/core/json_writer.hpp"
 #include "sim/scene/truth_pixels.hpp"
@@ -22,9 +20,9 @@ Rect clip_box(double u0, double v0, double u1, double v1, int w, int h) {
   return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
 }
 
-Rect left_roi(const Scene& s) {
-  auto pts = rock_outline_points(s.rock, 16);
-  const auto shadow = polygon_edge_points(shadow_region(s.rock, s.sun_dir), 16);
+Rect left_roi(const Scene& s, const ConvexRock& rock) {
+  auto pts = rock_outline_points(rock, 16);
+  const auto shadow = polygon_edge_points(shadow_region(rock, s.sun_dir), 16);
   pts.insert(pts.end(), shadow.begin(), shadow.end());
   double u0 = INFINITY, v0 = INFINITY, u1 = -INFINITY, v1 = -INFINITY;
   for (const auto& p : pts) {
@@ -62,30 +60,6 @@ Rect rectified_box(const Scene& s, const RectifiedPair& pair, const Rect& roi) {
   return clip_box(u0, v0, u1, v1, pair.left.width, pair.left.height);
 }
 
-// Best plane through the points (least squares), its normal turned like `toward`.
-FacetFit fit_facet(VisibleFacet& f, const std::vector<Eigen::Vector3d>& pts) {
-  FacetFit fit;
-  if (pts.size() < 20) return fit;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& p : pts) mean += p;
-  mean /= static_cast<double>(pts.size());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const auto& p : pts) cov += (p - mean) * (p - mean).transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  Eigen::Vector3d n = eig.eigenvectors().col(0);
-  if (n.dot(f.normal) < 0) n = -n;
-  double sum2 = 0;
-  for (const auto& p : pts) sum2 += std::pow(n.dot(p - mean), 2);
-  for (auto& p : f.polygon) p -= n * n.dot(p - mean);  // onto the fitted plane
-  f.normal = n;
-  f.centroid = polygon_centroid(f.polygon);
-  f.area_mm2 = polygon_area(f.polygon);
-  fit.fitted = true;
-  fit.flatness_rms_mm = std::sqrt(sum2 / static_cast<double>(pts.size()));
-  fit.points = static_cast<int>(pts.size());
-  return fit;
-}
-
 // RMS of the finite values of `img` inside `r` (-1 when none), and their largest |value|.
 double rms_in(const io::FloatImage& img, const Rect& r, double* max_abs = nullptr) {
   if (img.data.empty()) return -1;
@@ -110,6 +84,19 @@ void vec3(json::Writer& w, const Eigen::Vector3d& v) {
 
 void rect(json::Writer& w, const Rect& r) {
   w.begin_array().integer(r.x).integer(r.y).integer(r.w).integer(r.h).end_array();
+}
+
+// A facet's geometry in the world frame (the contract's facet fields).
+void write_facet(json::Writer& w, const Scene& s, const VisibleFacet& f) {
+  w.key("normal");
+  vec3(w, dir_to_world(s, f.normal));
+  w.key("centroid_mm");
+  vec3(w, to_world(s, f.centroid));
+  w.key("polygon_mm").begin_array();
+  for (const auto& p : f.polygon) vec3(w, to_world(s, p));
+  w.end_array();
+  w.key("visible_area_mm2").number(f.area_mm2);
+  w.key("grind_face").boolean(f.grind_face);
 }
 
 // The rocks touching the target (never truth facets).
@@ -162,13 +149,59 @@ Status write_world(json::Writer& w, const Scene& s, const SceneTruth& t) {
   return {};
 }
 
+// Every rock's truth: rock 0 as above, each further rock with its own ROI and click.
+void add_rock_truths(const Scene& s, SceneTruth& t) {
+  RockTruth first;
+  first.roi = t.roi;
+  first.click = t.click;
+  first.facets = t.facets;
+  judge_rock(s, 0, first);
+  t.rocks.push_back(std::move(first));
+  for (int r = 1; r < rock_count(s); ++r) {
+    RockTruth rt = further_rock_truth(s, r);
+    rt.roi = left_roi(s, rock_at(s, r));
+    rt.click = click_on_rock(s, rt.roi, rt.facets, r);
+    if (!rt.click) rt.click = pixel_on_rock(s, rt.roi, r);
+    t.rocks.push_back(std::move(rt));
+  }
+}
+
+void write_rock(json::Writer& w, const Scene& s, const RockTruth& r, int id) {
+  w.raw("\n ");
+  w.begin_object();
+  w.key("id").integer(id);
+  w.key("kind").string(
+      id == 0 ? "target" : rock_kind_name(s.neighbour_kind[static_cast<std::size_t>(id - 1)]));
+  w.key("roi");
+  rect(w, r.roi);
+  if (r.click) w.key("click").begin_array().integer(r.click->x()).integer(r.click->y()).end_array();
+  w.key("height_mm").number(r.height_mm);
+  w.key("size_mm").number(r.size_mm);
+  w.key("facets").begin_array();
+  for (std::size_t i = 0; i < r.facets.size(); ++i) {
+    const VisibleFacet& f = r.facets[i];
+    const FacetJudgement& j = r.judged[i];
+    w.raw("\n  ");
+    w.begin_object();
+    write_facet(w, s, f);
+    w.key("grindable").boolean(j.grindable);
+    w.key("reason").string(j.reason);
+    w.key("disc_rms_mm").number(j.disc_rms_mm);
+    w.key("reachable").boolean(j.reachable);
+    w.key("reach_reason").string(arm::arm_reason_name(j.reach));
+    w.end_object();
+  }
+  w.end_array();
+  w.end_object();
+}
+
 }  // namespace
 
 SceneTruth compute_truth(const Scene& s, const RectifiedTruth& rect_truth) {
   SceneTruth t;
   t.planes = s.flat_faces;
   t.facets = visible_facets(s);
-  t.roi = left_roi(s);
+  t.roi = left_roi(s, s.rock);
   if (s.options.roi_fill) t.roi = roi_inside_rock(s, t.roi);
   t.click = click_on_rock(s, t.roi, t.facets);
   t.roi_rectified = rectified_box(s, rect_truth.pair, t.roi);
@@ -189,6 +222,7 @@ SceneTruth compute_truth(const Scene& s, const RectifiedTruth& rect_truth) {
   t.relief_rms_roi_mm = rms_in(rect_truth.surface_height, t.roi_rectified);
   if (!rect_truth.vertical.data.empty())
     t.vertical_rms_px = rms_in(rect_truth.vertical, t.roi_rectified, &t.vertical_max_px);
+  if (s.options.rocks > 1) add_rock_truths(s, t);
   return t;
 }
 
@@ -204,15 +238,7 @@ Result<std::string> format_truth_json(const Scene& s, const SceneTruth& t) {
   for (const auto& f : t.facets) {
     w.raw("\n ");
     w.begin_object();
-    w.key("normal");
-    vec3(w, dir_to_world(s, f.normal));
-    w.key("centroid_mm");
-    vec3(w, to_world(s, f.centroid));
-    w.key("polygon_mm").begin_array();
-    for (const auto& p : f.polygon) vec3(w, to_world(s, p));
-    w.end_array();
-    w.key("visible_area_mm2").number(f.area_mm2);
-    w.key("grind_face").boolean(f.grind_face);
+    write_facet(w, s, f);
     const std::size_t i = static_cast<std::size_t>(&f - t.facets.data());
     if (i < t.fits.size() && t.fits[i].fitted) {
       w.key("flatness_rms_mm").number(t.fits[i].flatness_rms_mm);
@@ -260,6 +286,13 @@ Result<std::string> format_truth_json(const Scene& s, const SceneTruth& t) {
   if (s.options.roi_fill) w.key("roi_fill").boolean(true);
   if (!s.neighbours.empty()) write_neighbours(w, s);
   w.end_object();
+  if (!t.rocks.empty()) {
+    w.raw("\n");
+    w.key("rocks").begin_array();
+    for (std::size_t r = 0; r < t.rocks.size(); ++r)
+      write_rock(w, s, t.rocks[r], static_cast<int>(r));
+    w.end_array();
+  }
   if (!is_clean(s.options.world)) PETRA_TRY(write_world(w, s, t));
   w.end_object();
   w.raw("\n");

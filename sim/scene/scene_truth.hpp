@@ -11,15 +11,9 @@
 #include "sim/scene/disparity_truth.hpp"
 #include "sim/scene/scene.hpp"
 #include "sim/scene/scene_geometry.hpp"
+#include "sim/scene/scene_rocks.hpp"
 
 namespace petra::sim {
-
-// A rough face's truth: its best plane fitted to the rendered surface.
-struct FacetFit {
-  bool fitted = false;
-  double flatness_rms_mm = 0;  // RMS distance of the surface from that plane
-  int points = 0;              // rectified left pixels that saw the face
-};
 
 struct SceneTruth {
   Rect roi;            // original left image: rock, its shadow and a margin of ground
@@ -35,6 +29,9 @@ struct SceneTruth {
   std::vector<FacetFit> fits;     // per facet, when the faces are rough
   double relief_rms_roi_mm = -1;  // ground height RMS about its base plane in roi_rectified
   double vertical_rms_px = 0, vertical_max_px = 0;  // vertical disparity in roi_rectified
+  // Multi-rock scenes only: every rock (rock 0 first, its facets, ROI and
+  // click those above), each facet judged (scene_rocks.hpp).
+  std::vector<RockTruth> rocks;
 };
 
 SceneTruth compute_truth(const Scene& scene, const RectifiedTruth& rect);

@@ -38,6 +38,17 @@ Rect largest_rectangle(const std::vector<char>& mask, int w, int h) {
   return best;
 }
 
+// The pixel of a non-empty list nearest their centroid.
+Eigen::Vector2i nearest_to_centroid(const std::vector<Eigen::Vector2i>& pixels) {
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& p : pixels) mean += p.cast<double>();
+  mean /= static_cast<double>(pixels.size());
+  return *std::min_element(pixels.begin(), pixels.end(), [&](const auto& a, const auto& b) {
+    return (a.template cast<double>() - mean).squaredNorm() <
+           (b.template cast<double>() - mean).squaredNorm();
+  });
+}
+
 }  // namespace
 
 Rect roi_inside_rock(const Scene& s, const Rect& a) {
@@ -65,15 +76,15 @@ Rect roi_inside_rock(const Scene& s, const Rect& a) {
 }
 
 std::optional<Eigen::Vector2i> click_on_rock(const Scene& s, const Rect& roi,
-                                             const std::vector<VisibleFacet>& facets) {
+                                             const std::vector<VisibleFacet>& facets, int rock) {
   const CameraRays rays(s.rig.left);
   // Sunlit pixels per rock face.
-  std::vector<std::vector<Eigen::Vector2i>> lit(s.rock.faces.size());
+  std::vector<std::vector<Eigen::Vector2i>> lit(rock_at(s, rock).faces.size());
   for (int v = roi.y; v < roi.y + roi.h; v += 2)
     for (int u = roi.x; u < roi.x + roi.w; u += 2) {
       const SceneHit hit = trace(s, rays.origin(), rays.direction(u, v));
-      if (is_target_face(hit.surface) && !in_shadow(s, hit))
-        lit[static_cast<std::size_t>(hit.surface - kRockFace0)].emplace_back(u, v);
+      const int face = face_of_rock(hit.surface, rock);
+      if (face >= 0 && !in_shadow(s, hit)) lit[static_cast<std::size_t>(face)].emplace_back(u, v);
     }
   // A well-lit facet first (a face lit at grazing incidence looks like shadow).
   const std::vector<Eigen::Vector2i>* chosen = nullptr;
@@ -83,14 +94,18 @@ std::optional<Eigen::Vector2i> click_on_rock(const Scene& s, const Rect& roi,
           f.normal.dot(s.sun_dir) >= min_sun)
         chosen = &lit[static_cast<std::size_t>(f.face)];
   if (!chosen) return std::nullopt;
-  const std::vector<Eigen::Vector2i>& pixels = *chosen;
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const auto& p : pixels) mean += p.cast<double>();
-  mean /= static_cast<double>(pixels.size());
-  return *std::min_element(pixels.begin(), pixels.end(), [&](const auto& a, const auto& b) {
-    return (a.template cast<double>() - mean).squaredNorm() <
-           (b.template cast<double>() - mean).squaredNorm();
-  });
+  return nearest_to_centroid(*chosen);
+}
+
+std::optional<Eigen::Vector2i> pixel_on_rock(const Scene& s, const Rect& roi, int rock) {
+  const CameraRays rays(s.rig.left);
+  std::vector<Eigen::Vector2i> seen;
+  for (int v = roi.y; v < roi.y + roi.h; v += 2)
+    for (int u = roi.x; u < roi.x + roi.w; u += 2)
+      if (face_of_rock(trace(s, rays.origin(), rays.direction(u, v)).surface, rock) >= 0)
+        seen.emplace_back(u, v);
+  if (seen.empty()) return std::nullopt;
+  return nearest_to_centroid(seen);
 }
 
 }  // namespace petra::sim

@@ -43,17 +43,25 @@ Result<ConvexRock> make_stone(Rng& rng, double a) {
   return make_convex_rock(planes, Eigen::Vector3d::Zero(), 4 * a);
 }
 
-// True when a stone at `centre` (radius r) could hide part of the rock from a camera.
-bool hides_rock(const Scene& s, const Eigen::Vector3d& centre, double r) {
+// True when a stone at `centre` (radius r) could hide part of `rock` from a camera.
+bool hides(const Scene& s, const ConvexRock& rock, const Eigen::Vector3d& centre, double r) {
   for (const TsaiCamera* cam : {&s.rig.left, &s.rig.right}) {
     const Eigen::Vector3d c = camera_centre_world(*cam);
-    const Eigen::Vector3d vr = s.rock.centre - c, vs = centre - c;
-    if (vs.norm() > vr.norm() + s.rock.radius_mm) continue;
+    const Eigen::Vector3d vr = rock.centre - c, vs = centre - c;
+    if (vs.norm() > vr.norm() + rock.radius_mm) continue;
     const double sep = std::acos(std::clamp(vr.normalized().dot(vs.normalized()), -1.0, 1.0));
-    const double reach = std::asin(std::min(1.0, s.rock.radius_mm / vr.norm())) +
+    const double reach = std::asin(std::min(1.0, rock.radius_mm / vr.norm())) +
                          std::asin(std::min(1.0, r / vs.norm()));
     if (sep < reach) return true;
   }
+  return false;
+}
+
+// The target, and in a multi-rock scene every further rock too.
+bool hides_rock(const Scene& s, const Eigen::Vector3d& centre, double r) {
+  const int rocks = s.options.rocks > 1 ? rock_count(s) : 1;
+  for (int k = 0; k < rocks; ++k)
+    if (hides(s, rock_at(s, k), centre, r)) return true;
   return false;
 }
 

@@ -73,6 +73,11 @@ Result<bool> JsonFile::boolean(std::uint32_t i, const std::string& path) const {
   return doc_.token(i).number != 0.0;
 }
 
+Result<std::string> JsonFile::string(std::uint32_t i, const std::string& path) const {
+  if (doc_.token(i).type != json::Type::string) return error(path, "expected a string");
+  return std::string(doc_.text_of(i));
+}
+
 Result<Eigen::Vector3d> JsonFile::vec3(std::uint32_t i, const std::string& path) const {
   const json::Token& t = doc_.token(i);
   if (t.type != json::Type::array || t.count != 3)

@@ -37,6 +37,8 @@ class JsonFile {
   Result<double> number(std::uint32_t i, const std::string& path) const;
   Result<long long> integer(std::uint32_t i, const std::string& path) const;
   Result<bool> boolean(std::uint32_t i, const std::string& path) const;
+  // A string's raw text (escapes left as written).
+  Result<std::string> string(std::uint32_t i, const std::string& path) const;
   Result<Eigen::Vector3d> vec3(std::uint32_t i, const std::string& path) const;
   // A unit vector: length within 1e-3 of 1 (then normalised exactly).
   Result<Eigen::Vector3d> unit_vec3(std::uint32_t i, const std::string& path) const;

@@ -1,11 +1,14 @@
 // truth.json (written by `petra sim scene`, contract in docs/icd.md) read
 // back for scoring. Required: roi, planes, facets (normal, centroid_mm,
 // polygon_mm, visible_area_mm2), ground, sun_dir, seed. Optional extras:
-// facets[].grind_face, facets[].flatness_rms_mm, roi_rectified, disparity_range.
+// facets[].grind_face, facets[].flatness_rms_mm, roi_rectified, disparity_range,
+// rocks (multi-rock scenes: each facet then needs grindable, reason,
+// reachable, reach_reason).
 #pragma once
 
 #include <Eigen/Core>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -22,6 +25,21 @@ struct TruthFacet {
   double visible_area_mm2 = 0;
   bool grind_face = false;
   std::optional<double> flatness_rms_mm;  // rough faces: RMS about the fitted plane
+  // Multi-rock scenes ("rocks"): the facet's judgement (docs/icd.md).
+  bool grindable = false;
+  std::string reason;  // grindable|too_small|too_rough|too_curved|faces_away|hidden
+  bool reachable = false;
+  std::string reach_reason;  // ok|beyond_reach|inside_reach|joint_limit|path_blocked
+};
+
+// One rock of a multi-rock scene (truth.json "rocks", rock 0 first).
+struct TruthRock {
+  int id = 0;
+  Rect roi;
+  std::optional<Eigen::Vector2i> click;
+  double height_mm = 0;
+  double size_mm = 0;
+  std::vector<TruthFacet> facets;  // each with grindable, reason, reachable, reach_reason
 };
 
 struct TruthFile {
@@ -33,6 +51,7 @@ struct TruthFile {
   Eigen::Vector3d sun_dir = Eigen::Vector3d::UnitZ();
   long long seed = 0;
   std::optional<Rect> roi_rectified;
+  std::vector<TruthRock> rocks;  // empty unless a multi-rock scene
 };
 
 // `name` prefixes error messages. Checks: planes between 1 and the number of

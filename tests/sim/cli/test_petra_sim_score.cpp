@@ -139,6 +139,24 @@ TEST_F(PetraCli, ScoreExitStatusFollowsTheLimits) {
   EXPECT_NE(r.err.find("--planes needs --truth"), std::string::npos) << r.err;
 }
 
+// `petra score proposals` (tests/sim/score/test_proposal_score.cpp scores;
+// here the command line): a single-rock truth is refused by name, the
+// proposals file is required, a malformed one names its field.
+TEST_F(PetraCli, ScoreProposalsRefusesBadInputByName) {
+  const std::string truth = (scene_ / "truth.json").string();
+  const fs::path props = tmp("proposals.json");
+  std::ofstream(props) << R"({"proposals":[{"rank":1,"planes":[{"normal":[0,0,1],)"
+                       << R"("centroid_mm":[0,0,0],"verdict":"grindable"}]}]})";
+  CliResult r = run("score proposals --truth " + truth + " --proposals " + props.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find(truth + ": rocks: missing"), std::string::npos) << r.err;
+  r = run("score proposals --truth " + truth);
+  EXPECT_EQ(r.status, 2);  // does not parse (docs/ops.md)
+  EXPECT_NE(r.err.find("--proposals is required"), std::string::npos) << r.err;
+  r = run("score proposals --truth " + truth + " --proposals " + props.string() + " --top 0");
+  EXPECT_NE(r.status, 0);
+}
+
 TEST_F(PetraCli, ScoresDisparityAndShadowMaps) {
   const std::string d = (scene_ / "disparity_truth.pfm").string();
   const std::string s = (scene_ / "shadow_truth.pgm").string();

@@ -129,4 +129,25 @@ class IndependentCaster {
   double radius_ = 0;
 };
 
+// Points every ~0.5 mm along the edges of the rock's part above the ground.
+inline std::vector<Eigen::Vector3d> exposed_edge_points(const ConvexRock& r) {
+  std::vector<Eigen::Vector3d> pts;
+  for (const auto& f : r.faces) {
+    const Polygon3 p = exposed_polygon(f);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Eigen::Vector3d &a = p[i], &b = p[(i + 1) % p.size()];
+      const int n = std::max(1, static_cast<int>((b - a).norm() / 0.5));
+      for (int k = 0; k < n; ++k) pts.push_back(a + (b - a) * (double(k) / n));
+    }
+  }
+  return pts;
+}
+
+// How deep p lies inside the rock (<= 0 outside).
+inline double depth_inside(const ConvexRock& r, const Eigen::Vector3d& p) {
+  double worst = -INFINITY;
+  for (const auto& f : r.faces) worst = std::max(worst, f.plane.normal.dot(p) - f.plane.offset_mm);
+  return -worst;
+}
+
 }  // namespace petra::sim::check

@@ -15,6 +15,7 @@
 #include "sim/scene/scene_geometry.hpp"
 #include "sim/scene/scene_set.hpp"
 #include "sim/scene/truth_pixels.hpp"
+#include "tests/sim/scene/independent_scene_check.hpp"
 
 namespace petra::sim {
 namespace {
@@ -27,20 +28,6 @@ SceneOptions real_options(std::uint64_t seed, int neighbours) {
   return o;
 }
 
-// Points every ~0.5 mm along the edges of the rock's part above the ground.
-std::vector<Eigen::Vector3d> exposed_edge_points(const ConvexRock& r) {
-  std::vector<Eigen::Vector3d> pts;
-  for (const auto& f : r.faces) {
-    const Polygon3 p = exposed_polygon(f);
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const Eigen::Vector3d &a = p[i], &b = p[(i + 1) % p.size()];
-      const int n = std::max(1, static_cast<int>((b - a).norm() / 0.5));
-      for (int k = 0; k < n; ++k) pts.push_back(a + (b - a) * (double(k) / n));
-    }
-  }
-  return pts;
-}
-
 // Distance from p (outside) to the rock's surface above the ground.
 double distance_to_rock(const ConvexRock& r, const Eigen::Vector3d& p) {
   double d = INFINITY;
@@ -49,13 +36,6 @@ double distance_to_rock(const ConvexRock& r, const Eigen::Vector3d& p) {
     if (e.size() >= 3) d = std::min(d, distance_to_polygon(e, f.plane.normal, p));
   }
   return d;
-}
-
-// How deep p lies inside the rock (<= 0 outside).
-double depth_inside(const ConvexRock& r, const Eigen::Vector3d& p) {
-  double worst = -INFINITY;
-  for (const auto& f : r.faces) worst = std::max(worst, f.plane.normal.dot(p) - f.plane.offset_mm);
-  return -worst;
 }
 
 TEST(SceneNeighbours, CountIsValidatedByName) {
@@ -79,13 +59,13 @@ TEST(SceneNeighbours, TouchTheRockAndNeverHideAGrindFace) {
                                      camera_centre_world(s.rig.right)};
     for (const ConvexRock& nb : s.neighbours) {
       double closest = INFINITY, overlap = 0;
-      for (const auto& p : exposed_edge_points(nb)) {
+      for (const auto& p : check::exposed_edge_points(nb)) {
         closest = std::min(closest, distance_to_rock(s.rock, p));
-        overlap = std::max(overlap, depth_inside(s.rock, p));
+        overlap = std::max(overlap, check::depth_inside(s.rock, p));
       }
-      for (const auto& p : exposed_edge_points(s.rock)) {
+      for (const auto& p : check::exposed_edge_points(s.rock)) {
         closest = std::min(closest, distance_to_rock(nb, p));
-        overlap = std::max(overlap, depth_inside(nb, p));
+        overlap = std::max(overlap, check::depth_inside(nb, p));
       }
       EXPECT_LE(closest, 2.0) << "seed " << seed << ": neighbour does not touch the rock";
       EXPECT_LE(overlap, 0.05) << "seed " << seed << ": neighbour overlaps the rock";
