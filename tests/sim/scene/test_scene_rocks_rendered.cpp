@@ -14,7 +14,7 @@
 #include "sim/scene/ray_cast.hpp"
 #include "sim/scene/scene_render.hpp"
 #include "sim/score/proposal_score.hpp"
-#include "tests/support/cached_dir.hpp"
+#include "tests/support/multirock_scene.hpp"
 
 namespace petra::sim {
 namespace {
@@ -22,19 +22,11 @@ namespace {
 namespace fs = std::filesystem;
 
 SceneOptions options() {
-  SceneOptions o;
-  o.seed = 7;
-  o.rocks = 3;  // seed 7: a grindable rock and a too small one
-  return o;
+  return test::multirock_options();
 }
 
 const fs::path& scene_dir() {
-  static const fs::path dir = test::cached_dir("multirock_seed7", "sim scene --seed 7 --rocks 3",
-                                               test::this_executable(), [](const fs::path& out) {
-                                                 auto p = render_scene(options());
-                                                 return p && write_scene(*p, out.string()).ok();
-                                               });
-  return dir;
+  return test::multirock_scene_dir();
 }
 
 TruthFile truth() {
