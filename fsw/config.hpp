@@ -8,7 +8,6 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "algo/arm/kinematics.hpp"
 #include "algo/core/result.hpp"
 #include "hal/device_config.hpp"
 
@@ -81,9 +80,5 @@ struct FswConfig {
 Result<FswConfig> parse_config(const char* text, std::size_t size, const char* base_dir);
 // Reads and parses a configuration file.
 Result<FswConfig> load_config(const char* path);
-
-// The arm's geometry in the world: the flight defaults with arm.mount when
-// given (the arm service and the proposer's reach both use it).
-::petra::arm::ArmGeometry arm_geometry(const FswConfig& config);
 
 }  // namespace petra::fsw

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "algo/camera/calib_json.hpp"
+#include "fsw/arm_geometry.hpp"
 #include "hal/file_io.hpp"
 
 namespace petra::fsw {

@@ -276,7 +276,7 @@ const char* empty_reason(const RockProposal* items, int n) {
 }  // namespace
 
 void Proposer::rank(const ProposalRequest& request, int evaluated) {
-  int order[kMaxProposals];
+  int order[kMaxProposals] = {};
   for (int i = 0; i < evaluated; ++i) order[i] = i;
   // Insertion sort: stable, at most kMaxProposals, no heap (std::stable_sort takes a buffer).
   for (int i = 1; i < evaluated; ++i)

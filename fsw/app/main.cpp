@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "fsw/arm/flight_arm.hpp"
+#include "fsw/arm_geometry.hpp"
 #include "fsw/executive.hpp"
 #include "fsw/flight_devices.hpp"
 #include "fsw/memory_table.hpp"
