@@ -329,6 +329,9 @@ async function main() {
         `overlay legend: ${legend.map(([t]) => t).join(', ')} in the palette's colours`);
   const scale = await page.textContent('#disparity-far');
   check(/px \(far\)$/.test(scale), `disparity colour bar labelled "${scale}" ... "${await page.textContent('#disparity-near')}"`);
+  // The proposals panel (1b) pushed the 3D view down the page: scroll to it
+  // as the operator would, or the drag lands outside the viewport.
+  await page.$eval('#view3d canvas', (e) => e.scrollIntoView({ block: 'center' }));
   const view = await (await page.$('#view3d canvas')).boundingBox();
   await page.mouse.move(view.x + view.width / 2, view.y + view.height / 2);
   await page.mouse.down();
