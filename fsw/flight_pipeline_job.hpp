@@ -45,6 +45,9 @@ class FlightPipelineJob final : public PipelineJob {
  public:
   // Step times are read from `clock` (the executive's), on the worker thread.
   explicit FlightPipelineJob(const hal::Clock& clock) : clock_(&clock) {}
+  // Not copied: its proposer points to its pipeline.
+  FlightPipelineJob(const FlightPipelineJob&) = delete;
+  FlightPipelineJob& operator=(const FlightPipelineJob&) = delete;
   const char* name() const override {
     return "onboard chain (algo/chain/pipeline, dp and graph-cut matchers)";
   }
