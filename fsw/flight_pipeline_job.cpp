@@ -211,7 +211,8 @@ ProposerBudget FlightPipelineJob::proposer_budget(const Sizing& s) {
   return b;
 }
 
-// The larger of the evaluation's and the proposer's: one of them at a time.
+// The tables, then the larger of an evaluation's run with its products and
+// the proposer's (a chain run or its detection): one run at a time.
 std::size_t FlightPipelineJob::arena_bytes(const JobBudget& budget) const {
   const Sizing s = sizing(budget);
   return std::max(need_bytes(s.pipeline, budget.max_cloud_points),
@@ -233,9 +234,9 @@ int FlightPipelineJob::describe_memory(char* buf, std::size_t size) const {
 Status FlightPipelineJob::init(const JobBudget& budget, const StereoRig* rig, Arena& arena) {
   rig_ = rig;
   arena_ = &arena;
-  base_mark_ = arena.mark();
   max_cloud_points_ = budget.max_cloud_points;
   ready_ = false;
+  proposer_fits_ = false;
   if (rig == nullptr) return {};  // runs fail not_ready: no calib.json configured
   if (rig->left.width > budget.max_width || rig->left.height > budget.max_height)
     return Error::make(Errc::capacity_exceeded,
@@ -248,16 +249,26 @@ Status FlightPipelineJob::init(const JobBudget& budget, const StereoRig* rig, Ar
   budget_ = s.pipeline;
   roi_width_ = s.roi_width;
   roi_height_ = s.roi_height;
-  proposer_budget_ = proposer_budget(s);
-  arm_geometry_ = budget.arm_geometry;
-  proposer_fits_ = arena.remaining() >=
-                   Proposer::arena_bytes(proposer_budget_, pipeline_params(default_settings()));
-  PETRA_TRY(create(default_settings()));
-  tables_end_ = arena.mark();
+  const ProposerBudget pb = proposer_budget(s);
+  const bool fits =
+      arena.remaining() >= Proposer::arena_bytes(pb, pipeline_params(default_settings()));
+  settings_ = default_settings();
+  auto p = Pipeline::create(*rig_, budget_, pipeline_params(settings_), arena);
+  if (!p) return p.error();
+  ++table_builds_;
+  pipeline_ = *p;
+  ready_ = true;
+  if (!fits) return {};  // PROPOSE fails capacity_exceeded; can_propose() says so
+  auto q = Proposer::create(pipeline_, pb, budget.arm_geometry,
+                            ::petra::arm::default_joint_limits(), arena);
+  if (!q) return q.error();
+  proposer_ = *q;
+  proposer_fits_ = true;
   return {};
 }
 
-Status FlightPipelineJob::create(const Settings& settings) {
+// The pipeline's parameters for the next run: the tables stay.
+Status FlightPipelineJob::configure(const Settings& settings) {
   if (settings.disp_min_px < 0 || settings.disp_min_px >= settings.disp_max_px)
     return Error::make(Errc::invalid_argument, "DISP_MIN_PX %d .. DISP_MAX_PX %d: not an envelope",
                        settings.disp_min_px, settings.disp_max_px);
@@ -265,14 +276,8 @@ Status FlightPipelineJob::create(const Settings& settings) {
     return Error::make(Errc::capacity_exceeded,
                        "DISP_MIN_PX %d .. DISP_MAX_PX %d: wider than the budget's %d disparities",
                        settings.disp_min_px, settings.disp_max_px, budget_.max_disparities);
-  ready_ = false;
-  proposer_ready_ = false;  // the pipeline takes its place
-  arena_->release_to(base_mark_);
-  auto p = Pipeline::create(*rig_, budget_, pipeline_params(settings), *arena_);
-  if (!p) return p.error();
-  pipeline_ = *p;
+  PETRA_TRY(pipeline_.set_params(pipeline_params(settings)));
   settings_ = settings;
-  ready_ = true;
   return {};
 }
 
@@ -300,9 +305,9 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
     if (!s) out.failed_step = tracker.current;
     return s;
   }
-  // Rebuilt when the parameters changed, or when a proposal run took its place.
+  if (!ready_) return Error::make(Errc::not_ready, "the pipeline was not built at init");
   const Settings wanted{request.shadow_fraction, request.disp_min_px, request.disp_max_px};
-  if (!ready_ || !(wanted == settings_)) PETRA_TRY(create(wanted));
+  if (!(wanted == settings_)) PETRA_TRY(configure(wanted));
   auto result = pipeline_.run(request.left, request.right, request.selection, clock);
   if (!result) {
     out.failed_step = tracker.current;
@@ -348,30 +353,12 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   return {};
 }
 
-// The proposer in the pipeline's place: the same tables' bytes, so every run
-// still starts where init() left the arena.
-Status FlightPipelineJob::create_proposer(const Settings& settings) {
-  if (!proposer_fits_)
-    return Error::make(Errc::capacity_exceeded, "proposer: the arena is smaller than it needs");
-  ready_ = false;
-  proposer_ready_ = false;
-  arena_->release_to(base_mark_);
-  auto p = Proposer::create(*rig_, proposer_budget_, pipeline_params(settings), arm_geometry_,
-                            ::petra::arm::default_joint_limits(), *arena_);
-  if (!p) return p.error();
-  if (arena_->mark() != tables_end_)
-    return Error::make(Errc::capacity_exceeded, "proposer: its tables end at %zu, not at %zu",
-                       arena_->mark(), tables_end_);
-  proposer_ = *p;
-  proposer_settings_ = settings;
-  proposer_ready_ = true;
-  return {};
-}
-
 Status FlightPipelineJob::propose(const EvalRequest& request, const StepClock& clock,
                                   EvalOutput& out) {
+  if (!proposer_fits_)
+    return Error::make(Errc::capacity_exceeded, "proposer: the arena is smaller than it needs");
   const Settings wanted{request.shadow_fraction, request.disp_min_px, request.disp_max_px};
-  if (!proposer_ready_ || !(wanted == proposer_settings_)) PETRA_TRY(create_proposer(wanted));
+  if (!(wanted == settings_)) PETRA_TRY(configure(wanted));
   auto list = proposer_.run(request.left, request.right, request.proposal, request.arm_pose, clock);
   if (!list) return list.error();
   out.proposals = *list;

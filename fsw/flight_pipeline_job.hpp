@@ -16,20 +16,20 @@
 // whose run fits it. The pipeline is sized for the largest rectified ROI any
 // such ROI maps to anywhere in the image, so an ROI within limits() never
 // fails for its size later; the executive refuses larger ones at the command.
-// Parameters fixed at create (shadow fraction; DISP_MIN_PX..DISP_MAX_PX, the
-// envelope the disparity-range search looks in) come from the request: when
-// they differ from those in force the pipeline is rebuilt in the same place
-// (same bytes), so a parameter change costs one rebuild, never memory. An
-// envelope that is empty or wider than the budget's disparity count (the
-// default envelope's) is refused naming both parameters.
-// PROPOSE (JobKind::PROPOSE): the rock proposer (algo/propose/proposer) built
-// in the same place as the pipeline, when it is asked for, with the same
-// budget, ROI limits (its ROIs pass SELECT_ROI's check) and parameters in
-// force, and the arm geometry of the budget; the next EVALUATE rebuilds the
-// pipeline there (one of them at a time, as their runs are).
-// Memory: arena_bytes(budget) = the larger of the tables + the pipeline's
-// largest run + the products, and the proposer's (tables + the larger of a
-// chain run and the whole-pair detection); nothing else, no heap.
+// Parameters the pipeline holds (shadow fraction; DISP_MIN_PX..DISP_MAX_PX,
+// the envelope the disparity-range search looks in) come from the request:
+// when they differ from those in force they are set on the pipeline
+// (Pipeline::set_params), the tables kept: they depend on the rig and the
+// budget only. An envelope that is empty or wider than the budget's
+// disparity count (the default envelope's) is refused naming both parameters.
+// PROPOSE (JobKind::PROPOSE): the rock proposer (algo/propose/proposer), also
+// built at init, runs every candidate through the same pipeline (same tables,
+// same parameters in force), with the ROI limits (its ROIs pass SELECT_ROI's
+// check) and the arm geometry of the budget. So switching between EVALUATE
+// and PROPOSE rebuilds nothing (one run at a time, as the executive's are).
+// Memory: arena_bytes(budget) = the tables + the larger of the pipeline's
+// largest run + the products and the whole-pair detection; nothing else, no
+// heap.
 #pragma once
 
 #include <cstddef>
@@ -45,6 +45,9 @@ class FlightPipelineJob final : public PipelineJob {
  public:
   // Step times are read from `clock` (the executive's), on the worker thread.
   explicit FlightPipelineJob(const hal::Clock& clock) : clock_(&clock) {}
+  // Not copied: its proposer points to its pipeline.
+  FlightPipelineJob(const FlightPipelineJob&) = delete;
+  FlightPipelineJob& operator=(const FlightPipelineJob&) = delete;
   const char* name() const override {
     return "onboard chain (algo/chain/pipeline, dp and graph-cut matchers)";
   }
@@ -56,6 +59,8 @@ class FlightPipelineJob final : public PipelineJob {
   JobLimits limits() const override;
   bool can_propose() const override { return proposer_fits_; }
   int describe_memory(char* buf, std::size_t size) const override;
+  // Times the remap tables were built since construction (init builds them).
+  std::uint32_t table_builds() const { return table_builds_; }
 
   // The pipeline's sizes for an executive budget and the ROI (original px) they admit.
   struct Sizing {
@@ -80,29 +85,22 @@ class FlightPipelineJob final : public PipelineJob {
   static ProposerBudget proposer_budget(const Sizing& s);
 
  private:
-  Status create(const Settings& settings);
-  Status create_proposer(const Settings& settings);
+  Status configure(const Settings& settings);
   Status propose(const EvalRequest& request, const StepClock& clock, EvalOutput& out);
 
   const hal::Clock* clock_;
   const StereoRig* rig_ = nullptr;
   Arena* arena_ = nullptr;
-  std::size_t base_mark_ = 0;  // where the tables start
   std::size_t max_cloud_points_ = 0;
   petra::PipelineBudget budget_;
   int roi_width_ = 0;  // limits(), original px
   int roi_height_ = 0;
-  Pipeline pipeline_;
-  Settings settings_;
+  Pipeline pipeline_;  // the one chain, built at init; the proposer's too
+  Settings settings_;  // in force on pipeline_
   bool ready_ = false;
-  // The proposer, in the pipeline's place when built (never both ready).
-  std::size_t tables_end_ = 0;  // where the pipeline's tables end: the proposer's must too
-  ProposerBudget proposer_budget_;
-  ::petra::arm::ArmGeometry arm_geometry_;
+  std::uint32_t table_builds_ = 0;
   Proposer proposer_;
-  Settings proposer_settings_;
-  bool proposer_ready_ = false;
-  bool proposer_fits_ = false;  // the arena holds it (init)
+  bool proposer_fits_ = false;  // the arena holds it: built at init
 };
 
 }  // namespace petra::fsw

@@ -127,6 +127,18 @@ Result<Pipeline> Pipeline::create(const StereoRig& rig, const PipelineBudget& bu
   return p;
 }
 
+Status Pipeline::set_params(const PipelineParams& params) {
+  if (arena_ == nullptr) return Error::make(Errc::not_ready, "pipeline: not created");
+  PETRA_TRY(validate(params));
+  const std::size_t room = arena_->capacity() - run_mark_;
+  if (room < run_bytes(budget_, params))
+    return Error::make(Errc::capacity_exceeded,
+                       "pipeline: a run with these parameters needs %zu bytes, the arena has %zu",
+                       run_bytes(budget_, params), room);
+  params_ = params;
+  return {};
+}
+
 Status Pipeline::prepare(ConstGray8View left, const PipelineRequest& req,
                          PipelineOutput& out) const {
   const int W = budget_.image_width, H = budget_.image_height;

@@ -126,6 +126,12 @@ class Pipeline {
   static Result<Pipeline> create(const StereoRig& rig, const PipelineBudget& budget,
                                  const PipelineParams& params, Arena& arena);
 
+  // Parameters for the runs to come. The remap tables stay: they depend on
+  // the rig and the budget only. Refused, the parameters in force kept, when
+  // invalid or when a run with them needs more than the arena holds after
+  // the tables. Outputs of the last run stay valid.
+  Status set_params(const PipelineParams& params);
+
   Result<PipelineOutput> run(ConstGray8View left, ConstGray8View right,
                              const PipelineRequest& request, const StepClock& clock);
 

@@ -100,36 +100,49 @@ ProposalScore score_plane(const GrindPlane* best, bool reachable, double footpri
   return s;
 }
 
-std::size_t Proposer::arena_bytes(const ProposerBudget& b, const PipelineParams& params) {
-  return Pipeline::init_bytes(b.pipeline) +
-         std::max(Pipeline::run_bytes(b.pipeline, params),
-                  detection_arena_bytes(detection_budget(b, params)));
+std::size_t Proposer::detection_bytes(const ProposerBudget& b) {
+  // The coarse envelope is widest when its minimum lies just below a multiple of the factor.
+  DetectionBudget d = detection_budget(b, PipelineParams{});
+  d.search_min_px = d.factor - 1;
+  d.search_max_px = d.search_min_px + b.pipeline.max_disparities - 1;
+  return detection_arena_bytes(d);
 }
 
-Result<Proposer> Proposer::create(const StereoRig& rig, const ProposerBudget& budget,
-                                  const PipelineParams& params, const arm::ArmGeometry& geometry,
-                                  const arm::JointLimits& limits, Arena& arena,
-                                  const ProposerParams& proposer) {
+std::size_t Proposer::arena_bytes(const ProposerBudget& b, const PipelineParams& params) {
+  return Pipeline::init_bytes(b.pipeline) +
+         std::max(Pipeline::run_bytes(b.pipeline, params), detection_bytes(b));
+}
+
+Result<Proposer> Proposer::create(Pipeline& pipeline, const ProposerBudget& budget,
+                                  const arm::ArmGeometry& geometry, const arm::JointLimits& limits,
+                                  Arena& arena, const ProposerParams& proposer) {
   PETRA_TRY(validate(budget));
   PETRA_TRY(validate(proposer.detection));
-  const DetectionBudget db = detection_budget(budget, params);
-  PETRA_TRY(validate(db));
+  PETRA_TRY(validate(detection_budget(budget, pipeline.params())));
   if (!(proposer.standoff_mm > 0.0 && proposer.standoff_mm <= 500.0))
     return Error::make(Errc::invalid_argument, "proposer: standoff %g mm not within (0, 500]",
                        proposer.standoff_mm);
-  if (arena.remaining() < arena_bytes(budget, params))
+  const PipelineBudget& pb = pipeline.budget();
+  if (pb.image_width != budget.pipeline.image_width ||
+      pb.image_height != budget.pipeline.image_height ||
+      pb.max_roi_width != budget.pipeline.max_roi_width ||
+      pb.max_roi_height != budget.pipeline.max_roi_height)
+    return Error::make(Errc::invalid_argument,
+                       "proposer: the pipeline is built for %dx%d images, ROI %dx%d; the budget "
+                       "says %dx%d, ROI %dx%d",
+                       pb.image_width, pb.image_height, pb.max_roi_width, pb.max_roi_height,
+                       budget.pipeline.image_width, budget.pipeline.image_height,
+                       budget.pipeline.max_roi_width, budget.pipeline.max_roi_height);
+  if (arena.remaining() < detection_bytes(budget))
     return Error::make(Errc::capacity_exceeded,
-                       "proposer: arena holds %zu bytes, the budget needs %zu", arena.remaining(),
-                       arena_bytes(budget, params));
-  // The chain checks its own share; detection uses the same space after it.
-  auto p = Pipeline::create(rig, budget.pipeline, params, arena);
-  if (!p) return p.error();
+                       "proposer: arena holds %zu bytes after the tables, detection needs %zu",
+                       arena.remaining(), detection_bytes(budget));
   Proposer out;
-  out.pipeline_ = *p;
+  out.pipeline_ = &pipeline;
   out.arena_ = &arena;
+  out.space_mark_ = arena.mark();
   out.budget_ = budget;
   out.params_ = proposer;
-  out.detection_budget_ = db;
   out.geometry_ = geometry;
   out.limits_ = limits;
   return out;
@@ -166,7 +179,7 @@ PipelineRequest Proposer::chain_request(const RockCandidate& rock) const {
   q.roi = cut_roi(rock.roi, q.click_u, q.click_v, max_w, max_h, pb.image_width, pb.image_height);
   // Rectified, an ROI near the image's corners grows: cut it by the excess.
   for (int attempt = 0; attempt < 4; ++attempt) {
-    auto r = pipeline_.rectifier().roi_to_rectified(StereoSide::left, q.roi);
+    auto r = pipeline_->rectifier().roi_to_rectified(StereoSide::left, q.roi);
     if (!r || (r->w <= pb.max_roi_width && r->h <= pb.max_roi_height)) break;
     max_w = std::max(16, std::min(q.roi.w, q.roi.w - (r->w - pb.max_roi_width) - 1));
     max_h = std::max(16, std::min(q.roi.h, q.roi.h - (r->h - pb.max_roi_height) - 1));
@@ -198,7 +211,7 @@ void Proposer::mark_covered(int index, const PipelineOutput& out) {
   for (int j = index + 1; j < detection_.count; ++j) {
     const RockCandidate& k = detection_.rocks[j];
     auto c =
-        pipeline_.rectifier().to_rectified(StereoSide::left, {k.click_u + 0.0, k.click_v + 0.0});
+        pipeline_->rectifier().to_rectified(StereoSide::left, {k.click_u + 0.0, k.click_v + 0.0});
     if (covered_[j] || !c) continue;
     const long u = std::lround(c->x()), v = std::lround(c->y());
     if (!out.roi_rectified.contains(static_cast<int>(u), static_cast<int>(v))) continue;
@@ -218,7 +231,7 @@ Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
   out.rock = rock;
   out.rock.roi = q.roi;  // what SELECT_ROI sends back
   out.planes_c = q.planes;
-  auto r = pipeline_.run(left, right, q, clock);
+  auto r = pipeline_->run(left, right, q, clock);
   if (!r) {
     if (r.code() == Errc::cancelled) return r.error();
     out.note = ProposalNote::chain_refused;
@@ -246,7 +259,7 @@ Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
              : g.accepted > 0 ? ProposalNote::unreachable
                               : ProposalNote::no_grindable_plane;
   out.score = score_plane(best, reachable, g.footprint_diameter_mm,
-                          pipeline_.params().reconstruction.grind, weights);
+                          pipeline_->params().reconstruction.grind, weights);
   return {};
 }
 
@@ -298,8 +311,10 @@ Result<const ProposalList*> Proposer::run(ConstGray8View left, ConstGray8View ri
   PETRA_TRY(validate(request, pb.image_width, pb.image_height));
   if (!current.allFinite())
     return Error::make(Errc::invalid_argument, "current: the arm's pose is not finite");
-  auto d = detect_rocks(pipeline_.rectifier(), left, right, request.region, detection_budget_,
-                        params_.detection, *arena_, clock);
+  arena_->release_to(space_mark_);  // the last run's chain outputs
+  auto d = detect_rocks(pipeline_->rectifier(), left, right, request.region,
+                        detection_budget(budget_, pipeline_->params()), params_.detection, *arena_,
+                        clock);
   if (!d) return d.error();
   detection_ = *d;
   int evaluated = 0;

@@ -15,10 +15,12 @@
 // qualification) decides how many planes a rock offers, from 0 to 3. The
 // operator sending a proposal back as SELECT_ROI with its roi, click and
 // planes_c reruns exactly this chain request.
-// Memory: one caller arena of arena_bytes(): the chain's remap tables, then
-// one space that detection and each chain run use in turn (the chain's run
-// releases the arena to its own mark). The list lives in the Proposer. No
-// heap after create.
+// Memory: the caller's Pipeline and its arena, shared (the flight job's one
+// pipeline serves EVALUATE too): arena_bytes() = the chain's remap tables,
+// then one space that detection and each chain run use in turn (the chain's
+// run releases the arena to its own mark, a proposer's run to where create
+// found it). The proposer's own need is the detection's (detection_bytes()).
+// The list lives in the Proposer. No heap after create.
 #pragma once
 
 #include <cstddef>
@@ -64,11 +66,18 @@ class Proposer {
  public:
   Proposer() = default;
 
+  // Arena bytes of a pipeline built for budget.pipeline and params with its
+  // proposer: the tables + the larger of a chain run and detection_bytes().
   static std::size_t arena_bytes(const ProposerBudget& budget, const PipelineParams& params);
-  static Result<Proposer> create(const StereoRig& rig, const ProposerBudget& budget,
-                                 const PipelineParams& params, const arm::ArmGeometry& geometry,
-                                 const arm::JointLimits& limits, Arena& arena,
-                                 const ProposerParams& proposer = {});
+  // The detection's bytes for any envelope of budget.pipeline.max_disparities.
+  static std::size_t detection_bytes(const ProposerBudget& budget);
+  // `pipeline` (built for budget.pipeline, in `arena`) runs every candidate
+  // with the parameters in force at the run; it must outlive the proposer.
+  // The arena must hold detection_bytes() from where the tables end (its
+  // mark now): create builds nothing.
+  static Result<Proposer> create(Pipeline& pipeline, const ProposerBudget& budget,
+                                 const arm::ArmGeometry& geometry, const arm::JointLimits& limits,
+                                 Arena& arena, const ProposerParams& proposer = {});
 
   // Bounded; no heap. `current` = the arm's pose now (IK branch hint). The
   // list is valid until the next run; the detection's ground and counts
@@ -78,7 +87,7 @@ class Proposer {
                                   const StepClock& clock);
 
   const DetectionResult& detection() const { return detection_; }
-  const Pipeline& pipeline() const { return pipeline_; }
+  const Pipeline& pipeline() const { return *pipeline_; }
   const ProposerBudget& budget() const { return budget_; }
   // The chain request a candidate is evaluated with (and SELECT_ROI repeats).
   PipelineRequest chain_request(const RockCandidate& rock) const;
@@ -90,11 +99,11 @@ class Proposer {
   void mark_covered(int index, const PipelineOutput& out);
   void rank(const ProposalRequest& request, int evaluated);
 
-  Pipeline pipeline_;
+  Pipeline* pipeline_ = nullptr;  // the caller's
   Arena* arena_ = nullptr;
+  std::size_t space_mark_ = 0;  // where the tables end: detection's and the chain's space
   ProposerBudget budget_;
   ProposerParams params_;
-  DetectionBudget detection_budget_;
   arm::ArmGeometry geometry_;
   arm::JointLimits limits_;
   DetectionResult detection_;

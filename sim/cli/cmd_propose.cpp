@@ -105,7 +105,9 @@ int run(const ProposeOptions& o) {
   const ProposerBudget budget = *sized;
   std::vector<std::byte> block(Proposer::arena_bytes(budget, params));
   Arena arena(block);
-  auto proposer = Proposer::create(*rig, budget, params, arm::rover_arm_geometry(),
+  auto pipeline = Pipeline::create(*rig, budget.pipeline, params, arena);
+  if (!pipeline) return fail("propose", pipeline.error().message);
+  auto proposer = Proposer::create(*pipeline, budget, arm::rover_arm_geometry(),
                                    arm::default_joint_limits(), arena);
   if (!proposer) return fail("propose", proposer.error().message);
   const StepClock clock{thread_cpu_ns, nullptr};

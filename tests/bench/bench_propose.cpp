@@ -6,12 +6,18 @@
 //   BM_Propose/24, /26   realistic set entries 24 (one touching neighbour: 2
 //                        rocks found) and 26 (4 rocks found, 2 offered)
 //   BM_Detect/24, /26    the detection alone (whole pair at 1/4 resolution)
+//   BM_TableBuild        the chain's remap tables at the flight sizing
+//                        (Pipeline::create): what a rebuild of the chain costs
+//   BM_FlightTurns/24    the flight job (FlightPipelineJob::run) taking turns:
+//                        EVALUATE of rank 1's ROI, then PROPOSE of the whole
+//                        pair; the runner's release before each, as petra-fsw
 // Run (one core, from the repo root):
 //   taskset -c 1 build/release/tests/bench/bench_propose --benchmark_repetitions=5
 // The scenes are rendered once into build/release/test-cache (about 45 s CPU
 // each), or read from PETRA_REAL_SET/scene_NN when set.
 #include <benchmark/benchmark.h>
 
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -72,12 +78,14 @@ const Pair& scene(int index) {
   return pairs.emplace(index, std::move(p)).first->second;
 }
 
-// The proposer as the flight service would size it, in its own arena.
+// The chain and its proposer as the flight service would size them, in
+// their own arena (not moved: the proposer points to the pipeline).
 struct Flight {
   ProposerBudget budget;
   PipelineParams params;
   std::vector<std::byte> block;
   Arena arena;
+  Pipeline pipeline;
   Proposer proposer;
 };
 
@@ -94,7 +102,9 @@ std::unique_ptr<Flight> flight(const Pair& p) {
   f->params = fsw::FlightPipelineJob::pipeline_params(fsw::FlightPipelineJob::default_settings());
   f->block.resize(Proposer::arena_bytes(f->budget, f->params));
   f->arena = Arena(f->block);
-  f->proposer = must(Proposer::create(p.rig, f->budget, f->params, arm::rover_arm_geometry(),
+  f->pipeline =
+      must(Pipeline::create(p.rig, f->budget.pipeline, f->params, f->arena), "Pipeline::create");
+  f->proposer = must(Proposer::create(f->pipeline, f->budget, arm::rover_arm_geometry(),
                                       arm::default_joint_limits(), f->arena),
                      "Proposer::create");
   return f;
@@ -130,7 +140,7 @@ void BM_Detect(benchmark::State& state) {
   db.image_height = p.left.height;
   db.factor = f->budget.detection_factor;
   for (auto _ : state) {
-    auto d = detect_rocks(f->proposer.pipeline().rectifier(), p.left.view(), p.right.view(), {}, db,
+    auto d = detect_rocks(f->pipeline.rectifier(), p.left.view(), p.right.view(), {}, db,
                           DetectionParams{}, f->arena, {});
     if (!d) {
       state.SkipWithError(d.error().message);
@@ -140,9 +150,83 @@ void BM_Detect(benchmark::State& state) {
     state.counters["rocks"] = d->count;
   }
   state.counters["detection_MiB"] =
-      static_cast<double>(detection_arena_bytes(db)) / (1024.0 * 1024.0);
+      static_cast<double>(Proposer::detection_bytes(f->budget)) / (1024.0 * 1024.0);
   state.counters["chain_run_MiB"] =
       static_cast<double>(Pipeline::run_bytes(f->budget.pipeline, f->params)) / (1024.0 * 1024.0);
+}
+
+void BM_TableBuild(benchmark::State& state) {
+  const Pair& p = scene(24);
+  const std::unique_ptr<Flight> f = flight(p);
+  std::vector<std::byte> block(Pipeline::arena_bytes(f->budget.pipeline, f->params));
+  Arena arena(block);
+  for (auto _ : state) {
+    arena.release_to(0);
+    auto pipeline = Pipeline::create(p.rig, f->budget.pipeline, f->params, arena);
+    if (!pipeline) {
+      state.SkipWithError(pipeline.error().message);
+      return;
+    }
+    benchmark::DoNotOptimize(pipeline->rectifier());
+  }
+  state.counters["tables_MiB"] =
+      static_cast<double>(Pipeline::init_bytes(f->budget.pipeline)) / (1024.0 * 1024.0);
+}
+
+// A flight job's request on the pair with the parameter table's defaults:
+// PROPOSE of the whole pair from the stowed pose.
+fsw::EvalRequest propose_request(const Pair& p) {
+  fsw::EvalRequest r;
+  r.kind = fsw::JobKind::PROPOSE;
+  r.left = p.left.view();
+  r.right = p.right.view();
+  r.rig = &p.rig;
+  const fsw::FlightPipelineJob::Settings s = fsw::FlightPipelineJob::default_settings();
+  r.shadow_fraction = s.shadow_fraction;
+  r.disp_min_px = s.disp_min_px;
+  r.disp_max_px = s.disp_max_px;
+  r.arm_pose = arm::stow_pose();
+  return r;
+}
+
+// EVALUATE of a proposal's ROI, click and c (SELECT_PROPOSAL then EVALUATE).
+fsw::EvalRequest evaluate_request(const fsw::EvalRequest& propose, const RockProposal& best) {
+  fsw::EvalRequest r = propose;
+  r.kind = fsw::JobKind::EVALUATE;
+  r.selection.roi = best.rock.roi;
+  r.selection.has_click = true;
+  r.selection.click_u = best.rock.click_u;
+  r.selection.click_v = best.rock.click_v;
+  r.selection.planes = best.planes_c;
+  return r;
+}
+
+void BM_FlightTurns(benchmark::State& state) {
+  const Pair& p = scene(static_cast<int>(state.range(0)));
+  hal::SystemClock clock;
+  fsw::FlightPipelineJob job(clock);
+  fsw::JobBudget budget{p.left.width, p.left.height, 8192};
+  budget.rig = &p.rig;
+  std::vector<std::byte> block(job.arena_bytes(budget));
+  Arena arena(block);
+  if (!job.init(budget, &p.rig, arena).ok()) return state.SkipWithError("init");
+  const std::size_t after_init = arena.mark();
+  const std::atomic<bool> cancel{false};
+  auto turn = [&](const fsw::EvalRequest& r, fsw::EvalOutput& out) {
+    arena.release_to(after_init);  // what the runner does before each run
+    return job.run(r, arena, cancel, out).ok();
+  };
+  const fsw::EvalRequest propose = propose_request(p);
+  fsw::EvalOutput listed;
+  if (!turn(propose, listed) || listed.proposals == nullptr || listed.proposals->count == 0)
+    return state.SkipWithError("no proposal to evaluate");
+  const fsw::EvalRequest evaluate = evaluate_request(propose, listed.proposals->items[0]);
+  for (auto _ : state) {
+    fsw::EvalOutput e, q;
+    if (!turn(evaluate, e) || !turn(propose, q)) return state.SkipWithError("a turn failed");
+    benchmark::DoNotOptimize(q.proposals);
+  }
+  state.counters["arena_MiB"] = static_cast<double>(block.size()) / (1024.0 * 1024.0);
 }
 
 }  // namespace
@@ -159,4 +243,10 @@ BENCHMARK(BM_Detect)
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->MinTime(2.0);
+BENCHMARK(BM_TableBuild)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->MinTime(2.0);
+BENCHMARK(BM_FlightTurns)
+    ->Arg(24)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->MinTime(4.0);
 BENCHMARK_MAIN();

@@ -1,10 +1,13 @@
 // The proposer's pieces that need no images: the request refused by field
-// name, the score's terms and total, the note names telemetry carries.
+// name, the score's terms and total, the note names telemetry carries, and
+// create over the caller's pipeline.
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "algo/propose/proposer.hpp"
+#include "tests/support/test_rig.hpp"
 
 namespace petra {
 namespace {
@@ -64,6 +67,38 @@ TEST(Proposer, NoteNamesAreStableKeys) {
   EXPECT_STREQ(proposal_note_name(ProposalNote::no_grindable_plane), "no_grindable_plane");
   EXPECT_STREQ(proposal_note_name(ProposalNote::chain_refused), "chain_refused");
   EXPECT_STREQ(proposal_note_name(ProposalNote::unreachable), "unreachable");
+}
+
+// The proposer builds nothing: it runs the caller's pipeline (the same
+// object, its tables), takes no byte at create, and refuses a pipeline built
+// for another budget or an arena without room for its detection.
+TEST(Proposer, CreateUsesTheCallersPipelineAndBuildsNothing) {
+  const StereoRig rig = test::bumblebee_rig(3);
+  const ProposerBudget budget;  // the chain's 1024 x 768, the rig's
+  std::vector<std::byte> block(Proposer::arena_bytes(budget, PipelineParams{}));
+  Arena arena(block);
+  auto pipeline = Pipeline::create(rig, budget.pipeline, PipelineParams{}, arena);
+  ASSERT_TRUE(pipeline.ok()) << pipeline.error().message;
+  const std::size_t tables_end = arena.mark();
+  const auto create = [&](const ProposerBudget& b) {
+    return Proposer::create(*pipeline, b, arm::rover_arm_geometry(), arm::default_joint_limits(),
+                            arena);
+  };
+  auto proposer = create(budget);
+  ASSERT_TRUE(proposer.ok()) << proposer.error().message;
+  EXPECT_EQ(arena.mark(), tables_end);
+  EXPECT_EQ(&proposer->pipeline(), &*pipeline);
+
+  ProposerBudget other = budget;
+  other.pipeline.max_roi_width -= 16;
+  EXPECT_EQ(create(other).code(), Errc::invalid_argument);
+
+  ASSERT_GT(arena.remaining(), Proposer::detection_bytes(budget));
+  ASSERT_TRUE(arena
+                  .allocate<std::byte>(arena.remaining() - Proposer::detection_bytes(budget) + 1,
+                                       "test: the space taken")
+                  .ok());
+  EXPECT_EQ(create(budget).code(), Errc::capacity_exceeded);
 }
 
 }  // namespace

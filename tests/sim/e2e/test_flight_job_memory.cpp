@@ -67,6 +67,18 @@ class FlightJob : public ::testing::Test {
     arena_ = Arena(block_);
   }
 
+  // PROPOSE of a region around the scene's rock (a quicker detection).
+  fsw::EvalRequest propose_request() const {
+    fsw::EvalRequest propose = request_;
+    propose.kind = fsw::JobKind::PROPOSE;
+    const Rect& t = request_.selection.roi;
+    propose.proposal.region = Rect{std::max(t.x - 64, 0), std::max(t.y - 64, 0), 0, 0};
+    propose.proposal.region.w = std::min(t.w + 128, left_.width - propose.proposal.region.x);
+    propose.proposal.region.h = std::min(t.h + 128, left_.height - propose.proposal.region.y);
+    propose.arm_pose = arm::stow_pose();
+    return propose;
+  }
+
   static fs::path dir_;
   StereoRig rig_;
   io::GrayImage left_, right_;
@@ -197,13 +209,7 @@ TEST_F(FlightJob, ProposalsAndEvaluationsTakeTurnsWithoutHeap) {
   ASSERT_TRUE(job_.init(budget_, &rig_, arena_).ok());
   ASSERT_TRUE(job_.can_propose());
   const std::size_t after_init = arena_.mark();
-  fsw::EvalRequest propose = request_;
-  propose.kind = fsw::JobKind::PROPOSE;
-  const Rect& t = request_.selection.roi;  // around the rock: a quicker detection
-  propose.proposal.region = Rect{std::max(t.x - 64, 0), std::max(t.y - 64, 0), 0, 0};
-  propose.proposal.region.w = std::min(t.w + 128, left_.width - propose.proposal.region.x);
-  propose.proposal.region.h = std::min(t.h + 128, left_.height - propose.proposal.region.y);
-  propose.arm_pose = arm::stow_pose();
+  const fsw::EvalRequest propose = propose_request();
   auto turn = [&](const fsw::EvalRequest& r, fsw::EvalOutput& out) {
     arena_.release_to(after_init);  // what the runner does before each run
     const Status s = job_.run(r, arena_, cancel_, out);
@@ -229,6 +235,71 @@ TEST_F(FlightJob, ProposalsAndEvaluationsTakeTurnsWithoutHeap) {
   EXPECT_EQ(relisted.proposals->items[0].rock.roi, list.items[0].rock.roi);
   EXPECT_EQ(relisted.proposals->items[0].planes[0].normal, list.items[0].planes[0].normal);
   EXPECT_LE(arena_.high_water(), arena_.capacity());
+}
+
+// The remap tables depend on the rig and the budget only: built once at
+// init, they serve EVALUATE, PROPOSE, EVALUATE again and a change of the
+// parameters fixed at create (shadow fraction, disparity envelope).
+TEST_F(FlightJob, TurnsAndParameterChangesKeepTheTablesOfInit) {
+  ASSERT_TRUE(job_.init(budget_, &rig_, arena_).ok());
+  ASSERT_TRUE(job_.can_propose());
+  EXPECT_EQ(job_.table_builds(), 1u);
+  const std::size_t after_init = arena_.mark();
+  fsw::EvalRequest propose = propose_request();
+  auto turn = [&](const fsw::EvalRequest& r) {
+    arena_.release_to(after_init);  // what the runner does before each run
+    fsw::EvalOutput out;
+    const Status s = job_.run(r, arena_, cancel_, out);
+    EXPECT_TRUE(s.ok()) << s.error().message;
+  };
+  turn(request_);
+  turn(propose);
+  turn(request_);
+  EXPECT_EQ(job_.table_builds(), 1u) << "EVALUATE -> PROPOSE -> EVALUATE";
+  fsw::EvalRequest changed = request_;
+  changed.shadow_fraction = 0.5 * request_.shadow_fraction;
+  changed.disp_min_px += 8;
+  changed.disp_max_px -= 8;
+  turn(changed);
+  propose.shadow_fraction = changed.shadow_fraction;
+  turn(propose);
+  EXPECT_EQ(job_.table_builds(), 1u) << "a change of SHADOW_FRACTION, DISP_MIN_PX, DISP_MAX_PX";
+}
+
+// Parameters changed on the job's pipeline give what a pipeline built for
+// them gives: the same planes, to the bit.
+TEST_F(FlightJob, ChangedParametersGiveWhatAPipelineBuiltForThemGives) {
+  ASSERT_TRUE(job_.init(budget_, &rig_, arena_).ok());
+  const std::size_t after_init = arena_.mark();
+  fsw::EvalOutput warm;
+  ASSERT_TRUE(job_.run(request_, arena_, cancel_, warm).ok());
+  fsw::EvalRequest changed = request_;
+  changed.shadow_fraction = 0.5 * request_.shadow_fraction;
+  changed.disp_min_px += 8;
+  changed.disp_max_px -= 8;
+  arena_.release_to(after_init);
+  fsw::EvalOutput job_out;
+  ASSERT_TRUE(job_.run(changed, arena_, cancel_, job_out).ok());
+
+  using Job = fsw::FlightPipelineJob;
+  const PipelineParams params =
+      Job::pipeline_params({changed.shadow_fraction, changed.disp_min_px, changed.disp_max_px});
+  const PipelineBudget pb = Job::pipeline_budget(budget_);
+  std::vector<std::byte> block(Pipeline::arena_bytes(pb, params));
+  Arena arena(block);
+  auto pipeline = Pipeline::create(rig_, pb, params, arena);
+  ASSERT_TRUE(pipeline.ok()) << pipeline.error().message;
+  auto fresh = pipeline->run(left_.view(), right_.view(), changed.selection, {});
+  ASSERT_TRUE(fresh.ok()) << fresh.error().message;
+  const GrindResult& g = fresh->result.planes;
+  ASSERT_GE(g.accepted, 1);
+  ASSERT_LE(job_out.planes.size(), static_cast<std::size_t>(g.accepted));
+  for (std::size_t k = 0; k < job_out.planes.size(); ++k) {
+    EXPECT_EQ(job_out.planes[k].normal[0], g.planes[k].normal.x());
+    EXPECT_EQ(job_out.planes[k].normal[2], g.planes[k].normal.z());
+    EXPECT_EQ(job_out.planes[k].centroid_mm[1], g.planes[k].centroid_mm.y());
+  }
+  EXPECT_EQ(job_out.disparity_min, static_cast<float>(fresh->result.stats.disparity_min_px));
 }
 
 TEST_F(FlightJob, WithoutCalibrationItBootsAndSaysWhyItCannotRun) {

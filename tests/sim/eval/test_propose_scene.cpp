@@ -61,9 +61,12 @@ const Fixture& fixture() {
   return f;
 }
 
+// The chain and its proposer in one arena (not moved after create: the
+// proposer points to the pipeline).
 struct ProposerRun {
   std::vector<std::byte> block;
   Arena arena;
+  Result<Pipeline> pipeline = Error::make(Errc::not_ready, "not created");
   Result<Proposer> proposer = Error::make(Errc::not_ready, "not created");
 };
 
@@ -72,7 +75,9 @@ void create(const Fixture& f, ProposerRun& run) {
   ASSERT_TRUE(budget.ok()) << budget.error().message;
   run.block.resize(Proposer::arena_bytes(*budget, PipelineParams{}));
   run.arena = Arena(run.block);
-  run.proposer = Proposer::create(f.rig, *budget, PipelineParams{}, arm::rover_arm_geometry(),
+  run.pipeline = Pipeline::create(f.rig, budget->pipeline, PipelineParams{}, run.arena);
+  ASSERT_TRUE(run.pipeline.ok()) << run.pipeline.error().message;
+  run.proposer = Proposer::create(*run.pipeline, *budget, arm::rover_arm_geometry(),
                                   arm::default_joint_limits(), run.arena);
   ASSERT_TRUE(run.proposer.ok()) << run.proposer.error().message;
 }
