@@ -1,5 +1,6 @@
 #include "sim/scene/scene_render.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <system_error>
 #include <vector>
@@ -8,17 +9,22 @@
 
 namespace petra::sim {
 
-Result<SceneProducts> render_scene(const SceneOptions& options) {
+namespace {
+
+// The scene, its rectified truth and truth; the views are the caller's.
+Result<SceneProducts> scene_and_truth(const SceneOptions& options) {
   auto scene = make_scene(options);
   if (!scene) return scene.error();
   SceneProducts p;
   p.scene = std::move(*scene);
-  p.left = render_view(p.scene, Eye::left);
-  p.right = render_view(p.scene, Eye::right);
   auto rect = render_rectified_truth(p.scene);
   if (!rect) return rect.error();
   p.rectified = std::move(*rect);
   p.truth = compute_truth(p.scene, p.rectified);
+  return p;
+}
+
+Status format_texts(SceneProducts& p) {
   std::vector<char> buf(16384);
   auto n = format_calib_json(p.scene.calib_rig, {buf.data(), buf.size()});
   if (!n) return n.error();
@@ -26,6 +32,31 @@ Result<SceneProducts> render_scene(const SceneOptions& options) {
   auto truth = format_truth_json(p.scene, p.truth);
   if (!truth) return truth.error();
   p.truth_json = std::move(*truth);
+  return {};
+}
+
+}  // namespace
+
+Result<SceneProducts> render_scene(const SceneOptions& options) {
+  auto p = scene_and_truth(options);
+  if (!p) return p.error();
+  p->left = render_view(p->scene, Eye::left);
+  p->right = render_view(p->scene, Eye::right);
+  PETRA_TRY(format_texts(*p));
+  return p;
+}
+
+Result<SceneProducts> render_scene_roi_window(const SceneOptions& options, int margin) {
+  auto p = scene_and_truth(options);
+  if (!p) return p.error();
+  const Rect& roi = p->truth.roi;
+  const int d0 = static_cast<int>(std::floor(p->truth.disparity_min));
+  const int d1 = static_cast<int>(std::ceil(p->truth.disparity_max));
+  const Rect left{roi.x - margin, roi.y - margin, roi.w + 2 * margin, roi.h + 2 * margin};
+  const Rect right{left.x - d1, left.y, left.w + d1 - d0, left.h};
+  p->left = render_view(p->scene, Eye::left, left);
+  p->right = render_view(p->scene, Eye::right, right);
+  PETRA_TRY(format_texts(*p));
   return p;
 }
 

@@ -30,6 +30,14 @@ struct SceneProducts {
 
 Result<SceneProducts> render_scene(const SceneOptions& options);
 
+// As render_scene, but each view only where a chain run on the truth's ROI
+// reads it, the rest 0: the left view in the ROI and `margin` px around it,
+// the right view in the same rows and the columns the ROI's truth disparities
+// (and the margin) reach. A pixel's value does not depend on the window
+// rendered (render_view), so such a test gets the same pixels there in a
+// fraction of the time.
+Result<SceneProducts> render_scene_roi_window(const SceneOptions& options, int margin);
+
 // Creates `dir` when missing; fails when it cannot (checked before rendering).
 Status prepare_output_dir(const std::string& dir);
 // Creates `dir` when missing and writes every file; errors name the file.

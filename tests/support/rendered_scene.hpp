@@ -18,9 +18,11 @@ struct RenderedScene {
   StereoRig rig;
 };
 
-inline RenderedScene render_for_test(const sim::SceneOptions& options) {
+// margin >= 0: each view only where a chain run on the truth's ROI reads it
+// (sim::render_scene_roi_window), for a test that runs only that.
+inline RenderedScene render_for_test(const sim::SceneOptions& options, int margin = -1) {
   RenderedScene x;
-  auto p = sim::render_scene(options);
+  auto p = margin < 0 ? sim::render_scene(options) : sim::render_scene_roi_window(options, margin);
   EXPECT_TRUE(p.ok()) << p.error().message;
   if (!p.ok()) return x;
   x.products = std::move(*p);

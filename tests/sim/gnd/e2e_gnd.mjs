@@ -6,7 +6,10 @@
 // reloads during and after an evaluation (one 3D view, no script error), the
 // pictures in `petra eval`'s palette, and the station's archive holding every
 // packet the relay saw.
-// The downlink passes through a relay here that decodes GRIND_PLANE and
+// Then the rock proposals panel: PROPOSE over the whole pair, the ranked
+// list and its picture, a click on the picture picking a rock
+// (SELECT_PROPOSAL) and EVALUATE giving the proposal's plane.
+// The downlink passes through a relay here that decodes GRIND_PLANE, PROPOSALS and
 // ARM_STATUS itself from the docs/icd.md layout (and checks the CRC): the
 // reference the page and the server are compared with.
 // Usage: node e2e_gnd.mjs PETRA PETRA_FSW BUILD_DIR
@@ -105,6 +108,11 @@ function decodeRaw(b) {
     case 0x021: return { packet: 'GRIND_PLANE', crcOk, eval_id: b.readUInt32BE(14), rank: b[18], plane_count: b[19],
       normal: f64s(b, 20, 3), centroid_mm: f64s(b, 44, 3), area_mm2: b.readDoubleBE(68),
       flatness_rms_mm: b.readDoubleBE(76), triangles: b.readUInt32BE(84) };
+    case 0x023: return { packet: 'PROPOSALS', crcOk, proposal_id: b.readUInt32BE(14), status: b[22], count: b[25],
+      candidates: b.readUInt16BE(26), picture_step: b[40], rank: [...b.subarray(41, 49)],
+      roi_px: Array.from({ length: 32 }, (_, k) => b.readUInt16BE(49 + 2 * k)),
+      click_px: Array.from({ length: 16 }, (_, k) => b.readUInt16BE(113 + 2 * k)),
+      plane_offered: [...b.subarray(233, 241)], normal: f32s(b, 401, 24), centroid_mm: f32s(b, 497, 24) };
     default: return { packet: `0x${apid.toString(16)}`, crcOk };
   }
 }
@@ -416,6 +424,8 @@ async function main() {
   await page.waitForTimeout(300);
   await page.locator('#products').screenshot({ path: path.join(shots, 'gnd_products_reloaded.png') });
 
+  await proposeAndPick(page, raw, finalAck, rowStatus, size);
+
   const offsite = requests.filter((u) => !u.startsWith(url));
   check(offsite.length === 0, `all ${requests.length} page requests went to ${url} (${offsite.join(', ') || 'none elsewhere'})`);
   check(pageErrors.length === 0, `no script errors on the page (${pageErrors.join('; ') || 'none'})`);
@@ -483,6 +493,59 @@ async function main() {
   follower.abort();
   relay.close();
   log(`screenshots in ${shots}`);
+}
+
+// 12. Rock proposals: PROPOSE over the whole pair from the panel; its table
+// against the PROPOSALS packet decoded here; the picture; a click on the
+// rock in the picture sends SELECT_PROPOSAL; EVALUATE then gives the plane
+// the proposal listed.
+async function proposeAndPick(page, raw, finalAck, rowStatus, size) {
+  await page.$eval('#proposals-panel', (e) => e.scrollIntoView({ block: 'start' }));
+  await page.click('#send-propose');
+  const ack = await until('PROPOSE final acknowledgement', () => finalAck('PROPOSE'), 120000);
+  check(ack.data.names.stage === 'COMPLETED', `PROPOSE ${ack.data.names.stage} ${ack.data.names.reason}`);
+  const list = await until('PROPOSALS packet', () => raw.find((m) => m.packet === 'PROPOSALS'), 10000);
+  check(list.crcOk && list.status === 0 && list.count >= 1 && list.plane_offered[0] === 1,
+        `PROPOSALS ${list.proposal_id}: ${list.count} of ${list.candidates} rocks, rank 1 offers a plane`);
+  await until('proposal rows', async () => (await page.$$('#proposal-table tbody tr')).length === list.count, 5000);
+  const rows = await page.$$eval('#proposal-table tbody tr', (trs) => trs.map((tr) => [...tr.cells].slice(0, 3).map((td) => td.textContent)));
+  for (let i = 0; i < list.count; ++i) {
+    const [x, y, w, h] = list.roi_px.slice(4 * i, 4 * i + 4), [u, v] = list.click_px.slice(2 * i, 2 * i + 2);
+    const expect = [String(list.rank[i]), `${x}, ${y}, ${w} × ${h}`, `${u}, ${v}`];
+    check(JSON.stringify(rows[i]) === JSON.stringify(expect), `proposal row ${i + 1} = raw telemetry ${JSON.stringify(expect)}`);
+  }
+  const step = list.picture_step;
+  // The canvas is 300 x 150 until the picture (PRODUCT 5) is drawn on it.
+  const fits = ([w, h]) => Math.abs(w * step - size.width) < step && Math.abs(h * step - size.height) < step;
+  const drawn = await until('the proposals picture', async () => {
+    const wh = await page.evaluate(() => [document.getElementById('proposals-picture').width,
+                                          document.getElementById('proposals-picture').height]);
+    return step > 0 && fits(wh) ? wh : null;
+  }, 30000);
+  check(/^proposals \d+: /.test(await page.textContent('#proposals-caption')),
+        `proposals picture drawn ${drawn.join(' x ')} px, 1/${step} of the image`);
+  // The operator clicks the rock of proposal 1 on the picture.
+  const pic = await (await page.$('#proposals-picture')).boundingBox();
+  const [u, v] = list.click_px;
+  await page.mouse.click(pic.x + (u + 0.5) / step * pic.width / drawn[0], pic.y + (v + 0.5) / step * pic.height / drawn[1]);
+  const sent = await until('SELECT_PROPOSAL sent', () => telemetry.find((m) => m.event === 'sent' && m.data.command === 'SELECT_PROPOSAL'), 5000);
+  check(sent.data.args.proposal_id === list.proposal_id && sent.data.args.rank === 1,
+        `a click on rock 1 in the picture signs SELECT_PROPOSAL ${JSON.stringify(sent.data.args)}`);
+  const selAck = await until('SELECT_PROPOSAL acknowledgement', () => finalAck('SELECT_PROPOSAL'), 10000);
+  check(selAck.data.names.stage === 'COMPLETED', `SELECT_PROPOSAL ${selAck.data.names.stage} ${selAck.data.names.reason}`);
+  await page.locator('#proposals-panel').screenshot({ path: path.join(shots, 'gnd_proposals.png') });
+  // EVALUATE on the picked rock: the proposal's plane is among the planes.
+  const evals = raw.filter((m) => m.packet === 'EVAL_RESULT').length;
+  await page.click('#send-eval-picked');
+  const result = await until('EVAL_RESULT of the picked proposal', () => raw.filter((m) => m.packet === 'EVAL_RESULT')[evals], 120000);
+  const planes = await until(`${result.planes_found} GRIND_PLANE packets`, () => {
+    const p = raw.filter((m) => m.packet === 'GRIND_PLANE' && m.eval_id === result.eval_id);
+    return p.length >= result.planes_found && result.planes_found > 0 ? p : null;
+  }, 10000);
+  const n = list.normal.slice(0, 3), c = list.centroid_mm.slice(0, 3);
+  const same = planes.find((p) => maxAbsDiff(p.normal, n) < 1e-6 && dist3(p.centroid_mm, c) < 1e-3);
+  check(same, `EVALUATE on proposal 1 gives its plane (rank ${same?.rank}: normal ${n.map((x) => x.toFixed(4))}, centroid ${c.map((x) => x.toFixed(1))} mm)`);
+  check(await rowStatus('SELECT_PROPOSAL') === 'COMPLETED', 'command table: SELECT_PROPOSAL COMPLETED');
 }
 
 let status = 0;
