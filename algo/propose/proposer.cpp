@@ -101,7 +101,9 @@ ProposalScore score_plane(const GrindPlane* best, bool reachable, double footpri
 }
 
 std::size_t Proposer::arena_bytes(const ProposerBudget& b, const PipelineParams& params) {
-  return Pipeline::init_bytes(b.pipeline) +
+  const std::size_t part_map =
+      part_map_pixels(detection_budget(b, params)) * sizeof(std::int32_t) + alignof(std::int32_t);
+  return Pipeline::init_bytes(b.pipeline) + part_map +
          std::max(Pipeline::run_bytes(b.pipeline, params),
                   detection_arena_bytes(detection_budget(b, params)));
 }
@@ -121,10 +123,14 @@ Result<Proposer> Proposer::create(const StereoRig& rig, const ProposerBudget& bu
     return Error::make(Errc::capacity_exceeded,
                        "proposer: arena holds %zu bytes, the budget needs %zu", arena.remaining(),
                        arena_bytes(budget, params));
+  // Below the chain's run mark: each chain run releases the arena to it.
+  auto map = arena.allocate<std::int32_t>(part_map_pixels(db), "proposer: part map");
+  if (!map) return map.error();
   // The chain checks its own share; detection uses the same space after it.
   auto p = Pipeline::create(rig, budget.pipeline, params, arena);
   if (!p) return p.error();
   Proposer out;
+  out.part_map_ = *map;
   out.pipeline_ = *p;
   out.arena_ = &arena;
   out.budget_ = budget;
@@ -177,36 +183,50 @@ PipelineRequest Proposer::chain_request(const RockCandidate& rock) const {
 
 namespace {
 
-// Planes for the proposal: the accepted ones (the chain's ranking), then
-// the refused ones that say why (never the surplus: qualified, but c larger did).
-int copy_planes(const GrindResult& g, GrindPlane (&out)[kMaxProposalPlanes]) {
-  int n = 0;
-  for (int k = 0; k < g.accepted && n < kMaxProposalPlanes; ++k) out[n++] = g.planes[k];
-  for (int k = g.accepted; k < g.count && n < kMaxProposalPlanes; ++k)
-    if (g.planes[k].verdict != PlaneVerdict::surplus) out[n++] = g.planes[k];
-  return n;
+// Per plane of the run, whether it lies on another rock than `part`: more of
+// its vertices on another detected part than on this one (detection's part
+// map at 1 / factor of the rectified pixels).
+void neighbour_planes(const ReconstructionOutput& r, std::span<const std::int32_t> map, int map_w,
+                      int factor, std::int32_t part, bool (&neighbour)[kMaxClasses]) {
+  long own[kMaxClasses] = {}, other[kMaxClasses] = {};
+  const std::size_t map_h = map.size() / static_cast<std::size_t>(map_w);
+  for (std::size_t i = 0; i < r.pixels.size(); ++i) {
+    const int k = r.vertex_class[i] - kVertexPlane0;
+    if (k < 0 || k >= kMaxClasses) continue;
+    const std::size_t x = static_cast<std::size_t>(r.pixels[i].u / factor);
+    const std::size_t y = static_cast<std::size_t>(r.pixels[i].v / factor);
+    if (x >= static_cast<std::size_t>(map_w) || y >= map_h) continue;
+    const std::int32_t at = map[y * static_cast<std::size_t>(map_w) + x];
+    if (at == part) ++own[k];
+    else if (at != kNoPart) ++other[k];
+  }
+  for (int k = 0; k < kMaxClasses; ++k) neighbour[k] = other[k] > own[k];
 }
 
 }  // namespace
 
-// Later candidates whose click lies on this run's rock points (within 3
-// rectified px): the same rock, or a touching one the chain took with it
-// (ground-plane segmentation keeps everything standing out of the ROI's
-// ground); evaluating them again would offer the same planes twice.
-void Proposer::mark_covered(int index, const PipelineOutput& out) {
-  const ReconstructionOutput& r = out.result;
-  for (int j = index + 1; j < detection_.count; ++j) {
-    const RockCandidate& k = detection_.rocks[j];
-    auto c =
-        pipeline_.rectifier().to_rectified(StereoSide::left, {k.click_u + 0.0, k.click_v + 0.0});
-    if (covered_[j] || !c) continue;
-    const long u = std::lround(c->x()), v = std::lround(c->y());
-    if (!out.roi_rectified.contains(static_cast<int>(u), static_cast<int>(v))) continue;
-    for (std::size_t p = 0; p < r.pixels.size() && !covered_[j]; ++p) {
-      const long du = r.pixels[p].u - u, dv = r.pixels[p].v - v;
-      covered_[j] = r.point_class[p] == PointClass::rock && du * du + dv * dv <= 9;
-    }
+// The proposal's planes (3 at most): this rock's qualified planes in the
+// chain's order (a surplus one counts as accepted while the rock has fewer
+// than 3: a neighbour's faces took its place in the chain's c), then its
+// refused ones that say why. A neighbour's planes are left to its own run.
+void Proposer::own_planes(int index, const PipelineOutput& out, RockProposal& proposal) const {
+  const GrindResult& g = out.result.planes;
+  bool neighbour[kMaxClasses] = {};
+  neighbour_planes(out.result, part_map_, detection_budget_.image_width / detection_budget_.factor,
+                   detection_budget_.factor, detection_.part[index], neighbour);
+  int n = 0;
+  for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k) {
+    const PlaneVerdict v = g.planes[k].verdict;
+    if (neighbour[k] || (v != PlaneVerdict::accepted && v != PlaneVerdict::surplus)) continue;
+    proposal.planes[n] = g.planes[k];
+    proposal.planes[n++].verdict = PlaneVerdict::accepted;
   }
+  for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k) {
+    const PlaneVerdict v = g.planes[k].verdict;
+    if (!neighbour[k] && v != PlaneVerdict::accepted && v != PlaneVerdict::surplus)
+      proposal.planes[n++] = g.planes[k];
+  }
+  proposal.plane_count = n;
 }
 
 Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
@@ -225,11 +245,10 @@ Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
     out.chain_error = r.error();
     return {};
   }
-  mark_covered(index, *r);
+  own_planes(index, *r, out);
   const GrindResult& g = r->result.planes;
-  out.plane_count = copy_planes(g, out.planes);
   const GrindPlane* best = nullptr;
-  bool reachable = false;
+  bool reachable = false, grindable_any = false;
   for (int k = 0; k < out.plane_count; ++k) {
     arm::ApproachRequest a;
     a.centroid_mm = out.planes[k].centroid_mm;
@@ -238,12 +257,13 @@ Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
     out.reach[k] = arm::plan_approach(geometry_, limits_, a, current).refusal.reason;
     const bool grindable = out.planes[k].verdict == PlaneVerdict::accepted;
     const bool offered = grindable && out.reach[k] == arm::ArmReason::ok;
+    grindable_any = grindable_any || grindable;
     if (offered && !reachable) best = &out.planes[k], reachable = true;
     if (best == nullptr && grindable) best = &out.planes[k];
   }
   if (best == nullptr && out.plane_count > 0) best = &out.planes[0];
   out.note = reachable        ? ProposalNote::ok
-             : g.accepted > 0 ? ProposalNote::unreachable
+             : grindable_any ? ProposalNote::unreachable
                               : ProposalNote::no_grindable_plane;
   out.score = score_plane(best, reachable, g.footprint_diameter_mm,
                           pipeline_.params().reconstruction.grind, weights);
@@ -299,13 +319,11 @@ Result<const ProposalList*> Proposer::run(ConstGray8View left, ConstGray8View ri
   if (!current.allFinite())
     return Error::make(Errc::invalid_argument, "current: the arm's pose is not finite");
   auto d = detect_rocks(pipeline_.rectifier(), left, right, request.region, detection_budget_,
-                        params_.detection, *arena_, clock);
+                        params_.detection, *arena_, clock, part_map_);
   if (!d) return d.error();
   detection_ = *d;
   int evaluated = 0;
-  for (bool& c : covered_) c = false;
   for (int i = 0; i < detection_.count && evaluated < budget_.max_evaluated; ++i) {
-    if (covered_[i]) continue;
     PETRA_TRY(evaluate(left, right, i, current, request.weights, clock, evaluated_[evaluated++]));
   }
   rank(request, evaluated);

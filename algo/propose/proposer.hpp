@@ -1,10 +1,12 @@
 // Rock proposals over a whole stereo pair (issue 26; docs/proposals.md):
 //   detection (algo/propose/rock_detection: the ground over the field of view,
-//   the rocks standing out of it) -> each candidate, largest first, up to
-//   budget.max_evaluated, skipping those whose click lies on an earlier
-//   run's rock points (a touching rock the chain already took), through the chain
+//   the rocks standing out of it, touching rocks split at the height saddle
+//   between them) -> each candidate, largest first, up to
+//   budget.max_evaluated, through the chain
 //   (algo/chain/pipeline: its ROI clipped to the budget's ROI, its click, c = kProposalPlanesC, DP
-//   matcher)
+//   matcher) -> the run's planes that lie on this rock (their vertices' votes
+//   on detection's part map: the chain takes every rock in the ROI, so a
+//   neighbour's faces are dropped here and offered by the neighbour's own run)
 //   -> each accepted plane's approach (algo/arm plan_approach from `current`,
 //   standoff arm::kDefaultStandoffMm) -> the score's terms and weighted total
 //   -> ranking (offered proposals first, then by total) and truncation.
@@ -22,6 +24,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <span>
 
 #include "algo/arm/arm_trajectory.hpp"
 #include "algo/arm/kinematics.hpp"
@@ -87,7 +91,7 @@ class Proposer {
   Status evaluate(ConstGray8View left, ConstGray8View right, int index,
                   const arm::JointVector& current, const ProposalWeights& weights,
                   const StepClock& clock, RockProposal& out);
-  void mark_covered(int index, const PipelineOutput& out);
+  void own_planes(int index, const PipelineOutput& out, RockProposal& proposal) const;
   void rank(const ProposalRequest& request, int evaluated);
 
   Pipeline pipeline_;
@@ -98,7 +102,7 @@ class Proposer {
   arm::ArmGeometry geometry_;
   arm::JointLimits limits_;
   DetectionResult detection_;
-  bool covered_[kMaxRockCandidates] = {};  // on an earlier candidate's rock: not evaluated
+  std::span<std::int32_t> part_map_;  // detection's parts, at 1 / detection_factor
   RockProposal evaluated_[kMaxProposals];
   ProposalList list_;
 };

@@ -6,13 +6,14 @@
 
 #include "algo/camera/camera_model.hpp"
 #include "algo/mesh/triangulate.hpp"
+#include "algo/propose/rock_split.hpp"
 #include "algo/stereo/downsample.hpp"
 
 namespace petra {
 
 namespace {
 
-constexpr std::size_t kAllocations = 16;  // each padded to its alignment
+constexpr std::size_t kAllocations = 20;  // each padded to its alignment
 constexpr std::size_t kSlackPerAllocation = 64;
 constexpr std::int32_t kNone = -1;
 
@@ -48,7 +49,8 @@ MatchBudget match_budget(const DetectionBudget& b) {
 std::size_t point_bytes(const Grid& g) {
   const std::size_t n = g.px();
   return 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<PixelPos>(n) + bytes_for<PointClass>(n) +
-         3 * bytes_for<std::int32_t>(n);  // grid index, region ids, flood stack
+         4 * bytes_for<std::int32_t>(n) +  // grid index, region ids, flood stack, parts
+         bytes_for<double>(n) + split_scratch_bytes(n);  // heights; the split's scratch
 }
 
 }  // namespace
@@ -72,11 +74,15 @@ Status validate(const DetectionParams& p) {
   PETRA_TRY(validate(p.ground_normals));
   if (!(p.band_rms >= 0) || !(p.min_band_mm >= 0) || !(p.band_sigmas >= 0) ||
       !(p.max_range_mm > 0) || !(p.min_height_mm >= 0) || !(p.min_size_mm >= 0) ||
-      p.min_pixels < 1 || !(p.pad >= 0) || p.min_pad_px < 0)
+      p.min_pixels < 1 || !(p.pad >= 0) || p.min_pad_px < 0 || !(p.split_prominence_mm >= 0))
     return Error::make(Errc::invalid_argument,
                        "detection: band, height, size, pixels and padding must be >= 0 "
                        "(min_pixels >= 1)");
   return {};
+}
+
+std::size_t part_map_pixels(const DetectionBudget& b) {
+  return grid_of(b).px();
 }
 
 std::size_t detection_arena_bytes(const DetectionBudget& b) {
@@ -286,9 +292,9 @@ struct Extent {
   }
 };
 
-// Floods the region holding point `seed` (8-connected rock points), marking
-// `ids`; `stack` holds one entry per point.
-Region flood(const GridCloud& c, std::span<const PointClass> labels, const PlaneT<double>& ground,
+// Floods the region holding point `seed` (8-connected points of its split
+// part), marking `ids`; `stack` holds one entry per point.
+Region flood(const GridCloud& c, std::span<const std::int32_t> part, const PlaneT<double>& ground,
              std::size_t seed, std::int32_t id, std::span<std::int32_t> ids,
              std::span<std::int32_t> stack) {
   Region r;
@@ -311,7 +317,7 @@ Region flood(const GridCloud& c, std::span<const PointClass> labels, const Plane
         if (nx < 0 || ny < 0 || nx >= c.w || ny >= c.h) continue;
         const std::int32_t k = c.at(nx, ny);
         if (k == kNone || ids[static_cast<std::size_t>(k)] != kNone ||
-            labels[static_cast<std::size_t>(k)] != PointClass::rock)
+            part[static_cast<std::size_t>(k)] != part[seed])
           continue;
         ids[static_cast<std::size_t>(k)] = id;
         stack[top++] = k;
@@ -386,36 +392,61 @@ Result<RockCandidate> candidate_of(const Rectifier& rectifier, const GridCloud& 
 }
 
 // Keeps the kMaxRockCandidates largest (pixels), largest first.
-void keep_largest(const RockCandidate& k, DetectionResult& out) {
+void keep_largest(const RockCandidate& k, std::int32_t part, DetectionResult& out) {
   int at = out.count;
   while (at > 0 && out.rocks[at - 1].pixels < k.pixels) --at;
   if (at >= kMaxRockCandidates) return;
   const int last = std::min(out.count, kMaxRockCandidates - 1);
-  for (int i = last; i > at; --i) out.rocks[i] = out.rocks[i - 1];
+  for (int i = last; i > at; --i) out.rocks[i] = out.rocks[i - 1], out.part[i] = out.part[i - 1];
   out.rocks[at] = k;
+  out.part[at] = part;
   out.count = std::min(out.count + 1, kMaxRockCandidates);
 }
 
+// The rock points split where height maxima meet at a saddle (rock_split).
+Result<std::span<std::int32_t>> split_step(const GridCloud& c, std::span<const PointClass> labels,
+                                           const PlaneT<double>& ground, const DetectionParams& p,
+                                           Arena& arena) {
+  auto height = arena.allocate<double>(c.xyz.size(), "detection: heights");
+  if (!height) return height.error();
+  auto part = arena.allocate<std::int32_t>(c.xyz.size(), "detection: parts");
+  if (!part) return part.error();
+  for (std::size_t i = 0; i < c.xyz.size(); ++i) (*height)[i] = ground.distance(c.xyz[i]);
+  const SplitGrid grid{c.w, c.h, c.index, c.pixels};
+  PETRA_TRY(split_at_saddles(grid, *height, labels, {p.split_prominence_mm, p.min_pixels}, *part,
+                             arena));
+  return *part;
+}
+
 // Every region of rock points; those that pass the checks become candidates.
+// `part_map` (empty or grid-sized): each grid pixel's region id.
 Status regions_step(const Rectifier& rectifier, const GridCloud& c,
                     std::span<const PointClass> labels, const DetectionBudget& b,
-                    const DetectionParams& p, Arena& arena, DetectionResult& out) {
+                    const DetectionParams& p, Arena& arena, DetectionResult& out,
+                    std::span<std::int32_t> part_map) {
   auto ids = arena.allocate<std::int32_t>(c.xyz.size(), "detection: region ids");
   if (!ids) return ids.error();
   auto stack = arena.allocate<std::int32_t>(c.xyz.size(), "detection: flood");
   if (!stack) return stack.error();
+  auto part = split_step(c, labels, out.ground.plane, p, arena);
+  if (!part) return part.error();
   std::fill(ids->begin(), ids->end(), kNone);
   for (std::size_t i = 0; i < c.xyz.size(); ++i) {
     if (labels[i] != PointClass::rock || (*ids)[i] != kNone) continue;
     const std::int32_t id = out.regions++;
-    Region r = flood(c, labels, out.ground.plane, i, id, *ids, *stack);
+    Region r = flood(c, *part, out.ground.plane, i, id, *ids, *stack);
     if (r.pixels < p.min_pixels || r.size_mm < p.min_size_mm) continue;
     height_and_click(c, *ids, out.ground.plane, id, r);
     if (r.inner == 0 || r.height_mm < p.min_height_mm) continue;
     auto k = candidate_of(rectifier, c, r, b, p);
     if (!k) return k.error();
-    keep_largest(*k, out);
+    keep_largest(*k, id, out);
   }
+  if (part_map.empty()) return {};
+  std::fill(part_map.begin(), part_map.end(), kNoPart);
+  for (std::size_t i = 0; i < c.xyz.size(); ++i)
+    part_map[static_cast<std::size_t>(c.pixels[i].v) * static_cast<std::size_t>(c.w) +
+             static_cast<std::size_t>(c.pixels[i].u)] = (*ids)[i];
   return {};
 }
 
@@ -424,10 +455,14 @@ Status regions_step(const Rectifier& rectifier, const GridCloud& c,
 Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
                                                   ConstDisparityMap disparity,
                                                   const DetectionBudget& b,
-                                                  const DetectionParams& p, Arena& arena) {
+                                                  const DetectionParams& p, Arena& arena,
+                                                  std::span<std::int32_t> part_map) {
   PETRA_TRY(validate(b));
   PETRA_TRY(validate(p));
   const Grid g = grid_of(b);
+  if (!part_map.empty() && part_map.size() != g.px())
+    return Error::make(Errc::invalid_argument, "detection: part map of %zu pixels, the grid %zu",
+                       part_map.size(), g.px());
   const Rect& r = disparity.roi;
   if (r.empty() || !r.inside(g.w, g.h) || disparity.q4.width() != r.w ||
       disparity.q4.height() != r.h)
@@ -445,14 +480,14 @@ Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
   auto ground = ground_step(rectifier, *c, r, b, p, *labels, arena);
   if (!ground) return ground.error();
   out.ground = *ground;
-  PETRA_TRY(regions_step(rectifier, *c, *labels, b, p, arena, out));
+  PETRA_TRY(regions_step(rectifier, *c, *labels, b, p, arena, out, part_map));
   return out;
 }
 
 Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View left,
                                      ConstGray8View right, Rect region, const DetectionBudget& b,
                                      const DetectionParams& p, Arena& arena,
-                                     const StepClock& clock) {
+                                     const StepClock& clock, std::span<std::int32_t> part_map) {
   PETRA_TRY(validate(b));
   PETRA_TRY(validate(p));
   if (left.width() != b.image_width || left.height() != b.image_height ||
@@ -475,7 +510,7 @@ Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View 
   auto m = match_dp(in, *coarse, coarse_match(b, p), match_budget(b), arena, v->disparity);
   if (!m) return Error::make(m.code(), "detection: %s", m.error().message);
   PETRA_TRY(checkpoint(clock, PipelineStep::segmentation));
-  auto out = detect_rocks_in_disparity(rectifier, v->disparity, b, p, arena);
+  auto out = detect_rocks_in_disparity(rectifier, v->disparity, b, p, arena, part_map);
   if (out) out->match = *m;
   return out;
 }

@@ -10,7 +10,10 @@
 //   normals from the point grid's neighbours)
 //   -> rocks: 8-connected regions of the grid whose points stand more than
 //   max(min_band_mm, band_rms x ground RMS, band_sigmas x sigma_Z(range))
-//   above the ground and lie within max_range_mm of the left camera, each kept when its highest
+//   above the ground and lie within max_range_mm of the left camera, split
+//   where two height maxima meet at a saddle (touching or close rocks: each
+//   part's peak split_prominence_mm above the saddle and min_pixels large),
+//   each part kept when its highest
 //   interior point (all 8 neighbours in the region: never the silhouette's mismatched fringe) is
 //   min_height_mm above the ground, its largest horizontal extent is at
 //   least min_size_mm and it holds min_pixels.
@@ -22,6 +25,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <span>
 
 #include "algo/camera/rectify.hpp"
 #include "algo/core/arena.hpp"
@@ -70,6 +75,10 @@ struct DetectionParams {
   double min_height_mm = 8.0;  // a rock's highest point above the ground
   double min_size_mm = 20.0;   // its largest horizontal extent (the grinder's disc)
   long min_pixels = 12;        // at the detection's resolution
+  // A region holding several rocks is split where two height maxima meet:
+  // both parts' peaks stand this far above the saddle between them (and
+  // both hold min_pixels), else the lower part joins the higher.
+  double split_prominence_mm = 12.0;
   double pad = 0.5;            // ROI margin each side, times the rock's larger box side
   int min_pad_px = 24;         // ... at least this many original pixels
 };
@@ -77,6 +86,7 @@ Status validate(const DetectionParams& p);
 
 struct DetectionResult {
   RockCandidate rocks[kMaxRockCandidates];  // largest (pixels) first
+  std::int32_t part[kMaxRockCandidates] = {};  // each rock's id in the part map
   int count = 0;
   int regions = 0;  // connected regions above the band, before the size checks
   GroundResultT<double> ground;
@@ -87,13 +97,21 @@ struct DetectionResult {
 
 std::size_t detection_arena_bytes(const DetectionBudget& b);
 
+// Grid pixels (w x h at 1 / factor) of the part map detection can fill: per
+// grid pixel the id of the rock part its point belongs to (part[] above), or
+// kNoPart.
+std::size_t part_map_pixels(const DetectionBudget& b);
+inline constexpr std::int32_t kNoPart = -1;
+
 // Detects the rocks in `region` (original left pixels; empty: the whole
 // image). Errors: images not the rectifier's size, a region outside the
 // image, no ground over the field of view (named), cancelled, arena short.
+// `part_map` (empty, or part_map_pixels(b) long): filled as said above.
 Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View left,
                                      ConstGray8View right, Rect region, const DetectionBudget& b,
                                      const DetectionParams& p, Arena& arena,
-                                     const StepClock& clock);
+                                     const StepClock& clock,
+                                     std::span<std::int32_t> part_map = {});
 
 // The back half on a given map at 1 / factor resolution (downsampled
 // rectified left pixels, inside the grid): from triangulation on. A
@@ -101,6 +119,7 @@ Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View 
 Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
                                                   ConstDisparityMap disparity,
                                                   const DetectionBudget& b,
-                                                  const DetectionParams& p, Arena& arena);
+                                                  const DetectionParams& p, Arena& arena,
+                                                  std::span<std::int32_t> part_map = {});
 
 }  // namespace petra
