@@ -101,9 +101,8 @@ ProposalScore score_plane(const GrindPlane* best, bool reachable, double footpri
 }
 
 std::size_t Proposer::arena_bytes(const ProposerBudget& b, const PipelineParams& params) {
-  const std::size_t part_map =
-      part_map_pixels(detection_budget(b, params)) * sizeof(std::int32_t) + alignof(std::int32_t);
-  return Pipeline::init_bytes(b.pipeline) + part_map +
+  const std::size_t rock_map = rock_map_pixels(detection_budget(b, params)) + 64;
+  return Pipeline::init_bytes(b.pipeline) + rock_map +
          std::max(Pipeline::run_bytes(b.pipeline, params),
                   detection_arena_bytes(detection_budget(b, params)));
 }
@@ -124,13 +123,13 @@ Result<Proposer> Proposer::create(const StereoRig& rig, const ProposerBudget& bu
                        "proposer: arena holds %zu bytes, the budget needs %zu", arena.remaining(),
                        arena_bytes(budget, params));
   // Below the chain's run mark: each chain run releases the arena to it.
-  auto map = arena.allocate<std::int32_t>(part_map_pixels(db), "proposer: part map");
+  auto map = arena.allocate<std::uint8_t>(rock_map_pixels(db), "proposer: rock map");
   if (!map) return map.error();
   // The chain checks its own share; detection uses the same space after it.
   auto p = Pipeline::create(rig, budget.pipeline, params, arena);
   if (!p) return p.error();
   Proposer out;
-  out.part_map_ = *map;
+  out.rock_map_ = *map;
   out.pipeline_ = *p;
   out.arena_ = &arena;
   out.budget_ = budget;
@@ -183,11 +182,11 @@ PipelineRequest Proposer::chain_request(const RockCandidate& rock) const {
 
 namespace {
 
-// Per plane of the run, whether it lies on another rock than `part`: more of
-// its vertices on another detected part than on this one (detection's part
-// map at 1 / factor of the rectified pixels).
-void neighbour_planes(const ReconstructionOutput& r, std::span<const std::int32_t> map, int map_w,
-                      int factor, std::int32_t part, bool (&neighbour)[kMaxClasses]) {
+// Per plane of the run, whether it lies on another rock than rock `index`:
+// more of its vertices on another region standing out of the ground than on
+// this one (detection's rock map at 1 / factor of the rectified pixels).
+void neighbour_planes(const ReconstructionOutput& r, std::span<const std::uint8_t> map, int map_w,
+                      int factor, int index, bool (&neighbour)[kMaxClasses]) {
   long own[kMaxClasses] = {}, other[kMaxClasses] = {};
   const std::size_t map_h = map.size() / static_cast<std::size_t>(map_w);
   for (std::size_t i = 0; i < r.pixels.size(); ++i) {
@@ -196,9 +195,9 @@ void neighbour_planes(const ReconstructionOutput& r, std::span<const std::int32_
     const std::size_t x = static_cast<std::size_t>(r.pixels[i].u / factor);
     const std::size_t y = static_cast<std::size_t>(r.pixels[i].v / factor);
     if (x >= static_cast<std::size_t>(map_w) || y >= map_h) continue;
-    const std::int32_t at = map[y * static_cast<std::size_t>(map_w) + x];
-    if (at == part) ++own[k];
-    else if (at != kNoPart) ++other[k];
+    const std::uint8_t at = map[y * static_cast<std::size_t>(map_w) + x];
+    if (at == index) ++own[k];
+    else if (at != kNoRock) ++other[k];
   }
   for (int k = 0; k < kMaxClasses; ++k) neighbour[k] = other[k] > own[k];
 }
@@ -212,8 +211,8 @@ void neighbour_planes(const ReconstructionOutput& r, std::span<const std::int32_
 void Proposer::own_planes(int index, const PipelineOutput& out, RockProposal& proposal) const {
   const GrindResult& g = out.result.planes;
   bool neighbour[kMaxClasses] = {};
-  neighbour_planes(out.result, part_map_, detection_budget_.image_width / detection_budget_.factor,
-                   detection_budget_.factor, detection_.part[index], neighbour);
+  neighbour_planes(out.result, rock_map_, detection_budget_.image_width / detection_budget_.factor,
+                   detection_budget_.factor, index, neighbour);
   int n = 0;
   for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k) {
     const PlaneVerdict v = g.planes[k].verdict;
@@ -319,7 +318,7 @@ Result<const ProposalList*> Proposer::run(ConstGray8View left, ConstGray8View ri
   if (!current.allFinite())
     return Error::make(Errc::invalid_argument, "current: the arm's pose is not finite");
   auto d = detect_rocks(pipeline_.rectifier(), left, right, request.region, detection_budget_,
-                        params_.detection, *arena_, clock, part_map_);
+                        params_.detection, *arena_, clock, rock_map_);
   if (!d) return d.error();
   detection_ = *d;
   int evaluated = 0;

@@ -5,7 +5,7 @@
 //   budget.max_evaluated, through the chain
 //   (algo/chain/pipeline: its ROI clipped to the budget's ROI, its click, c = kProposalPlanesC, DP
 //   matcher) -> the run's planes that lie on this rock (their vertices' votes
-//   on detection's part map: the chain takes every rock in the ROI, so a
+//   on detection's rock map: the chain takes every rock in the ROI, so a
 //   neighbour's faces are dropped here and offered by the neighbour's own run)
 //   -> each accepted plane's approach (algo/arm plan_approach from `current`,
 //   standoff arm::kDefaultStandoffMm) -> the score's terms and weighted total
@@ -102,7 +102,7 @@ class Proposer {
   arm::ArmGeometry geometry_;
   arm::JointLimits limits_;
   DetectionResult detection_;
-  std::span<std::int32_t> part_map_;  // detection's parts, at 1 / detection_factor
+  std::span<std::uint8_t> rock_map_;  // detection's rocks, at 1 / detection_factor
   RockProposal evaluated_[kMaxProposals];
   ProposalList list_;
 };

@@ -81,7 +81,7 @@ Status validate(const DetectionParams& p) {
   return {};
 }
 
-std::size_t part_map_pixels(const DetectionBudget& b) {
+std::size_t rock_map_pixels(const DetectionBudget& b) {
   return grid_of(b).px();
 }
 
@@ -392,14 +392,15 @@ Result<RockCandidate> candidate_of(const Rectifier& rectifier, const GridCloud& 
 }
 
 // Keeps the kMaxRockCandidates largest (pixels), largest first.
-void keep_largest(const RockCandidate& k, std::int32_t part, DetectionResult& out) {
+void keep_largest(const RockCandidate& k, std::int32_t id, std::int32_t (&ids)[kMaxRockCandidates],
+                  DetectionResult& out) {
   int at = out.count;
   while (at > 0 && out.rocks[at - 1].pixels < k.pixels) --at;
   if (at >= kMaxRockCandidates) return;
   const int last = std::min(out.count, kMaxRockCandidates - 1);
-  for (int i = last; i > at; --i) out.rocks[i] = out.rocks[i - 1], out.part[i] = out.part[i - 1];
+  for (int i = last; i > at; --i) out.rocks[i] = out.rocks[i - 1], ids[i] = ids[i - 1];
   out.rocks[at] = k;
-  out.part[at] = part;
+  ids[at] = id;
   out.count = std::min(out.count + 1, kMaxRockCandidates);
 }
 
@@ -419,17 +420,33 @@ Result<std::span<std::int32_t>> split_step(const GridCloud& c, std::span<const P
 }
 
 // Every region of rock points; those that pass the checks become candidates.
-// `part_map` (empty or grid-sized): each grid pixel's region id.
+// Per grid pixel: the index of the candidate its point's region became.
+void fill_rock_map(const GridCloud& c, std::span<const std::int32_t> ids,
+                   const std::int32_t (&kept)[kMaxRockCandidates], int count,
+                   std::span<std::uint8_t> map) {
+  std::fill(map.begin(), map.end(), kNoRock);
+  for (std::size_t i = 0; i < c.xyz.size(); ++i) {
+    if (ids[i] == kNone) continue;
+    std::uint8_t v = kOtherRock;
+    for (int k = 0; k < count; ++k)
+      if (kept[k] == ids[i]) v = static_cast<std::uint8_t>(k);
+    map[static_cast<std::size_t>(c.pixels[i].v) * static_cast<std::size_t>(c.w) +
+        static_cast<std::size_t>(c.pixels[i].u)] = v;
+  }
+}
+
+// `rock_map` (empty or grid-sized): filled by fill_rock_map.
 Status regions_step(const Rectifier& rectifier, const GridCloud& c,
                     std::span<const PointClass> labels, const DetectionBudget& b,
                     const DetectionParams& p, Arena& arena, DetectionResult& out,
-                    std::span<std::int32_t> part_map) {
+                    std::span<std::uint8_t> rock_map) {
   auto ids = arena.allocate<std::int32_t>(c.xyz.size(), "detection: region ids");
   if (!ids) return ids.error();
   auto stack = arena.allocate<std::int32_t>(c.xyz.size(), "detection: flood");
   if (!stack) return stack.error();
   auto part = split_step(c, labels, out.ground.plane, p, arena);
   if (!part) return part.error();
+  std::int32_t kept[kMaxRockCandidates] = {};  // each candidate's region id
   std::fill(ids->begin(), ids->end(), kNone);
   for (std::size_t i = 0; i < c.xyz.size(); ++i) {
     if (labels[i] != PointClass::rock || (*ids)[i] != kNone) continue;
@@ -440,13 +457,9 @@ Status regions_step(const Rectifier& rectifier, const GridCloud& c,
     if (r.inner == 0 || r.height_mm < p.min_height_mm) continue;
     auto k = candidate_of(rectifier, c, r, b, p);
     if (!k) return k.error();
-    keep_largest(*k, id, out);
+    keep_largest(*k, id, kept, out);
   }
-  if (part_map.empty()) return {};
-  std::fill(part_map.begin(), part_map.end(), kNoPart);
-  for (std::size_t i = 0; i < c.xyz.size(); ++i)
-    part_map[static_cast<std::size_t>(c.pixels[i].v) * static_cast<std::size_t>(c.w) +
-             static_cast<std::size_t>(c.pixels[i].u)] = (*ids)[i];
+  if (!rock_map.empty()) fill_rock_map(c, *ids, kept, out.count, rock_map);
   return {};
 }
 
@@ -456,13 +469,13 @@ Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
                                                   ConstDisparityMap disparity,
                                                   const DetectionBudget& b,
                                                   const DetectionParams& p, Arena& arena,
-                                                  std::span<std::int32_t> part_map) {
+                                                  std::span<std::uint8_t> rock_map) {
   PETRA_TRY(validate(b));
   PETRA_TRY(validate(p));
   const Grid g = grid_of(b);
-  if (!part_map.empty() && part_map.size() != g.px())
-    return Error::make(Errc::invalid_argument, "detection: part map of %zu pixels, the grid %zu",
-                       part_map.size(), g.px());
+  if (!rock_map.empty() && rock_map.size() != g.px())
+    return Error::make(Errc::invalid_argument, "detection: rock map of %zu pixels, the grid %zu",
+                       rock_map.size(), g.px());
   const Rect& r = disparity.roi;
   if (r.empty() || !r.inside(g.w, g.h) || disparity.q4.width() != r.w ||
       disparity.q4.height() != r.h)
@@ -480,14 +493,14 @@ Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
   auto ground = ground_step(rectifier, *c, r, b, p, *labels, arena);
   if (!ground) return ground.error();
   out.ground = *ground;
-  PETRA_TRY(regions_step(rectifier, *c, *labels, b, p, arena, out, part_map));
+  PETRA_TRY(regions_step(rectifier, *c, *labels, b, p, arena, out, rock_map));
   return out;
 }
 
 Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View left,
                                      ConstGray8View right, Rect region, const DetectionBudget& b,
                                      const DetectionParams& p, Arena& arena,
-                                     const StepClock& clock, std::span<std::int32_t> part_map) {
+                                     const StepClock& clock, std::span<std::uint8_t> rock_map) {
   PETRA_TRY(validate(b));
   PETRA_TRY(validate(p));
   if (left.width() != b.image_width || left.height() != b.image_height ||
@@ -510,7 +523,7 @@ Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View 
   auto m = match_dp(in, *coarse, coarse_match(b, p), match_budget(b), arena, v->disparity);
   if (!m) return Error::make(m.code(), "detection: %s", m.error().message);
   PETRA_TRY(checkpoint(clock, PipelineStep::segmentation));
-  auto out = detect_rocks_in_disparity(rectifier, v->disparity, b, p, arena, part_map);
+  auto out = detect_rocks_in_disparity(rectifier, v->disparity, b, p, arena, rock_map);
   if (out) out->match = *m;
   return out;
 }

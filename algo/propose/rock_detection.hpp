@@ -86,7 +86,6 @@ Status validate(const DetectionParams& p);
 
 struct DetectionResult {
   RockCandidate rocks[kMaxRockCandidates];  // largest (pixels) first
-  std::int32_t part[kMaxRockCandidates] = {};  // each rock's id in the part map
   int count = 0;
   int regions = 0;  // connected regions above the band, before the size checks
   GroundResultT<double> ground;
@@ -97,21 +96,23 @@ struct DetectionResult {
 
 std::size_t detection_arena_bytes(const DetectionBudget& b);
 
-// Grid pixels (w x h at 1 / factor) of the part map detection can fill: per
-// grid pixel the id of the rock part its point belongs to (part[] above), or
-// kNoPart.
-std::size_t part_map_pixels(const DetectionBudget& b);
-inline constexpr std::int32_t kNoPart = -1;
+// Grid pixels (w x h at 1 / factor) of the rock map detection can fill: per
+// grid pixel the index in rocks[] of the rock its point belongs to,
+// kOtherRock for a region standing out that is not a candidate (too small,
+// too low, past the 16 largest), kNoRock for the ground or no point.
+std::size_t rock_map_pixels(const DetectionBudget& b);
+inline constexpr std::uint8_t kOtherRock = 0xFE;
+inline constexpr std::uint8_t kNoRock = 0xFF;
+static_assert(kMaxRockCandidates < kOtherRock);
 
 // Detects the rocks in `region` (original left pixels; empty: the whole
 // image). Errors: images not the rectifier's size, a region outside the
 // image, no ground over the field of view (named), cancelled, arena short.
-// `part_map` (empty, or part_map_pixels(b) long): filled as said above.
+// `rock_map` (empty, or rock_map_pixels(b) long): filled as said above.
 Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View left,
                                      ConstGray8View right, Rect region, const DetectionBudget& b,
                                      const DetectionParams& p, Arena& arena,
-                                     const StepClock& clock,
-                                     std::span<std::int32_t> part_map = {});
+                                     const StepClock& clock, std::span<std::uint8_t> rock_map = {});
 
 // The back half on a given map at 1 / factor resolution (downsampled
 // rectified left pixels, inside the grid): from triangulation on. A
@@ -120,6 +121,6 @@ Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
                                                   ConstDisparityMap disparity,
                                                   const DetectionBudget& b,
                                                   const DetectionParams& p, Arena& arena,
-                                                  std::span<std::int32_t> part_map = {});
+                                                  std::span<std::uint8_t> rock_map = {});
 
 }  // namespace petra
