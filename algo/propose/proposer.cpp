@@ -180,13 +180,8 @@ PipelineRequest Proposer::chain_request(const RockCandidate& rock) const {
   return q;
 }
 
-namespace {
-
-// Per plane of the run, whether it lies on another rock than rock `index`:
-// more of its vertices on another region standing out of the ground than on
-// this one (detection's rock map at 1 / factor of the rectified pixels).
-void neighbour_planes(const ReconstructionOutput& r, std::span<const std::uint8_t> map, int map_w,
-                      int factor, int index, bool (&neighbour)[kMaxClasses]) {
+void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::uint8_t> map,
+                           int map_w, int factor, int index, bool (&neighbour)[kMaxClasses]) {
   long own[kMaxClasses] = {}, other[kMaxClasses] = {};
   const std::size_t map_h = map.size() / static_cast<std::size_t>(map_w);
   for (std::size_t i = 0; i < r.pixels.size(); ++i) {
@@ -196,13 +191,13 @@ void neighbour_planes(const ReconstructionOutput& r, std::span<const std::uint8_
     const std::size_t y = static_cast<std::size_t>(r.pixels[i].v / factor);
     if (x >= static_cast<std::size_t>(map_w) || y >= map_h) continue;
     const std::uint8_t at = map[y * static_cast<std::size_t>(map_w) + x];
-    if (at == index) ++own[k];
-    else if (at != kNoRock) ++other[k];
+    if (at == index)
+      ++own[k];
+    else if (at != kNoRock)
+      ++other[k];
   }
   for (int k = 0; k < kMaxClasses; ++k) neighbour[k] = other[k] > own[k];
 }
-
-}  // namespace
 
 // The proposal's planes (3 at most): this rock's qualified planes in the
 // chain's order (a surplus one counts as accepted while the rock has fewer
@@ -211,8 +206,9 @@ void neighbour_planes(const ReconstructionOutput& r, std::span<const std::uint8_
 void Proposer::own_planes(int index, const PipelineOutput& out, RockProposal& proposal) const {
   const GrindResult& g = out.result.planes;
   bool neighbour[kMaxClasses] = {};
-  neighbour_planes(out.result, rock_map_, detection_budget_.image_width / detection_budget_.factor,
-                   detection_budget_.factor, index, neighbour);
+  planes_on_other_rocks(out.result, rock_map_,
+                        detection_budget_.image_width / detection_budget_.factor,
+                        detection_budget_.factor, index, neighbour);
   int n = 0;
   for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k) {
     const PlaneVerdict v = g.planes[k].verdict;
@@ -261,9 +257,9 @@ Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
     if (best == nullptr && grindable) best = &out.planes[k];
   }
   if (best == nullptr && out.plane_count > 0) best = &out.planes[0];
-  out.note = reachable        ? ProposalNote::ok
+  out.note = reachable       ? ProposalNote::ok
              : grindable_any ? ProposalNote::unreachable
-                              : ProposalNote::no_grindable_plane;
+                             : ProposalNote::no_grindable_plane;
   out.score = score_plane(best, reachable, g.footprint_diameter_mm,
                           pipeline_.params().reconstruction.grind, weights);
   return {};

@@ -64,6 +64,14 @@ Status validate(const ProposalRequest& r, int width, int height);
 ProposalScore score_plane(const GrindPlane* best, bool reachable, double footprint_diameter_mm,
                           const GrindParams& grind, const ProposalWeights& w);
 
+// Per plane k of a chain run (its vertices: vertex_class kVertexPlane0 + k),
+// whether it lies on another rock than detection's rock `index`: more of its
+// vertices on another region standing out of the ground than on this one, in
+// detection's rock map (map_width wide, at 1 / factor of the rectified
+// pixels). The chain takes every rock in its ROI; the proposal keeps its own.
+void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::uint8_t> rock_map,
+                           int map_width, int factor, int index, bool (&other)[kMaxClasses]);
+
 class Proposer {
  public:
   Proposer() = default;

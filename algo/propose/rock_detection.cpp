@@ -414,8 +414,8 @@ Result<std::span<std::int32_t>> split_step(const GridCloud& c, std::span<const P
   if (!part) return part.error();
   for (std::size_t i = 0; i < c.xyz.size(); ++i) (*height)[i] = ground.distance(c.xyz[i]);
   const SplitGrid grid{c.w, c.h, c.index, c.pixels};
-  PETRA_TRY(split_at_saddles(grid, *height, labels, {p.split_prominence_mm, p.min_pixels}, *part,
-                             arena));
+  PETRA_TRY(
+      split_at_saddles(grid, *height, labels, {p.split_prominence_mm, p.min_pixels}, *part, arena));
   return *part;
 }
 
@@ -499,8 +499,8 @@ Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
 
 Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View left,
                                      ConstGray8View right, Rect region, const DetectionBudget& b,
-                                     const DetectionParams& p, Arena& arena,
-                                     const StepClock& clock, std::span<std::uint8_t> rock_map) {
+                                     const DetectionParams& p, Arena& arena, const StepClock& clock,
+                                     std::span<std::uint8_t> rock_map) {
   PETRA_TRY(validate(b));
   PETRA_TRY(validate(p));
   if (left.width() != b.image_width || left.height() != b.image_height ||

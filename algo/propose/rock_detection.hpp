@@ -79,8 +79,8 @@ struct DetectionParams {
   // both parts' peaks stand this far above the saddle between them (and
   // both hold min_pixels), else the lower part joins the higher.
   double split_prominence_mm = 12.0;
-  double pad = 0.5;            // ROI margin each side, times the rock's larger box side
-  int min_pad_px = 24;         // ... at least this many original pixels
+  double pad = 0.5;     // ROI margin each side, times the rock's larger box side
+  int min_pad_px = 24;  // ... at least this many original pixels
 };
 Status validate(const DetectionParams& p);
 
@@ -111,8 +111,8 @@ static_assert(kMaxRockCandidates < kOtherRock);
 // `rock_map` (empty, or rock_map_pixels(b) long): filled as said above.
 Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View left,
                                      ConstGray8View right, Rect region, const DetectionBudget& b,
-                                     const DetectionParams& p, Arena& arena,
-                                     const StepClock& clock, std::span<std::uint8_t> rock_map = {});
+                                     const DetectionParams& p, Arena& arena, const StepClock& clock,
+                                     std::span<std::uint8_t> rock_map = {});
 
 // The back half on a given map at 1 / factor resolution (downsampled
 // rectified left pixels, inside the grid): from triangulation on. A

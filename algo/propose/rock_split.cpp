@@ -52,7 +52,7 @@ struct Flood {
                        static_cast<std::size_t>(nx)];
         if (j >= 0 && j != i && part[static_cast<std::size_t>(j)] != kNoSplitPart) seen[n++] = j;
       }
-    if (n == 0) return;  // a local maximum: a part of its own
+    if (n == 0) return;          // a local maximum: a part of its own
     for (int m = 1; m < n; ++m)  // the highest neighbour first
       if (height[static_cast<std::size_t>(seen[m])] > height[static_cast<std::size_t>(seen[0])])
         std::swap(seen[0], seen[m]);
