@@ -199,10 +199,9 @@ void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::u
   for (int k = 0; k < kMaxClasses; ++k) neighbour[k] = other[k] > own[k];
 }
 
-// The proposal's planes (3 at most): this rock's qualified planes in the
-// chain's order (a surplus one counts as accepted while the rock has fewer
-// than 3: a neighbour's faces took its place in the chain's c), then its
-// refused ones that say why. A neighbour's planes are left to its own run.
+// The proposal's planes (3 at most): this rock's accepted planes in the
+// chain's order, then its refused ones that say why (never the surplus:
+// qualified, but c larger did). A neighbour's planes are left to its own run.
 void Proposer::own_planes(int index, const PipelineOutput& out, RockProposal& proposal) const {
   const GrindResult& g = out.result.planes;
   bool neighbour[kMaxClasses] = {};
@@ -212,9 +211,7 @@ void Proposer::own_planes(int index, const PipelineOutput& out, RockProposal& pr
   int n = 0;
   for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k) {
     const PlaneVerdict v = g.planes[k].verdict;
-    if (neighbour[k] || (v != PlaneVerdict::accepted && v != PlaneVerdict::surplus)) continue;
-    proposal.planes[n] = g.planes[k];
-    proposal.planes[n++].verdict = PlaneVerdict::accepted;
+    if (!neighbour[k] && v == PlaneVerdict::accepted) proposal.planes[n++] = g.planes[k];
   }
   for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k) {
     const PlaneVerdict v = g.planes[k].verdict;
