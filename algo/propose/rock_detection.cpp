@@ -13,7 +13,7 @@ namespace petra {
 
 namespace {
 
-constexpr std::size_t kAllocations = 20;  // each padded to its alignment
+constexpr std::size_t kAllocations = 18;  // each padded to its alignment
 constexpr std::size_t kSlackPerAllocation = 64;
 constexpr std::int32_t kNone = -1;
 
@@ -50,7 +50,7 @@ std::size_t point_bytes(const Grid& g) {
   const std::size_t n = g.px();
   return 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<PixelPos>(n) + bytes_for<PointClass>(n) +
          4 * bytes_for<std::int32_t>(n) +  // grid index, region ids, flood stack, parts
-         bytes_for<double>(n) + split_scratch_bytes(n);  // heights; the split's scratch
+         bytes_for<float>(n);              // heights above the ground, for the split
 }
 
 }  // namespace
@@ -404,22 +404,24 @@ void keep_largest(const RockCandidate& k, std::int32_t id, std::int32_t (&ids)[k
   out.count = std::min(out.count + 1, kMaxRockCandidates);
 }
 
-// The rock points split where height maxima meet at a saddle (rock_split).
+// The rock points split where height maxima meet at a saddle (rock_split);
+// `ids` and `stack` lent as its scratch (both refilled after it).
 Result<std::span<std::int32_t>> split_step(const GridCloud& c, std::span<const PointClass> labels,
                                            const PlaneT<double>& ground, const DetectionParams& p,
-                                           Arena& arena) {
-  auto height = arena.allocate<double>(c.xyz.size(), "detection: heights");
+                                           std::span<std::int32_t> ids,
+                                           std::span<std::int32_t> stack, Arena& arena) {
+  auto height = arena.allocate<float>(c.xyz.size(), "detection: heights");
   if (!height) return height.error();
   auto part = arena.allocate<std::int32_t>(c.xyz.size(), "detection: parts");
   if (!part) return part.error();
-  for (std::size_t i = 0; i < c.xyz.size(); ++i) (*height)[i] = ground.distance(c.xyz[i]);
+  for (std::size_t i = 0; i < c.xyz.size(); ++i)
+    (*height)[i] = static_cast<float>(ground.distance(c.xyz[i]));
   const SplitGrid grid{c.w, c.h, c.index, c.pixels};
-  PETRA_TRY(
-      split_at_saddles(grid, *height, labels, {p.split_prominence_mm, p.min_pixels}, *part, arena));
+  PETRA_TRY(split_at_saddles(grid, *height, labels, {p.split_prominence_mm, p.min_pixels}, *part,
+                             stack, ids));
   return *part;
 }
 
-// Every region of rock points; those that pass the checks become candidates.
 // Per grid pixel: the index of the candidate its point's region became.
 void fill_rock_map(const GridCloud& c, std::span<const std::int32_t> ids,
                    const std::int32_t (&kept)[kMaxRockCandidates], int count,
@@ -435,6 +437,7 @@ void fill_rock_map(const GridCloud& c, std::span<const std::int32_t> ids,
   }
 }
 
+// Every region of rock points; those that pass the checks become candidates.
 // `rock_map` (empty or grid-sized): filled by fill_rock_map.
 Status regions_step(const Rectifier& rectifier, const GridCloud& c,
                     std::span<const PointClass> labels, const DetectionBudget& b,
@@ -444,7 +447,7 @@ Status regions_step(const Rectifier& rectifier, const GridCloud& c,
   if (!ids) return ids.error();
   auto stack = arena.allocate<std::int32_t>(c.xyz.size(), "detection: flood");
   if (!stack) return stack.error();
-  auto part = split_step(c, labels, out.ground.plane, p, arena);
+  auto part = split_step(c, labels, out.ground.plane, p, *ids, *stack, arena);
   if (!part) return part.error();
   std::int32_t kept[kMaxRockCandidates] = {};  // each candidate's region id
   std::fill(ids->begin(), ids->end(), kNone);

@@ -19,12 +19,12 @@ std::int32_t find(std::span<std::int32_t> part, std::int32_t i) {
 
 struct Flood {
   const SplitGrid& grid;
-  std::span<const double> height;
+  std::span<const float> height;
   const SplitParams& p;
   std::span<std::int32_t> part;
   std::span<std::int32_t> size;  // points per part, at its peak point
 
-  double peak(std::int32_t root) const { return height[static_cast<std::size_t>(root)]; }
+  float peak(std::int32_t root) const { return height[static_cast<std::size_t>(root)]; }
   // Whether part a's peak ranks below part b's (ties: the later point).
   bool lower(std::int32_t a, std::int32_t b) const {
     return peak(a) < peak(b) || (peak(a) == peak(b) && a > b);
@@ -61,7 +61,7 @@ struct Flood {
       const std::int32_t a = find(part, i), b = find(part, seen[m]);
       if (a == b) continue;
       const std::int32_t lo = lower(a, b) ? a : b, hi = lo == a ? b : a;
-      const bool apart = peak(lo) - height[k] >= p.prominence_mm &&
+      const bool apart = static_cast<double>(peak(lo) - height[k]) >= p.prominence_mm &&
                          size[static_cast<std::size_t>(lo)] >= p.min_pixels;
       if (!apart) join(lo, hi);
     }
@@ -70,37 +70,30 @@ struct Flood {
 
 }  // namespace
 
-std::size_t split_scratch_bytes(std::size_t points) {
-  return 2 * (points * sizeof(std::int32_t) + alignof(std::int32_t)) + 128;
-}
-
-Status split_at_saddles(const SplitGrid& grid, std::span<const double> height,
+Status split_at_saddles(const SplitGrid& grid, std::span<const float> height,
                         std::span<const PointClass> labels, const SplitParams& p,
-                        std::span<std::int32_t> part, Arena& arena) {
+                        std::span<std::int32_t> part, std::span<std::int32_t> order,
+                        std::span<std::int32_t> sizes) {
   const std::size_t n = labels.size();
-  if (height.size() != n || part.size() != n || grid.pixels.size() != n ||
+  if (height.size() != n || part.size() != n || order.size() != n || sizes.size() != n ||
+      grid.pixels.size() != n ||
       grid.index.size() != static_cast<std::size_t>(grid.w) * static_cast<std::size_t>(grid.h))
     return Error::make(Errc::invalid_argument, "split: %zu labels, %zu heights, %zu parts", n,
                        height.size(), part.size());
-  const ArenaScope scope(arena);
-  auto order = arena.allocate<std::int32_t>(n, "split: order");
-  if (!order) return order.error();
-  auto size = arena.allocate<std::int32_t>(n, "split: part sizes");
-  if (!size) return size.error();
   std::size_t m = 0;
   for (std::size_t i = 0; i < n; ++i) {
     part[i] = kNoSplitPart;
-    if (labels[i] == PointClass::rock) (*order)[m++] = static_cast<std::int32_t>(i);
+    if (labels[i] == PointClass::rock) order[m++] = static_cast<std::int32_t>(i);
   }
   const auto by_height = [&](std::int32_t a, std::int32_t b) {
-    const double ha = height[static_cast<std::size_t>(a)], hb = height[static_cast<std::size_t>(b)];
+    const float ha = height[static_cast<std::size_t>(a)], hb = height[static_cast<std::size_t>(b)];
     return ha > hb || (ha == hb && a < b);
   };
-  std::sort(order->begin(), order->begin() + static_cast<std::ptrdiff_t>(m), by_height);
-  Flood flood{grid, height, p, part, *size};
-  for (std::size_t k = 0; k < m; ++k) flood.add((*order)[k]);
+  std::sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(m), by_height);
+  Flood flood{grid, height, p, part, sizes};
+  for (std::size_t k = 0; k < m; ++k) flood.add(order[k]);
   for (std::size_t k = 0; k < m; ++k) {
-    const std::int32_t i = (*order)[k];
+    const std::int32_t i = order[k];
     part[static_cast<std::size_t>(i)] = find(part, i);
   }
   return {};

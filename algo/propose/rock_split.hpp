@@ -8,15 +8,14 @@
 // prominence_mm above this point (the saddle) and it holds min_pixels points
 // (a lone mismatched spike or the relief of one face is not a rock).
 // Output: per point its part's peak point, kNoSplitPart for points not rock.
-// Scratch: the caller's arena (split_scratch_bytes), released on return.
-// No heap.
+// Scratch: two caller spans of one entry per point (detection lends its
+// region ids and flood stack, unused until after the split). No heap.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
 
-#include "algo/core/arena.hpp"
 #include "algo/core/result.hpp"
 #include "algo/mesh/cloud.hpp"
 
@@ -37,12 +36,11 @@ struct SplitGrid {
   std::span<const PixelPos> pixels;
 };
 
-std::size_t split_scratch_bytes(std::size_t points);
-
 // `height` per point (mm above the ground), `labels` per point; `part` per
-// point, written.
-Status split_at_saddles(const SplitGrid& grid, std::span<const double> height,
+// point, written; `order` and `sizes` per point, scratch.
+Status split_at_saddles(const SplitGrid& grid, std::span<const float> height,
                         std::span<const PointClass> labels, const SplitParams& p,
-                        std::span<std::int32_t> part, Arena& arena);
+                        std::span<std::int32_t> part, std::span<std::int32_t> order,
+                        std::span<std::int32_t> sizes);
 
 }  // namespace petra

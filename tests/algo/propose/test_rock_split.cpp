@@ -20,7 +20,7 @@ struct HeightGrid {
   int w, h;
   std::vector<std::int32_t> index;
   std::vector<PixelPos> pixels;
-  std::vector<double> height;
+  std::vector<float> height;
   std::vector<PointClass> labels;
   std::vector<std::int32_t> part;
   template <class F>
@@ -29,15 +29,14 @@ struct HeightGrid {
       for (int x = 0; x < w; ++x) {
         index.push_back(static_cast<std::int32_t>(pixels.size()));
         pixels.push_back({static_cast<std::int16_t>(x), static_cast<std::int16_t>(y)});
-        height.push_back(f(x, y));
+        height.push_back(static_cast<float>(f(x, y)));
         labels.push_back(height.back() > 0 ? PointClass::rock : PointClass::ground);
       }
     part.assign(pixels.size(), 0);
   }
   std::set<std::int32_t> parts(const SplitParams& p) {
-    std::vector<std::byte> block(split_scratch_bytes(pixels.size()));
-    Arena arena(block);
-    const Status s = split_at_saddles({w, h, index, pixels}, height, labels, p, part, arena);
+    std::vector<std::int32_t> order(pixels.size()), sizes(pixels.size());
+    const Status s = split_at_saddles({w, h, index, pixels}, height, labels, p, part, order, sizes);
     EXPECT_TRUE(s.ok()) << s.error().message;
     std::set<std::int32_t> out;
     for (std::size_t i = 0; i < part.size(); ++i)
