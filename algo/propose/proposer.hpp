@@ -16,11 +16,12 @@
 // the normal clustering's own evidence (classes it found, merges, the
 // qualification) decides how many planes a rock offers, from 0 to 3. The
 // operator sending a proposal back as SELECT_ROI with its roi, click and
-// planes_c reruns exactly this chain request.
-// Memory: one caller arena of arena_bytes(): the chain's remap tables, then
-// one space that detection and each chain run use in turn (the chain's run
-// releases the arena to its own mark). The list lives in the Proposer. No
-// heap after create.
+// planes_c reruns exactly this chain request (its planes, with any that lie
+// on a neighbour in the ROI).
+// Memory: one caller arena of arena_bytes(): detection's rock map and the
+// chain's remap tables, then one space that detection and each chain run use
+// in turn (the chain's run releases the arena to its own mark, taken after
+// the map). The list lives in the Proposer. No heap after create.
 #pragma once
 
 #include <cstddef>
