@@ -101,8 +101,7 @@ ProposalScore score_plane(const GrindPlane* best, bool reachable, double footpri
 }
 
 std::size_t Proposer::arena_bytes(const ProposerBudget& b, const PipelineParams& params) {
-  const std::size_t rock_map = rock_map_pixels(detection_budget(b, params)) + 64;
-  return Pipeline::init_bytes(b.pipeline) + rock_map +
+  return Pipeline::init_bytes(b.pipeline) +
          std::max(Pipeline::run_bytes(b.pipeline, params),
                   detection_arena_bytes(detection_budget(b, params)));
 }
@@ -122,14 +121,14 @@ Result<Proposer> Proposer::create(const StereoRig& rig, const ProposerBudget& bu
     return Error::make(Errc::capacity_exceeded,
                        "proposer: arena holds %zu bytes, the budget needs %zu", arena.remaining(),
                        arena_bytes(budget, params));
-  // Below the chain's run mark: each chain run releases the arena to it.
-  auto map = arena.allocate<std::uint8_t>(rock_map_pixels(db), "proposer: rock map");
-  if (!map) return map.error();
   // The chain checks its own share; detection uses the same space after it.
   auto p = Pipeline::create(rig, budget.pipeline, params, arena);
   if (!p) return p.error();
   Proposer out;
-  out.rock_map_ = *map;
+  out.rock_map_shape_ = rock_map_shape(db);
+  if (out.rock_map_shape_.cells() > sizeof(out.rock_map_))
+    return Error::make(Errc::invalid_argument, "proposer: rock map of %zu cells",
+                       out.rock_map_shape_.cells());
   out.pipeline_ = *p;
   out.arena_ = &arena;
   out.budget_ = budget;
@@ -181,14 +180,14 @@ PipelineRequest Proposer::chain_request(const RockCandidate& rock) const {
 }
 
 void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::uint8_t> map,
-                           int map_w, int factor, int index, bool (&neighbour)[kMaxClasses]) {
+                           int map_w, int cell_px, int index, bool (&neighbour)[kMaxClasses]) {
   long own[kMaxClasses] = {}, other[kMaxClasses] = {};
   const std::size_t map_h = map.size() / static_cast<std::size_t>(map_w);
   for (std::size_t i = 0; i < r.pixels.size(); ++i) {
     const int k = r.vertex_class[i] - kVertexPlane0;
     if (k < 0 || k >= kMaxClasses) continue;
-    const std::size_t x = static_cast<std::size_t>(r.pixels[i].u / factor);
-    const std::size_t y = static_cast<std::size_t>(r.pixels[i].v / factor);
+    const std::size_t x = static_cast<std::size_t>(r.pixels[i].u / cell_px);
+    const std::size_t y = static_cast<std::size_t>(r.pixels[i].v / cell_px);
     if (x >= static_cast<std::size_t>(map_w) || y >= map_h) continue;
     const std::uint8_t at = map[y * static_cast<std::size_t>(map_w) + x];
     if (at == index)
@@ -205,9 +204,9 @@ void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::u
 void Proposer::own_planes(int index, const PipelineOutput& out, RockProposal& proposal) const {
   const GrindResult& g = out.result.planes;
   bool neighbour[kMaxClasses] = {};
-  planes_on_other_rocks(out.result, rock_map_,
-                        detection_budget_.image_width / detection_budget_.factor,
-                        detection_budget_.factor, index, neighbour);
+  const RockMapShape& m = rock_map_shape_;
+  planes_on_other_rocks(out.result, std::span<const std::uint8_t>(rock_map_, m.cells()), m.w,
+                        detection_budget_.factor * m.step, index, neighbour);
   int n = 0;
   for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k) {
     const PlaneVerdict v = g.planes[k].verdict;
@@ -311,7 +310,8 @@ Result<const ProposalList*> Proposer::run(ConstGray8View left, ConstGray8View ri
   if (!current.allFinite())
     return Error::make(Errc::invalid_argument, "current: the arm's pose is not finite");
   auto d = detect_rocks(pipeline_.rectifier(), left, right, request.region, detection_budget_,
-                        params_.detection, *arena_, clock, rock_map_);
+                        params_.detection, *arena_, clock,
+                        std::span<std::uint8_t>(rock_map_, rock_map_shape_.cells()));
   if (!d) return d.error();
   detection_ = *d;
   int evaluated = 0;

@@ -18,10 +18,11 @@
 // operator sending a proposal back as SELECT_ROI with its roi, click and
 // planes_c reruns exactly this chain request (its planes, with any that lie
 // on a neighbour in the ROI).
-// Memory: one caller arena of arena_bytes(): detection's rock map and the
-// chain's remap tables, then one space that detection and each chain run use
-// in turn (the chain's run releases the arena to its own mark, taken after
-// the map). The list lives in the Proposer. No heap after create.
+// Memory: one caller arena of arena_bytes(): the chain's remap tables, then
+// one space that detection and each chain run use in turn (the chain's run
+// releases the arena to its own mark). The list and detection's rock map
+// (12 KiB, kept through the chain runs) live in the Proposer. No heap after
+// create.
 #pragma once
 
 #include <cstddef>
@@ -68,10 +69,10 @@ ProposalScore score_plane(const GrindPlane* best, bool reachable, double footpri
 // Per plane k of a chain run (its vertices: vertex_class kVertexPlane0 + k),
 // whether it lies on another rock than detection's rock `index`: more of its
 // vertices on another region standing out of the ground than on this one, in
-// detection's rock map (map_width wide, at 1 / factor of the rectified
+// detection's rock map (map_width wide, a cell of cell_px x cell_px rectified
 // pixels). The chain takes every rock in its ROI; the proposal keeps its own.
 void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::uint8_t> rock_map,
-                           int map_width, int factor, int index, bool (&other)[kMaxClasses]);
+                           int map_width, int cell_px, int index, bool (&other)[kMaxClasses]);
 
 class Proposer {
  public:
@@ -111,7 +112,8 @@ class Proposer {
   arm::ArmGeometry geometry_;
   arm::JointLimits limits_;
   DetectionResult detection_;
-  std::span<std::uint8_t> rock_map_;  // detection's rocks, at 1 / detection_factor
+  RockMapShape rock_map_shape_;
+  std::uint8_t rock_map_[kRockMapMaxWidth * kRockMapMaxHeight] = {};  // detection's rocks
   RockProposal evaluated_[kMaxProposals];
   ProposalList list_;
 };

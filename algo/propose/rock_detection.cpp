@@ -81,8 +81,11 @@ Status validate(const DetectionParams& p) {
   return {};
 }
 
-std::size_t rock_map_pixels(const DetectionBudget& b) {
-  return grid_of(b).px();
+RockMapShape rock_map_shape(const DetectionBudget& b) {
+  const Grid g = grid_of(b);
+  const int step = std::max({1, (g.w + kRockMapMaxWidth - 1) / kRockMapMaxWidth,
+                             (g.h + kRockMapMaxHeight - 1) / kRockMapMaxHeight});
+  return {(g.w + step - 1) / step, (g.h + step - 1) / step, step};
 }
 
 std::size_t detection_arena_bytes(const DetectionBudget& b) {
@@ -422,18 +425,19 @@ Result<std::span<std::int32_t>> split_step(const GridCloud& c, std::span<const P
   return *part;
 }
 
-// Per grid pixel: the index of the candidate its point's region became.
+// Per map cell: the index of the candidate a point's region became (where
+// two meet in a cell, the later point's).
 void fill_rock_map(const GridCloud& c, std::span<const std::int32_t> ids,
                    const std::int32_t (&kept)[kMaxRockCandidates], int count,
-                   std::span<std::uint8_t> map) {
+                   const RockMapShape& shape, std::span<std::uint8_t> map) {
   std::fill(map.begin(), map.end(), kNoRock);
   for (std::size_t i = 0; i < c.xyz.size(); ++i) {
     if (ids[i] == kNone) continue;
     std::uint8_t v = kOtherRock;
     for (int k = 0; k < count; ++k)
       if (kept[k] == ids[i]) v = static_cast<std::uint8_t>(k);
-    map[static_cast<std::size_t>(c.pixels[i].v) * static_cast<std::size_t>(c.w) +
-        static_cast<std::size_t>(c.pixels[i].u)] = v;
+    map[static_cast<std::size_t>(c.pixels[i].v / shape.step) * static_cast<std::size_t>(shape.w) +
+        static_cast<std::size_t>(c.pixels[i].u / shape.step)] = v;
   }
 }
 
@@ -462,7 +466,7 @@ Status regions_step(const Rectifier& rectifier, const GridCloud& c,
     if (!k) return k.error();
     keep_largest(*k, id, kept, out);
   }
-  if (!rock_map.empty()) fill_rock_map(c, *ids, kept, out.count, rock_map);
+  if (!rock_map.empty()) fill_rock_map(c, *ids, kept, out.count, rock_map_shape(b), rock_map);
   return {};
 }
 
@@ -476,9 +480,9 @@ Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
   PETRA_TRY(validate(b));
   PETRA_TRY(validate(p));
   const Grid g = grid_of(b);
-  if (!rock_map.empty() && rock_map.size() != g.px())
-    return Error::make(Errc::invalid_argument, "detection: rock map of %zu pixels, the grid %zu",
-                       rock_map.size(), g.px());
+  if (!rock_map.empty() && rock_map.size() != rock_map_shape(b).cells())
+    return Error::make(Errc::invalid_argument, "detection: rock map of %zu cells, not %zu",
+                       rock_map.size(), rock_map_shape(b).cells());
   const Rect& r = disparity.roi;
   if (r.empty() || !r.inside(g.w, g.h) || disparity.q4.width() != r.w ||
       disparity.q4.height() != r.h)

@@ -96,11 +96,21 @@ struct DetectionResult {
 
 std::size_t detection_arena_bytes(const DetectionBudget& b);
 
-// Grid pixels (w x h at 1 / factor) of the rock map detection can fill: per
-// grid pixel the index in rocks[] of the rock its point belongs to,
-// kOtherRock for a region standing out that is not a candidate (too small,
-// too low, past the 16 largest), kNoRock for the ground or no point.
-std::size_t rock_map_pixels(const DetectionBudget& b);
+// The rock map detection can fill: per cell of step x step grid pixels (the
+// grid at 1 / factor; step the least that fits the grid in
+// kRockMapMaxWidth x kRockMapMaxHeight cells: 2 for 1024 x 768 at 1/4, a
+// cell of 8 original px) the index in rocks[] of the rock a point of it
+// belongs to, kOtherRock for a region standing out that is not a candidate
+// (too small, too low, past the 16 largest), kNoRock for the ground or no
+// point. Small and fixed: the proposer keeps it through the chain runs
+// outside the arena.
+inline constexpr int kRockMapMaxWidth = 128;
+inline constexpr int kRockMapMaxHeight = 96;
+struct RockMapShape {
+  int w = 0, h = 0, step = 1;
+  std::size_t cells() const { return static_cast<std::size_t>(w) * static_cast<std::size_t>(h); }
+};
+RockMapShape rock_map_shape(const DetectionBudget& b);
 inline constexpr std::uint8_t kOtherRock = 0xFE;
 inline constexpr std::uint8_t kNoRock = 0xFF;
 static_assert(kMaxRockCandidates < kOtherRock);
@@ -108,7 +118,7 @@ static_assert(kMaxRockCandidates < kOtherRock);
 // Detects the rocks in `region` (original left pixels; empty: the whole
 // image). Errors: images not the rectifier's size, a region outside the
 // image, no ground over the field of view (named), cancelled, arena short.
-// `rock_map` (empty, or rock_map_pixels(b) long): filled as said above.
+// `rock_map` (empty, or rock_map_shape(b).cells() long): filled as said above.
 Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View left,
                                      ConstGray8View right, Rect region, const DetectionBudget& b,
                                      const DetectionParams& p, Arena& arena, const StepClock& clock,

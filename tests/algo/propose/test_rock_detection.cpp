@@ -121,7 +121,10 @@ TEST(RockDetection, SplitsTwoTouchingRocksAtTheSaddle) {
   const Eigen::Vector3d a(-40, 0, 0), b(40, 0, 0);
   const Scene s = make_scene({moved(test::ridge_rock(), a), moved(test::ridge_rock(), b)});
   std::vector<std::byte> block;
-  std::vector<std::uint8_t> map(static_cast<std::size_t>(s.grid.w) * s.grid.h);
+  DetectionBudget budget;
+  budget.factor = kFactor;
+  const RockMapShape shape = rock_map_shape(budget);
+  std::vector<std::uint8_t> map(shape.cells());
   auto d = detect(s, block, map);
   ASSERT_TRUE(d.ok()) << d.error().message;
   ASSERT_EQ(d->count, 2);
@@ -138,8 +141,9 @@ TEST(RockDetection, SplitsTwoTouchingRocksAtTheSaddle) {
     on_a += a_side ? 1 : 0;
     auto rc = s.rectifier.to_rectified(StereoSide::left, click);
     ASSERT_TRUE(rc.ok());
-    const int gx = static_cast<int>(rc->x()) / kFactor, gy = static_cast<int>(rc->y()) / kFactor;
-    EXPECT_EQ(map[static_cast<std::size_t>(gy) * s.grid.w + gx], k) << "rock " << k;
+    const int cell = kFactor * shape.step;
+    const int mx = static_cast<int>(rc->x()) / cell, my = static_cast<int>(rc->y()) / cell;
+    EXPECT_EQ(map[static_cast<std::size_t>(my * shape.w + mx)], k) << "rock " << k;
   }
   EXPECT_EQ(on_a, 1);  // one click on each rock
 }
