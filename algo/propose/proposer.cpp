@@ -138,6 +138,10 @@ Result<Proposer> Proposer::create(Pipeline& pipeline, const ProposerBudget& budg
                        "proposer: arena holds %zu bytes after the tables, detection needs %zu",
                        arena.remaining(), detection_bytes(budget));
   Proposer out;
+  out.rock_map_shape_ = rock_map_shape(detection_budget(budget, pipeline.params()));
+  if (out.rock_map_shape_.cells() > sizeof(out.rock_map_))
+    return Error::make(Errc::invalid_argument, "proposer: rock map of %zu cells",
+                       out.rock_map_shape_.cells());
   out.pipeline_ = &pipeline;
   out.arena_ = &arena;
   out.space_mark_ = arena.mark();
@@ -188,38 +192,45 @@ PipelineRequest Proposer::chain_request(const RockCandidate& rock) const {
   return q;
 }
 
-namespace {
-
-// Planes for the proposal: the accepted ones (the chain's ranking), then
-// the refused ones that say why (never the surplus: qualified, but c larger did).
-int copy_planes(const GrindResult& g, GrindPlane (&out)[kMaxProposalPlanes]) {
-  int n = 0;
-  for (int k = 0; k < g.accepted && n < kMaxProposalPlanes; ++k) out[n++] = g.planes[k];
-  for (int k = g.accepted; k < g.count && n < kMaxProposalPlanes; ++k)
-    if (g.planes[k].verdict != PlaneVerdict::surplus) out[n++] = g.planes[k];
-  return n;
+void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::uint8_t> map,
+                           int map_w, int cell_px, int index, bool (&neighbour)[kMaxClasses]) {
+  long own[kMaxClasses] = {}, other[kMaxClasses] = {};
+  const std::size_t map_h = map.size() / static_cast<std::size_t>(map_w);
+  for (std::size_t i = 0; i < r.pixels.size(); ++i) {
+    const int k = r.vertex_class[i] - kVertexPlane0;
+    if (k < 0 || k >= kMaxClasses) continue;
+    const std::size_t x = static_cast<std::size_t>(r.pixels[i].u / cell_px);
+    const std::size_t y = static_cast<std::size_t>(r.pixels[i].v / cell_px);
+    if (x >= static_cast<std::size_t>(map_w) || y >= map_h) continue;
+    const std::uint8_t at = map[y * static_cast<std::size_t>(map_w) + x];
+    if (at == index)
+      ++own[k];
+    else if (at != kNoRock)
+      ++other[k];
+  }
+  for (int k = 0; k < kMaxClasses; ++k) neighbour[k] = other[k] > own[k];
 }
 
-}  // namespace
-
-// Later candidates whose click lies on this run's rock points (within 3
-// rectified px): the same rock, or a touching one the chain took with it
-// (ground-plane segmentation keeps everything standing out of the ROI's
-// ground); evaluating them again would offer the same planes twice.
-void Proposer::mark_covered(int index, const PipelineOutput& out) {
-  const ReconstructionOutput& r = out.result;
-  for (int j = index + 1; j < detection_.count; ++j) {
-    const RockCandidate& k = detection_.rocks[j];
-    auto c =
-        pipeline_->rectifier().to_rectified(StereoSide::left, {k.click_u + 0.0, k.click_v + 0.0});
-    if (covered_[j] || !c) continue;
-    const long u = std::lround(c->x()), v = std::lround(c->y());
-    if (!out.roi_rectified.contains(static_cast<int>(u), static_cast<int>(v))) continue;
-    for (std::size_t p = 0; p < r.pixels.size() && !covered_[j]; ++p) {
-      const long du = r.pixels[p].u - u, dv = r.pixels[p].v - v;
-      covered_[j] = r.point_class[p] == PointClass::rock && du * du + dv * dv <= 9;
-    }
+// The proposal's planes (3 at most): this rock's accepted planes in the
+// chain's order, then its refused ones that say why (never the surplus:
+// qualified, but c larger did). A neighbour's planes are left to its own run.
+void Proposer::own_planes(int index, const PipelineOutput& out, RockProposal& proposal) const {
+  const GrindResult& g = out.result.planes;
+  bool neighbour[kMaxClasses] = {};
+  const RockMapShape& m = rock_map_shape_;
+  planes_on_other_rocks(out.result, std::span<const std::uint8_t>(rock_map_, m.cells()), m.w,
+                        budget_.detection_factor * m.step, index, neighbour);
+  int n = 0;
+  for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k) {
+    const PlaneVerdict v = g.planes[k].verdict;
+    if (!neighbour[k] && v == PlaneVerdict::accepted) proposal.planes[n++] = g.planes[k];
   }
+  for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k) {
+    const PlaneVerdict v = g.planes[k].verdict;
+    if (!neighbour[k] && v != PlaneVerdict::accepted && v != PlaneVerdict::surplus)
+      proposal.planes[n++] = g.planes[k];
+  }
+  proposal.plane_count = n;
 }
 
 Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
@@ -238,11 +249,10 @@ Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
     out.chain_error = r.error();
     return {};
   }
-  mark_covered(index, *r);
+  own_planes(index, *r, out);
   const GrindResult& g = r->result.planes;
-  out.plane_count = copy_planes(g, out.planes);
   const GrindPlane* best = nullptr;
-  bool reachable = false;
+  bool reachable = false, grindable_any = false;
   for (int k = 0; k < out.plane_count; ++k) {
     arm::ApproachRequest a;
     a.centroid_mm = out.planes[k].centroid_mm;
@@ -251,13 +261,14 @@ Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
     out.reach[k] = arm::plan_approach(geometry_, limits_, a, current).refusal.reason;
     const bool grindable = out.planes[k].verdict == PlaneVerdict::accepted;
     const bool offered = grindable && out.reach[k] == arm::ArmReason::ok;
+    grindable_any = grindable_any || grindable;
     if (offered && !reachable) best = &out.planes[k], reachable = true;
     if (best == nullptr && grindable) best = &out.planes[k];
   }
   if (best == nullptr && out.plane_count > 0) best = &out.planes[0];
-  out.note = reachable        ? ProposalNote::ok
-             : g.accepted > 0 ? ProposalNote::unreachable
-                              : ProposalNote::no_grindable_plane;
+  out.note = reachable       ? ProposalNote::ok
+             : grindable_any ? ProposalNote::unreachable
+                             : ProposalNote::no_grindable_plane;
   out.score = score_plane(best, reachable, g.footprint_diameter_mm,
                           pipeline_->params().reconstruction.grind, weights);
   return {};
@@ -314,13 +325,11 @@ Result<const ProposalList*> Proposer::run(ConstGray8View left, ConstGray8View ri
   arena_->release_to(space_mark_);  // the last run's chain outputs
   auto d = detect_rocks(pipeline_->rectifier(), left, right, request.region,
                         detection_budget(budget_, pipeline_->params()), params_.detection, *arena_,
-                        clock);
+                        clock, std::span<std::uint8_t>(rock_map_, rock_map_shape_.cells()));
   if (!d) return d.error();
   detection_ = *d;
   int evaluated = 0;
-  for (bool& c : covered_) c = false;
   for (int i = 0; i < detection_.count && evaluated < budget_.max_evaluated; ++i) {
-    if (covered_[i]) continue;
     PETRA_TRY(evaluate(left, right, i, current, request.weights, clock, evaluated_[evaluated++]));
   }
   rank(request, evaluated);

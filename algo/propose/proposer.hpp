@@ -1,10 +1,12 @@
 // Rock proposals over a whole stereo pair (issue 26; docs/proposals.md):
 //   detection (algo/propose/rock_detection: the ground over the field of view,
-//   the rocks standing out of it) -> each candidate, largest first, up to
-//   budget.max_evaluated, skipping those whose click lies on an earlier
-//   run's rock points (a touching rock the chain already took), through the chain
+//   the rocks standing out of it, touching rocks split at the height saddle
+//   between them) -> each candidate, largest first, up to
+//   budget.max_evaluated, through the chain
 //   (algo/chain/pipeline: its ROI clipped to the budget's ROI, its click, c = kProposalPlanesC, DP
-//   matcher)
+//   matcher) -> the run's planes that lie on this rock (their vertices' votes
+//   on detection's rock map: the chain takes every rock in the ROI, so a
+//   neighbour's faces are dropped here and offered by the neighbour's own run)
 //   -> each accepted plane's approach (algo/arm plan_approach from `current`,
 //   standoff arm::kDefaultStandoffMm) -> the score's terms and weighted total
 //   -> ranking (offered proposals first, then by total) and truncation.
@@ -14,16 +16,20 @@
 // the normal clustering's own evidence (classes it found, merges, the
 // qualification) decides how many planes a rock offers, from 0 to 3. The
 // operator sending a proposal back as SELECT_ROI with its roi, click and
-// planes_c reruns exactly this chain request.
+// planes_c reruns exactly this chain request (its planes, with any that lie
+// on a neighbour in the ROI).
 // Memory: the caller's Pipeline and its arena, shared (the flight job's one
 // pipeline serves EVALUATE too): arena_bytes() = the chain's remap tables,
 // then one space that detection and each chain run use in turn (the chain's
 // run releases the arena to its own mark, a proposer's run to where create
 // found it). The proposer's own need is the detection's (detection_bytes()).
-// The list lives in the Proposer. No heap after create.
+// The list and detection's rock map (12 KiB, kept through the chain runs)
+// live in the Proposer. No heap after create.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <span>
 
 #include "algo/arm/arm_trajectory.hpp"
 #include "algo/arm/kinematics.hpp"
@@ -62,6 +68,14 @@ Status validate(const ProposalRequest& r, int width, int height);
 ProposalScore score_plane(const GrindPlane* best, bool reachable, double footprint_diameter_mm,
                           const GrindParams& grind, const ProposalWeights& w);
 
+// Per plane k of a chain run (its vertices: vertex_class kVertexPlane0 + k),
+// whether it lies on another rock than detection's rock `index`: more of its
+// vertices on another region standing out of the ground than on this one, in
+// detection's rock map (map_width wide, a cell of cell_px x cell_px rectified
+// pixels). The chain takes every rock in its ROI; the proposal keeps its own.
+void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::uint8_t> rock_map,
+                           int map_width, int cell_px, int index, bool (&other)[kMaxClasses]);
+
 class Proposer {
  public:
   Proposer() = default;
@@ -96,7 +110,7 @@ class Proposer {
   Status evaluate(ConstGray8View left, ConstGray8View right, int index,
                   const arm::JointVector& current, const ProposalWeights& weights,
                   const StepClock& clock, RockProposal& out);
-  void mark_covered(int index, const PipelineOutput& out);
+  void own_planes(int index, const PipelineOutput& out, RockProposal& proposal) const;
   void rank(const ProposalRequest& request, int evaluated);
 
   Pipeline* pipeline_ = nullptr;  // the caller's
@@ -107,7 +121,8 @@ class Proposer {
   arm::ArmGeometry geometry_;
   arm::JointLimits limits_;
   DetectionResult detection_;
-  bool covered_[kMaxRockCandidates] = {};  // on an earlier candidate's rock: not evaluated
+  RockMapShape rock_map_shape_;
+  std::uint8_t rock_map_[kRockMapMaxWidth * kRockMapMaxHeight] = {};  // detection's rocks
   RockProposal evaluated_[kMaxProposals];
   ProposalList list_;
 };

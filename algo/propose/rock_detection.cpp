@@ -6,13 +6,14 @@
 
 #include "algo/camera/camera_model.hpp"
 #include "algo/mesh/triangulate.hpp"
+#include "algo/propose/rock_split.hpp"
 #include "algo/stereo/downsample.hpp"
 
 namespace petra {
 
 namespace {
 
-constexpr std::size_t kAllocations = 16;  // each padded to its alignment
+constexpr std::size_t kAllocations = 18;  // each padded to its alignment
 constexpr std::size_t kSlackPerAllocation = 64;
 constexpr std::int32_t kNone = -1;
 
@@ -48,7 +49,8 @@ MatchBudget match_budget(const DetectionBudget& b) {
 std::size_t point_bytes(const Grid& g) {
   const std::size_t n = g.px();
   return 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<PixelPos>(n) + bytes_for<PointClass>(n) +
-         3 * bytes_for<std::int32_t>(n);  // grid index, region ids, flood stack
+         4 * bytes_for<std::int32_t>(n) +  // grid index, region ids, flood stack, parts
+         bytes_for<float>(n);              // heights above the ground, for the split
 }
 
 }  // namespace
@@ -72,11 +74,18 @@ Status validate(const DetectionParams& p) {
   PETRA_TRY(validate(p.ground_normals));
   if (!(p.band_rms >= 0) || !(p.min_band_mm >= 0) || !(p.band_sigmas >= 0) ||
       !(p.max_range_mm > 0) || !(p.min_height_mm >= 0) || !(p.min_size_mm >= 0) ||
-      p.min_pixels < 1 || !(p.pad >= 0) || p.min_pad_px < 0)
+      p.min_pixels < 1 || !(p.pad >= 0) || p.min_pad_px < 0 || !(p.split_prominence_mm >= 0))
     return Error::make(Errc::invalid_argument,
                        "detection: band, height, size, pixels and padding must be >= 0 "
                        "(min_pixels >= 1)");
   return {};
+}
+
+RockMapShape rock_map_shape(const DetectionBudget& b) {
+  const Grid g = grid_of(b);
+  const int step = std::max({1, (g.w + kRockMapMaxWidth - 1) / kRockMapMaxWidth,
+                             (g.h + kRockMapMaxHeight - 1) / kRockMapMaxHeight});
+  return {(g.w + step - 1) / step, (g.h + step - 1) / step, step};
 }
 
 std::size_t detection_arena_bytes(const DetectionBudget& b) {
@@ -286,9 +295,9 @@ struct Extent {
   }
 };
 
-// Floods the region holding point `seed` (8-connected rock points), marking
-// `ids`; `stack` holds one entry per point.
-Region flood(const GridCloud& c, std::span<const PointClass> labels, const PlaneT<double>& ground,
+// Floods the region holding point `seed` (8-connected points of its split
+// part), marking `ids`; `stack` holds one entry per point.
+Region flood(const GridCloud& c, std::span<const std::int32_t> part, const PlaneT<double>& ground,
              std::size_t seed, std::int32_t id, std::span<std::int32_t> ids,
              std::span<std::int32_t> stack) {
   Region r;
@@ -311,7 +320,7 @@ Region flood(const GridCloud& c, std::span<const PointClass> labels, const Plane
         if (nx < 0 || ny < 0 || nx >= c.w || ny >= c.h) continue;
         const std::int32_t k = c.at(nx, ny);
         if (k == kNone || ids[static_cast<std::size_t>(k)] != kNone ||
-            labels[static_cast<std::size_t>(k)] != PointClass::rock)
+            part[static_cast<std::size_t>(k)] != part[seed])
           continue;
         ids[static_cast<std::size_t>(k)] = id;
         stack[top++] = k;
@@ -386,36 +395,78 @@ Result<RockCandidate> candidate_of(const Rectifier& rectifier, const GridCloud& 
 }
 
 // Keeps the kMaxRockCandidates largest (pixels), largest first.
-void keep_largest(const RockCandidate& k, DetectionResult& out) {
+void keep_largest(const RockCandidate& k, std::int32_t id, std::int32_t (&ids)[kMaxRockCandidates],
+                  DetectionResult& out) {
   int at = out.count;
   while (at > 0 && out.rocks[at - 1].pixels < k.pixels) --at;
   if (at >= kMaxRockCandidates) return;
   const int last = std::min(out.count, kMaxRockCandidates - 1);
-  for (int i = last; i > at; --i) out.rocks[i] = out.rocks[i - 1];
+  for (int i = last; i > at; --i) out.rocks[i] = out.rocks[i - 1], ids[i] = ids[i - 1];
   out.rocks[at] = k;
+  ids[at] = id;
   out.count = std::min(out.count + 1, kMaxRockCandidates);
 }
 
+// The rock points split where height maxima meet at a saddle (rock_split);
+// `ids` and `stack` lent as its scratch (both refilled after it).
+Result<std::span<std::int32_t>> split_step(const GridCloud& c, std::span<const PointClass> labels,
+                                           const PlaneT<double>& ground, const DetectionParams& p,
+                                           std::span<std::int32_t> ids,
+                                           std::span<std::int32_t> stack, Arena& arena) {
+  auto height = arena.allocate<float>(c.xyz.size(), "detection: heights");
+  if (!height) return height.error();
+  auto part = arena.allocate<std::int32_t>(c.xyz.size(), "detection: parts");
+  if (!part) return part.error();
+  for (std::size_t i = 0; i < c.xyz.size(); ++i)
+    (*height)[i] = static_cast<float>(ground.distance(c.xyz[i]));
+  const SplitGrid grid{c.w, c.h, c.index, c.pixels};
+  PETRA_TRY(split_at_saddles(grid, *height, labels, {p.split_prominence_mm, p.min_pixels}, *part,
+                             stack, ids));
+  return *part;
+}
+
+// Per map cell: the index of the candidate a point's region became (where
+// two meet in a cell, the later point's).
+void fill_rock_map(const GridCloud& c, std::span<const std::int32_t> ids,
+                   const std::int32_t (&kept)[kMaxRockCandidates], int count,
+                   const RockMapShape& shape, std::span<std::uint8_t> map) {
+  std::fill(map.begin(), map.end(), kNoRock);
+  for (std::size_t i = 0; i < c.xyz.size(); ++i) {
+    if (ids[i] == kNone) continue;
+    std::uint8_t v = kOtherRock;
+    for (int k = 0; k < count; ++k)
+      if (kept[k] == ids[i]) v = static_cast<std::uint8_t>(k);
+    map[static_cast<std::size_t>(c.pixels[i].v / shape.step) * static_cast<std::size_t>(shape.w) +
+        static_cast<std::size_t>(c.pixels[i].u / shape.step)] = v;
+  }
+}
+
 // Every region of rock points; those that pass the checks become candidates.
+// `rock_map` (empty or grid-sized): filled by fill_rock_map.
 Status regions_step(const Rectifier& rectifier, const GridCloud& c,
                     std::span<const PointClass> labels, const DetectionBudget& b,
-                    const DetectionParams& p, Arena& arena, DetectionResult& out) {
+                    const DetectionParams& p, Arena& arena, DetectionResult& out,
+                    std::span<std::uint8_t> rock_map) {
   auto ids = arena.allocate<std::int32_t>(c.xyz.size(), "detection: region ids");
   if (!ids) return ids.error();
   auto stack = arena.allocate<std::int32_t>(c.xyz.size(), "detection: flood");
   if (!stack) return stack.error();
+  auto part = split_step(c, labels, out.ground.plane, p, *ids, *stack, arena);
+  if (!part) return part.error();
+  std::int32_t kept[kMaxRockCandidates] = {};  // each candidate's region id
   std::fill(ids->begin(), ids->end(), kNone);
   for (std::size_t i = 0; i < c.xyz.size(); ++i) {
     if (labels[i] != PointClass::rock || (*ids)[i] != kNone) continue;
     const std::int32_t id = out.regions++;
-    Region r = flood(c, labels, out.ground.plane, i, id, *ids, *stack);
+    Region r = flood(c, *part, out.ground.plane, i, id, *ids, *stack);
     if (r.pixels < p.min_pixels || r.size_mm < p.min_size_mm) continue;
     height_and_click(c, *ids, out.ground.plane, id, r);
     if (r.inner == 0 || r.height_mm < p.min_height_mm) continue;
     auto k = candidate_of(rectifier, c, r, b, p);
     if (!k) return k.error();
-    keep_largest(*k, out);
+    keep_largest(*k, id, kept, out);
   }
+  if (!rock_map.empty()) fill_rock_map(c, *ids, kept, out.count, rock_map_shape(b), rock_map);
   return {};
 }
 
@@ -424,10 +475,14 @@ Status regions_step(const Rectifier& rectifier, const GridCloud& c,
 Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
                                                   ConstDisparityMap disparity,
                                                   const DetectionBudget& b,
-                                                  const DetectionParams& p, Arena& arena) {
+                                                  const DetectionParams& p, Arena& arena,
+                                                  std::span<std::uint8_t> rock_map) {
   PETRA_TRY(validate(b));
   PETRA_TRY(validate(p));
   const Grid g = grid_of(b);
+  if (!rock_map.empty() && rock_map.size() != rock_map_shape(b).cells())
+    return Error::make(Errc::invalid_argument, "detection: rock map of %zu cells, not %zu",
+                       rock_map.size(), rock_map_shape(b).cells());
   const Rect& r = disparity.roi;
   if (r.empty() || !r.inside(g.w, g.h) || disparity.q4.width() != r.w ||
       disparity.q4.height() != r.h)
@@ -445,14 +500,14 @@ Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
   auto ground = ground_step(rectifier, *c, r, b, p, *labels, arena);
   if (!ground) return ground.error();
   out.ground = *ground;
-  PETRA_TRY(regions_step(rectifier, *c, *labels, b, p, arena, out));
+  PETRA_TRY(regions_step(rectifier, *c, *labels, b, p, arena, out, rock_map));
   return out;
 }
 
 Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View left,
                                      ConstGray8View right, Rect region, const DetectionBudget& b,
-                                     const DetectionParams& p, Arena& arena,
-                                     const StepClock& clock) {
+                                     const DetectionParams& p, Arena& arena, const StepClock& clock,
+                                     std::span<std::uint8_t> rock_map) {
   PETRA_TRY(validate(b));
   PETRA_TRY(validate(p));
   if (left.width() != b.image_width || left.height() != b.image_height ||
@@ -475,7 +530,7 @@ Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View 
   auto m = match_dp(in, *coarse, coarse_match(b, p), match_budget(b), arena, v->disparity);
   if (!m) return Error::make(m.code(), "detection: %s", m.error().message);
   PETRA_TRY(checkpoint(clock, PipelineStep::segmentation));
-  auto out = detect_rocks_in_disparity(rectifier, v->disparity, b, p, arena);
+  auto out = detect_rocks_in_disparity(rectifier, v->disparity, b, p, arena, rock_map);
   if (out) out->match = *m;
   return out;
 }

@@ -10,7 +10,10 @@
 //   normals from the point grid's neighbours)
 //   -> rocks: 8-connected regions of the grid whose points stand more than
 //   max(min_band_mm, band_rms x ground RMS, band_sigmas x sigma_Z(range))
-//   above the ground and lie within max_range_mm of the left camera, each kept when its highest
+//   above the ground and lie within max_range_mm of the left camera, split
+//   where two height maxima meet at a saddle (touching or close rocks: each
+//   part's peak split_prominence_mm above the saddle and min_pixels large),
+//   each part kept when its highest
 //   interior point (all 8 neighbours in the region: never the silhouette's mismatched fringe) is
 //   min_height_mm above the ground, its largest horizontal extent is at
 //   least min_size_mm and it holds min_pixels.
@@ -22,6 +25,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <span>
 
 #include "algo/camera/rectify.hpp"
 #include "algo/core/arena.hpp"
@@ -70,8 +75,12 @@ struct DetectionParams {
   double min_height_mm = 8.0;  // a rock's highest point above the ground
   double min_size_mm = 20.0;   // its largest horizontal extent (the grinder's disc)
   long min_pixels = 12;        // at the detection's resolution
-  double pad = 0.5;            // ROI margin each side, times the rock's larger box side
-  int min_pad_px = 24;         // ... at least this many original pixels
+  // A region holding several rocks is split where two height maxima meet:
+  // both parts' peaks stand this far above the saddle between them (and
+  // both hold min_pixels), else the lower part joins the higher.
+  double split_prominence_mm = 12.0;
+  double pad = 0.5;     // ROI margin each side, times the rock's larger box side
+  int min_pad_px = 24;  // ... at least this many original pixels
 };
 Status validate(const DetectionParams& p);
 
@@ -87,13 +96,33 @@ struct DetectionResult {
 
 std::size_t detection_arena_bytes(const DetectionBudget& b);
 
+// The rock map detection can fill: per cell of step x step grid pixels (the
+// grid at 1 / factor; step the least that fits the grid in
+// kRockMapMaxWidth x kRockMapMaxHeight cells: 2 for 1024 x 768 at 1/4, a
+// cell of 8 original px) the index in rocks[] of the rock a point of it
+// belongs to, kOtherRock for a region standing out that is not a candidate
+// (too small, too low, past the 16 largest), kNoRock for the ground or no
+// point. Small and fixed: the proposer keeps it through the chain runs
+// outside the arena.
+inline constexpr int kRockMapMaxWidth = 128;
+inline constexpr int kRockMapMaxHeight = 96;
+struct RockMapShape {
+  int w = 0, h = 0, step = 1;
+  std::size_t cells() const { return static_cast<std::size_t>(w) * static_cast<std::size_t>(h); }
+};
+RockMapShape rock_map_shape(const DetectionBudget& b);
+inline constexpr std::uint8_t kOtherRock = 0xFE;
+inline constexpr std::uint8_t kNoRock = 0xFF;
+static_assert(kMaxRockCandidates < kOtherRock);
+
 // Detects the rocks in `region` (original left pixels; empty: the whole
 // image). Errors: images not the rectifier's size, a region outside the
 // image, no ground over the field of view (named), cancelled, arena short.
+// `rock_map` (empty, or rock_map_shape(b).cells() long): filled as said above.
 Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View left,
                                      ConstGray8View right, Rect region, const DetectionBudget& b,
-                                     const DetectionParams& p, Arena& arena,
-                                     const StepClock& clock);
+                                     const DetectionParams& p, Arena& arena, const StepClock& clock,
+                                     std::span<std::uint8_t> rock_map = {});
 
 // The back half on a given map at 1 / factor resolution (downsampled
 // rectified left pixels, inside the grid): from triangulation on. A
@@ -101,6 +130,7 @@ Result<DetectionResult> detect_rocks(const Rectifier& rectifier, ConstGray8View 
 Result<DetectionResult> detect_rocks_in_disparity(const Rectifier& rectifier,
                                                   ConstDisparityMap disparity,
                                                   const DetectionBudget& b,
-                                                  const DetectionParams& p, Arena& arena);
+                                                  const DetectionParams& p, Arena& arena,
+                                                  std::span<std::uint8_t> rock_map = {});
 
 }  // namespace petra

@@ -1,8 +1,9 @@
 // The proposer's pieces that need no images: the request refused by field
 // name, the score's terms and total, the note names telemetry carries, and
-// create over the caller's pipeline.
+// create over the caller's pipeline, the planes left to a neighbour's run.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -99,6 +100,38 @@ TEST(Proposer, CreateUsesTheCallersPipelineAndBuildsNothing) {
                                        "test: the space taken")
                   .ok());
   EXPECT_EQ(create(budget).code(), Errc::capacity_exceeded);
+}
+
+// A chain run's planes on a 4 x 1 rock map (factor 4): plane 0 on rock 1
+// (the clicked one), plane 1 mostly on rock 0 (a neighbour in the ROI),
+// plane 2 on ground the map calls no rock, plane 3 half and half.
+TEST(Proposer, PlanesOnAnotherRockAreTheNeighbours) {
+  const std::uint8_t map[4] = {0, 1, kNoRock, kOtherRock};
+  std::vector<PixelPos> px;
+  std::vector<std::uint8_t> cls;
+  auto add = [&](int plane, int grid_x, int n) {
+    for (int i = 0; i < n; ++i) {
+      px.push_back({static_cast<std::int16_t>(grid_x * 4 + i % 4), 2});
+      cls.push_back(static_cast<std::uint8_t>(kVertexPlane0 + plane));
+    }
+  };
+  add(0, 1, 10);
+  add(1, 0, 7), add(1, 1, 3);
+  add(2, 2, 5);
+  add(3, 1, 4), add(3, 3, 4);
+  px.push_back({0, 2}), cls.push_back(kVertexRock);  // not on a plane: no vote
+  ReconstructionOutput r;
+  r.pixels = px;
+  r.vertex_class = cls;
+  bool other[kMaxClasses] = {};
+  planes_on_other_rocks(r, map, 4, 4, 1, other);
+  EXPECT_FALSE(other[0]);
+  EXPECT_TRUE(other[1]);
+  EXPECT_FALSE(other[2]);  // no rock's: kept (the rock's low flank is ground-labelled)
+  EXPECT_FALSE(other[3]);  // a tie stays with the clicked rock
+  planes_on_other_rocks(r, map, 4, 4, 0, other);  // the neighbour's own run
+  EXPECT_TRUE(other[0]);
+  EXPECT_FALSE(other[1]);
 }
 
 }  // namespace

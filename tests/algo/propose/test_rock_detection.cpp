@@ -5,6 +5,8 @@
 // no rock (an empty result, not an error).
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "algo/camera/rectify.hpp"
@@ -73,12 +75,13 @@ Scene make_scene(const std::vector<test::Rock>& rocks) {
   return s;
 }
 
-Result<DetectionResult> detect(const Scene& s, std::vector<std::byte>& block) {
+Result<DetectionResult> detect(const Scene& s, std::vector<std::byte>& block,
+                               std::span<std::uint8_t> rock_map = {}) {
   DetectionBudget b;
   b.factor = kFactor;
   block.assign(detection_arena_bytes(b), std::byte{0});
   Arena arena(block);
-  return detect_rocks_in_disparity(s.rectifier, s.map(), b, DetectionParams{}, arena);
+  return detect_rocks_in_disparity(s.rectifier, s.map(), b, DetectionParams{}, arena, rock_map);
 }
 
 // The candidate whose click lies on the rock placed at `at` (its 3-D point
@@ -109,6 +112,40 @@ TEST(RockDetection, FindsEachRidgeRockOnFlatGround) {
     EXPECT_TRUE(k->roi.contains(k->click_u, k->click_v));
     EXPECT_TRUE(k->roi.inside(1024, 768));
   }
+}
+
+TEST(RockDetection, SplitsTwoTouchingRocksAtTheSaddle) {
+  // Wall to wall along x: one region standing out of the ground, two ridges
+  // (55 mm) over a saddle at the walls' top (36 mm). One candidate per rock,
+  // each click on its own rock, the rock map telling the two apart.
+  const Eigen::Vector3d a(-40, 0, 0), b(40, 0, 0);
+  const Scene s = make_scene({moved(test::ridge_rock(), a), moved(test::ridge_rock(), b)});
+  std::vector<std::byte> block;
+  DetectionBudget budget;
+  budget.factor = kFactor;
+  const RockMapShape shape = rock_map_shape(budget);
+  std::vector<std::uint8_t> map(shape.cells());
+  auto d = detect(s, block, map);
+  ASSERT_TRUE(d.ok()) << d.error().message;
+  ASSERT_EQ(d->count, 2);
+  auto top = [&](const Eigen::Vector3d& at) {
+    return *project(s.rig.left, at + Eigen::Vector3d(0, 0, 50));
+  };
+  int on_a = 0;
+  for (int k = 0; k < 2; ++k) {
+    const RockCandidate& r = d->rocks[k];
+    EXPECT_NEAR(r.height_mm, 55.0, 4.0);
+    EXPECT_LT(r.size_mm, 100.0 * 1.15);  // one rock's diagonal at most, not the pair's
+    const Eigen::Vector2d click(r.click_u, r.click_v);
+    const bool a_side = (click - top(a)).norm() < (click - top(b)).norm();
+    on_a += a_side ? 1 : 0;
+    auto rc = s.rectifier.to_rectified(StereoSide::left, click);
+    ASSERT_TRUE(rc.ok());
+    const int cell = kFactor * shape.step;
+    const int mx = static_cast<int>(rc->x()) / cell, my = static_cast<int>(rc->y()) / cell;
+    EXPECT_EQ(map[static_cast<std::size_t>(my * shape.w + mx)], k) << "rock " << k;
+  }
+  EXPECT_EQ(on_a, 1);  // one click on each rock
 }
 
 TEST(RockDetection, BareGroundIsNoRockNotAnError) {
