@@ -50,6 +50,17 @@ double inscribed_radius(const Polygon3& poly, const Eigen::Vector3d& n, double e
   return best;
 }
 
+// RMS of points about their own least-squares plane (the test's own fit).
+double rms_about_own_plane(const std::vector<Eigen::Vector3d>& pts) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : pts) mean += p;
+  mean /= static_cast<double>(pts.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& p : pts) cov += (p - mean) * (p - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  return std::sqrt(std::max(0.0, eig.eigenvalues()(0)) / static_cast<double>(pts.size()));
+}
+
 // RMS about its own least-squares plane of the rough surface over a disc of
 // radius r at c (samples every 1 mm; the test's own fit).
 double disc_rms(const FaceRelief& relief, int face, const HalfSpace& plane,
@@ -62,13 +73,7 @@ double disc_rms(const FaceRelief& relief, int face, const HalfSpace& plane,
         const Eigen::Vector3d x = c + u * e1 + v * e2;
         pts.push_back(x - plane.normal * face_depth(relief, face, plane, x));
       }
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& p : pts) mean += p;
-  mean /= static_cast<double>(pts.size());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const auto& p : pts) cov += (p - mean) * (p - mean).transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  return std::sqrt(eig.eigenvalues()(0) / static_cast<double>(pts.size()));
+  return rms_about_own_plane(pts);
 }
 
 // RMS about its least-squares plane of the points the renderer's rays
@@ -85,13 +90,7 @@ double rendered_disc_rms(const Scene& s, int r, const HalfSpace& plane, const Ei
       if (face_of_rock(hit.surface, r) < 0) return INFINITY;
       pts.push_back(hit.point);
     }
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& p : pts) mean += p;
-  mean /= static_cast<double>(pts.size());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const auto& p : pts) cov += (p - mean) * (p - mean).transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  return std::sqrt(std::max(0.0, eig.eigenvalues()(0)) / static_cast<double>(pts.size()));
+  return rms_about_own_plane(pts);
 }
 
 // The flattest rendered disc of the grinder's size inside the exposed
@@ -172,10 +171,16 @@ TEST(SceneRocks, CountIsValidatedByName) {
   EXPECT_FALSE(validate(o).ok());
 }
 
-TEST(SceneRocks, TwoRocksInTheCleanWorld) {
+// Seed 5 with two rocks, the clean world.
+SceneOptions two_clean_rocks() {
   SceneOptions o;
   o.seed = 5;
   o.rocks = 2;
+  return o;
+}
+
+TEST(SceneRocks, TwoRocksInTheCleanWorld) {
+  SceneOptions o = two_clean_rocks();
   auto s = make_scene(o);
   ASSERT_TRUE(s) << s.error().message;
   ASSERT_EQ(rock_count(*s), 2);
@@ -308,9 +313,7 @@ TEST(SceneRocks, TruthFlagsAgreeWithIndependentChecks) {
 // bulge the renderer's neighbouring caps carve the faces: the truth's
 // per-face relief is exact only for the realistic bulges, docs/scene.md.)
 TEST(SceneRocks, TangentFacetsAreJudgedByTheirRenderedSurface) {
-  SceneOptions o;
-  o.seed = 5;
-  o.rocks = 2;
+  const SceneOptions o = two_clean_rocks();
   auto flat = make_scene(o);
   ASSERT_TRUE(flat) << flat.error().message;
   Scene curved = *flat;
