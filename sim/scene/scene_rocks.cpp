@@ -167,12 +167,9 @@ FacetJudgement judge_facet(const Scene& s, int r, const VisibleFacet& f) {
     j.reason = "too_small";
     return j;
   }
-  // The generator's other facets are the tangent planes that shape the
-  // rock's rounded body: the rock curves at the tool's scale there.
-  if (!f.grind_face) {
-    j.reason = "too_curved";
-    return j;
-  }
+  // Every facet, designed flat face or tangent plane of the rounded body,
+  // is rendered as its plane plus the rock's relief (face_relief.hpp): the
+  // same measure judges them all.
   const FaceRelief& relief = relief_at(s, r);
   j.disc_rms_mm = flattest_disc_rms_mm(rock, relief, f.face, flight.grinder_diameter_mm,
                                        flight.max_footprint_rms_mm);

@@ -2,13 +2,14 @@
 // could the flight chain's grinder work the facet, and does the arm reach it.
 // Grindable: not hidden from either camera by another rock, facing the left
 // camera within the chain's view limit, a disc of the grinder's diameter
-// inside the exposed polygon, one of the rock's designed flat faces (the
-// generator's other facets are the tangent planes of its rounded body:
-// "too_curved" when they hold a disc), and the flattest disc of the
-// rendered (rough, curved) surface within the flatness tolerance: the
-// flight defaults of GrindParams{}. Reachable: algo/arm plan_approach from the stowed pose
-// with the flight standoff (ApproachRequest{}), on the facet's centroid and
-// outward normal in the world frame of calib.json.
+// inside the exposed polygon, and the flattest disc of the rendered (rough,
+// curved) surface within the flatness tolerance: the flight defaults of
+// GrindParams{}. Every facet is judged so, the designed flat faces and the
+// tangent planes of the rounded body alike: the renderer draws each as its
+// plane plus the same relief. A disc beyond the tolerance is "too_curved"
+// when the relief's bulge alone would be, else "too_rough". Reachable: algo/arm plan_approach from
+// the stowed pose with the flight standoff (ApproachRequest{}), on the facet's centroid and outward
+// normal in the world frame of calib.json.
 #pragma once
 
 #include <optional>
