@@ -12,7 +12,8 @@ namespace {
 
 constexpr std::size_t kLineBytes = 28;  // "%010u %016x\n"
 
-int hex_value(char c) {
+// The file is written with %016x: lower case only.
+int lower_hex_value(char c) {
   if (c >= '0' && c <= '9') return c - '0';
   if (c >= 'a' && c <= 'f') return c - 'a' + 10;
   return -1;
@@ -30,8 +31,8 @@ bool parse_line(const char* text, std::size_t n, const KeyId& key, StoredCounter
   if (n != i + 2 + 2 * key.size() || text[i] != ' ' || text[n - 1] != '\n') return false;
   bool same = true;
   for (std::size_t k = 0; k < key.size(); ++k) {
-    const int hi = hex_value(text[i + 1 + 2 * k]);
-    const int lo = hex_value(text[i + 2 + 2 * k]);
+    const int hi = lower_hex_value(text[i + 1 + 2 * k]);
+    const int lo = lower_hex_value(text[i + 2 + 2 * k]);
     if (hi < 0 || lo < 0) return false;
     same = same && static_cast<std::uint8_t>(hi * 16 + lo) == key[k];
   }

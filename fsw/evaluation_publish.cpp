@@ -4,9 +4,7 @@
 
 namespace petra::fsw {
 
-namespace {
-constexpr std::int64_t kMs = 1000000;
-}  // namespace
+namespace {}  // namespace
 
 // The selection reported is the one in force now: SELECT_ROI is accepted
 // during a run, and EVAL_RESULT has always carried the current one.
@@ -27,7 +25,7 @@ bool EvaluationService::publish() {
   const EvalOutput& out = runner_.output();
   const Status& s = runner_.status();
   const tlm::TmTime t = tm_time(w_.clock->realtime_ns());
-  elapsed_ms_ = static_cast<std::uint32_t>(elapsed_ns() / kMs);
+  elapsed_ms_ = static_cast<std::uint32_t>(elapsed_ns() / hal::kNsPerMs);
   step_us_ = out.step_us;
   if (acquire_us_ != 0) step_us_[static_cast<std::size_t>(Step::ACQUIRE)] = acquire_us_;
   tlm::EvalResult r = result_summary();

@@ -2,9 +2,7 @@
 
 namespace petra::fsw {
 
-namespace {
-constexpr std::int64_t kMs = 1000000;
-}  // namespace
+namespace {}  // namespace
 
 PipelineRequest selection_from(const cmd::SelectRoiArgs& a) {
   PipelineRequest r;
@@ -75,7 +73,7 @@ Status EvaluationService::start(const EvalFrame& frame) {
 
 EvalProgress EvaluationService::poll() {
   if (awaiting_) {  // EVAL_TIMEOUT_S bounds a proposal run too
-    const std::int64_t limit = w_.params->get_int(ParamId::EVAL_TIMEOUT_S) * 1000 * kMs;
+    const std::int64_t limit = w_.params->get_int(ParamId::EVAL_TIMEOUT_S) * 1000 * hal::kNsPerMs;
     if (elapsed_ns() > limit) {
       const bool propose = kind_ == JobKind::PROPOSE;
       const auto fc = static_cast<std::int32_t>(propose ? cmd::FunctionCode::PROPOSE
@@ -106,8 +104,8 @@ void EvaluationService::abort() {
 EvalStatus EvaluationService::status() const {
   EvalStatus s;
   s.running = runner_.busy();
-  s.elapsed_ms =
-      s.running && awaiting_ ? static_cast<std::uint32_t>(elapsed_ns() / kMs) : elapsed_ms_;
+  s.elapsed_ms = s.running && awaiting_ ? static_cast<std::uint32_t>(elapsed_ns() / hal::kNsPerMs)
+                                        : elapsed_ms_;
   s.step_us = step_us_;
   s.arena_bytes = runner_.arena_capacity();
   s.arena_high_water_bytes = runner_.arena_high_water();

@@ -14,7 +14,6 @@
 namespace petra::fsw {
 
 namespace {
-constexpr std::int64_t kMs = 1000000;
 constexpr std::size_t kQueueReserve = 16;  // slots products leave free for events and HK
 constexpr std::size_t kRxSlotBytes = cmd::kMaxCommandBytes + 1;
 
@@ -241,10 +240,10 @@ void Executive::update_periods() {
               {Component::HOUSEKEEPING, &Executive::send_housekeeping, hk > 0 ? hk : 1},
               {Component::WORKER, &Executive::check_health, health > 0 ? health : 1},
               {Component::DOWNLINK, &Executive::flush_downlink, 1}}};
-  const std::int64_t base = params_.get_int(ParamId::HEARTBEAT_TIMEOUT_MS) * kMs;
+  const std::int64_t base = params_.get_int(ParamId::HEARTBEAT_TIMEOUT_MS) * hal::kNsPerMs;
   for (const RateGroup& g : groups_)
     heartbeat_timeout_ns_[static_cast<std::size_t>(g.component)] =
-        base + static_cast<std::int64_t>(g.period_cycles * cycle) * kMs;
+        base + static_cast<std::int64_t>(g.period_cycles * cycle) * hal::kNsPerMs;
   // The worker beats every 100 ms from its own thread.
   heartbeat_timeout_ns_[static_cast<std::size_t>(Component::WORKER)] = base;
 }
@@ -264,7 +263,7 @@ void Executive::run_cycle() {
   if (us > loop_.max_cycle_us) loop_.max_cycle_us = us;
   if (us > config_.cycle_ms * 1000) {
     ++loop_.overruns;
-    if (end - last_overrun_event_ns_ > 1000 * kMs) {  // at most one event a second
+    if (end - last_overrun_event_ns_ > 1000 * hal::kNsPerMs) {  // at most one event a second
       last_overrun_event_ns_ = end;
       events_.raise(EventId::CYCLE_OVERRUN, static_cast<std::int32_t>(us),
                     static_cast<std::int32_t>(config_.cycle_ms * 1000));
@@ -273,7 +272,7 @@ void Executive::run_cycle() {
 }
 
 void Executive::run(const volatile std::sig_atomic_t* stop) {
-  const std::int64_t period = static_cast<std::int64_t>(config_.cycle_ms) * kMs;
+  const std::int64_t period = static_cast<std::int64_t>(config_.cycle_ms) * hal::kNsPerMs;
   timespec next{};
   clock_gettime(CLOCK_MONOTONIC, &next);
   while (*stop == 0) {
@@ -379,7 +378,8 @@ void Executive::pump_products() {
 void Executive::send_housekeeping() {
   tlm::Housekeeping hk;
   hk.mode = static_cast<std::uint8_t>(modes_.mode());
-  hk.uptime_s = static_cast<std::uint32_t>((deps_.clock->monotonic_ns() - boot_ns_) / (1000 * kMs));
+  hk.uptime_s =
+      static_cast<std::uint32_t>((deps_.clock->monotonic_ns() - boot_ns_) / (1000 * hal::kNsPerMs));
   hk.cycles = loop_.cycles;
   hk.cycle_overruns = loop_.overruns;
   hk.max_cycle_us = loop_.max_cycle_us;
@@ -419,7 +419,7 @@ void Executive::check_health() {
   const int late = health_.check(now, heartbeat_timeout_ns_, silent);
   if (late < 0) return;
   ++loop_.faults;
-  events_.raise(EventId::HEARTBEAT_LOST, late, static_cast<std::int32_t>(silent / kMs));
+  events_.raise(EventId::HEARTBEAT_LOST, late, static_cast<std::int32_t>(silent / hal::kNsPerMs));
   enter_safe();
 }
 

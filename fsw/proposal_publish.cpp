@@ -9,9 +9,7 @@
 
 namespace petra::fsw {
 
-namespace {
-constexpr std::int64_t kMs = 1000000;
-}  // namespace
+namespace {}  // namespace
 
 Reason EvaluationService::propose_refusal() const {
   if (!runner_.has_job()) return Reason::NO_PIPELINE;
@@ -52,7 +50,7 @@ bool EvaluationService::publish_proposals() {
   const EvalOutput& out = runner_.output();
   const Status& s = runner_.status();
   const tlm::TmTime t = tm_time(w_.clock->realtime_ns());
-  elapsed_ms_ = static_cast<std::uint32_t>(elapsed_ns() / kMs);
+  elapsed_ms_ = static_cast<std::uint32_t>(elapsed_ns() / hal::kNsPerMs);
   const bool failed = !s || out.proposals == nullptr;
   if (!failed) {
     listed_ = *out.proposals;

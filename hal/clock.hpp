@@ -6,6 +6,8 @@
 
 namespace petra::hal {
 
+inline constexpr std::int64_t kNsPerMs = 1000000;  // the clock's nanoseconds in a millisecond
+
 class Clock {
  public:
   virtual ~Clock() = default;

@@ -7,19 +7,20 @@
 #include <cstdio>
 #include <cstring>
 
+#include "hal/errno_text.hpp"
+
 namespace petra::hal {
 
 Result<std::size_t> read_small_file(const char* path, std::span<char> buf) {
   const int fd = ::open(path, O_RDONLY | O_CLOEXEC);
-  if (fd < 0)
-    return Error::make(Errc::io_error, "%s: cannot open (%s)", path, std::strerror(errno));
+  if (fd < 0) return Error::make(Errc::io_error, "%s: cannot open (%s)", path, errno_text(errno));
   std::size_t used = 0;
   for (;;) {  // bounded by the buffer size
     const ssize_t n = ::read(fd, buf.data() + used, buf.size() - used);
     if (n < 0) {
       const int why = errno;
       ::close(fd);
-      return Error::make(Errc::io_error, "%s: cannot read (%s)", path, std::strerror(why));
+      return Error::make(Errc::io_error, "%s: cannot read (%s)", path, errno_text(why));
     }
     if (n == 0) break;
     used += static_cast<std::size_t>(n);
@@ -41,18 +42,17 @@ Status write_small_file(const char* path, std::span<const char> data) {
   if (std::snprintf(tmp, sizeof(tmp), "%s.tmp", path) >= static_cast<int>(sizeof(tmp)))
     return Error::make(Errc::invalid_argument, "path too long: %s", path);
   const int fd = ::open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-  if (fd < 0)
-    return Error::make(Errc::io_error, "%s: cannot create (%s)", tmp, std::strerror(errno));
+  if (fd < 0) return Error::make(Errc::io_error, "%s: cannot create (%s)", tmp, errno_text(errno));
   const ssize_t n = ::write(fd, data.data(), data.size());
   const int write_errno = errno;
   const bool ok = n == static_cast<ssize_t>(data.size());
   ::close(fd);
   if (!ok)
     return Error::make(Errc::io_error, "%s: cannot write (%s)", tmp,
-                       n < 0 ? std::strerror(write_errno) : "short write");
+                       n < 0 ? errno_text(write_errno) : "short write");
   if (::rename(tmp, path) != 0)
     return Error::make(Errc::io_error, "%s: cannot rename to %s (%s)", tmp, path,
-                       std::strerror(errno));
+                       errno_text(errno));
   return {};
 }
 

@@ -6,6 +6,8 @@
 
 #if PETRA_HAVE_LIBGPIOD
 #include <gpiod.h>
+
+#include "hal/errno_text.hpp"
 #endif
 
 namespace petra::hal {
@@ -20,11 +22,6 @@ Status check_config(const GpioLineConfig& c) {
 }
 
 #if PETRA_HAVE_LIBGPIOD
-const char* errno_text(int err) {
-  const char* s = strerrordesc_np(err);
-  return s != nullptr ? s : "unknown error";
-}
-
 // Opens the chip and finds the named line on it; errors name both.
 Status find_line(const GpioLineConfig& c, gpiod_chip*& chip, gpiod_line*& line) {
   PETRA_TRY(check_config(c));

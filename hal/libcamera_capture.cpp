@@ -11,6 +11,8 @@
 #include <condition_variable>
 #include <mutex>
 #include <vector>
+
+#include "hal/errno_text.hpp"
 #endif
 
 namespace petra::hal {
@@ -143,7 +145,7 @@ Status LibcameraCapture::acquire_camera(const LibcameraCaptureConfig& cfg) {
         sm.manager.reset();
         impl_.reset();
         return Error::make(Errc::io_error, "libcamera: camera manager did not start (%s)",
-                           strerrordesc_np(-r));
+                           errno_text(-r));
       }
     }
     ++sm.users;

@@ -13,6 +13,8 @@
 #include <cerrno>
 #include <cstring>
 
+#include "hal/errno_text.hpp"
+
 namespace petra::hal {
 
 namespace {
@@ -96,11 +98,11 @@ Status SocketCanPort::open(const char* interface, std::span<const CanFilter> fil
   }
   const int fd = ::socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW);
   if (fd < 0)
-    return Error::make(Errc::io_error, "socketcan: socket(AF_CAN): %s", std::strerror(errno));
+    return Error::make(Errc::io_error, "socketcan: socket(AF_CAN): %s", errno_text(errno));
   auto fail = [fd](const char* what) {
     const int err = errno;
     ::close(fd);
-    return Error::make(Errc::io_error, "socketcan: %s: %s", what, std::strerror(err));
+    return Error::make(Errc::io_error, "socketcan: %s: %s", what, errno_text(err));
   };
   ifreq ifr{};
   std::strncpy(ifr.ifr_name, interface, IFNAMSIZ - 1);
@@ -148,7 +150,7 @@ Status SocketCanPort::write_now(const CanFrame& frame, bool& would_block) {
     return Error::make(Errc::io_error, "socketcan: interface down");
   }
   return Error::make(Errc::io_error, "socketcan: write: %s",
-                     n < 0 ? std::strerror(errno) : "short write");
+                     n < 0 ? errno_text(errno) : "short write");
 }
 
 Status SocketCanPort::flush_queue() {
@@ -198,7 +200,7 @@ Result<bool> SocketCanPort::receive(CanFrame& out, int timeout_ms) {
     const int ready = ::poll(&p, 1, wait_ms);
     if (ready < 0) {
       if (errno == EINTR) continue;
-      return Error::make(Errc::io_error, "socketcan: poll: %s", std::strerror(errno));
+      return Error::make(Errc::io_error, "socketcan: poll: %s", errno_text(errno));
     }
     if (ready == 0) return false;
     if (p.revents & (POLLERR | POLLNVAL))
@@ -214,7 +216,7 @@ Result<bool> SocketCanPort::receive(CanFrame& out, int timeout_ms) {
     const ssize_t n = ::recvmsg(fd_, &msg, MSG_DONTWAIT);
     if (n < 0) {
       if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) continue;
-      return Error::make(Errc::io_error, "socketcan: recvmsg: %s", std::strerror(errno));
+      return Error::make(Errc::io_error, "socketcan: recvmsg: %s", errno_text(errno));
     }
     for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c != nullptr; c = CMSG_NXTHDR(&msg, c)) {
       if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL) {

@@ -12,6 +12,8 @@
 #include <cstring>
 #include <ctime>
 
+#include "hal/errno_text.hpp"
+
 namespace petra::hal {
 
 namespace {
@@ -22,12 +24,6 @@ int xioctl(int fd, unsigned long request, void* arg) {
     r = ::ioctl(fd, request, arg);
   } while (r < 0 && errno == EINTR);
   return r;
-}
-
-// strerrordesc_np never allocates (strerror may, for unknown codes).
-const char* errno_text(int err) {
-  const char* s = strerrordesc_np(err);
-  return s != nullptr ? s : "unknown error";
 }
 
 std::int64_t monotonic_ns() {

@@ -9,7 +9,6 @@ namespace petra::arm {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 
 // Maps an angle to (centre - pi, centre + pi], so a joint value is read next to
 // the middle of its range (th4's 35..180 deg needs more than (-pi, pi]).
@@ -147,17 +146,17 @@ JointLimits default_joint_limits() {
   const double lo[kJointCount] = {0.0, 0.0, 0.0, 35.0, -45.0};
   const double hi[kJointCount] = {90.0, 90.0, 145.0, 180.0, 45.0};
   for (int j = 0; j < kJointCount; ++j) {
-    l.min_rad[j] = lo[j] * kDeg;
-    l.max_rad[j] = hi[j] * kDeg;
-    l.max_velocity_rad_s[j] = 30.0 * kDeg;
-    l.max_acceleration_rad_s2[j] = 60.0 * kDeg;
+    l.min_rad[j] = lo[j] * kRadPerDeg;
+    l.max_rad[j] = hi[j] * kRadPerDeg;
+    l.max_velocity_rad_s[j] = 30.0 * kRadPerDeg;
+    l.max_acceleration_rad_s2[j] = 60.0 * kRadPerDeg;
   }
   return l;
 }
 
 JointVector stow_pose() {
   JointVector q;
-  q << 0.0, 0.0, 145.0 * kDeg, 35.0 * kDeg, 0.0;
+  q << 0.0, 0.0, 145.0 * kRadPerDeg, 35.0 * kRadPerDeg, 0.0;
   return q;
 }
 
@@ -290,7 +289,8 @@ Error IkSolution::error(const JointLimits& limits) const {
     case ArmReason::joint_limit: {
       const int j = std::clamp(joint, 1, kJointCount) - 1;
       return Error::make(Errc::out_of_range, "th%d = %.2f deg outside %.0f..%.0f deg", joint,
-                         value / kDeg, limits.min_rad[j] / kDeg, limits.max_rad[j] / kDeg);
+                         value / kRadPerDeg, limits.min_rad[j] / kRadPerDeg,
+                         limits.max_rad[j] / kRadPerDeg);
     }
     case ArmReason::path_blocked:
       return Error::make(Errc::no_solution, "straight approach blocked %.1f mm before contact",

@@ -23,12 +23,14 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <numbers>
 
 #include "algo/core/result.hpp"
 
 namespace petra::arm {
 
 inline constexpr int kJointCount = 5;
+inline constexpr double kRadPerDeg = std::numbers::pi / 180.0;  // joint angles are radians
 using JointVector = Eigen::Matrix<double, kJointCount, 1>;
 
 // Link lengths (mm) and the mount. Defaults: about 0.8 m reach (docs/arm.md).

@@ -2,19 +2,14 @@
 
 #include <algorithm>
 
+#include "algo/core/arena.hpp"
 #include "algo/mesh/triangulate.hpp"
 
 namespace petra {
 
 namespace {
 
-constexpr std::size_t kSlackPerAllocation = 64;  // alignment padding, generous
 constexpr std::size_t kAllocations = 32;
-
-template <class T>
-std::size_t bytes_for(std::size_t n) {
-  return n * sizeof(T) + alignof(T);
-}
 
 std::size_t roi_px(const ReconstructionBudget& b) {
   return static_cast<std::size_t>(b.max_roi_width) * static_cast<std::size_t>(b.max_roi_height);
@@ -28,25 +23,26 @@ std::size_t persistent_bytes(const ReconstructionBudget& b) {
   const std::size_t n = b.max_points, t = max_triangles(b);
   const std::size_t roi =
       static_cast<std::size_t>(b.max_roi_width) * static_cast<std::size_t>(b.max_roi_height);
-  return bytes_for<std::int16_t>(roi) + 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<PixelPos>(n) +
-         bytes_for<PointClass>(n) + bytes_for<std::uint8_t>(n) + bytes_for<MeshTriangle>(t) +
-         bytes_for<std::uint8_t>(t);
+  return arena_bytes_for<std::int16_t>(roi) + 2 * arena_bytes_for<Eigen::Vector3d>(n) +
+         arena_bytes_for<PixelPos>(n) + arena_bytes_for<PointClass>(n) +
+         arena_bytes_for<std::uint8_t>(n) + arena_bytes_for<MeshTriangle>(t) +
+         arena_bytes_for<std::uint8_t>(t);
 }
 
 std::size_t transient_bytes(const ReconstructionBudget& b) {
   const std::size_t n = b.max_points, t = max_triangles(b);
-  const std::size_t filter =
-      std::max(mean_filter_scratch_bytes(b.max_roi_width), bytes_for<std::int16_t>(roi_px(b)));
+  const std::size_t filter = std::max(mean_filter_scratch_bytes(b.max_roi_width),
+                                      arena_bytes_for<std::int16_t>(roi_px(b)));
   const std::size_t delaunay =
-      bytes_for<IntPoint>(n) +
+      arena_bytes_for<IntPoint>(n) +
       delaunay_scratch_bytes(n, static_cast<std::size_t>(b.max_roi_height));
   const std::size_t mesh = mesh_filter_scratch_bytes(t);
   const std::size_t roi =
       static_cast<std::size_t>(b.max_roi_width) * static_cast<std::size_t>(b.max_roi_height);
   const std::size_t normals =
-      bytes_for<Eigen::Vector3d>(roi) + surface_normals_scratch_bytes(b.max_roi_width);
-  const std::size_t grind = bytes_for<MeshTriangle>(t) + bytes_for<std::int32_t>(t) +
-                            bytes_for<std::uint8_t>(t) +
+      arena_bytes_for<Eigen::Vector3d>(roi) + surface_normals_scratch_bytes(b.max_roi_width);
+  const std::size_t grind = arena_bytes_for<MeshTriangle>(t) + arena_bytes_for<std::int32_t>(t) +
+                            arena_bytes_for<std::uint8_t>(t) +
                             std::max(mesh_filter_scratch_bytes(t), grind_planes_scratch_bytes(t));
   const std::size_t region = click_region_scratch_bytes(n, t);
   return std::max(std::max(std::max(filter, delaunay), region),
@@ -149,7 +145,7 @@ Status validate(const ReconstructionBudget& b) {
 }
 
 std::size_t reconstruction_arena_bytes(const ReconstructionBudget& b) {
-  return persistent_bytes(b) + transient_bytes(b) + kAllocations * kSlackPerAllocation;
+  return persistent_bytes(b) + transient_bytes(b) + kAllocations * kArenaSlackPerAllocation;
 }
 
 namespace {

@@ -98,6 +98,17 @@ class Arena {
   std::size_t high_water_ = 0;
 };
 
+// Budgets count this much padding per allocation: enough to start any
+// buffer of the flight code on a 64-byte cache line (the matchers' rows).
+inline constexpr std::size_t kArenaSlackPerAllocation = 64;
+
+// The most an allocate<T>(count) can take from an arena: the elements and
+// the padding to T's alignment. Budgets are sums of these.
+template <class T>
+constexpr std::size_t arena_bytes_for(std::size_t count) {
+  return count * sizeof(T) + alignof(T);
+}
+
 // Scoped scratch: releases everything allocated after construction.
 class ArenaScope {
  public:

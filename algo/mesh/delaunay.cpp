@@ -1,5 +1,7 @@
 #include "algo/mesh/delaunay.hpp"
 
+#include "algo/core/arena.hpp"
+
 namespace petra {
 
 namespace {
@@ -19,11 +21,6 @@ std::size_t pool_capacity(std::size_t n) {
 
 constexpr int kRounds = 8;     // BRIO rounds
 constexpr int kRoundBits = 3;  // bits to hold a round number
-
-template <class T>
-std::size_t bytes_for(std::size_t count) {
-  return count * sizeof(T) + alignof(T);
-}
 
 // Hilbert index of (x, y) on a 2^bits grid (iterative, no recursion).
 std::uint64_t hilbert_key(std::uint32_t x, std::uint32_t y, int bits) {
@@ -382,9 +379,9 @@ class Builder {
 
 std::size_t delaunay_incremental_scratch_bytes(std::size_t n) {
   const std::size_t cap = pool_capacity(n);
-  return bytes_for<MeshTriangle>(cap) + 3 * bytes_for<std::int32_t>(cap) +
-         bytes_for<Boundary>(cap) + bytes_for<std::int32_t>(n + 1) +
-         bytes_for<std::uint64_t>(2 * n) + bytes_for<std::uint32_t>(2 * n);
+  return arena_bytes_for<MeshTriangle>(cap) + 3 * arena_bytes_for<std::int32_t>(cap) +
+         arena_bytes_for<Boundary>(cap) + arena_bytes_for<std::int32_t>(n + 1) +
+         arena_bytes_for<std::uint64_t>(2 * n) + arena_bytes_for<std::uint32_t>(2 * n);
 }
 
 Status check_delaunay_input(std::span<const IntPoint> points) {

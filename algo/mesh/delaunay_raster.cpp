@@ -13,14 +13,11 @@
 // rest (strip ends, pockets) through a small open-addressing edge table.
 #include "algo/mesh/delaunay.hpp"
 
+#include "algo/core/arena.hpp"
+
 namespace petra {
 
 namespace {
-
-template <class T>
-std::size_t bytes_for(std::size_t count) {
-  return count * sizeof(T) + alignof(T);
-}
 
 struct EdgeSlot {
   std::uint64_t key = 0;  // (min << 32 | max) + 1; 0 = empty
@@ -314,9 +311,9 @@ std::size_t delaunay_raster_scratch_bytes(std::size_t n) {
 }
 
 std::size_t delaunay_raster_scratch_bytes(std::size_t n, std::size_t max_rows) {
-  return 4 * bytes_for<std::int32_t>(n + 1) +
-         bytes_for<std::int64_t>(RasterBuilder::flip_capacity(n)) +
-         bytes_for<EdgeSlot>(RasterBuilder::table_capacity(max_rows < n ? max_rows : n));
+  return 4 * arena_bytes_for<std::int32_t>(n + 1) +
+         arena_bytes_for<std::int64_t>(RasterBuilder::flip_capacity(n)) +
+         arena_bytes_for<EdgeSlot>(RasterBuilder::table_capacity(max_rows < n ? max_rows : n));
 }
 
 Result<DelaunayStats> delaunay_triangulate_raster(std::span<const IntPoint> points,

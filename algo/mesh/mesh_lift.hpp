@@ -36,7 +36,7 @@ struct MeshFilterStats {
 Status validate(const MeshFilterParams& p);
 
 inline std::size_t mesh_filter_scratch_bytes(std::size_t triangles) {
-  return triangles * sizeof(std::int32_t) + alignof(std::int32_t);
+  return arena_bytes_for<std::int32_t>(triangles);
 }
 
 // Keeps the triangles with keep(i) true (i: index before compaction), in

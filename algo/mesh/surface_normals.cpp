@@ -3,6 +3,8 @@
 #include <Eigen/LU>
 #include <cmath>
 
+#include "algo/core/arena.hpp"
+
 namespace petra {
 
 namespace {
@@ -36,7 +38,7 @@ Status validate(const NormalParams& p) {
 }
 
 std::size_t surface_normals_scratch_bytes(int width) {
-  return static_cast<std::size_t>(width > 0 ? width : 0) * sizeof(Sums) + alignof(Sums);
+  return arena_bytes_for<Sums>(static_cast<std::size_t>(width > 0 ? width : 0));
 }
 
 Status surface_normals(ConstDisparityMap map, const RectifiedCamera& cam,

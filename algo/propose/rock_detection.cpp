@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "algo/camera/camera_model.hpp"
+#include "algo/core/arena.hpp"
 #include "algo/mesh/triangulate.hpp"
 #include "algo/propose/rock_split.hpp"
 #include "algo/stereo/downsample.hpp"
@@ -14,13 +15,7 @@ namespace petra {
 namespace {
 
 constexpr std::size_t kAllocations = 18;  // each padded to its alignment
-constexpr std::size_t kSlackPerAllocation = 64;
 constexpr std::int32_t kNone = -1;
-
-template <class T>
-std::size_t bytes_for(std::size_t n) {
-  return n * sizeof(T) + alignof(T);
-}
 
 // The downsampled grid: the whole image / factor (a partial block dropped).
 struct Grid {
@@ -48,9 +43,10 @@ MatchBudget match_budget(const DetectionBudget& b) {
 // Kept from the match on: the points and what is computed on them.
 std::size_t point_bytes(const Grid& g) {
   const std::size_t n = g.px();
-  return 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<PixelPos>(n) + bytes_for<PointClass>(n) +
-         4 * bytes_for<std::int32_t>(n) +  // grid index, region ids, flood stack, parts
-         bytes_for<float>(n);              // heights above the ground, for the split
+  return 2 * arena_bytes_for<Eigen::Vector3d>(n) + arena_bytes_for<PixelPos>(n) +
+         arena_bytes_for<PointClass>(n) +
+         4 * arena_bytes_for<std::int32_t>(n) +  // grid index, region ids, flood stack, parts
+         arena_bytes_for<float>(n);              // heights above the ground, for the split
 }
 
 }  // namespace
@@ -92,10 +88,11 @@ std::size_t detection_arena_bytes(const DetectionBudget& b) {
   const Grid g = grid_of(b);
   const std::size_t image =
       static_cast<std::size_t>(b.image_width) * static_cast<std::size_t>(b.image_height);
-  const std::size_t kept = 2 * bytes_for<std::uint8_t>(image) +
-                           2 * bytes_for<std::uint8_t>(g.px()) + bytes_for<std::int16_t>(g.px());
+  const std::size_t kept = 2 * arena_bytes_for<std::uint8_t>(image) +
+                           2 * arena_bytes_for<std::uint8_t>(g.px()) +
+                           arena_bytes_for<std::int16_t>(g.px());
   return kept + std::max(match_dp_scratch_bytes(match_budget(b)), point_bytes(g)) +
-         kAllocations * kSlackPerAllocation;
+         kAllocations * kArenaSlackPerAllocation;
 }
 
 namespace {

@@ -12,8 +12,7 @@ namespace petra {
 
 namespace {
 
-constexpr std::size_t kAlignSlack = 64;  // per arena allocation
-constexpr std::uint8_t kWeak = 0x20;     // candidate during hysteresis only
+constexpr std::uint8_t kWeak = 0x20;  // candidate during hysteresis only
 
 // Sector boundaries: |gy|/|gx| <= 13/32 (tan 22.1 deg) is horizontal,
 // >= 32/13 (tan 67.9 deg) vertical; 16-bit products keep the test in vector
@@ -270,7 +269,7 @@ std::size_t canny_scratch_bytes(int w, int h) {
   if (w <= 0 || h <= 0) return 0;
   return sz(w + 4, h + 4) + 3 * sizeof(std::int16_t) * sz(w + 2, h + 2) +
          sizeof(std::uint32_t) * sz(w, h) + (w + 8) + 2 * sizeof(std::uint16_t) * (w + 4) * 5 +
-         7 * kAlignSlack;
+         7 * kArenaSlackPerAllocation;
 }
 
 Result<CannyStats> canny(ConstGray8View image, Rect area, const CannyParams& params, Arena& scratch,

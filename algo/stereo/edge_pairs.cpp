@@ -15,7 +15,6 @@ constexpr int kN = kWin * kWin;
 // Windows whose variance (times kN^2) is below this carry no texture: a
 // standard deviation under 1.5 gray levels.
 constexpr long kMinVariance = static_cast<long>(kN) * kN * 9 / 4;
-constexpr std::size_t kAlignSlack = 64;
 
 // Window pixels padded with zeros to a whole 32-byte vector, so the cross
 // term is one vector loop with no tail (the zeros add nothing).
@@ -276,7 +275,7 @@ std::size_t edge_row_scratch_bytes(int left_n, int right_n) {
   const std::size_t m = static_cast<std::size_t>(std::max(left_n, 0));
   const std::size_t n = static_cast<std::size_t>(std::max(right_n, 0));
   return (m + 1) * (n + 1) + (m + n) * (sizeof(Window) + sizeof(std::int16_t)) +
-         3 * (n + 1) * sizeof(std::int32_t) + 7 * kAlignSlack;
+         3 * (n + 1) * sizeof(std::int32_t) + 7 * kArenaSlackPerAllocation;
 }
 
 Result<int> match_edge_row(const EdgeRowInputs& in, Arena& arena, std::span<EdgePair> pairs) {

@@ -38,10 +38,6 @@ inline std::uint8_t min8(std::uint8_t a, std::uint8_t b) {
 inline std::uint8_t max8(std::uint8_t a, std::uint8_t b) {
   return a < b ? b : a;
 }
-// Values, not references (std::min on references stops the vectoriser).
-inline std::int16_t min16(std::int16_t a, std::int16_t b) {
-  return a < b ? a : b;
-}
 
 }  // namespace
 
@@ -197,9 +193,9 @@ PETRA_VECTOR_CLONES void box_and_shift_row(const std::uint16_t* colsum, int n, i
     std::int16_t* __restrict out =
         reinterpret_cast<std::int16_t*>(agg) + static_cast<std::ptrdiff_t>(i) * stride;
     for (int k = 0; k < stride; ++k) {
-      const std::int16_t a = min16(h[k], h[stride + k]);
-      const std::int16_t b = min16(h[2 * stride + k], h[3 * stride + k]);
-      out[k] = min16(min16(a, b), h[4 * stride + k]);
+      const std::int16_t a = lane_min16(h[k], h[stride + k]);
+      const std::int16_t b = lane_min16(h[2 * stride + k], h[3 * stride + k]);
+      out[k] = lane_min16(lane_min16(a, b), h[4 * stride + k]);
     }
   }
 }

@@ -23,9 +23,8 @@ using match::kRawMax;
 using match::kRawNeutral;
 using match::kWindowRows;
 
-constexpr std::size_t kAlignSlack = 64;  // per arena allocation
-constexpr int kRightChains = 16;         // at most; see right_winners
-constexpr int kLaneBits = 12;            // lanes < match::kMaxLanes = 2^12
+constexpr int kRightChains = 16;  // at most; see right_winners
+constexpr int kLaneBits = 12;     // lanes < match::kMaxLanes = 2^12
 // "No winner" in rk: all lane bits set, so it loses every tie of a merge.
 constexpr std::int16_t kNoLane = (1 << kLaneBits) - 1;
 static_assert(match::kMaxLanes <= kNoLane + 1, "lane keys");
@@ -49,7 +48,9 @@ struct Layout {
         nrp(wc + dp - 1) {}
 
   static std::size_t z(long v) { return static_cast<std::size_t>(v); }
-  std::size_t edge_maps() const { return z(w) * z(h) + z(band) * z(h) + 2 * kAlignSlack; }
+  std::size_t edge_maps() const {
+    return z(w) * z(h) + z(band) * z(h) + 2 * kArenaSlackPerAllocation;
+  }
   std::size_t canny() const { return canny_scratch_bytes(std::max(w, band), h); }
   std::size_t rows() const {
     const std::size_t cells = z(wc) * z(dp);
@@ -66,7 +67,7 @@ struct Layout {
     b += sizeof(match::EdgePair) * z(w);                    // pairs
     b += 2 * median3x3_scratch(w) + 2 * z(w);               // median rows, shadow row, reasons
     b += z(w + d) + 5 * 4 * z(w);                           // right shadow row, select_row
-    b += 40 * kAlignSlack;                                  // one per allocation below, with room
+    b += 40 * kArenaSlackPerAllocation;                     // one per allocation below, with room
     return b + match::edge_row_scratch_bytes(w, band);
   }
   std::size_t total() const { return edge_maps() + std::max(canny(), rows()); }
@@ -79,20 +80,21 @@ constexpr int path_lanes(int disparities) {
 
 template <class T>
 Status take(Arena& arena, std::size_t n, const char* what, std::span<T>& out) {
-  // Each buffer starts on a 64-byte line (kAlignSlack per allocation in the
+  // Each buffer starts on a 64-byte line (kArenaSlackPerAllocation per allocation in the
   // budget): the lane kernels' rows are whole vectors, and a vector load
   // split across two cache lines costs two accesses (every 512-bit load of
   // an unaligned row does).
-  if constexpr (kAlignSlack % sizeof(T) != 0) {  // not a lane row (edge pairs)
+  if constexpr (kArenaSlackPerAllocation % sizeof(T) != 0) {  // not a lane row (edge pairs)
     auto r = arena.allocate<T>(n, what);
     if (!r) return r.error();
     out = *r;
     return ok_status();
   }
-  auto r = arena.allocate<T>(n + kAlignSlack / sizeof(T), what);
+  auto r = arena.allocate<T>(n + kArenaSlackPerAllocation / sizeof(T), what);
   if (!r) return r.error();
-  const std::size_t misalign = reinterpret_cast<std::uintptr_t>(r->data()) % kAlignSlack;
-  const std::size_t skip = misalign == 0 ? 0 : (kAlignSlack - misalign) / sizeof(T);
+  const std::size_t misalign =
+      reinterpret_cast<std::uintptr_t>(r->data()) % kArenaSlackPerAllocation;
+  const std::size_t skip = misalign == 0 ? 0 : (kArenaSlackPerAllocation - misalign) / sizeof(T);
   out = r->subspan(skip, n);
   return ok_status();
 }

@@ -16,12 +16,6 @@ namespace {
 // Beyond the disparity lanes: never the minimum, and guard + P1 stays in int16.
 constexpr std::int16_t kGuard = 0x3FFF;
 
-// Values, not references: std::min on references hides a load behind a
-// branch and stops the vectoriser.
-inline std::int16_t min16(std::int16_t a, std::int16_t b) {
-  return a < b ? a : b;
-}
-
 // One step of the recursion, returning min_k of the new row:
 //   cur = C + min(prev, prev(k+-1) + P1, mn + P2) - mn,  mn = min_k prev.
 template <int kLanes>
@@ -36,8 +30,9 @@ inline std::int16_t step(const std::int16_t* __restrict prev, const std::uint16_
   // and this minimum is on the critical path from one step to the next.
   std::uint16_t m = kGuard;
   for (int k = 0; k < stride; ++k) {
-    const std::int16_t near = static_cast<std::int16_t>(min16(prev[k - 1], prev[k + 1]) + pen1);
-    const std::int16_t best = min16(min16(prev[k], near), jump);
+    const std::int16_t near =
+        static_cast<std::int16_t>(lane_min16(prev[k - 1], prev[k + 1]) + pen1);
+    const std::int16_t best = lane_min16(lane_min16(prev[k], near), jump);
     const std::int16_t v = static_cast<std::int16_t>(c[k] + best - mn);
     cur[k] = v;
     const std::uint16_t u = static_cast<std::uint16_t>(v);
@@ -53,7 +48,7 @@ inline std::int16_t first(const std::uint16_t* __restrict c, std::int16_t* __res
   std::int16_t m = kGuard;
   for (int k = 0; k < stride; ++k) {
     cur[k] = static_cast<std::int16_t>(c[k]);
-    m = min16(m, cur[k]);
+    m = lane_min16(m, cur[k]);
   }
   return m;
 }

@@ -9,6 +9,8 @@
 // baseline copy alone.
 #pragma once
 
+#include <cstdint>
+
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
     !defined(PETRA_NO_VECTOR_CLONES)
 #define PETRA_VECTOR_CLONES [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
@@ -70,6 +72,12 @@ inline bool intel_avx512() {
 #else
   return false;
 #endif
+}
+
+// The lane kernels' minimum: by value, not by reference (std::min on
+// references hides a load behind a branch and stops the vectoriser).
+inline std::int16_t lane_min16(std::int16_t a, std::int16_t b) {
+  return a < b ? a : b;
 }
 
 }  // namespace petra

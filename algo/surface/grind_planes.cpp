@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "algo/core/arena.hpp"
 #include "algo/surface/grind_qualify.hpp"
 #include "algo/surface/plane_fit.hpp"
 
@@ -17,11 +18,6 @@ namespace {
 constexpr double kSplitGain = 0.02;
 
 constexpr std::uint8_t kNone = 0xFF;
-
-template <class T>
-std::size_t bytes_for(std::size_t n) {
-  return n * sizeof(T) + alignof(T);
-}
 
 struct Scratch {
   std::span<Eigen::Vector3d> normal, centroid, sample;
@@ -302,10 +298,11 @@ Status validate(const GrindParams& p) {
 }
 
 std::size_t grind_planes_scratch_bytes(std::size_t n) {
-  return 2 * bytes_for<Eigen::Vector3d>(n) + bytes_for<double>(n) + 3 * bytes_for<std::uint8_t>(n) +
-         2 * bytes_for<std::int32_t>(n) + bytes_for<Eigen::Vector3d>(kCMeansSamples) +
-         bytes_for<std::uint8_t>(kCMeansSamples) + bytes_for<double>(kCMeansSamples) +
-         bytes_for<FaceSample>(n) + footprint_scratch_bytes(n);
+  return 2 * arena_bytes_for<Eigen::Vector3d>(n) + arena_bytes_for<double>(n) +
+         3 * arena_bytes_for<std::uint8_t>(n) + 2 * arena_bytes_for<std::int32_t>(n) +
+         arena_bytes_for<Eigen::Vector3d>(kCMeansSamples) +
+         arena_bytes_for<std::uint8_t>(kCMeansSamples) + arena_bytes_for<double>(kCMeansSamples) +
+         arena_bytes_for<FaceSample>(n) + footprint_scratch_bytes(n);
 }
 
 namespace {

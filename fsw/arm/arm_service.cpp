@@ -11,9 +11,8 @@ namespace pa = petra::arm;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 // A stow counts as reached when every joint is this close to the stowed pose.
-constexpr double kStowToleranceRad = 0.2 * kDeg;
+constexpr double kStowToleranceRad = 0.2 * pa::kRadPerDeg;
 
 bool positive_finite(double v) {
   return std::isfinite(v) && v > 0.0;
@@ -438,13 +437,13 @@ void ArmService::settle(std::int64_t now_ms) {
     const pa::ToolPose p = pa::forward_kinematics(config_.geometry, q);
     last_tip_error_mm_ = (p.tip_mm - contact_goal_.centroid_mm).norm();
     const double c = std::clamp(-p.axis.dot(contact_goal_.normal), -1.0, 1.0);
-    last_axis_error_deg_ = std::acos(c) / kDeg;
+    last_axis_error_deg_ = std::acos(c) / pa::kRadPerDeg;
     ok = last_tip_error_mm_ <= config_.reach_tolerance_mm &&
          last_axis_error_deg_ <= config_.axis_tolerance_deg;
   } else {
     const double worst = (q - pa::stow_pose()).cwiseAbs().maxCoeff();
     last_tip_error_mm_ = 0.0;
-    last_axis_error_deg_ = worst / kDeg;
+    last_axis_error_deg_ = worst / pa::kRadPerDeg;
     ok = worst <= kStowToleranceRad;
   }
   const auto um =

@@ -11,8 +11,6 @@ namespace petra::sim {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 const Rgb kInk{30, 30, 40};
 const Rgb kArm{35, 80, 160};
 const Rgb kGhost{150, 160, 180};
@@ -39,7 +37,8 @@ using Project = std::function<Eigen::Vector2d(const Eigen::Vector3d&)>;
 std::string joints_text(const char* label, const arm::JointVector& q) {
   char buf[160];
   std::snprintf(buf, sizeof buf, "%s th1..th5 = %.2f, %.2f, %.2f, %.2f, %.2f deg", label,
-                q[0] / kDeg, q[1] / kDeg, q[2] / kDeg, q[3] / kDeg, q[4] / kDeg);
+                q[0] / arm::kRadPerDeg, q[1] / arm::kRadPerDeg, q[2] / arm::kRadPerDeg,
+                q[3] / arm::kRadPerDeg, q[4] / arm::kRadPerDeg);
   return buf;
 }
 
@@ -244,11 +243,12 @@ void draw_arm_view(const ArmViewInput& in, const ArmView& view, Canvas& c) {
   reach.normalize();
   const Eigen::Vector3d side = up.cross(reach).normalized();  // left of the arm
   const Eigen::Vector3d look_from =
-      (-side * std::cos(40 * kDeg) - reach * std::sin(40 * kDeg)).normalized();
+      (-side * std::cos(40 * arm::kRadPerDeg) - reach * std::sin(40 * arm::kRadPerDeg))
+          .normalized();
   const Eigen::Vector3d centre = 0.5 * (s.base + s.centroid);
   const double dist = 3.0 * std::max(400.0, (s.centroid - s.base).norm());
-  const Eigen::Vector3d eye =
-      centre + dist * (std::cos(30 * kDeg) * look_from + std::sin(30 * kDeg) * up);
+  const Eigen::Vector3d eye = centre + dist * (std::cos(30 * arm::kRadPerDeg) * look_from +
+                                               std::sin(30 * arm::kRadPerDeg) * up);
   const Eigen::Vector3d fwd = (centre - eye).normalized();
   const Eigen::Vector3d right = fwd.cross(up).normalized();
   const Eigen::Vector3d cam_up = right.cross(fwd);
@@ -269,7 +269,7 @@ void draw_arm_view(const ArmViewInput& in, const ArmView& view, Canvas& c) {
     return Eigen::Vector2d((p - base).dot(e), -(p - base).dot(up));
   };
   char title[96];
-  std::snprintf(title, sizeof title, "SIDE VIEW, ARM PLANE TH1 = %.1f DEG", th1 / kDeg);
+  std::snprintf(title, sizeof title, "SIDE VIEW, ARM PLANE TH1 = %.1f DEG", th1 / arm::kRadPerDeg);
   const double rx = big_w + 5;
   const double rw = W - big_w - 15;
   const double half_h = 0.5 * (panel_h - 10);

@@ -35,8 +35,7 @@ namespace petra::cli {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-std::atomic<bool> g_stop{false};
+std::atomic<bool> g_arm_sim_stop{false};
 
 struct FaultPlan {
   std::size_t drive = 0;  // index
@@ -97,7 +96,7 @@ bool parse_pose(const std::string& text, const char* name, std::array<double, 5>
       why = std::string(name) + " '" + text + "': expected 5 angles in degrees, comma separated";
       return false;
     }
-    rad[n++] = v * kDeg;
+    rad[n++] = v * arm::kRadPerDeg;
   }
   if (n != 5) {
     why = std::string(name) + " '" + text + "': expected 5 angles in degrees";
@@ -209,8 +208,8 @@ int run_loopback(const std::array<double, 5>& initial, const std::array<double, 
   for (std::size_t j = 0; j < 5; ++j) {
     const double drive_rad = canopen::counts_to_position(
         configs[j], static_cast<std::int32_t>(std::lround(drives->drive(j).position_counts())));
-    std::printf("th%zu  %10.3f  %9.3f  %s\n", j + 1, target[j] / kDeg, drive_rad / kDeg,
-                canopen::link_state_name(master->drive(j).state()));
+    std::printf("th%zu  %10.3f  %9.3f  %s\n", j + 1, target[j] / arm::kRadPerDeg,
+                drive_rad / arm::kRadPerDeg, canopen::link_state_name(master->drive(j).state()));
   }
   const auto& c = master->counters();
   std::printf("frames: sent %u, received %u, bad %u, foreign %u, send errors %u\n", c.frames_sent,
@@ -242,8 +241,8 @@ int run_socketcan(const std::string& iface, const std::array<double, 5>& initial
   if (auto s = drives->configure(sim::sim_params_at(configs, initial), *port); !s) {
     return fail("sim-arm", s.error().message);
   }
-  std::signal(SIGINT, [](int) { g_stop = true; });
-  std::signal(SIGTERM, [](int) { g_stop = true; });
+  std::signal(SIGINT, [](int) { g_arm_sim_stop = true; });
+  std::signal(SIGTERM, [](int) { g_arm_sim_stop = true; });
   const auto start = std::chrono::steady_clock::now();
   auto now_ms = [&] {
     return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() -
@@ -255,7 +254,8 @@ int run_socketcan(const std::string& iface, const std::array<double, 5>& initial
   std::fflush(stdout);
   std::array<canopen::DriveState, 5> shown{};
   shown.fill(canopen::DriveState::unknown);
-  while (!g_stop && (duration_s <= 0.0 || static_cast<double>(now_ms()) < duration_s * 1000.0)) {
+  while (!g_arm_sim_stop &&
+         (duration_s <= 0.0 || static_cast<double>(now_ms()) < duration_s * 1000.0)) {
     const std::int64_t t = now_ms();
     apply_due_faults(faults, *drives, t);
     drives->step(t);

@@ -21,8 +21,6 @@ namespace petra::cli {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 bool parse_numbers(const std::string& text, std::size_t min_n, std::size_t max_n,
                    std::vector<double>& out) {
   out.clear();
@@ -103,12 +101,13 @@ void add_arm_view(CLI::App& app, Outcome& outcome) {
     }
     if (!mount_text.empty()) {
       if (!parse_numbers(mount_text, 4, 4, v)) return bad("--mount: expected x,y,z,yaw_deg");
-      in.geometry.world_from_base = Eigen::Translation3d(v[0], v[1], v[2]) *
-                                    Eigen::AngleAxisd(v[3] * kDeg, Eigen::Vector3d::UnitZ());
+      in.geometry.world_from_base =
+          Eigen::Translation3d(v[0], v[1], v[2]) *
+          Eigen::AngleAxisd(v[3] * arm::kRadPerDeg, Eigen::Vector3d::UnitZ());
     }
     if (!from_text.empty()) {
       if (!parse_numbers(from_text, 5, 5, v)) return bad("--from: expected 5 angles in degrees");
-      for (int j = 0; j < 5; ++j) in.start[j] = v[j] * kDeg;
+      for (int j = 0; j < 5; ++j) in.start[j] = v[j] * arm::kRadPerDeg;
     }
     if (!(standoff_mm > 0.0)) return bad("--standoff must be > 0 mm");
     in.standoff_mm = standoff_mm;

@@ -6,7 +6,6 @@
 // time of every step. Steps that run over a second report progress on stderr.
 // --disparity D.pfm replays a given map instead of matching (to tell the
 // matcher's errors from the reconstruction's).
-#include <time.h>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -28,6 +27,7 @@
 #include "sim/io/image_io.hpp"
 #include "sim/io/parse_point.hpp"
 #include "sim/io/parse_roi.hpp"
+#include "sim/io/thread_cpu_clock.hpp"
 
 namespace petra::cli {
 
@@ -39,15 +39,6 @@ struct EvalOptions {
   std::size_t points = 0;  // 0: one per ROI pixel
   double shadow_fraction = PipelineParams{}.shadow_fraction;
 };
-
-// Step times are this thread's CPU time: what the rover's one core would
-// spend, unaffected by other load on a shared ground machine.
-std::uint64_t thread_cpu_ns(void*) {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<std::uint64_t>(ts.tv_sec) * 1000000000ull +
-         static_cast<std::uint64_t>(ts.tv_nsec);
-}
 
 // Reports a step on stderr once it has run for a second, then every second.
 class Progress {
@@ -298,7 +289,7 @@ int run(const EvalOptions& o) {
   auto pipeline = Pipeline::create(*rig, budget, params, arena);
   progress.step(nullptr);
   if (!pipeline) return fail("eval", pipeline.error().message);
-  StepClock clock{thread_cpu_ns, &progress, &Progress::on_step};
+  StepClock clock{sim::thread_cpu_ns, &progress, &Progress::on_step};
   std::vector<std::int16_t> given;  // --disparity: the map replayed instead of matching
   Result<PipelineOutput> out = Error::make(Errc::not_ready, "not run");
   if (o.disparity.empty()) {

@@ -12,15 +12,17 @@ namespace petra::cli {
 
 namespace {
 
-void print_camera(const char* name, const TsaiCamera& c) {
+void print_camera_summary(const char* name, const TsaiCamera& c) {
   const Eigen::Vector3d centre = camera_centre_world(c);
   const PinholeConversion pin = to_pinhole(c);
-  std::printf("%-5s %dx%d px, f %.4f mm (fx %.2f px, fy %.2f px), sx %.5f, principal point (%.2f, %.2f)\n",
-              name, c.width, c.height, c.f_mm, pin.pinhole.fx, pin.pinhole.fy, c.sx, c.cx_px, c.cy_px);
-  std::printf("      kappa1 %.6g /mm^2 (OpenCV k1 %.5f, fit within %.3f px), pixel %.5f x %.5f mm\n",
-              c.kappa1, pin.pinhole.k1, pin.max_error_px, c.dx_mm, c.dy_mm);
-  std::printf("      centre in world (%.2f, %.2f, %.2f) mm, optical axis (%.4f, %.4f, %.4f)\n", centre.x(),
-              centre.y(), centre.z(), c.R(2, 0), c.R(2, 1), c.R(2, 2));
+  std::printf(
+      "%-5s %dx%d px, f %.4f mm (fx %.2f px, fy %.2f px), sx %.5f, principal point (%.2f, %.2f)\n",
+      name, c.width, c.height, c.f_mm, pin.pinhole.fx, pin.pinhole.fy, c.sx, c.cx_px, c.cy_px);
+  std::printf(
+      "      kappa1 %.6g /mm^2 (OpenCV k1 %.5f, fit within %.3f px), pixel %.5f x %.5f mm\n",
+      c.kappa1, pin.pinhole.k1, pin.max_error_px, c.dx_mm, c.dy_mm);
+  std::printf("      centre in world (%.2f, %.2f, %.2f) mm, optical axis (%.4f, %.4f, %.4f)\n",
+              centre.x(), centre.y(), centre.z(), c.R(2, 0), c.R(2, 1), c.R(2, 2));
 }
 
 }  // namespace
@@ -40,8 +42,8 @@ void add_info(CLI::App& app, Outcome& outcome) {
       outcome.exit_code = fail("info", rig.error().message);
       return;
     }
-    print_camera("left", rig->left);
-    print_camera("right", rig->right);
+    print_camera_summary("left", rig->left);
+    print_camera_summary("right", rig->right);
     const double baseline =
         (camera_centre_world(rig->left) - camera_centre_world(rig->right)).norm();
     const Eigen::Matrix3d rel = rig->right.R * rig->left.R.transpose();

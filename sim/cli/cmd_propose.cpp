@@ -5,7 +5,6 @@
 // issue-26 contract) and DIR/proposals.png, and prints the ranked list.
 // Chain defaults as `petra eval` (sim/eval/propose_budget); the arm's reach
 // from the stowed pose.
-#include <time.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -22,6 +21,7 @@
 #include "sim/eval/propose_budget.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/io/parse_roi.hpp"
+#include "sim/io/thread_cpu_clock.hpp"
 
 namespace petra::cli {
 
@@ -31,13 +31,6 @@ struct ProposeOptions {
   std::string calib, left, right, region, weights, out;
   int count = ProposalRequest{}.max_proposals;
 };
-
-std::uint64_t thread_cpu_ns(void*) {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<std::uint64_t>(ts.tv_sec) * 1000000000ull +
-         static_cast<std::uint64_t>(ts.tv_nsec);
-}
 
 Result<ProposalWeights> parse_weights(const std::string& text) {
   std::vector<double> v;
@@ -110,10 +103,10 @@ int run(const ProposeOptions& o) {
   auto proposer = Proposer::create(*pipeline, budget, arm::rover_arm_geometry(),
                                    arm::default_joint_limits(), arena);
   if (!proposer) return fail("propose", proposer.error().message);
-  const StepClock clock{thread_cpu_ns, nullptr};
-  const std::uint64_t t0 = thread_cpu_ns(nullptr);
+  const StepClock clock{sim::thread_cpu_ns, nullptr};
+  const std::uint64_t t0 = sim::thread_cpu_ns(nullptr);
   auto list = proposer->run(left->view(), right->view(), req, arm::stow_pose(), clock);
-  const double ms = static_cast<double>(thread_cpu_ns(nullptr) - t0) / 1e6;
+  const double ms = static_cast<double>(sim::thread_cpu_ns(nullptr) - t0) / 1e6;
   if (!list) return fail("propose", list.error().message);
   std::error_code ec;
   fs::create_directories(o.out, ec);

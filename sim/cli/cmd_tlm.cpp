@@ -21,9 +21,9 @@
 namespace petra::cli {
 
 namespace {
-volatile std::sig_atomic_t g_stop = 0;
+volatile std::sig_atomic_t g_tlm_stop = 0;
 extern "C" void on_stop_signal(int) {
-  g_stop = 1;
+  g_tlm_stop = 1;
 }
 }  // namespace
 
@@ -65,10 +65,10 @@ void add_tlm(CLI::App& app, Outcome& outcome) {
     long seen = 0;
     auto idle_since = std::chrono::steady_clock::now();
     for (;;) {
-      if (g_stop != 0) return summary();
+      if (g_tlm_stop != 0) return summary();
       auto n = link.receive_wait(buf, 100);
       if (!n) {
-        if (g_stop != 0) return summary();  // the signal interrupted the wait
+        if (g_tlm_stop != 0) return summary();  // the signal interrupted the wait
         outcome.exit_code = fail("tlm", n.error().message);
         return;
       }

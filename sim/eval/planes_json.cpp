@@ -3,14 +3,11 @@
 #include <vector>
 
 #include "algo/core/json_writer.hpp"
+#include "sim/io/json_vec3.hpp"
 
 namespace petra::eval {
 
 namespace {
-
-void vec3(json::Writer& w, const Eigen::Vector3d& v) {
-  w.begin_array().number(v.x()).number(v.y()).number(v.z()).end_array();
-}
 
 // The grindability fields of a plane (optional in the contract): verdict,
 // uncertainty, the footprint disc and the whole patch's own plane.
@@ -26,15 +23,15 @@ void grind_fields(json::Writer& w, const GrindPlane& p, double diameter_mm) {
   w.key("peak_to_valley_mm").number(p.footprint_pv_mm);
   w.key("coverage").number(p.footprint_coverage);
   w.key("normal");
-  vec3(w, p.footprint_normal);
+  sim::write_vec3(w, p.footprint_normal);
   w.key("agrees").boolean(p.footprint_agrees);
   w.key("plane").string(p.footprint_local ? "footprint" : "face");
   w.end_object();
   w.key("face").begin_object();
   w.key("normal");
-  vec3(w, p.face_normal);
+  sim::write_vec3(w, p.face_normal);
   w.key("centroid_mm");
-  vec3(w, p.face_centroid_mm);
+  sim::write_vec3(w, p.face_centroid_mm);
   w.end_object();
 }
 
@@ -51,13 +48,13 @@ std::string format_planes_json(const ReconstructionOutput& r, const CalibCheck* 
     w.raw("\n ");
     w.begin_object();
     w.key("normal");
-    vec3(w, p.normal);
+    sim::write_vec3(w, p.normal);
     // centroid_mm keeps its contract meaning (the face's area centroid);
     // grind_point_mm is where the grinder goes (the footprint disc's centre).
     w.key("centroid_mm");
-    vec3(w, p.face_centroid_mm);
+    sim::write_vec3(w, p.face_centroid_mm);
     w.key("grind_point_mm");
-    vec3(w, p.centroid_mm);
+    sim::write_vec3(w, p.centroid_mm);
     w.key("area_mm2").number(p.area_mm2);
     w.key("rms_mm").number(p.rms_mm);
     w.key("triangles").integer(static_cast<long long>(p.triangles));
@@ -69,7 +66,7 @@ std::string format_planes_json(const ReconstructionOutput& r, const CalibCheck* 
   w.raw("\n");
   w.key("ground").begin_object();
   w.key("normal");
-  vec3(w, r.ground.plane.normal);
+  sim::write_vec3(w, r.ground.plane.normal);
   w.key("d_mm").number(r.ground.plane.d);
   w.key("rms_mm").number(r.ground.rms_mm);
   w.end_object();
@@ -108,13 +105,13 @@ std::string format_planes_json(const ReconstructionOutput& r, const CalibCheck* 
     w.begin_object();
     w.key("reason").string(verdict_name(p.verdict));
     w.key("normal");
-    vec3(w, p.normal);
+    sim::write_vec3(w, p.normal);
     // centroid_mm keeps its contract meaning (the face's area centroid);
     // grind_point_mm is where the grinder goes (the footprint disc's centre).
     w.key("centroid_mm");
-    vec3(w, p.face_centroid_mm);
+    sim::write_vec3(w, p.face_centroid_mm);
     w.key("grind_point_mm");
-    vec3(w, p.centroid_mm);
+    sim::write_vec3(w, p.centroid_mm);
     w.key("area_mm2").number(p.area_mm2);
     w.key("rms_mm").number(p.rms_mm);
     grind_fields(w, p, grinder_diameter_mm);

@@ -4,22 +4,19 @@
 #include <vector>
 
 #include "algo/core/json_writer.hpp"
+#include "sim/io/json_vec3.hpp"
 
 namespace petra::eval {
 
 namespace {
 
-void vec3(json::Writer& w, const Eigen::Vector3d& v) {
-  w.begin_array().number(v.x()).number(v.y()).number(v.z()).end_array();
-}
-
 void plane(json::Writer& w, const GrindPlane& p, arm::ArmReason reach) {
   w.begin_object();
   w.key("normal");
-  vec3(w, p.normal);
+  sim::write_vec3(w, p.normal);
   // As planes.json: centroid_mm is the face's area centroid.
   w.key("centroid_mm");
-  vec3(w, p.face_centroid_mm);
+  sim::write_vec3(w, p.face_centroid_mm);
   w.key("area_mm2").number(p.area_mm2);
   w.key("rms_mm").number(p.rms_mm);
   w.key("verdict").string(verdict_key(p.verdict));

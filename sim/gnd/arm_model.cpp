@@ -13,30 +13,31 @@ namespace petra::gnd {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kMinStandoffMm = 5.0;  // ARM_GOTO's standoff range (docs/icd.md)
 constexpr double kMaxStandoffMm = 300.0;
 
-std::string number(double v) {
+std::string geometry_number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.12g", v);
   return buf;
 }
 
 std::string vec_json(const Eigen::Vector3d& v) {
-  return "[" + number(v.x()) + "," + number(v.y()) + "," + number(v.z()) + "]";
+  return "[" + geometry_number(v.x()) + "," + geometry_number(v.y()) + "," +
+         geometry_number(v.z()) + "]";
 }
 
 template <std::size_t N>
 std::string array_json(const std::array<double, N>& a, double scale = 1.0) {
   std::string s = "[";
-  for (std::size_t k = 0; k < N; ++k) s += (k ? "," : "") + number(a[k] * scale);
+  for (std::size_t k = 0; k < N; ++k) s += (k ? "," : "") + geometry_number(a[k] * scale);
   return s + "]";
 }
 
 std::string joints_deg_json(const arm::JointVector& q) {
   std::array<double, arm::kJointCount> a{};
-  for (int k = 0; k < arm::kJointCount; ++k) a[static_cast<std::size_t>(k)] = q[k] / kDeg;
+  for (int k = 0; k < arm::kJointCount; ++k)
+    a[static_cast<std::size_t>(k)] = q[k] / arm::kRadPerDeg;
   return array_json(a);
 }
 
@@ -76,7 +77,7 @@ Result<arm::ArmGeometry> parse_arm_mount(std::string_view text) {
                        static_cast<int>(text.size()), text.data());
   arm::ArmGeometry g = arm::rover_arm_geometry();
   g.world_from_base = Eigen::Translation3d(v[0], v[1], v[2]) *
-                      Eigen::AngleAxisd(v[3] * kDeg, Eigen::Vector3d::UnitZ());
+                      Eigen::AngleAxisd(v[3] * arm::kRadPerDeg, Eigen::Vector3d::UnitZ());
   return g;
 }
 
@@ -85,7 +86,8 @@ ArmModel::ArmModel(const arm::ArmGeometry& geometry)
 
 std::string ArmModel::skeleton_json(const std::array<double, arm::kJointCount>& joint_deg) const {
   arm::JointVector q;
-  for (int k = 0; k < arm::kJointCount; ++k) q[k] = joint_deg[static_cast<std::size_t>(k)] * kDeg;
+  for (int k = 0; k < arm::kJointCount; ++k)
+    q[k] = joint_deg[static_cast<std::size_t>(k)] * arm::kRadPerDeg;
   const arm::ArmSkeleton s = arm::arm_skeleton(geometry_, q);
   std::string out = "[";
   for (std::size_t k = 0; k < s.points_mm.size(); ++k)
@@ -98,16 +100,19 @@ std::string ArmModel::geometry_json() const {
   const Eigen::Vector3d x = geometry_.world_from_base.linear().col(0);
   const arm::JointVector stow = arm::stow_pose();
   std::array<double, arm::kJointCount> stow_deg{};
-  for (int k = 0; k < arm::kJointCount; ++k) stow_deg[static_cast<std::size_t>(k)] = stow[k] / kDeg;
+  for (int k = 0; k < arm::kJointCount; ++k)
+    stow_deg[static_cast<std::size_t>(k)] = stow[k] / arm::kRadPerDeg;
   std::ostringstream o;
-  o << "{\"mount_mm\":" << vec_json(m) << ",\"yaw_deg\":" << number(std::atan2(x.y(), x.x()) / kDeg)
-    << ",\"links_mm\":{\"shoulder_height\":" << number(geometry_.shoulder_height_mm)
-    << ",\"shoulder_offset\":" << number(geometry_.shoulder_offset_mm)
-    << ",\"upper_arm\":" << number(geometry_.upper_arm_mm)
-    << ",\"forearm\":" << number(geometry_.forearm_mm) << ",\"hand\":" << number(geometry_.hand_mm)
-    << ",\"tool\":" << number(geometry_.tool_mm) << "}"
-    << ",\"limits_deg\":{\"min\":" << array_json(limits_.min_rad, 1.0 / kDeg)
-    << ",\"max\":" << array_json(limits_.max_rad, 1.0 / kDeg) << "}"
+  o << "{\"mount_mm\":" << vec_json(m)
+    << ",\"yaw_deg\":" << geometry_number(std::atan2(x.y(), x.x()) / arm::kRadPerDeg)
+    << ",\"links_mm\":{\"shoulder_height\":" << geometry_number(geometry_.shoulder_height_mm)
+    << ",\"shoulder_offset\":" << geometry_number(geometry_.shoulder_offset_mm)
+    << ",\"upper_arm\":" << geometry_number(geometry_.upper_arm_mm)
+    << ",\"forearm\":" << geometry_number(geometry_.forearm_mm)
+    << ",\"hand\":" << geometry_number(geometry_.hand_mm)
+    << ",\"tool\":" << geometry_number(geometry_.tool_mm) << "}"
+    << ",\"limits_deg\":{\"min\":" << array_json(limits_.min_rad, 1.0 / arm::kRadPerDeg)
+    << ",\"max\":" << array_json(limits_.max_rad, 1.0 / arm::kRadPerDeg) << "}"
     << ",\"stow_deg\":" << array_json(stow_deg) << ",\"stow\":" << skeleton_json(stow_deg) << "}";
   return o.str();
 }
@@ -143,7 +148,7 @@ Result<std::string> ArmModel::plan_json(
   r.standoff_mm = standoff;
   arm::JointVector current;
   for (int k = 0; k < arm::kJointCount; ++k)
-    current[k] = current_deg[static_cast<std::size_t>(k)] * kDeg;
+    current[k] = current_deg[static_cast<std::size_t>(k)] * arm::kRadPerDeg;
   const arm::ApproachPlan plan = arm::plan_approach(geometry_, limits_, r, current);
   if (!plan.ok())
     return std::string("{\"ok\":false,\"stage\":") +
@@ -151,14 +156,16 @@ Result<std::string> ArmModel::plan_json(
            ",\"reason\":" + json_string(plan.error(limits_).message) + "}";
   auto pose = [this](const arm::JointVector& q, const arm::ToolTarget& t) {
     std::array<double, arm::kJointCount> deg{};
-    for (int k = 0; k < arm::kJointCount; ++k) deg[static_cast<std::size_t>(k)] = q[k] / kDeg;
+    for (int k = 0; k < arm::kJointCount; ++k)
+      deg[static_cast<std::size_t>(k)] = q[k] / arm::kRadPerDeg;
     return "{\"joint_deg\":" + joints_deg_json(q) + ",\"skeleton\":" + skeleton_json(deg) +
            ",\"tip_mm\":" + vec_json(t.tip_mm) + ",\"axis\":" + vec_json(t.axis) + "}";
   };
   const arm::StraightApproach& a = plan.approach;
   return "{\"ok\":true,\"standoff\":" + pose(a.standoff_q, a.standoff) +
-         ",\"contact\":" + pose(a.contact_q, a.contact) + ",\"length_mm\":" + number(a.length_mm) +
-         ",\"duration_s\":" + number(a.duration_s()) + "}";
+         ",\"contact\":" + pose(a.contact_q, a.contact) +
+         ",\"length_mm\":" + geometry_number(a.length_mm) +
+         ",\"duration_s\":" + geometry_number(a.duration_s()) + "}";
 }
 
 }  // namespace petra::gnd

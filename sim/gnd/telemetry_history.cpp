@@ -42,7 +42,7 @@ Result<std::unique_ptr<ground::TlmArchive>> open_archive(const std::string& path
   return ground::TlmArchive::open(path);
 }
 
-std::string number(double v) {
+std::string sample_number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.10g", v);
   return buf;
@@ -92,9 +92,9 @@ std::string dictionary_json() {
         const std::string key = f.count == 1 ? std::string(f.name)
                                              : std::string(f.name) + "[" + std::to_string(k) + "]";
         o << (first_point ? "" : ",") << "{\"key\":" << json_string(key)
-          << ",\"unit\":" << json_string(f.unit) << ",\"min\":" << number(f.min)
-          << ",\"max\":" << number(f.max) << ",\"description\":" << json_string(f.description)
-          << "}";
+          << ",\"unit\":" << json_string(f.unit) << ",\"min\":" << sample_number(f.min)
+          << ",\"max\":" << sample_number(f.max)
+          << ",\"description\":" << json_string(f.description) << "}";
         first_point = false;
       }
     }
@@ -132,7 +132,7 @@ Result<std::string> history_json(const std::string& archive_path, const HistoryR
         unknown_field = true;
         return;
       }
-      out += std::string(first ? "" : ",") + "{\"t\":" + t + ",\"v\":" + number(v) + "}";
+      out += std::string(first ? "" : ",") + "{\"t\":" + t + ",\"v\":" + sample_number(v) + "}";
     }
     first = false;
   });

@@ -114,7 +114,7 @@ new_stage "$out/stage"
 # flight and ground binaries the system checks drive, when this build has them.
 shopt -s nullglob
 n=0
-for t in "$build"/tests/hal_test_* "$build"/tests/hal_*_test_*; do
+for t in "$build"/tests/hal_tests "$build"/tests/hal_*_tests; do
   [ -x "$t" ] && [ -f "$t" ] || continue
   cp "$t" "$stage/hil/bin/"; copy_libs "$t"; n=$((n + 1))
 done

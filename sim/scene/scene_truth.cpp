@@ -6,6 +6,7 @@
 
 #include "algo/camera/calib_json.hpp"
 #include "algo/core/json_writer.hpp"
+#include "sim/io/json_vec3.hpp"
 #include "sim/scene/truth_pixels.hpp"
 
 namespace petra::sim {
@@ -78,10 +79,6 @@ double rms_in(const io::FloatImage& img, const Rect& r, double* max_abs = nullpt
   return n ? std::sqrt(sum2 / static_cast<double>(n)) : -1;
 }
 
-void vec3(json::Writer& w, const Eigen::Vector3d& v) {
-  w.begin_array().number(v.x()).number(v.y()).number(v.z()).end_array();
-}
-
 void rect(json::Writer& w, const Rect& r) {
   w.begin_array().integer(r.x).integer(r.y).integer(r.w).integer(r.h).end_array();
 }
@@ -89,11 +86,11 @@ void rect(json::Writer& w, const Rect& r) {
 // A facet's geometry in the world frame (the contract's facet fields).
 void write_facet(json::Writer& w, const Scene& s, const VisibleFacet& f) {
   w.key("normal");
-  vec3(w, dir_to_world(s, f.normal));
+  write_vec3(w, dir_to_world(s, f.normal));
   w.key("centroid_mm");
-  vec3(w, to_world(s, f.centroid));
+  write_vec3(w, to_world(s, f.centroid));
   w.key("polygon_mm").begin_array();
-  for (const auto& p : f.polygon) vec3(w, to_world(s, p));
+  for (const auto& p : f.polygon) write_vec3(w, to_world(s, p));
   w.end_array();
   w.key("visible_area_mm2").number(f.area_mm2);
   w.key("grind_face").boolean(f.grind_face);
@@ -105,7 +102,7 @@ void write_neighbours(json::Writer& w, const Scene& s) {
   for (std::size_t k = 0; k < s.neighbours.size(); ++k) {
     w.begin_object();
     w.key("centre_mm");
-    vec3(w, to_world(s, s.neighbours[k].centre));
+    write_vec3(w, to_world(s, s.neighbours[k].centre));
     w.key("radius_mm").number(s.neighbours[k].radius_mm);
     w.key("gap_max_mm").number(s.neighbour_gap_mm[k]);
     w.end_object();
@@ -252,12 +249,12 @@ Result<std::string> format_truth_json(const Scene& s, const SceneTruth& t) {
   w.key("ground").begin_object();
   const Eigen::Vector3d ground_n = dir_to_world(s, Eigen::Vector3d::UnitZ());
   w.key("normal");
-  vec3(w, ground_n);
+  write_vec3(w, ground_n);
   w.key("d_mm").number(s.tilted ? -ground_n.dot(s.pivot) : 0.0);
   w.end_object();
   w.raw("\n");
   w.key("sun_dir");
-  vec3(w, dir_to_world(s, s.sun_dir));
+  write_vec3(w, dir_to_world(s, s.sun_dir));
   w.key("seed").integer(static_cast<long long>(s.options.seed));
   w.raw("\n");
   w.key("roi_rectified");
@@ -280,7 +277,7 @@ Result<std::string> format_truth_json(const Scene& s, const SceneTruth& t) {
   w.key("camera_height_mm").number(s.camera_height_mm);
   w.key("tone_ratio").number(s.tone_ratio);
   w.key("rock_centre_mm");
-  vec3(w, to_world(s, s.rock_centre_mm));
+  write_vec3(w, to_world(s, s.rock_centre_mm));
   w.key("noise_dn").number(s.options.noise_sigma_dn);
   w.key("texture").boolean(s.options.texture);
   if (s.options.roi_fill) w.key("roi_fill").boolean(true);

@@ -9,13 +9,9 @@ namespace petra::sim {
 
 namespace {
 
-double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
-}
-
 double match_cost(const TruthFacet& f, const OutputPlane& p) {
   return distance_to_polygon(f.polygon_mm, f.normal, p.centroid_mm) +
-         kMatchMmPerDeg * angle_deg(f.normal, p.normal);
+         kMatchMmPerDeg * angle_between_deg(f.normal, p.normal);
 }
 
 // Optimal one-to-one assignment by dynamic programming over the subsets of
@@ -95,7 +91,7 @@ PlaneScore score_planes(const TruthFile& truth, const PlanesFile& out) {
     if (fs.plane >= 0) {
       const OutputPlane& p = out.planes[static_cast<std::size_t>(fs.plane)];
       used[static_cast<std::size_t>(fs.plane)] = true;
-      fs.normal_error_deg = angle_deg(f.normal, p.normal);
+      fs.normal_error_deg = angle_between_deg(f.normal, p.normal);
       fs.centroid_plane_distance_mm = std::abs(f.normal.dot(p.centroid_mm - f.polygon_mm[0]));
       fs.centroid_outside_mm = in_plane_distance_to_polygon(f.polygon_mm, f.normal, p.centroid_mm);
       fs.centroid_on_facet = fs.centroid_outside_mm == 0.0;
@@ -109,7 +105,7 @@ PlaneScore score_planes(const TruthFile& truth, const PlanesFile& out) {
     GroundScore g;
     const Eigen::Vector3d& nt = truth.ground_normal;
     const Eigen::Vector3d& no = out.ground->normal;
-    g.normal_error_deg = angle_deg(nt, no.dot(nt) < 0 ? Eigen::Vector3d(-no) : no);
+    g.normal_error_deg = angle_between_deg(nt, no.dot(nt) < 0 ? Eigen::Vector3d(-no) : no);
     // Where the ground is under the rock: the scored facets' mean centroid,
     // dropped onto the truth ground plane.
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
@@ -120,6 +116,10 @@ PlaneScore score_planes(const TruthFile& truth, const PlanesFile& out) {
     s.ground = g;
   }
   return s;
+}
+
+double angle_between_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
 }
 
 }  // namespace petra::sim

@@ -17,6 +17,9 @@ namespace petra::sim {
 
 inline constexpr double kMatchMmPerDeg = 1.0;
 
+// Angle between two directions (deg); neither need be of unit length.
+double angle_between_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+
 struct FacetScore {
   int facet = 0;                          // index into truth facets
   int plane = -1;                         // matched output plane, -1 when none is left

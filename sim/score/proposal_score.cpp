@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "algo/core/json_writer.hpp"
+#include "sim/score/plane_score.hpp"
 
 namespace petra::sim {
 
@@ -13,10 +14,6 @@ namespace {
 
 bool is_target(const TruthFacet& f) {
   return f.grindable && f.reachable;
-}
-
-double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
 }
 
 // Order of preference: matching a target, matching, then the smallest
@@ -48,7 +45,7 @@ FacetMatch best_facet(const TruthFile& truth, const ProposalPlane& plane) {
 FacetMatch match_facet(const TruthFacet& f, const Eigen::Vector3d& normal,
                        const Eigen::Vector3d& centroid) {
   FacetMatch m;
-  m.normal_error_deg = angle_deg(normal, f.normal);
+  m.normal_error_deg = angle_between_deg(normal, f.normal);
   m.centroid_plane_mm = std::abs(f.normal.dot(centroid - f.centroid_mm));
   m.centroid_outside_mm = in_plane_distance_to_polygon(f.polygon_mm, f.normal, centroid);
   m.matches = m.normal_error_deg <= kProposalMatchDeg && m.centroid_plane_mm <= kProposalMatchMm &&

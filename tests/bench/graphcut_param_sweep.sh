@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The graph cut's energy parameters swept on the Middlebury pairs
 # (docs/graphcut.md, "Limits": the joint sweep of the energy's parameters). Each line
-# of the sweep runs the Explore test of sim_eval_test_graphcut_middlebury once
+# of the sweep runs the Explore test of sim_eval_tests once
 # and prints its score line, prefixed with the setting. Two runs at a time (one
 # per core); about 10 minutes on 2 cores for the Baby1 grid.
 #   tests/bench/graphcut_param_sweep.sh [baby1|others] [BUILD_DIR]
@@ -14,8 +14,8 @@ cd "$(dirname "$0")/../.."
 which=${1:-baby1}
 case "$which" in baby1 | others) ;; *) echo "usage: $0 [baby1|others] [BUILD_DIR]"; exit 2 ;; esac
 build=${2:-build/release}
-test_bin=$build/tests/sim_eval_test_graphcut_middlebury
-[ -x "$test_bin" ] || { echo "missing $test_bin (cmake --build $build --target sim_eval_test_graphcut_middlebury)"; exit 1; }
+test_bin=$build/tests/sim_eval_tests
+[ -x "$test_bin" ] || { echo "missing $test_bin (cmake --build $build --target sim_eval_tests)"; exit 1; }
 
 # One setting: scene K lambda1 lambda2 edge clip ("-" keeps the automatic value).
 run_one() {

@@ -15,7 +15,7 @@
 namespace petra::cmd {
 namespace {
 
-AuthKey test_key() {
+AuthKey propose_test_key() {
   AuthKey k;
   for (std::size_t i = 0; i < k.bytes.size(); ++i) k.bytes[i] = static_cast<std::uint8_t>(3 + i);
   return k;
@@ -57,7 +57,7 @@ class ProposeCommand : public ::testing::Test {
   }
   // The field a refusal names, as `petra tlm` and the ground station show it.
   static std::string field(const Verdict& v) { return ProposeArgs::fields()[v.detail].name; }
-  AuthKey key_ = test_key();
+  AuthKey key_ = propose_test_key();
   std::uint32_t counter_ = 10;
 };
 

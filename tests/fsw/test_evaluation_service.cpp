@@ -29,7 +29,7 @@ cmd::SelectRoiArgs roi_args(int x, int y, int w, int h, int planes) {
   return a;
 }
 
-fsw::EvalOutput two_planes() {
+fsw::EvalOutput two_service_planes() {
   fsw::EvalOutput o;
   tlm::GrindPlane a;
   a.normal = {0.0, -0.6, -0.8};
@@ -154,7 +154,7 @@ TEST(EvaluationService, RefusesToStartWithoutAPipeline) {
 // the result is published with each plane stamped, and kept for ARM_GOTO.
 TEST(EvaluationService, StartsPollsAndPublishesTheResult) {
   ServiceRig rig;
-  rig.job.script = two_planes();
+  rig.job.script = two_service_planes();
   ASSERT_TRUE(rig.params.set(static_cast<std::uint16_t>(ParamId::MATCH_METHOD), 1).ok());
   cmd::SelectRoiArgs a = roi_args(8, 4, 32, 24, 3);
   a.has_click = 1;
@@ -194,7 +194,7 @@ TEST(EvaluationService, StartsPollsAndPublishesTheResult) {
 
 TEST(EvaluationService, RefusesASecondStartWhileBusyAndDropsAnAbortedResult) {
   ServiceRig rig;
-  rig.job.script = two_planes();
+  rig.job.script = two_service_planes();
   rig.job.hold.store(true);
   rig.service.select(fsw::selection_from(roi_args(8, 4, 32, 24, 2)));
   ASSERT_TRUE(rig.service.start(rig.frame()).ok());

@@ -12,7 +12,7 @@ namespace {
 
 using cmd::FunctionCode;
 
-fsw::EvalOutput two_planes() {
+fsw::EvalOutput two_executive_planes() {
   fsw::EvalOutput o;
   tlm::GrindPlane a;
   a.normal = {0.0, -0.6, -0.8};
@@ -53,7 +53,7 @@ TEST(Executive, BootsToIdleWithBootEventAndHousekeeping) {
 
 TEST(Executive, SelectRoiAndEvaluateDownlinkThePipelinesPlanes) {
   ExecutiveHarness h;
-  h.job.script = two_planes();
+  h.job.script = two_executive_planes();
   ASSERT_TRUE(h.boot().ok());
   const auto sel = h.make(FunctionCode::SELECT_ROI, roi(20, 10, 100, 80, 3));
   cmd::EvaluateArgs ev;
@@ -79,7 +79,7 @@ TEST(Executive, SelectRoiAndEvaluateDownlinkThePipelinesPlanes) {
 
   const auto planes = h.all<tlm::GrindPlane>();
   ASSERT_EQ(planes.size(), 2u);
-  const auto want = two_planes();
+  const auto want = two_executive_planes();
   for (std::size_t i = 0; i < 2; ++i) {
     EXPECT_EQ(planes[i].rank, i);
     EXPECT_EQ(planes[i].normal, want.planes[i].normal);  // f64 on the wire: exact

@@ -12,7 +12,7 @@
 namespace petra::hal {
 namespace {
 
-CanFrame frame(std::uint32_t id, std::initializer_list<std::uint8_t> bytes) {
+CanFrame can_frame(std::uint32_t id, std::initializer_list<std::uint8_t> bytes) {
   CanFrame f;
   f.id = id;
   for (std::uint8_t b : bytes) f.data[f.len++] = b;
@@ -25,8 +25,8 @@ TEST(CanLoopback, EveryOtherEndpointReceivesInOrderAndTheSenderDoesNot) {
   auto b = bus->attach();
   auto c = bus->attach();
   ASSERT_TRUE(a.ok() && b.ok() && c.ok());
-  ASSERT_TRUE((*a)->send(frame(0x181, {1, 2, 3})).ok());
-  ASSERT_TRUE((*a)->send(frame(0x182, {4})).ok());
+  ASSERT_TRUE((*a)->send(can_frame(0x181, {1, 2, 3})).ok());
+  ASSERT_TRUE((*a)->send(can_frame(0x182, {4})).ok());
   for (CanPort* p : {static_cast<CanPort*>(*b), static_cast<CanPort*>(*c)}) {
     CanFrame f;
     auto got = p->receive(f, 0);
@@ -54,9 +54,9 @@ TEST(CanLoopback, FiltersSelectByIdAndMask) {
   auto sender = bus->attach();
   auto node3 = bus->attach(only_node3);
   ASSERT_TRUE(sender.ok() && node3.ok());
-  ASSERT_TRUE((*sender)->send(frame(0x203, {1})).ok());
-  ASSERT_TRUE((*sender)->send(frame(0x204, {2})).ok());
-  ASSERT_TRUE((*sender)->send(frame(0x603, {3})).ok());
+  ASSERT_TRUE((*sender)->send(can_frame(0x203, {1})).ok());
+  ASSERT_TRUE((*sender)->send(can_frame(0x204, {2})).ok());
+  ASSERT_TRUE((*sender)->send(can_frame(0x603, {3})).ok());
   CanFrame f;
   ASSERT_TRUE(*(*node3)->receive(f, 0));
   EXPECT_EQ(f.id, 0x203u);
@@ -69,9 +69,9 @@ TEST(CanLoopback, InvalidFramesAreRefusedAndNothingIsSent) {
   auto bus = std::make_unique<CanLoopbackBus>();
   auto a = bus->attach();
   auto b = bus->attach();
-  CanFrame wide = frame(0x800, {});
+  CanFrame wide = can_frame(0x800, {});
   EXPECT_EQ((*a)->send(wide).code(), Errc::invalid_argument);
-  CanFrame longer = frame(0x100, {});
+  CanFrame longer = can_frame(0x100, {});
   longer.len = 9;
   EXPECT_EQ((*a)->send(longer).code(), Errc::invalid_argument);
   wide.extended = true;  // fits 29 bits
@@ -87,7 +87,7 @@ TEST(CanLoopback, AFullReceiveQueueDropsAndCounts) {
   auto a = bus->attach();
   auto b = bus->attach();
   for (std::size_t i = 0; i < CanLoopbackBus::kQueueDepth + 5; ++i) {
-    ASSERT_TRUE((*a)->send(frame(0x100, {static_cast<std::uint8_t>(i)})).ok());
+    ASSERT_TRUE((*a)->send(can_frame(0x100, {static_cast<std::uint8_t>(i)})).ok());
   }
   EXPECT_EQ((*b)->health().rx_dropped, 5u);
   CanFrame f;
@@ -100,13 +100,13 @@ TEST(CanLoopback, BusOffRefusesSendsUntilRestartAndErrorFramesAreCounted) {
   auto a = bus->attach();
   auto b = bus->attach();
   bus->set_bus_off(**a, true);
-  EXPECT_EQ((*a)->send(frame(0x100, {})).code(), Errc::io_error);
+  EXPECT_EQ((*a)->send(can_frame(0x100, {})).code(), Errc::io_error);
   EXPECT_EQ((*a)->health().state, CanBusState::bus_off);
   EXPECT_EQ((*a)->health().tx_dropped, 1u);
   CanFrame f;
   EXPECT_FALSE(*(*b)->receive(f, 0));
   bus->set_bus_off(**a, false);
-  EXPECT_TRUE((*a)->send(frame(0x100, {})).ok());
+  EXPECT_TRUE((*a)->send(can_frame(0x100, {})).ok());
   EXPECT_EQ((*a)->health().bus_off_count, 1u);
   EXPECT_EQ((*a)->health().restarts, 1u);
   bus->inject_error_frame(**b, CAN_ERR_PROT);
@@ -123,7 +123,7 @@ TEST(CanLoopback, ReceiveWaitsForAFrameFromAnotherThread) {
   auto b = bus->attach();
   std::thread sender([&] {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    (void)(*a)->send(frame(0x701, {5}));
+    (void)(*a)->send(can_frame(0x701, {5}));
   });
   CanFrame f;
   auto got = (*b)->receive(f, 5000);
@@ -148,7 +148,7 @@ TEST(CanLoopback, AttachIsBoundedAndTrafficDoesNotAllocate) {
   test::HeapScope scope;
   CanFrame f;
   for (int i = 0; i < 1000; ++i) {
-    (void)first->send(frame(0x100, {1, 2}));
+    (void)first->send(can_frame(0x100, {1, 2}));
     (void)first->receive(f, 0);
   }
   EXPECT_EQ(scope.allocations(), 0u);

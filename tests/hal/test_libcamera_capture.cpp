@@ -15,9 +15,10 @@
 namespace petra::hal {
 namespace {
 
-LibcameraCaptureConfig config(int w, int h,
-                              std::initializer_list<PixelFormat> formats = {
-                                  PixelFormat::grey, PixelFormat::rgb24, PixelFormat::bgr24}) {
+LibcameraCaptureConfig libcamera_config(int w, int h,
+                                        std::initializer_list<PixelFormat> formats = {
+                                            PixelFormat::grey, PixelFormat::rgb24,
+                                            PixelFormat::bgr24}) {
   LibcameraCaptureConfig c;
   std::snprintf(c.camera.data(), c.camera.size(), "%s",
                 test::env_or("PETRA_TEST_LIBCAMERA", "").c_str());
@@ -31,12 +32,12 @@ LibcameraCaptureConfig config(int w, int h,
 TEST(LibcameraConfig, BadFieldsAreNamedAndNothingStarts) {
   LibcameraCapture cam;
   if (!libcamera_available()) {
-    EXPECT_EQ(cam.open(config(640, 480)).code(), Errc::not_ready);
+    EXPECT_EQ(cam.open(libcamera_config(640, 480)).code(), Errc::not_ready);
     return;
   }
-  EXPECT_EQ(cam.open(config(0, 480)).code(), Errc::invalid_argument);
-  EXPECT_EQ(cam.open(config(640, 480, {})).code(), Errc::missing_field);
-  auto c = config(640, 480);
+  EXPECT_EQ(cam.open(libcamera_config(0, 480)).code(), Errc::invalid_argument);
+  EXPECT_EQ(cam.open(libcamera_config(640, 480, {})).code(), Errc::missing_field);
+  auto c = libcamera_config(640, 480);
   c.buffers = 1;
   EXPECT_EQ(cam.open(c).code(), Errc::invalid_argument);
   EXPECT_FALSE(cam.is_open());
@@ -65,7 +66,7 @@ class LibcameraOnVimc : public ::testing::Test {
 
 TEST_F(LibcameraOnVimc, StreamsCheckedFramesConvertedToGray) {
   LibcameraCapture cam;
-  auto s = cam.open(config(kW, kH));
+  auto s = cam.open(libcamera_config(kW, kH));
   ASSERT_TRUE(s.ok()) << s.error().message;
   std::printf("figure: libcamera camera '%s': %s %dx%d, %u bytes a line\n", cam.camera_id(),
               pixel_format_name(cam.format().pixel), cam.format().width, cam.format().height,
@@ -102,7 +103,7 @@ TEST_F(LibcameraOnVimc, StreamsCheckedFramesConvertedToGray) {
 
 TEST_F(LibcameraOnVimc, NoFrameYetIsATimeout) {
   LibcameraCapture cam;
-  ASSERT_TRUE(cam.open(config(kW, kH)).ok());
+  ASSERT_TRUE(cam.open(libcamera_config(kW, kH)).ok());
   ASSERT_TRUE(cam.start().ok());
   auto none = cam.next(0);  // the first frame is tens of ms away
   ASSERT_FALSE(none.ok());
@@ -113,7 +114,7 @@ TEST_F(LibcameraOnVimc, NoFrameYetIsATimeout) {
 
 TEST_F(LibcameraOnVimc, ASizeTheCameraChangesIsRefused) {
   LibcameraCapture cam;
-  auto s = cam.open(config(640, 480));
+  auto s = cam.open(libcamera_config(640, 480));
   if (s.ok()) GTEST_FAIL() << "vimc accepted 640x480 as is";
   EXPECT_EQ(s.code(), Errc::invalid_argument) << s.error().message;
   EXPECT_NE(std::strstr(s.error().message, "configured 640x480"), nullptr) << s.error().message;
@@ -122,7 +123,7 @@ TEST_F(LibcameraOnVimc, ASizeTheCameraChangesIsRefused) {
 
 TEST_F(LibcameraOnVimc, SideBySidePairFromOneCamera) {
   LibcameraCapture cam;
-  auto s = cam.open(config(2 * kW, kH));
+  auto s = cam.open(libcamera_config(2 * kW, kH));
   ASSERT_TRUE(s.ok()) << s.error().message;
   ASSERT_TRUE(cam.start().ok());
   StereoTiming t;

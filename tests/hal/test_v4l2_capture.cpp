@@ -16,8 +16,8 @@
 namespace petra::hal {
 namespace {
 
-V4l2CaptureConfig config(const std::string& device, int w, int h,
-                         std::initializer_list<PixelFormat> formats = {PixelFormat::grey}) {
+V4l2CaptureConfig v4l2_config(const std::string& device, int w, int h,
+                              std::initializer_list<PixelFormat> formats = {PixelFormat::grey}) {
   V4l2CaptureConfig c;
   std::snprintf(c.device.data(), c.device.size(), "%s", device.c_str());
   c.width = w;
@@ -32,10 +32,10 @@ V4l2CaptureConfig config(const std::string& device, int w, int h,
 
 TEST(V4l2CaptureConfig, EveryBadFieldIsNamed) {
   V4l2Capture cam;
-  EXPECT_EQ(cam.open(config("", 640, 480)).code(), Errc::missing_field);
-  EXPECT_EQ(cam.open(config("/dev/video0", 0, 480)).code(), Errc::invalid_argument);
-  EXPECT_EQ(cam.open(config("/dev/video0", 640, 480, {})).code(), Errc::missing_field);
-  auto few = config("/dev/video0", 640, 480);
+  EXPECT_EQ(cam.open(v4l2_config("", 640, 480)).code(), Errc::missing_field);
+  EXPECT_EQ(cam.open(v4l2_config("/dev/video0", 0, 480)).code(), Errc::invalid_argument);
+  EXPECT_EQ(cam.open(v4l2_config("/dev/video0", 640, 480, {})).code(), Errc::missing_field);
+  auto few = v4l2_config("/dev/video0", 640, 480);
   few.buffers = 1;
   EXPECT_EQ(cam.open(few).code(), Errc::invalid_argument);
   few.buffers = V4l2Capture::kMaxBuffers + 1;
@@ -47,13 +47,13 @@ TEST(V4l2CaptureConfig, EveryBadFieldIsNamed) {
 
 TEST(V4l2CaptureConfig, MissingDevicesAndNonCamerasAreIoErrors) {
   V4l2Capture cam;
-  auto by_name = cam.open(config("no-such-camera", 640, 480));
+  auto by_name = cam.open(v4l2_config("no-such-camera", 640, 480));
   ASSERT_FALSE(by_name.ok());
   EXPECT_EQ(by_name.code(), Errc::io_error);
   EXPECT_NE(std::strstr(by_name.error().message, "no-such-camera"), nullptr);
-  auto by_path = cam.open(config("/dev/no-such-video", 640, 480));
+  auto by_path = cam.open(v4l2_config("/dev/no-such-video", 640, 480));
   EXPECT_EQ(by_path.code(), Errc::io_error);
-  auto not_v4l2 = cam.open(config("/dev/null", 640, 480));
+  auto not_v4l2 = cam.open(v4l2_config("/dev/null", 640, 480));
   ASSERT_FALSE(not_v4l2.ok());
   EXPECT_NE(std::strstr(not_v4l2.error().message, "QUERYCAP"), nullptr) << not_v4l2.error().message;
 }
@@ -77,7 +77,7 @@ class V4l2OnVivid : public ::testing::Test {
 
 TEST_F(V4l2OnVivid, StreamsCheckedGreyFramesWithoutHeap) {
   V4l2Capture cam;
-  auto s = cam.open(config(test::vivid_left(), 640, 480));  // by name
+  auto s = cam.open(v4l2_config(test::vivid_left(), 640, 480));  // by name
   ASSERT_TRUE(s.ok()) << s.error().message;
   EXPECT_STREQ(cam.path(), path_.c_str());
   EXPECT_EQ(cam.format().pixel, PixelFormat::grey);
@@ -113,7 +113,7 @@ TEST_F(V4l2OnVivid, NegotiatesEachFormatAndConvertsToTheSameLuma) {
   for (PixelFormat f : {PixelFormat::grey, PixelFormat::y16, PixelFormat::yuyv}) {
     SCOPED_TRACE(pixel_format_name(f));
     V4l2Capture cam;
-    auto s = cam.open(config(path_, 640, 480, {f}));  // by path
+    auto s = cam.open(v4l2_config(path_, 640, 480, {f}));  // by path
     ASSERT_TRUE(s.ok()) << s.error().message;
     EXPECT_EQ(cam.format().pixel, f);
     EXPECT_GE(cam.format().bytes_per_line, 640u * static_cast<unsigned>(bytes_per_pixel(f)));
@@ -148,7 +148,7 @@ TEST_F(V4l2OnVivid, NegotiatesEachFormatAndConvertsToTheSameLuma) {
 
 TEST_F(V4l2OnVivid, SetsASupportedFrameRateAndRefusesOthers) {
   V4l2Capture cam;
-  auto c = config(path_, 640, 480);
+  auto c = v4l2_config(path_, 640, 480);
   c.fps = 25;
   auto s = cam.open(c);
   EXPECT_TRUE(s.ok()) << s.error().message;
@@ -160,13 +160,13 @@ TEST_F(V4l2OnVivid, SetsASupportedFrameRateAndRefusesOthers) {
 
 TEST_F(V4l2OnVivid, PrefersTheFirstOfferedFormat) {
   V4l2Capture cam;
-  ASSERT_TRUE(cam.open(config(path_, 640, 480, {PixelFormat::yuyv, PixelFormat::grey})).ok());
+  ASSERT_TRUE(cam.open(v4l2_config(path_, 640, 480, {PixelFormat::yuyv, PixelFormat::grey})).ok());
   EXPECT_EQ(cam.format().pixel, PixelFormat::yuyv);
 }
 
 TEST_F(V4l2OnVivid, ASizeTheDriverChangesIsRefused) {
   V4l2Capture cam;
-  auto s = cam.open(config(path_, 1000, 700));
+  auto s = cam.open(v4l2_config(path_, 1000, 700));
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.code(), Errc::invalid_argument);
   EXPECT_NE(std::strstr(s.error().message, "configured 1000x700"), nullptr) << s.error().message;
@@ -175,7 +175,7 @@ TEST_F(V4l2OnVivid, ASizeTheDriverChangesIsRefused) {
 
 TEST_F(V4l2OnVivid, NoFrameIsATimeoutAndStreamingResumesAfter) {
   V4l2Capture cam;
-  ASSERT_TRUE(cam.open(config(path_, 640, 480)).ok());
+  ASSERT_TRUE(cam.open(v4l2_config(path_, 640, 480)).ok());
   ASSERT_TRUE(cam.start().ok());
   ASSERT_TRUE(test::next_frame(cam, 2000).ok());
   ASSERT_TRUE(test::set_v4l2_control(path_, "Percentage of Dropped Buffers", 100));
@@ -195,7 +195,7 @@ TEST_F(V4l2OnVivid, NoFrameIsATimeoutAndStreamingResumesAfter) {
 
 TEST_F(V4l2OnVivid, ACorruptedBufferIsRejectedAndTheNextFrameIsFine) {
   V4l2Capture cam;
-  ASSERT_TRUE(cam.open(config(path_, 640, 480)).ok());
+  ASSERT_TRUE(cam.open(v4l2_config(path_, 640, 480)).ok());
   ASSERT_TRUE(cam.start().ok());
   ASSERT_TRUE(test::next_frame(cam, 2000).ok());
   ASSERT_TRUE(test::set_v4l2_control(path_, "Inject V4L2_BUF_FLAG_ERROR", 1));
@@ -217,7 +217,7 @@ TEST_F(V4l2OnVivid, ACorruptedBufferIsRejectedAndTheNextFrameIsFine) {
 
 TEST_F(V4l2OnVivid, LostFramesAreASequenceGap) {
   V4l2Capture cam;
-  auto c = config(path_, 640, 480);
+  auto c = v4l2_config(path_, 640, 480);
   c.gaps_are_faults = true;
   ASSERT_TRUE(cam.open(c).ok());
   ASSERT_TRUE(cam.start().ok());
@@ -243,7 +243,7 @@ TEST(V4l2OnVividSpare, ADisconnectedCameraEndsAsDeviceLost) {
     GTEST_SKIP() << "skipped: no V4L2 node named '" << test::vivid_spare()
                  << "' (the HIL bench loads vivid)";
   V4l2Capture cam;
-  ASSERT_TRUE(cam.open(config(spare, 640, 480)).ok());
+  ASSERT_TRUE(cam.open(v4l2_config(spare, 640, 480)).ok());
   ASSERT_TRUE(cam.start().ok());
   ASSERT_TRUE(test::next_frame(cam, 2000).ok());
   ASSERT_TRUE(test::set_v4l2_control(spare, "Disconnect", 1));

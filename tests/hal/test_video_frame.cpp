@@ -20,7 +20,7 @@ FrameFormat grey(int w, int h) {
                      static_cast<std::uint32_t>(w * h)};
 }
 
-RawFrame frame(const std::vector<std::uint8_t>& px, std::uint32_t seq, std::int64_t t_ns) {
+RawFrame raw_frame(const std::vector<std::uint8_t>& px, std::uint32_t seq, std::int64_t t_ns) {
   RawFrame f;
   f.data = px.data();
   f.bytes_used = static_cast<std::uint32_t>(px.size());
@@ -66,7 +66,7 @@ TEST(FrameChecker, AcceptsAnOrderlyStream) {
   FrameFault fault = FrameFault::driver_error;
   test::HeapScope heap;
   for (std::uint32_t s = 5; s < 50; ++s) {
-    ASSERT_TRUE(c.check(frame(px, s, 1000 + s * 33'000'000LL), fault).ok()) << s;
+    ASSERT_TRUE(c.check(raw_frame(px, s, 1000 + s * 33'000'000LL), fault).ok()) << s;
     EXPECT_EQ(fault, FrameFault::none);
   }
   EXPECT_EQ(heap.allocations(), 0u);
@@ -82,23 +82,23 @@ TEST(FrameChecker, EachBrokenFrameIsAnErrorNamingTheFault) {
     FrameFault fault;
     const char* words;
   };
-  RawFrame flagged = frame(px, 2, 2000);
+  RawFrame flagged = raw_frame(px, 2, 2000);
   flagged.driver_error = true;
   const Case cases[] = {
       {"driver flag", flagged, FrameFault::driver_error, "corrupted"},
-      {"short", frame(short_px, 2, 2000), FrameFault::wrong_size, "127 bytes"},
-      {"long", frame(long_px, 2, 2000), FrameFault::wrong_size, "129 bytes"},
-      {"gap", frame(px, 5, 2000), FrameFault::sequence_gap, "3 frame(s) lost after 1"},
-      {"same seq", frame(px, 1, 2000), FrameFault::sequence_backwards, "went back"},
-      {"seq back", frame(px, 0, 2000), FrameFault::sequence_backwards, "went back"},
-      {"time back", frame(px, 2, 999), FrameFault::timestamp_backwards, "not after"},
-      {"time same", frame(px, 2, 1000), FrameFault::timestamp_backwards, "not after"},
+      {"short", raw_frame(short_px, 2, 2000), FrameFault::wrong_size, "127 bytes"},
+      {"long", raw_frame(long_px, 2, 2000), FrameFault::wrong_size, "129 bytes"},
+      {"gap", raw_frame(px, 5, 2000), FrameFault::sequence_gap, "3 frame(s) lost after 1"},
+      {"same seq", raw_frame(px, 1, 2000), FrameFault::sequence_backwards, "went back"},
+      {"seq back", raw_frame(px, 0, 2000), FrameFault::sequence_backwards, "went back"},
+      {"time back", raw_frame(px, 2, 999), FrameFault::timestamp_backwards, "not after"},
+      {"time same", raw_frame(px, 2, 1000), FrameFault::timestamp_backwards, "not after"},
   };
   for (const Case& k : cases) {
     FrameChecker c;
     c.reset(grey(16, 8));
     FrameFault fault = FrameFault::none;
-    ASSERT_TRUE(c.check(frame(px, 1, 1000), fault).ok());
+    ASSERT_TRUE(c.check(raw_frame(px, 1, 1000), fault).ok());
     auto s = c.check(k.second, fault);
     ASSERT_FALSE(s.ok()) << k.name;
     EXPECT_EQ(s.code(), Errc::parse_error) << k.name;
@@ -112,11 +112,11 @@ TEST(FrameChecker, OneFaultIsOneErrorNotACascade) {
   FrameChecker c;
   c.reset(grey(16, 8));
   FrameFault fault;
-  ASSERT_TRUE(c.check(frame(px, 1, 1000), fault).ok());
-  EXPECT_FALSE(c.check(frame(px, 9, 2000), fault).ok());  // 7 lost
-  EXPECT_TRUE(c.check(frame(px, 10, 3000), fault).ok());  // continues from 9
-  c.reset(grey(16, 8));                                   // a new run: no previous frame
-  EXPECT_TRUE(c.check(frame(px, 100, 100), fault).ok());
+  ASSERT_TRUE(c.check(raw_frame(px, 1, 1000), fault).ok());
+  EXPECT_FALSE(c.check(raw_frame(px, 9, 2000), fault).ok());  // 7 lost
+  EXPECT_TRUE(c.check(raw_frame(px, 10, 3000), fault).ok());  // continues from 9
+  c.reset(grey(16, 8));                                       // a new run: no previous frame
+  EXPECT_TRUE(c.check(raw_frame(px, 100, 100), fault).ok());
 }
 
 TEST(FrameChecker, GapsOfAFreeRunningCameraAreOnlyCounted) {
@@ -124,12 +124,12 @@ TEST(FrameChecker, GapsOfAFreeRunningCameraAreOnlyCounted) {
   FrameChecker c;
   c.reset(grey(16, 8), /*gaps_are_faults=*/false);
   FrameFault fault;
-  ASSERT_TRUE(c.check(frame(px, 1, 1000), fault).ok());
-  EXPECT_TRUE(c.check(frame(px, 5, 2000), fault).ok());
+  ASSERT_TRUE(c.check(raw_frame(px, 1, 1000), fault).ok());
+  EXPECT_TRUE(c.check(raw_frame(px, 5, 2000), fault).ok());
   EXPECT_EQ(c.lost(), 3u);
-  EXPECT_TRUE(c.check(frame(px, 6, 3000), fault).ok());
+  EXPECT_TRUE(c.check(raw_frame(px, 6, 3000), fault).ok());
   EXPECT_EQ(c.lost(), 0u);
-  EXPECT_FALSE(c.check(frame(px, 6, 4000), fault).ok());  // a repeat is still a fault
+  EXPECT_FALSE(c.check(raw_frame(px, 6, 4000), fault).ok());  // a repeat is still a fault
   EXPECT_EQ(fault, FrameFault::sequence_backwards);
 }
 
@@ -138,10 +138,10 @@ TEST(FrameChecker, SequenceCounterWrapsLikeTheDriver) {
   FrameChecker c;
   c.reset(grey(16, 8));
   FrameFault fault;
-  ASSERT_TRUE(c.check(frame(px, UINT32_MAX - 1, 1000), fault).ok());
-  EXPECT_TRUE(c.check(frame(px, UINT32_MAX, 2000), fault).ok());
-  EXPECT_TRUE(c.check(frame(px, 0, 3000), fault).ok());
-  auto gap = c.check(frame(px, 3, 4000), fault);
+  ASSERT_TRUE(c.check(raw_frame(px, UINT32_MAX - 1, 1000), fault).ok());
+  EXPECT_TRUE(c.check(raw_frame(px, UINT32_MAX, 2000), fault).ok());
+  EXPECT_TRUE(c.check(raw_frame(px, 0, 3000), fault).ok());
+  auto gap = c.check(raw_frame(px, 3, 4000), fault);
   EXPECT_EQ(fault, FrameFault::sequence_gap) << (gap.ok() ? "" : gap.error().message);
 }
 
@@ -153,7 +153,7 @@ TEST(ConvertToGray, TakesLumaFromEachFormat) {
 
   std::vector<std::uint8_t> g = {10, 20, 30, 40, 0, 0, 50, 60, 70, 80, 0, 0};
   FrameFormat fg{PixelFormat::grey, 4, 2, 6, 12};
-  ASSERT_TRUE(convert_to_gray(frame(g, 0, 0), fg, 0, view).ok());
+  ASSERT_TRUE(convert_to_gray(raw_frame(g, 0, 0), fg, 0, view).ok());
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 4; ++x) EXPECT_EQ(view(x, y), luma[y][x]);
 
@@ -169,12 +169,12 @@ TEST(ConvertToGray, TakesLumaFromEachFormat) {
   }
   FrameFormat f16{PixelFormat::y16, 4, 2, 8, 16};
   out.fill(0);
-  ASSERT_TRUE(convert_to_gray(frame(y16, 0, 0), f16, 0, view).ok());
+  ASSERT_TRUE(convert_to_gray(raw_frame(y16, 0, 0), f16, 0, view).ok());
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 4; ++x) EXPECT_EQ(view(x, y), luma[y][x]);
   FrameFormat fyuyv{PixelFormat::yuyv, 4, 2, 8, 16};
   out.fill(0);
-  ASSERT_TRUE(convert_to_gray(frame(yuyv, 0, 0), fyuyv, 0, view).ok());
+  ASSERT_TRUE(convert_to_gray(raw_frame(yuyv, 0, 0), fyuyv, 0, view).ok());
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 4; ++x) EXPECT_EQ(view(x, y), luma[y][x]);
 }
@@ -189,11 +189,11 @@ TEST(ConvertToGray, ColourIsRec601LumaInEitherByteOrder) {
   const std::array<std::uint8_t, 6> want{255, 0, 77, 149, 29, 128};
   std::array<std::uint8_t, 6> out{};
   FrameFormat f{PixelFormat::rgb24, 6, 1, 18, 18};
-  ASSERT_TRUE(convert_to_gray(frame(rgb, 0, 0), f, 0, Gray8View(out.data(), 6, 1)).ok());
+  ASSERT_TRUE(convert_to_gray(raw_frame(rgb, 0, 0), f, 0, Gray8View(out.data(), 6, 1)).ok());
   EXPECT_EQ(out, want);
   f.pixel = PixelFormat::bgr24;
   out.fill(0);
-  ASSERT_TRUE(convert_to_gray(frame(bgr, 0, 0), f, 0, Gray8View(out.data(), 6, 1)).ok());
+  ASSERT_TRUE(convert_to_gray(raw_frame(bgr, 0, 0), f, 0, Gray8View(out.data(), 6, 1)).ok());
   EXPECT_EQ(out, want);
 }
 
@@ -201,10 +201,10 @@ TEST(ConvertToGray, StretchesVideoRangeLumaToFullRange) {
   std::vector<std::uint8_t> yuyv = {16, 128, 235, 128, 179, 128, 5, 128, 250, 128, 126, 128};
   FrameFormat f{PixelFormat::yuyv, 6, 1, 12, 12, true};
   std::array<std::uint8_t, 6> out{};
-  ASSERT_TRUE(convert_to_gray(frame(yuyv, 0, 0), f, 0, Gray8View(out.data(), 6, 1)).ok());
+  ASSERT_TRUE(convert_to_gray(raw_frame(yuyv, 0, 0), f, 0, Gray8View(out.data(), 6, 1)).ok());
   EXPECT_EQ(out, (std::array<std::uint8_t, 6>{0, 255, 190, 0, 255, 128}));
   f.limited_range = false;
-  ASSERT_TRUE(convert_to_gray(frame(yuyv, 0, 0), f, 0, Gray8View(out.data(), 6, 1)).ok());
+  ASSERT_TRUE(convert_to_gray(raw_frame(yuyv, 0, 0), f, 0, Gray8View(out.data(), 6, 1)).ok());
   EXPECT_EQ(out, (std::array<std::uint8_t, 6>{16, 235, 179, 5, 250, 126}));
 }
 
@@ -212,14 +212,14 @@ TEST(ConvertToGray, SplitsASideBySidePairAndRefusesRegionsOutside) {
   std::vector<std::uint8_t> sbs = {1, 2, 3, 4, 5, 6, 7, 8};  // 4x2: left 2 columns, right 2
   FrameFormat f{PixelFormat::grey, 4, 2, 4, 8};
   std::array<std::uint8_t, 4> l{}, r{};
-  ASSERT_TRUE(convert_to_gray(frame(sbs, 0, 0), f, 0, Gray8View(l.data(), 2, 2)).ok());
-  ASSERT_TRUE(convert_to_gray(frame(sbs, 0, 0), f, 2, Gray8View(r.data(), 2, 2)).ok());
+  ASSERT_TRUE(convert_to_gray(raw_frame(sbs, 0, 0), f, 0, Gray8View(l.data(), 2, 2)).ok());
+  ASSERT_TRUE(convert_to_gray(raw_frame(sbs, 0, 0), f, 2, Gray8View(r.data(), 2, 2)).ok());
   EXPECT_EQ(l, (std::array<std::uint8_t, 4>{1, 2, 5, 6}));
   EXPECT_EQ(r, (std::array<std::uint8_t, 4>{3, 4, 7, 8}));
-  EXPECT_EQ(convert_to_gray(frame(sbs, 0, 0), f, 3, Gray8View(r.data(), 2, 2)).code(),
+  EXPECT_EQ(convert_to_gray(raw_frame(sbs, 0, 0), f, 3, Gray8View(r.data(), 2, 2)).code(),
             Errc::out_of_range);
   std::vector<std::uint8_t> cut(sbs.begin(), sbs.begin() + 5);
-  EXPECT_EQ(convert_to_gray(frame(cut, 0, 0), f, 0, Gray8View(l.data(), 2, 2)).code(),
+  EXPECT_EQ(convert_to_gray(raw_frame(cut, 0, 0), f, 0, Gray8View(l.data(), 2, 2)).code(),
             Errc::invalid_argument);
 }
 
@@ -228,17 +228,17 @@ TEST(DeinterleavePair, ByteZeroIsLeftByteOneIsRight) {
   FrameFormat f{PixelFormat::y16, 2, 2, 4, 8};
   std::array<std::uint8_t, 4> l{}, r{};
   test::HeapScope heap;
-  ASSERT_TRUE(
-      deinterleave_pair(frame(px, 0, 0), f, Gray8View(l.data(), 2, 2), Gray8View(r.data(), 2, 2))
-          .ok());
+  ASSERT_TRUE(deinterleave_pair(raw_frame(px, 0, 0), f, Gray8View(l.data(), 2, 2),
+                                Gray8View(r.data(), 2, 2))
+                  .ok());
   EXPECT_EQ(heap.allocations(), 0u);
   EXPECT_EQ(l, (std::array<std::uint8_t, 4>{1, 2, 3, 4}));
   EXPECT_EQ(r, (std::array<std::uint8_t, 4>{101, 102, 103, 104}));
   FrameFormat g{PixelFormat::grey, 2, 2, 2, 4};
-  EXPECT_EQ(
-      deinterleave_pair(frame(px, 0, 0), g, Gray8View(l.data(), 2, 2), Gray8View(r.data(), 2, 2))
-          .code(),
-      Errc::wrong_type);
+  EXPECT_EQ(deinterleave_pair(raw_frame(px, 0, 0), g, Gray8View(l.data(), 2, 2),
+                              Gray8View(r.data(), 2, 2))
+                .code(),
+            Errc::wrong_type);
 }
 
 TEST(StereoPairing, PairsWithinSkewElseReadsTheOlderSideAgain) {

@@ -6,18 +6,11 @@
 #include <numbers>
 #include <vector>
 
+#include "tests/support/angles.hpp"
 #include "tests/support/heap_counter.hpp"
 
 namespace petra::arm {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-JointVector deg(double a, double b, double c, double d, double e) {
-  JointVector q;
-  q << a * kDeg, b * kDeg, c * kDeg, d * kDeg, e * kDeg;
-  return q;
-}
 
 // Largest |dq/dt| and |d2q/dt2| per joint from samples dt apart, relative to the limits.
 struct RateUse {
@@ -53,7 +46,7 @@ TEST(ArmTrajectory, UnitProfileIsTrapezoidOrTriangle) {
 TEST(ArmTrajectory, JointMoveIsSynchronisedAndWithinLimits) {
   const JointLimits l = default_joint_limits();
   const JointVector from = stow_pose();
-  const JointVector to = deg(40, 50, 70, 130, -20);
+  const JointVector to = test::joints_deg(40, 50, 70, 130, -20);
   auto move = plan_joint_move(from, to, l);
   ASSERT_TRUE(move.ok()) << move.error().message;
   const double dt = 0.001;
@@ -79,11 +72,11 @@ TEST(ArmTrajectory, JointMoveIsSynchronisedAndWithinLimits) {
 
 TEST(ArmTrajectory, JointMoveRefusesAGoalOutsideTheLimitsAndASmallBuffer) {
   const JointLimits l = default_joint_limits();
-  auto bad = plan_joint_move(stow_pose(), deg(10, 10, 150, 90, 0), l);
+  auto bad = plan_joint_move(stow_pose(), test::joints_deg(10, 10, 150, 90, 0), l);
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(bad.code(), Errc::out_of_range);
   EXPECT_NE(std::string(bad.error().message).find("th3"), std::string::npos);
-  auto move = plan_joint_move(stow_pose(), deg(10, 10, 100, 90, 0), l);
+  auto move = plan_joint_move(stow_pose(), test::joints_deg(10, 10, 100, 90, 0), l);
   ASSERT_TRUE(move.ok());
   std::array<JointVector, 8> small;
   EXPECT_EQ(sample_joint_move(*move, 0.01, small).code(), Errc::capacity_exceeded);
@@ -110,7 +103,8 @@ TEST(ArmTrajectory, ApproachIsAStraightLineAlongTheNormalWithinJointLimits) {
   const ArmGeometry g;
   const JointLimits l = default_joint_limits();
   for (const JointVector& contact :
-       {deg(30, 40, 100, 120, 10), deg(60, 20, 90, 150, -30), deg(10, 60, 130, 100, 40)}) {
+       {test::joints_deg(30, 40, 100, 120, 10), test::joints_deg(60, 20, 90, 150, -30),
+        test::joints_deg(10, 60, 130, 100, 40)}) {
     const ApproachRequest req = request_from_pose(g, contact, 80.0);
     const ApproachPlan plan = plan_approach(g, l, req, stow_pose());
     ASSERT_TRUE(plan.ok()) << plan.error(l).message;
@@ -156,14 +150,16 @@ TEST(ArmTrajectory, UnreachablePlanesAreRefusedWithStageAndReason) {
   EXPECT_NE(std::string(p.error(l).message).find("approach standoff"), std::string::npos);
 
   // A face tilted 60 deg sideways from the arm plane: the hand roll (th5) cannot follow.
-  ApproachRequest tilted = request_from_pose(g, deg(45, 40, 100, 120, 0), 50);
-  const Eigen::Vector3d side(-std::sin(45 * kDeg), std::cos(45 * kDeg), 0);
-  tilted.normal = (std::cos(60 * kDeg) * tilted.normal + std::sin(60 * kDeg) * side).normalized();
+  ApproachRequest tilted = request_from_pose(g, test::joints_deg(45, 40, 100, 120, 0), 50);
+  const Eigen::Vector3d side(-std::sin(45 * test::kRadPerDeg), std::cos(45 * test::kRadPerDeg), 0);
+  tilted.normal =
+      (std::cos(60 * test::kRadPerDeg) * tilted.normal + std::sin(60 * test::kRadPerDeg) * side)
+          .normalized();
   p = plan_approach(g, l, tilted, stow_pose());
   EXPECT_EQ(p.refusal.reason, ArmReason::joint_limit);
   EXPECT_EQ(p.refusal.joint, 5);
 
-  ApproachRequest bad = request_from_pose(g, deg(45, 40, 100, 120, 0), 0.0);
+  ApproachRequest bad = request_from_pose(g, test::joints_deg(45, 40, 100, 120, 0), 0.0);
   EXPECT_EQ(plan_approach(g, l, bad, stow_pose()).stage, ApproachStage::request);
   bad.standoff_mm = 50;
   bad.normal *= 2.0;
@@ -178,12 +174,13 @@ TEST(ArmTrajectory, APathThatLeavesTheLimitsMidwayIsRefused) {
   // 44 deg at both ends, 53 deg in the middle. Both ends are fine, the path is not.
   const ArmGeometry g;
   const JointLimits l = default_joint_limits();
-  const Eigen::Vector3d across(-std::sin(45 * kDeg), std::cos(45 * kDeg), 0);
+  const Eigen::Vector3d across(-std::sin(45 * test::kRadPerDeg), std::cos(45 * test::kRadPerDeg),
+                               0);
   const Eigen::Vector3d axis = 0.8 * across + Eigen::Vector3d(0, 0, -0.6);
   const double radius = 300;
-  const double length = 2 * radius * std::tan(30 * kDeg) / 0.8;
-  const Eigen::Vector3d middle_hand(radius * std::cos(45 * kDeg), radius * std::sin(45 * kDeg),
-                                    120);
+  const double length = 2 * radius * std::tan(30 * test::kRadPerDeg) / 0.8;
+  const Eigen::Vector3d middle_hand(radius * std::cos(45 * test::kRadPerDeg),
+                                    radius * std::sin(45 * test::kRadPerDeg), 120);
   ApproachRequest req;
   req.normal = -axis;
   req.centroid_mm = middle_hand + 0.5 * length * axis + g.tool_mm * axis;
@@ -200,7 +197,7 @@ TEST(ArmTrajectory, APathThatLeavesTheLimitsMidwayIsRefused) {
 TEST(ArmTrajectory, NoHeap) {
   const ArmGeometry g;
   const JointLimits l = default_joint_limits();
-  const ApproachRequest req = request_from_pose(g, deg(30, 40, 100, 120, 10), 60.0);
+  const ApproachRequest req = request_from_pose(g, test::joints_deg(30, 40, 100, 120, 10), 60.0);
   std::array<JointVector, 4096> buffer;
   test::HeapScope scope;
   const ApproachPlan plan = plan_approach(g, l, req, stow_pose());

@@ -6,24 +6,12 @@
 #include <random>
 #include <string>
 
+#include "tests/support/angles.hpp"
 #include "tests/support/heap_counter.hpp"
+#include "tests/support/text.hpp"
 
 namespace petra::arm {
 namespace {
-
-std::string sci(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-JointVector deg(double a, double b, double c, double d, double e) {
-  JointVector q;
-  q << a * kDeg, b * kDeg, c * kDeg, d * kDeg, e * kDeg;
-  return q;
-}
 
 JointVector random_in_limits(std::mt19937_64& rng, const JointLimits& l) {
   JointVector q;
@@ -37,8 +25,8 @@ ArmGeometry mounted_geometry() {
   // Base 300 mm right of and 1.2 m below a camera-like world origin, turned 20 deg.
   ArmGeometry g;
   g.world_from_base = Eigen::Translation3d(300, -200, -1200) *
-                      Eigen::AngleAxisd(20 * kDeg, Eigen::Vector3d::UnitZ()) *
-                      Eigen::AngleAxisd(3 * kDeg, Eigen::Vector3d::UnitX());
+                      Eigen::AngleAxisd(20 * test::kRadPerDeg, Eigen::Vector3d::UnitZ()) *
+                      Eigen::AngleAxisd(3 * test::kRadPerDeg, Eigen::Vector3d::UnitX());
   return g;
 }
 
@@ -53,17 +41,17 @@ TEST(Kinematics, DefaultsAreTheSeedRangesAndPose) {
   const double lo[] = {0, 0, 0, 35, -45};
   const double hi[] = {90, 90, 145, 180, 45};
   for (int j = 0; j < kJointCount; ++j) {
-    EXPECT_DOUBLE_EQ(l.min_rad[j], lo[j] * kDeg);
-    EXPECT_DOUBLE_EQ(l.max_rad[j], hi[j] * kDeg);
+    EXPECT_DOUBLE_EQ(l.min_rad[j], lo[j] * test::kRadPerDeg);
+    EXPECT_DOUBLE_EQ(l.max_rad[j], hi[j] * test::kRadPerDeg);
   }
-  EXPECT_TRUE((stow_pose() - deg(0, 0, 145, 35, 0)).norm() < 1e-15);
+  EXPECT_TRUE((stow_pose() - test::joints_deg(0, 0, 145, 35, 0)).norm() < 1e-15);
   EXPECT_EQ(first_joint_outside(l, stow_pose()), -1);
 }
 
 TEST(Kinematics, ReachIsAboutEightHundredMillimetres) {
   // Arm stretched horizontally forward, tool pointing down (th4 = 180: hand straight).
   const ArmGeometry g;
-  const ToolPose p = forward_kinematics(g, deg(0, 0, 0, 180, 0));
+  const ToolPose p = forward_kinematics(g, test::joints_deg(0, 0, 0, 180, 0));
   EXPECT_NEAR(p.tip_mm.x(), 40 + 320 + 280 + 90, 1e-9);
   EXPECT_NEAR(p.tip_mm.z(), 150 - 80, 1e-9);
   EXPECT_NEAR(p.axis.z(), -1.0, 1e-12);
@@ -90,8 +78,8 @@ TEST(Kinematics, IkThenFkReturnsTheTargetEverywhereInTheLimits) {
       ++solved;
     }
   }
-  RecordProperty("worst_tip_error_mm", sci(worst_mm));
-  RecordProperty("worst_axis_error_rad", sci(worst_rad));
+  RecordProperty("worst_tip_error_mm", test::sci(worst_mm));
+  RecordProperty("worst_axis_error_rad", test::sci(worst_rad));
   EXPECT_EQ(solved, 10000);
   EXPECT_LT(worst_mm, 1e-6);
   EXPECT_LT(worst_rad, 1e-6);
@@ -117,17 +105,17 @@ TEST(Kinematics, ElbowDownBranchIsFoundWhenTheLimitsAllowIt) {
   // the hint selects which one.
   const ArmGeometry g;
   JointLimits l = default_joint_limits();
-  l.min_rad[1] = -90 * kDeg;
-  l.min_rad[2] = -145 * kDeg;
-  l.min_rad[3] = -90 * kDeg;
-  l.max_rad[3] = 270 * kDeg;
-  const JointVector up = deg(30, 40, 60, 120, 10);
+  l.min_rad[1] = -90 * test::kRadPerDeg;
+  l.min_rad[2] = -145 * test::kRadPerDeg;
+  l.min_rad[3] = -90 * test::kRadPerDeg;
+  l.max_rad[3] = 270 * test::kRadPerDeg;
+  const JointVector up = test::joints_deg(30, 40, 60, 120, 10);
   const ToolPose t = forward_kinematics(g, up);
   const IkSolution a = inverse_kinematics(g, l, {t.tip_mm, t.axis}, up);
   ASSERT_TRUE(a.ok());
   EXPECT_LT((a.q - up).norm(), 1e-9);
   // Elbow down: th2 = 40 - 2 atan2(a3 sin 60, a2 + a3 cos 60) = -15.6 deg, th4 = 184.4 deg.
-  const JointVector down_hint = deg(30, -15, -60, 184, 10);
+  const JointVector down_hint = test::joints_deg(30, -15, -60, 184, 10);
   const IkSolution b = inverse_kinematics(g, l, {t.tip_mm, t.axis}, down_hint);
   ASSERT_TRUE(b.ok());
   EXPECT_LT(b.q[2], 0.0);
@@ -145,9 +133,10 @@ TEST(Kinematics, TargetsBeyondReachAreRefused) {
   EXPECT_GT(s.value, 1000.0);
   EXPECT_EQ(s.error(l).code, Errc::no_solution);
   // Just past full stretch (tool down, hand straight): 1 mm beyond.
-  const ToolPose stretched = forward_kinematics(g, deg(20, 0, 0, 180, 0));
+  const ToolPose stretched = forward_kinematics(g, test::joints_deg(20, 0, 0, 180, 0));
   const Eigen::Vector3d out =
-      stretched.tip_mm + Eigen::Vector3d(std::cos(20 * kDeg), std::sin(20 * kDeg), 0);
+      stretched.tip_mm +
+      Eigen::Vector3d(std::cos(20 * test::kRadPerDeg), std::sin(20 * test::kRadPerDeg), 0);
   const IkSolution s2 = inverse_kinematics(g, l, {out, stretched.axis}, stow_pose());
   EXPECT_EQ(s2.reason, ArmReason::beyond_reach);
   EXPECT_NEAR(s2.value, 1.0, 1e-6);
@@ -173,13 +162,13 @@ TEST(Kinematics, TargetsOutsideAJointRangeNameThatJoint) {
     int joint;
   };
   const Case cases[] = {
-      {deg(-20, 30, 60, 120, 0), 1},   // behind the base's right side
-      {deg(100, 30, 60, 120, 0), 1},   // past 90 deg to the left
-      {deg(30, -20, 30, 150, 0), 2},   // upper arm below horizontal
-      {deg(30, 80, 160, 120, 0), 3},   // elbow folded past 145
-      {deg(30, 40, 60, 20, 0), 4},     // wrist folded tighter than 35
-      {deg(30, 40, 60, 120, 60), 5},   // tool tilted 60 deg out of the arm plane
-      {deg(30, 40, 60, 120, -50), 5},  // and the other way
+      {test::joints_deg(-20, 30, 60, 120, 0), 1},   // behind the base's right side
+      {test::joints_deg(100, 30, 60, 120, 0), 1},   // past 90 deg to the left
+      {test::joints_deg(30, -20, 30, 150, 0), 2},   // upper arm below horizontal
+      {test::joints_deg(30, 80, 160, 120, 0), 3},   // elbow folded past 145
+      {test::joints_deg(30, 40, 60, 20, 0), 4},     // wrist folded tighter than 35
+      {test::joints_deg(30, 40, 60, 120, 60), 5},   // tool tilted 60 deg out of the arm plane
+      {test::joints_deg(30, 40, 60, 120, -50), 5},  // and the other way
   };
   for (const Case& c : cases) {
     const ToolPose t = forward_kinematics(g, c.q);
@@ -214,7 +203,7 @@ TEST(Kinematics, ATargetOnTheYawAxisKeepsTheHintsYaw) {
   // Hand end right above the base (th1 undefined): any yaw works; keep the hint's.
   const ArmGeometry g;
   const JointLimits l = default_joint_limits();
-  const JointVector q = deg(0, 80, 120, 130, 0);
+  const JointVector q = test::joints_deg(0, 80, 120, 130, 0);
   // Move the shoulder back by the hand end's radius: the hand end is then on the axis.
   const double r = arm_skeleton(g, q).points_mm[4].x();
   ArmGeometry g2 = g;
@@ -222,11 +211,11 @@ TEST(Kinematics, ATargetOnTheYawAxisKeepsTheHintsYaw) {
   const ArmSkeleton sk2 = arm_skeleton(g2, q);
   ASSERT_NEAR(std::hypot(sk2.points_mm[4].x(), sk2.points_mm[4].y()), 0.0, 1e-9);
   JointVector hint = q;
-  hint[0] = 37 * kDeg;
+  hint[0] = 37 * test::kRadPerDeg;
   const ToolPose t = forward_kinematics(g2, hint);
   const IkSolution s = inverse_kinematics(g2, l, {t.tip_mm, t.axis}, hint);
   ASSERT_TRUE(s.ok()) << s.error(l).message;
-  EXPECT_NEAR(s.q[0], 37 * kDeg, 1e-9);
+  EXPECT_NEAR(s.q[0], 37 * test::kRadPerDeg, 1e-9);
   const ToolPose back = forward_kinematics(g2, s.q);
   EXPECT_LT((back.tip_mm - t.tip_mm).norm(), 1e-9);
 }
@@ -254,7 +243,7 @@ TEST(Kinematics, ValidationNamesTheField) {
 TEST(Kinematics, NoHeap) {
   const ArmGeometry g = mounted_geometry();
   const JointLimits l = default_joint_limits();
-  const ToolPose t = forward_kinematics(g, deg(30, 40, 60, 120, 10));
+  const ToolPose t = forward_kinematics(g, test::joints_deg(30, 40, 60, 120, 10));
   test::HeapScope scope;
   double sink = 0.0;
   for (int i = 0; i < 100; ++i) {

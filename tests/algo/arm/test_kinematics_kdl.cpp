@@ -8,6 +8,7 @@
 #include <string>
 
 #include "algo/arm/kinematics.hpp"
+#include "tests/support/text.hpp"
 
 #ifdef PETRA_HAVE_KDL
 #include <kdl/chain.hpp>
@@ -18,12 +19,6 @@
 
 namespace petra::arm {
 namespace {
-
-[[maybe_unused]] std::string sci(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 #ifdef PETRA_HAVE_KDL
 KDL::Frame to_kdl(const Eigen::Isometry3d& t) {
@@ -101,8 +96,8 @@ TEST(KinematicsKdl, ForwardKinematicsMatchesKdlOn10000RandomJointVectors) {
       }
     }
   }
-  RecordProperty("worst_position_mm", sci(worst_mm));
-  RecordProperty("worst_rotation", sci(worst_rot));
+  RecordProperty("worst_position_mm", test::sci(worst_mm));
+  RecordProperty("worst_rotation", test::sci(worst_rot));
   EXPECT_LT(worst_mm, 1e-9);
   EXPECT_LT(worst_rot, 1e-9);
 }

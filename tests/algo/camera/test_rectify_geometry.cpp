@@ -10,13 +10,13 @@
 namespace petra {
 namespace {
 
-StereoRig test_rig(std::uint64_t seed) {
+StereoRig seeded_rig(std::uint64_t seed) {
   return test::bumblebee_rig(seed);
 }
 
 TEST(RectifyGeometry, CorrespondencesShareARowAndGiveTheirDepth) {
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-    const StereoRig rig = test_rig(seed);
+    const StereoRig rig = seeded_rig(seed);
     auto pair = rectify_geometry(rig, 1024, 768);
     ASSERT_TRUE(pair.ok()) << pair.error().message;
     std::mt19937_64 rng(seed + 100);
@@ -46,7 +46,7 @@ TEST(RectifyGeometry, CorrespondencesShareARowAndGiveTheirDepth) {
 }
 
 TEST(RectifyGeometry, OriginalAndRectifiedPixelsRoundTrip) {
-  const StereoRig rig = test_rig(3);
+  const StereoRig rig = seeded_rig(3);
   auto pair = rectify_geometry(rig, 1024, 768);
   ASSERT_TRUE(pair.ok());
   for (double v = 0; v < 768; v += 97)
@@ -60,7 +60,7 @@ TEST(RectifyGeometry, OriginalAndRectifiedPixelsRoundTrip) {
 }
 
 TEST(RectifyGeometry, ImageCentreStaysNearTheMiddle) {
-  const StereoRig rig = test_rig(5);
+  const StereoRig rig = seeded_rig(5);
   auto pair = rectify_geometry(rig, 1024, 768);
   ASSERT_TRUE(pair.ok());
   auto c = original_to_rectified(rig.left, pair->left, {511.5, 383.5});
@@ -71,16 +71,16 @@ TEST(RectifyGeometry, ImageCentreStaysNearTheMiddle) {
 }
 
 TEST(RectifyGeometry, DegenerateRigsAreRefused) {
-  StereoRig rig = test_rig(1);
+  StereoRig rig = seeded_rig(1);
   rig.right.T_mm = rig.left.T_mm;
   rig.right.R = rig.left.R;
   EXPECT_EQ(rectify_geometry(rig, 1024, 768).code(), Errc::degenerate);
-  StereoRig fwd = test_rig(1);
+  StereoRig fwd = seeded_rig(1);
   fwd.right.R = fwd.left.R;
   fwd.right.T_mm = fwd.left.T_mm - fwd.left.R * (fwd.left.R.row(2).transpose() * 100.0);
   EXPECT_EQ(rectify_geometry(fwd, 1024, 768).code(), Errc::degenerate);
-  EXPECT_EQ(rectify_geometry(test_rig(1), 0, 768).code(), Errc::non_positive);
-  auto pair = rectify_geometry(test_rig(1), 1024, 768);
+  EXPECT_EQ(rectify_geometry(seeded_rig(1), 0, 768).code(), Errc::non_positive);
+  auto pair = rectify_geometry(seeded_rig(1), 1024, 768);
   ASSERT_TRUE(pair.ok());
   EXPECT_EQ(rectified_point(*pair, 10, 10, 0.0).code(), Errc::out_of_range);
 }

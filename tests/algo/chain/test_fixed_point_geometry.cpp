@@ -17,6 +17,7 @@
 #include "algo/surface/cmeans.hpp"
 #include "algo/surface/fixed_point.hpp"
 #include "algo/surface/ground_segment.hpp"
+#include "tests/support/angles.hpp"
 #include "tests/support/synthetic_disparity.hpp"
 #include "tests/support/test_rig.hpp"
 
@@ -103,10 +104,6 @@ TEST(FixedPointGeometry, TriangulationMatchesDouble) {
   }
 }
 
-double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / M_PI;
-}
-
 template <class Q>
 void compare_segmentation(const SceneData& s, double max_angle_deg, double max_d_mm,
                           double max_label_share) {
@@ -121,7 +118,7 @@ void compare_segmentation(const SceneData& s, double max_angle_deg, double max_d
   ASSERT_TRUE(gd.ok());
   const Eigen::Vector3d nq(to_double(gq->plane.normal(0)), to_double(gq->plane.normal(1)),
                            to_double(gq->plane.normal(2)));
-  const double angle = angle_deg(nq, gd->plane.normal);
+  const double angle = test::angle_deg(nq, gd->plane.normal);
   const double dd = std::abs(to_double(gq->plane.d) - gd->plane.d);
   std::size_t differ = 0;
   for (std::size_t i = 0; i < lq.size(); ++i) differ += lq[i] != ld[i];
@@ -183,7 +180,7 @@ TEST(FixedPointGeometry, ClusteringMatchesDouble) {
     for (int j = 0; j < ard->c; ++j) {
       const Eigen::Vector3d cq3(to_double(arq->centres[j](0)), to_double(arq->centres[j](1)),
                                 to_double(arq->centres[j](2)));
-      angle = std::max(angle, angle_deg(cq3, ard->centres[j]));
+      angle = std::max(angle, test::angle_deg(cq3, ard->centres[j]));
     }
     std::printf(
         "c-means (%zu normals): labels differ %zu, centres %.3g; angle clustering: labels differ "

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/angles.hpp"
 #include "tests/support/heap_counter.hpp"
 #include "tests/support/synthetic_disparity.hpp"
 #include "tests/support/test_rig.hpp"
@@ -27,10 +28,6 @@ Scene make_setup(double noise_px, std::uint64_t seed = 1) {
   const Rect roi = test::rock_box(s.pair, s.rock, 40, 30, 55, 30);
   s.disp = test::render_disparity(s.pair, roi, s.rock, noise_px, seed);
   return s;
-}
-
-double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / M_PI;
 }
 
 std::uint64_t fake_clock(void* ctx) {
@@ -65,13 +62,13 @@ TEST(Reconstruction, DisparityToRankedPlanesOnARidgeRock) {
   EXPECT_GT(st.filtered_points, st.dense_points * 95 / 100);
   EXPECT_EQ(st.triangulated, static_cast<std::size_t>(st.filtered_points));
   EXPECT_GT(st.disparity_max_px, st.disparity_min_px);
-  EXPECT_LT(angle_deg(r->ground.plane.normal, Eigen::Vector3d::UnitZ()), 0.1);
+  EXPECT_LT(test::angle_deg(r->ground.plane.normal, Eigen::Vector3d::UnitZ()), 0.1);
   EXPECT_NEAR(r->ground.plane.d, 0.0, 0.5);
   ASSERT_EQ(r->planes.accepted, 3);
   for (int k = 0; k < 3; ++k) {
     const GrindPlane& p = r->planes.planes[k];
     double best = 180;
-    for (const auto& f : s.rock.faces) best = std::min(best, angle_deg(p.normal, f.n));
+    for (const auto& f : s.rock.faces) best = std::min(best, test::angle_deg(p.normal, f.n));
     EXPECT_LT(best, 0.5) << "plane " << k;
   }
   // Products: every vertex classified, plane vertices present.

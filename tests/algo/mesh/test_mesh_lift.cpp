@@ -14,15 +14,15 @@ Eigen::Vector3d lift(int u, int v, double z) {
   return {(u - 100) * z / 800.0, (v - 100) * z / 800.0, z};
 }
 
-struct Scene {
+struct LiftScene {
   std::vector<IntPoint> px;
   std::vector<Eigen::Vector3d> xyz;
   std::vector<MeshTriangle> tris;
 };
 
 // 60x40 grid: ground at 700 mm, a box (top at box_depth) in the middle.
-Scene step_scene(double box_depth = 690.0) {
-  Scene s;
+LiftScene step_scene(double box_depth = 690.0) {
+  LiftScene s;
   for (int v = 80; v < 120; ++v)
     for (int u = 70; u < 130; ++u) {
       const bool box = u >= 90 && u < 110 && v >= 90 && v < 110;
@@ -39,7 +39,7 @@ Scene step_scene(double box_depth = 690.0) {
 }
 
 // Triangles with all three vertices on one surface (same depth).
-std::size_t pure_triangles(const Scene& s) {
+std::size_t pure_triangles(const LiftScene& s) {
   std::size_t pure = 0;
   for (const auto& t : s.tris) {
     const double z0 = s.xyz[t.v[0]].z(), z1 = s.xyz[t.v[1]].z(), z2 = s.xyz[t.v[2]].z();
@@ -49,7 +49,7 @@ std::size_t pure_triangles(const Scene& s) {
 }
 
 TEST(MeshLift, StepTrianglesAreRemovedSurfacesKept) {
-  Scene s = step_scene();
+  LiftScene s = step_scene();
   const std::size_t before = s.tris.size();
   const std::size_t pure = pure_triangles(s);
   std::vector<std::byte> block(mesh_filter_scratch_bytes(before));
@@ -85,7 +85,7 @@ TEST(MeshLift, StepTrianglesAreRemovedSurfacesKept) {
 }
 
 TEST(MeshLift, LongEdgesAreRemoved) {
-  Scene tall = step_scene(660.0);  // a 40 mm step: its edges exceed 25 mm
+  LiftScene tall = step_scene(660.0);  // a 40 mm step: its edges exceed 25 mm
   const std::size_t tall_total = tall.tris.size(), tall_pure = pure_triangles(tall);
   std::vector<std::byte> tall_block(mesh_filter_scratch_bytes(tall.tris.size()));
   Arena tall_arena(tall_block);
@@ -94,7 +94,7 @@ TEST(MeshLift, LongEdgesAreRemoved) {
   ASSERT_TRUE(ts.ok());
   EXPECT_EQ(ts->removed_long, tall_total - tall_pure);
   EXPECT_EQ(ts->removed_grazing, 0u);
-  Scene s = step_scene();
+  LiftScene s = step_scene();
   std::vector<std::byte> block(mesh_filter_scratch_bytes(s.tris.size()));
   Arena arena(block);
   MeshFilterParams p;
@@ -106,7 +106,7 @@ TEST(MeshLift, LongEdgesAreRemoved) {
 }
 
 TEST(MeshLift, BadParametersAndIndicesAreNamed) {
-  Scene s = step_scene();
+  LiftScene s = step_scene();
   StaticArena<1 << 16> arena;
   MeshFilterParams p;
   p.max_view_angle_deg = 95;

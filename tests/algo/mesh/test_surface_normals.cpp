@@ -17,7 +17,7 @@ double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / M_PI;
 }
 
-struct Scene {
+struct NormalsScene {
   StereoRig rig = test::looking_rig(4);
   RectifiedPair pair = *rectify_geometry(rig, 1024, 768);
   test::Rock rock = test::ridge_rock();
@@ -26,7 +26,7 @@ struct Scene {
 };
 
 TEST(SurfaceNormals, FacesOfARidgeRockAndTheGround) {
-  Scene s;
+  NormalsScene s;
   const Rect roi = test::rock_box(s.pair, s.rock, 40, 30, 55, 20);
   s.disp = test::render_disparity(s.pair, roi, s.rock, 0.05, 2);
   s.normals.resize(s.disp.q4.size());
@@ -63,7 +63,7 @@ TEST(SurfaceNormals, FacesOfARidgeRockAndTheGround) {
 }
 
 TEST(SurfaceNormals, SparseBoxesGiveNoNormalAndBadInputIsNamed) {
-  Scene s;
+  NormalsScene s;
   const Rect roi = test::rock_box(s.pair, s.rock, 40, 30, 55, 20);
   s.disp = test::render_disparity(s.pair, roi, s.rock);
   // Keep one pixel in 20: no box is half full.
@@ -87,7 +87,7 @@ TEST(SurfaceNormals, SparseBoxesGiveNoNormalAndBadInputIsNamed) {
 // On a pixel stride (the reconstruction's points above its budget) the
 // normals on the stride grid, packed, are bit for bit those of stride 1.
 TEST(SurfaceNormals, OnAStrideTheGridPixelsMatchStrideOne) {
-  Scene s;
+  NormalsScene s;
   const Rect roi = test::rock_box(s.pair, s.rock, 40, 30, 55, 20);
   s.disp = test::render_disparity(s.pair, roi, s.rock, 0.05, 2);
   s.normals.resize(s.disp.q4.size());

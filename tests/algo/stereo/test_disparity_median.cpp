@@ -13,7 +13,7 @@ namespace petra {
 namespace {
 
 // Straightforward reference: sort the valid neighbours.
-std::vector<std::int16_t> reference(const std::vector<std::int16_t>& d, int w, int h) {
+std::vector<std::int16_t> reference_median(const std::vector<std::int16_t>& d, int w, int h) {
   std::vector<std::int16_t> out = d;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -42,7 +42,7 @@ TEST(DisparityMedian, MatchesASortingReferenceWithInvalidNeighbours) {
       q = (rng() % 100) < static_cast<unsigned>(trial * 2)
               ? kInvalidDisparity
               : static_cast<std::int16_t>(static_cast<int>(rng() % 2000) - 300);
-    const auto expect = reference(d, w, h);
+    const auto expect = reference_median(d, w, h);
     std::vector<std::int16_t> scratch(median3x3_scratch(w));
     ASSERT_TRUE(median3x3_valid(ImageView<std::int16_t>(d.data(), w, h), scratch).ok());
     EXPECT_EQ(d, expect) << "trial " << trial;

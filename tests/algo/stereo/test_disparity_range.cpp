@@ -11,10 +11,10 @@ namespace petra {
 namespace {
 
 // A textured fronto-parallel pair: the right view is the left shifted by d.
-struct Pair {
+struct RangePair {
   int w = 640, h = 300;
   std::vector<std::uint8_t> left, right;
-  explicit Pair(int d) : left(static_cast<std::size_t>(w) * h), right(left.size()) {
+  explicit RangePair(int d) : left(static_cast<std::size_t>(w) * h), right(left.size()) {
     std::mt19937 rng(7);
     std::vector<int> noise(static_cast<std::size_t>(w + d) * h);
     for (auto& v : noise) v = static_cast<int>(rng() % 256);
@@ -41,7 +41,7 @@ struct Pair {
 };
 
 TEST(DisparityRange, BracketsTheDisparityOfATexturedPair) {
-  const Pair p(150);
+  const RangePair p(150);
   const Rect roi{400, 80, 160, 120};
   RangeSearchParams rp;
   std::vector<std::byte> block(disparity_range_scratch_bytes(p.w, p.h, roi.w, roi.h, rp));
@@ -65,7 +65,7 @@ TEST(DisparityRange, TexturelessOrBadInputIsNamed) {
   auto r = find_disparity_range(f, f, Rect{400, 80, 160, 120}, rp, MatchDpParams{}, arena);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(std::string(r.error().message).find("disparity range"), std::string::npos);
-  const Pair p(100);
+  const RangePair p(100);
   r = find_disparity_range(p.l(), p.r(), Rect{600, 80, 160, 120}, rp, MatchDpParams{}, arena);
   EXPECT_EQ(r.code(), Errc::out_of_range);
   rp.search_max_px = rp.search_min_px;

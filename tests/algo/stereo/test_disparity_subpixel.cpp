@@ -21,9 +21,9 @@ double texture(double x, double y) {
          20 * std::cos(1.3 * x + 0.9 * y);
 }
 
-struct Pair {
+struct ShiftedPair {
   std::vector<std::uint8_t> left, right;
-  explicit Pair(double shift_px) : left(kW * kH), right(kW * kH) {
+  explicit ShiftedPair(double shift_px) : left(kW * kH), right(kW * kH) {
     for (int y = 0; y < kH; ++y)
       for (int x = 0; x < kW; ++x) {
         left[y * kW + x] = static_cast<std::uint8_t>(std::lround(texture(x, y)));
@@ -41,7 +41,7 @@ struct Pair {
 
 TEST(DisparitySubpixel, MovesWholePixelLabelsTowardsTheTrueShift) {
   for (double shift : {6.25, 6.5, 6.8, 7.0}) {
-    const Pair p(shift);
+    const ShiftedPair p(shift);
     const Rect roi{20, 5, 80, 30};
     std::vector<std::int16_t> q4(roi.w * roi.h, disparity_q4(std::round(shift)));
     q4[0] = kInvalidDisparity;  // invalid pixels stay invalid
@@ -66,7 +66,7 @@ TEST(DisparitySubpixel, MovesWholePixelLabelsTowardsTheTrueShift) {
 }
 
 TEST(DisparitySubpixel, LabelsUpToSearchPxOffAreCorrected) {
-  const Pair p(6.3);
+  const ShiftedPair p(6.3);
   const Rect roi{20, 5, 80, 30};
   for (int off : {-2, 2}) {
     std::vector<std::int16_t> q4(roi.w * roi.h, disparity_q4(6 + off));
@@ -89,7 +89,7 @@ TEST(DisparitySubpixel, LabelsUpToSearchPxOffAreCorrected) {
 }
 
 TEST(DisparitySubpixel, WindowsOutsideTheImageKeepTheirValue) {
-  const Pair p(3.0);
+  const ShiftedPair p(3.0);
   const Rect roi{0, 0, 6, kH};  // right windows at x - d leave the image
   std::vector<std::int16_t> q4(roi.w * roi.h, disparity_q4(3.0));
   DisparityMap map{ImageView<std::int16_t>(q4.data(), roi.w, roi.h), roi};
@@ -100,7 +100,7 @@ TEST(DisparitySubpixel, WindowsOutsideTheImageKeepTheirValue) {
 }
 
 TEST(DisparitySubpixel, BadInputIsNamed) {
-  const Pair p(3.0);
+  const ShiftedPair p(3.0);
   std::vector<std::int16_t> q4(10 * 10, 0);
   DisparityMap map{ImageView<std::int16_t>(q4.data(), 10, 10), Rect{kW - 5, 0, 10, 10}};
   auto n = refine_subpixel(p.input(), {}, map);

@@ -20,7 +20,7 @@ struct Reference {
   std::uint8_t why;
 };
 
-Reference reference(const SelectRowInputs& in, int i) {
+Reference reference_selection(const SelectRowInputs& in, int i) {
   const int k1 = in.k1[i];
   const int d = in.disp_min + k1;
   const int x = in.x0 + i;
@@ -119,7 +119,7 @@ TEST(SelectRow, MatchesThePlainIntegerChecksBitForBit) {
     select_row(in, sc, out2.data(), nullptr, why2.data());
     RejectCounts expect;
     for (int i = 0; i < w; ++i) {
-      const Reference r = reference(in, i);
+      const Reference r = reference_selection(in, i);
       ASSERT_EQ(out[i], r.out) << "trial " << trial << " pixel " << i;
       ASSERT_EQ(out2[i], r.out) << "trial " << trial << " pixel " << i;
       ASSERT_EQ(conf[i], r.conf) << "trial " << trial << " pixel " << i;

@@ -16,14 +16,14 @@ using petra::test::make_scene;
 using petra::test::StereoScene;
 
 // Caller-side memory of one matcher, sized at "init" for a budget.
-struct Matcher {
+struct DpMatcherUnderTest {
   MatchBudget budget;
   std::vector<std::byte> scratch;
   Arena arena;
   std::vector<std::int16_t> q4;
   std::vector<std::uint8_t> conf;
 
-  explicit Matcher(MatchBudget b)
+  explicit DpMatcherUnderTest(MatchBudget b)
       : budget(b),
         scratch(match_dp_scratch_bytes(b)),
         arena(scratch),
@@ -76,7 +76,7 @@ Accuracy accuracy(const StereoScene& s, const DisparityMap& m) {
 
 TEST(MatchDp, RecoversAConstantIntegerDisparity) {
   const StereoScene s = make_scene(160, 100, 7.0);
-  Matcher m({120, 80, 32});
+  DpMatcherUnderTest m({120, 80, 32});
   DisparityMap out;
   auto st = m.run(s, {30, 10, 120, 80}, range(0, 20), out);
   ASSERT_TRUE(st.ok()) << st.error().message;
@@ -90,7 +90,7 @@ TEST(MatchDp, RecoversAConstantIntegerDisparity) {
 
 TEST(MatchDp, RefinesASubPixelDisparity) {
   const StereoScene s = make_scene(160, 100, 5.5);
-  Matcher m({120, 80, 32});
+  DpMatcherUnderTest m({120, 80, 32});
   DisparityMap out;
   ASSERT_TRUE(m.run(s, {30, 10, 120, 80}, range(0, 15), out).ok());
   const Accuracy a = accuracy(s, out);
@@ -100,7 +100,7 @@ TEST(MatchDp, RefinesASubPixelDisparity) {
 
 TEST(MatchDp, NegativeDisparitiesAsInThePaper) {
   const StereoScene s = make_scene(160, 100, -6.0);  // paper: range -21..20
-  Matcher m({120, 80, 42});
+  DpMatcherUnderTest m({120, 80, 42});
   DisparityMap out;
   ASSERT_TRUE(m.run(s, {20, 10, 120, 80}, range(-21, 20), out).ok());
   const Accuracy a = accuracy(s, out);
@@ -110,7 +110,7 @@ TEST(MatchDp, NegativeDisparitiesAsInThePaper) {
 
 TEST(MatchDp, SeparatesABoxFromTheBackgroundAndLeavesItsOcclusionInvalid) {
   const StereoScene s = make_scene(200, 120, 4.0, 14.0, 80, 30, 60, 60);
-  Matcher m({180, 110, 24});
+  DpMatcherUnderTest m({180, 110, 24});
   DisparityMap out;
   auto st = m.run(s, {10, 5, 180, 110}, range(0, 23), out);
   ASSERT_TRUE(st.ok()) << st.error().message;
@@ -130,7 +130,7 @@ TEST(MatchDp, SeparatesABoxFromTheBackgroundAndLeavesItsOcclusionInvalid) {
 
 TEST(MatchDp, EdgeConstraintKeepsTheDenseResult) {
   const StereoScene s = make_scene(200, 120, 4.0, 14.0, 80, 30, 60, 60, 3);
-  Matcher m({180, 110, 24});
+  DpMatcherUnderTest m({180, 110, 24});
   DisparityMap out;
   MatchDpParams p = range(0, 23);
   ASSERT_TRUE(m.run(s, {10, 5, 180, 110}, p, out).ok());
@@ -155,7 +155,7 @@ TEST(MatchDp, ShadowPixelsGetNoDisparity) {
     for (int x = 60; x < 80; ++x) rm[static_cast<std::size_t>(y * 160 + x)] = kShadowPixel;
   ShadowMask ls{ImageView<const std::uint8_t>(lm.data(), roi.w, roi.h), roi};
   ShadowMask rs{ImageView<const std::uint8_t>(rm.data(), 160, 100), {0, 0, 160, 100}};
-  Matcher m({120, 80, 32});
+  DpMatcherUnderTest m({120, 80, 32});
   DisparityMap out;
   auto st = m.run(s, roi, range(0, 20), out, &ls, &rs);
   ASSERT_TRUE(st.ok()) << st.error().message;
@@ -178,7 +178,7 @@ TEST(MatchDp, ShadowPixelsGetNoDisparity) {
 
 TEST(MatchDp, ConfidenceIsZeroExactlyWhereInvalid) {
   const StereoScene s = make_scene(200, 120, 4.0, 14.0, 80, 30, 60, 60);
-  Matcher m({180, 110, 24});
+  DpMatcherUnderTest m({180, 110, 24});
   DisparityMap out;
   ASSERT_TRUE(m.run(s, {10, 5, 180, 110}, range(0, 23), out).ok());
   for (int y = 0; y < 110; ++y)
@@ -189,7 +189,7 @@ TEST(MatchDp, ConfidenceIsZeroExactlyWhereInvalid) {
 
 TEST(MatchDp, EveryBadInputIsAnErrorNamingTheProblem) {
   const StereoScene s = make_scene(160, 100, 7.0);
-  Matcher m({100, 80, 32});
+  DpMatcherUnderTest m({100, 80, 32});
   DisparityMap out;
   auto expect = [&](Result<MatchDpStats> r, Errc code, const char* words) {
     ASSERT_FALSE(r.ok());
@@ -237,7 +237,7 @@ TEST(MatchDp, EveryBadInputIsAnErrorNamingTheProblem) {
 
 TEST(MatchDp, RepeatedCallsAllocateNothingAndStayWithinTheStatedMemory) {
   const StereoScene s = make_scene(200, 120, 4.0, 14.0, 80, 30, 60, 60);
-  Matcher m({180, 110, 24});
+  DpMatcherUnderTest m({180, 110, 24});
   DisparityMap out;
   {
     petra::test::HeapScope scope;
@@ -261,7 +261,7 @@ TEST(MatchDp, FlightBudgetFitsItsStatedMemory) {
   const std::size_t bytes = match_dp_scratch_bytes(flight);
   EXPECT_EQ(bytes, 1841243u);  // the figure stated in match_dp.hpp and docs/matching.md
   const StereoScene s = make_scene(460, 330, 20.0, 60.0, 150, 100, 120, 120);
-  Matcher m(flight);
+  DpMatcherUnderTest m(flight);
   DisparityMap out;
   auto st = m.run(s, {135, 5, 320, 320}, range(0, 127), out);
   ASSERT_TRUE(st.ok()) << st.error().message;

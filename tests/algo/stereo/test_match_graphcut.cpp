@@ -202,9 +202,10 @@ struct Run {
   std::vector<std::int16_t> q4;
 };
 
-class Matcher {
+class GraphCutUnderTest {
  public:
-  explicit Matcher(GraphCutBudget b) : block_(GraphCutMatcher::bytes_needed(b)), arena_(block_) {
+  explicit GraphCutUnderTest(GraphCutBudget b)
+      : block_(GraphCutMatcher::bytes_needed(b)), arena_(block_) {
     EXPECT_TRUE(m_.init(arena_, b).ok());
   }
   Result<Run> run(const Problem& pr, GraphCutParams params) {
@@ -247,7 +248,7 @@ std::vector<int> labels_of(const Run& r, int disp_min) {
 // the final labelling is a local minimum for every single expansion.
 TEST(MatchGraphCut, EachExpansionIsOptimalAndTheResultIsALocalMinimum) {
   std::mt19937 rng(2024);
-  Matcher m({4, 2, 4});
+  GraphCutUnderTest m({4, 2, 4});
   int checked = 0;
   for (int round = 0; round < 16; ++round) {
     const int w = 3 + round % 2, h = 2, disp_max = 1 + round % 3;
@@ -341,7 +342,7 @@ Scene square_scene(int w, int h, int d_bg, int d_fg, Rect square, Rect roi, int 
 
 TEST(MatchGraphCut, RecoversAPlaneAndASquareWithTheirOcclusion) {
   const Scene s = square_scene(64, 40, 2, 7, {28, 12, 20, 16}, {0, 0, 64, 40}, 0, 9, 5);
-  Matcher m({64, 40, 10});
+  GraphCutUnderTest m({64, 40, 10});
   GraphCutParams params;
   params.max_cycles = 4;  // to convergence
   auto run = m.run(s.pr, params);
@@ -377,7 +378,7 @@ TEST(MatchGraphCut, DpStartFallsBackToBlockMatchingWhenTheDpFindsNothing) {
   Scene s = square_scene(40, 24, 2, 6, {16, 6, 12, 10}, {0, 0, 40, 24}, 0, 8, 3);
   std::fill(s.pr.left.begin(), s.pr.left.end(), std::uint8_t{90});
   std::fill(s.pr.right.begin(), s.pr.right.end(), std::uint8_t{90});
-  Matcher m({40, 24, 9});
+  GraphCutUnderTest m({40, 24, 9});
   auto run = m.run(s.pr, GraphCutParams{});
   ASSERT_TRUE(run.ok()) << run.error().message;
   EXPECT_EQ(run->report.start, GraphCutStart::block_matching);
@@ -404,7 +405,7 @@ TEST(MatchGraphCut, GivenStartFromTheDpMapEqualsTheDpStart) {
   const StereoInput in{ConstGray8View(pr.left.data(), pr.width, pr.height),
                        ConstGray8View(pr.right.data(), pr.width, pr.height)};
   ASSERT_TRUE(match_dp(in, pr.roi, dp, budget, arena, dp_map).ok());
-  Matcher m({64, 40, 10});
+  GraphCutUnderTest m({64, 40, 10});
   auto from_dp = m.run(pr, GraphCutParams{});
   ASSERT_TRUE(from_dp.ok()) << from_dp.error().message;
   GraphCutParams given;
@@ -428,7 +429,7 @@ TEST(MatchGraphCut, RoiAndNegativeDisparitiesUseImageCoordinates) {
   // Same scene seen through an ROI, disparities searched from -3: the result
   // inside the ROI is the scene's disparity in rectified image coordinates.
   const Scene s = square_scene(80, 48, 2, 7, {40, 16, 16, 16}, {30, 10, 36, 30}, -3, 9, 11);
-  Matcher m({40, 32, 16});
+  GraphCutUnderTest m({40, 32, 16});
   auto run = m.run(s.pr, GraphCutParams{});
   ASSERT_TRUE(run.ok()) << run.error().message;
   int visible = 0, right = 0;
@@ -442,7 +443,7 @@ TEST(MatchGraphCut, RoiAndNegativeDisparitiesUseImageCoordinates) {
 
 TEST(MatchGraphCut, EnergyNeverIncreasesAndMatchesItsDefinition) {
   const Scene s = square_scene(40, 24, 2, 6, {16, 6, 12, 10}, {0, 0, 40, 24}, 0, 8, 3);
-  Matcher m({40, 24, 9});
+  GraphCutUnderTest m({40, 24, 9});
   GraphCutParams params;
   params.max_cycles = 6;
   // First run to learn the automatic parameters, then trace with them.
@@ -467,7 +468,7 @@ TEST(MatchGraphCut, EnergyNeverIncreasesAndMatchesItsDefinition) {
 
 TEST(MatchGraphCut, PruningKeepsTheSameResult) {
   const Scene s = square_scene(48, 32, 1, 5, {20, 10, 14, 12}, {0, 0, 48, 32}, 0, 7, 8);
-  Matcher m({48, 32, 8});
+  GraphCutUnderTest m({48, 32, 8});
   GraphCutParams params;
   params.random_order = false;
   auto pruned = m.run(s.pr, params);
@@ -487,7 +488,7 @@ TEST(MatchGraphCut, ShadowPixelsGetNoDisparityAndNoMatchLandsInShadow) {
     for (int x = 5; x < 15; ++x) s.pr.left_shadow[y * 48 + x] = 1;
   for (int y = 2; y < 10; ++y)
     for (int x = 30; x < 40; ++x) s.pr.right_shadow[y * 48 + x] = 1;
-  Matcher m({48, 32, 9});
+  GraphCutUnderTest m({48, 32, 9});
   auto run = m.run(s.pr, GraphCutParams{});
   ASSERT_TRUE(run.ok());
   long shadow = 0;
@@ -507,7 +508,7 @@ TEST(MatchGraphCut, ShadowPixelsGetNoDisparityAndNoMatchLandsInShadow) {
 
 TEST(MatchGraphCut, SeededOrderIsDeterministic) {
   const Scene s = square_scene(40, 24, 2, 6, {16, 6, 12, 10}, {0, 0, 40, 24}, 0, 8, 4);
-  Matcher m({40, 24, 9});
+  GraphCutUnderTest m({40, 24, 9});
   GraphCutParams params;
   params.seed = 77;
   auto a = m.run(s.pr, params);
@@ -519,7 +520,7 @@ TEST(MatchGraphCut, SeededOrderIsDeterministic) {
 
 TEST(MatchGraphCut, RepeatedCallsAllocateNothing) {
   const Scene s = square_scene(40, 24, 2, 6, {16, 6, 12, 10}, {0, 0, 40, 24}, 0, 8, 4);
-  Matcher m({40, 24, 9});
+  GraphCutUnderTest m({40, 24, 9});
   std::vector<std::int16_t> q4(40 * 24);
   DisparityMap out{ImageView<std::int16_t>(q4.data(), 40, 24), {}};
   StereoInput in{ConstGray8View(s.pr.left.data(), 40, 24),
@@ -547,7 +548,7 @@ struct CancelAfter {
 
 TEST(MatchGraphCut, CancelStopsBetweenExpansionsAndLeavesTheOutputAlone) {
   const Scene s = square_scene(40, 24, 2, 6, {16, 6, 12, 10}, {0, 0, 40, 24}, 0, 8, 4);
-  Matcher m({40, 24, 9});
+  GraphCutUnderTest m({40, 24, 9});
   std::vector<std::int16_t> q4(40 * 24, 123);
   DisparityMap out{ImageView<std::int16_t>(q4.data(), 40, 24), {}};
   StereoInput in{ConstGray8View(s.pr.left.data(), 40, 24),
@@ -580,7 +581,7 @@ TEST(MatchGraphCut, CancelStopsBetweenExpansionsAndLeavesTheOutputAlone) {
 
 TEST(MatchGraphCut, BadInputIsRefusedWithTheFieldNamed) {
   const Scene s = square_scene(40, 24, 2, 6, {16, 6, 12, 10}, {0, 0, 40, 24}, 0, 8, 4);
-  Matcher m({40, 24, 9});
+  GraphCutUnderTest m({40, 24, 9});
   std::vector<std::int16_t> q4(40 * 24);
   DisparityMap out{ImageView<std::int16_t>(q4.data(), 40, 24), {}};
   const StereoInput in{ConstGray8View(s.pr.left.data(), 40, 24),

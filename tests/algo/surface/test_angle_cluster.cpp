@@ -1,4 +1,5 @@
 #include "algo/surface/angle_cluster.hpp"
+#include "tests/support/angles.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,10 +12,6 @@ namespace petra {
 namespace {
 
 using V = Eigen::Vector3d;
-
-double angle_deg(const V& a, const V& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / M_PI;
-}
 
 // Normals scattered by ~3 degrees around three directions 40+ degrees apart.
 struct Data {
@@ -51,9 +48,9 @@ TEST(AngleCluster, ConvergesToTheWeightedMeanDirections) {
     V mean = V::Zero();
     for (std::size_t i = 0; i < labels.size(); ++i)
       if (labels[i] == k) mean += d.weights[i] * d.normals[i];
-    EXPECT_LT(angle_deg(r->centres[k], mean.normalized()),
+    EXPECT_LT(test::angle_deg(r->centres[k], mean.normalized()),
               1e-9);  // the centre is the weighted mean
-    EXPECT_LT(angle_deg(r->centres[k], d.dirs[k]), 1.0);
+    EXPECT_LT(test::angle_deg(r->centres[k], d.dirs[k]), 1.0);
   }
 }
 
@@ -69,7 +66,8 @@ TEST(AngleCluster, InitialCentresCloserThanFiveDegreesAreReplacedOrDropped) {
   ASSERT_TRUE(r.ok());
   ASSERT_EQ(r->c, 3);
   for (int i = 0; i < r->c; ++i)
-    for (int j = i + 1; j < r->c; ++j) EXPECT_GT(angle_deg(r->centres[i], r->centres[j]), 5.0);
+    for (int j = i + 1; j < r->c; ++j)
+      EXPECT_GT(test::angle_deg(r->centres[i], r->centres[j]), 5.0);
   // All normals within 2 degrees of one direction: only one centre survives.
   std::vector<V> one(50);
   std::vector<double> w(50, 1.0);

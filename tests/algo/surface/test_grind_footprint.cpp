@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "tests/support/angles.hpp"
 #include "tests/support/heap_counter.hpp"
 
 namespace petra {
@@ -23,8 +24,8 @@ struct FaceMesh {
   Eigen::Vector3d at(double x, double y, double z) const { return o + x * e1 + y * e2 + z * n; }
 };
 
-FaceMesh make_face(double w, double h, const std::function<double(double, double)>& height,
-                   const std::function<bool(double, double)>& keep = nullptr) {
+FaceMesh make_relief_face(double w, double h, const std::function<double(double, double)>& height,
+                          const std::function<bool(double, double)>& keep = nullptr) {
   FaceMesh f;
   f.o = Eigen::Vector3d(10, -20, 900);
   f.n = Eigen::Vector3d(0.2, -0.3, -1).normalized();
@@ -42,7 +43,7 @@ FaceMesh make_face(double w, double h, const std::function<double(double, double
   return f;
 }
 
-Result<Footprint> run(const FaceMesh& f, double diameter) {
+Result<Footprint> run_footprint(const FaceMesh& f, double diameter) {
   std::vector<std::byte> block(footprint_scratch_bytes(f.samples.size()));
   Arena arena(block);
   FootprintParams p;
@@ -50,10 +51,6 @@ Result<Footprint> run(const FaceMesh& f, double diameter) {
   auto r = find_footprint(f.samples, f.n, f.o, p, arena);
   EXPECT_EQ(arena.used(), 0u);
   return r;
-}
-
-double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / M_PI;
 }
 
 TEST(GrindFootprint, FlatCornerOfARoughFaceIsFound) {
@@ -71,8 +68,8 @@ TEST(GrindFootprint, FlatCornerOfARoughFaceIsFound) {
         static_cast<std::size_t>((x + 30) * 2) * 101 + static_cast<std::size_t>((y + 20) * 2);
     return relief[i % relief.size()];
   };
-  const FaceMesh f = make_face(60, 40, height);
-  auto r = run(f, 20);
+  const FaceMesh f = make_relief_face(60, 40, height);
+  auto r = run_footprint(f, 20);
   ASSERT_TRUE(r.ok()) << r.error().message;
   ASSERT_TRUE(r->covered);
   // The disc lies in the flat corner (its centre at least a radius inside).
@@ -84,7 +81,7 @@ TEST(GrindFootprint, FlatCornerOfARoughFaceIsFound) {
   EXPECT_LT(r->peak_to_valley_mm, 0.05);
   // Its plane is the corner's: 2 deg from the face frame about e2, on it.
   const Eigen::Vector3d corner_n = (f.n - tilt * f.e1).normalized();
-  EXPECT_LT(angle_deg(r->normal, corner_n), 0.05);
+  EXPECT_LT(test::angle_deg(r->normal, corner_n), 0.05);
   EXPECT_NEAR(q.dot(f.n), 0.5 + tilt * (x - 17.5), 0.01);
   EXPECT_GT(r->coverage, 0.95);
   EXPECT_LE(r->candidates, static_cast<int>(kFootprintCandidates));
@@ -99,8 +96,8 @@ TEST(GrindFootprint, CurvedFaceGivesTheTangentPlaneAtItsCentre) {
     const double rho2 = (x - 4) * (x - 4) + (y + 3) * (y + 3);
     return R - std::sqrt(R * R - rho2);
   };
-  const FaceMesh f = make_face(50, 50, height);
-  auto r = run(f, 20);
+  const FaceMesh f = make_relief_face(50, 50, height);
+  auto r = run_footprint(f, 20);
   ASSERT_TRUE(r.ok());
   ASSERT_TRUE(r->covered);
   const Eigen::Vector3d q = r->centre_mm - f.o;
@@ -109,33 +106,33 @@ TEST(GrindFootprint, CurvedFaceGivesTheTangentPlaneAtItsCentre) {
   const Eigen::Vector3d centre_of_sphere = f.at(4, -3, R);
   const Eigen::Vector3d surface = f.at(x, y, height(x, y));
   const Eigen::Vector3d tangent_n = (centre_of_sphere - surface).normalized();
-  EXPECT_LT(angle_deg(r->normal, tangent_n), 0.15);
+  EXPECT_LT(test::angle_deg(r->normal, tangent_n), 0.15);
   EXPECT_LT(std::hypot(x, y), 4.0);  // the most central of the equally flat
   // RMS of a paraboloid over a disc about its best plane: r^2 / (2 R sqrt 12).
   EXPECT_NEAR(r->rms_mm, 100.0 / (2 * R * std::sqrt(12.0)), 0.01);
 }
 
 TEST(GrindFootprint, FaceSmallerThanTheToolIsNotCovered) {
-  const FaceMesh f = make_face(15, 40, [](double, double) { return 0.0; });
-  auto r = run(f, 20);
+  const FaceMesh f = make_relief_face(15, 40, [](double, double) { return 0.0; });
+  auto r = run_footprint(f, 20);
   ASSERT_TRUE(r.ok());
   EXPECT_FALSE(r->covered);
   // A face wide enough, but holed in the middle, with a band around: no
   // covered disc either.
-  const FaceMesh holed = make_face(
+  const FaceMesh holed = make_relief_face(
       30, 30, [](double, double) { return 0.0; },
       [](double x, double y) { return std::hypot(x, y) > 6; });
-  r = run(holed, 20);
+  r = run_footprint(holed, 20);
   ASSERT_TRUE(r.ok());
   EXPECT_FALSE(r->covered);
   // The same face with the tool of 12 mm: a disc fits in the band's corner.
-  r = run(holed, 12);
+  r = run_footprint(holed, 12);
   ASSERT_TRUE(r.ok());
   EXPECT_TRUE(r->covered);
 }
 
 TEST(GrindFootprint, BadInputIsNamed) {
-  const FaceMesh f = make_face(30, 30, [](double, double) { return 0.0; });
+  const FaceMesh f = make_relief_face(30, 30, [](double, double) { return 0.0; });
   std::vector<std::byte> block(footprint_scratch_bytes(f.samples.size()));
   Arena arena(block);
   FootprintParams p;
@@ -153,7 +150,8 @@ TEST(GrindFootprint, BadInputIsNamed) {
 
 TEST(GrindFootprint, LargeFaceIsBoundedAndHeapFree) {
   // 150 x 150 mm at 0.5 mm: 180000 samples, thinned for the search.
-  const FaceMesh f = make_face(150, 150, [](double x, double y) { return 0.001 * x * y / 100; });
+  const FaceMesh f =
+      make_relief_face(150, 150, [](double x, double y) { return 0.001 * x * y / 100; });
   std::vector<std::byte> block(footprint_scratch_bytes(f.samples.size()));
   Arena arena(block);
   test::HeapScope scope;

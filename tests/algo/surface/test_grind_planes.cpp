@@ -11,13 +11,14 @@
 #include "algo/mesh/mesh_lift.hpp"
 #include "algo/surface/ground_segment.hpp"
 #include "algo/surface/plane_fit.hpp"
+#include "tests/support/angles.hpp"
 #include "tests/support/heap_counter.hpp"
 #include "tests/support/synthetic_scene.hpp"
 
 namespace petra {
 namespace {
 
-const test::PinholeView kView = test::look_at({30, -600, 500}, {0, 0, 20});
+const test::PinholeView kPlanesView = test::look_at({30, -600, 500}, {0, 0, 20});
 
 struct RockMesh {
   test::Cloud cloud;
@@ -29,12 +30,13 @@ struct RockMesh {
 template <class Disturb>
 RockMesh make_rock_mesh(double noise_mm, std::uint64_t seed, Disturb&& disturb) {
   RockMesh m;
-  const Eigen::Vector2d a = kView.project({-40, -30, 0}), b = kView.project({40, 30, 55});
+  const Eigen::Vector2d a = kPlanesView.project({-40, -30, 0}),
+                        b = kPlanesView.project({40, 30, 55});
   const Rect roi{static_cast<int>(std::min(a.x(), b.x())) - 40,
                  static_cast<int>(std::min(a.y(), b.y())) - 40,
                  static_cast<int>(std::abs(b.x() - a.x())) + 80,
                  static_cast<int>(std::abs(b.y() - a.y())) + 80};
-  m.cloud = test::render(kView, roi, test::ridge_rock(), noise_mm, seed);
+  m.cloud = test::render(kPlanesView, roi, test::ridge_rock(), noise_mm, seed);
   disturb(m.cloud);
   std::vector<IntPoint> px;
   for (const auto& p : m.cloud.px) px.push_back({p.u, p.v});
@@ -45,11 +47,13 @@ RockMesh make_rock_mesh(double noise_mm, std::uint64_t seed, Disturb&& disturb) 
   auto d = delaunay_triangulate(px, m.tris, arena);
   EXPECT_TRUE(d.ok());
   m.tris.resize(d->triangles);
-  auto f = remove_discontinuities(m.cloud.xyz, kView.centre(), MeshFilterParams{}, m.tris, arena);
+  auto f =
+      remove_discontinuities(m.cloud.xyz, kPlanesView.centre(), MeshFilterParams{}, m.tris, arena);
   EXPECT_TRUE(f.ok());
   m.tris.resize(f->kept);
   std::vector<PointClass> labels(m.cloud.xyz.size());
-  auto g = segment_ground<double>(m.cloud.xyz, m.cloud.px, roi, {}, kView.centre(), {}, labels);
+  auto g =
+      segment_ground<double>(m.cloud.xyz, m.cloud.px, roi, {}, kPlanesView.centre(), {}, labels);
   EXPECT_TRUE(g.ok()) << g.error().message;
   auto rock = [&](int v) { return labels[static_cast<std::size_t>(v)] == PointClass::rock; };
   auto kept = keep_triangles(
@@ -75,10 +79,6 @@ const RockMesh& rock_mesh(double noise_mm, std::uint64_t seed = 1) {
   return noise_mm == 0.0 ? exact : noisy;
 }
 
-double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / M_PI;
-}
-
 // The rock face a plane belongs to: the face with the closest normal.
 int face_of(const test::Rock& rock, const GrindPlane& p) {
   int best = 0;
@@ -97,15 +97,15 @@ bool on_face(const test::Rock& rock, int f, const Eigen::Vector3d& x, double tol
   return true;
 }
 
-Result<GrindResult> run(const RockMesh& m, int c, const GrindParams& params,
-                        std::vector<std::uint8_t>& labels,
-                        const std::vector<Eigen::Vector3d>& normals = {},
-                        const RigGeometry& rig = {}) {
+Result<GrindResult> run_grind_planes(const RockMesh& m, int c, const GrindParams& params,
+                                     std::vector<std::uint8_t>& labels,
+                                     const std::vector<Eigen::Vector3d>& normals = {},
+                                     const RigGeometry& rig = {}) {
   std::vector<std::byte> block(grind_planes_scratch_bytes(m.tris.size()));
   Arena arena(block);
   labels.assign(m.tris.size(), 0);
-  return find_grind_planes(m.cloud.xyz, m.tris, kView.centre(), c, params, arena, labels, normals,
-                           rig);
+  return find_grind_planes(m.cloud.xyz, m.tris, kPlanesView.centre(), c, params, arena, labels,
+                           normals, rig);
 }
 
 // Smoothed point normals as the pipeline gives them (algo/mesh/surface_normals
@@ -141,7 +141,7 @@ std::vector<Eigen::Vector3d> smoothed_normals(const RockMesh& m) {
     cov = cov / n - mean * mean.transpose();
     const SymEigen3<double> e = sym_eigen3<double>(cov);
     Eigen::Vector3d nrm = e.vectors.col(0).normalized();
-    if (nrm.dot(kView.centre() - c.xyz[i]) < 0) nrm = -nrm;
+    if (nrm.dot(kPlanesView.centre() - c.xyz[i]) < 0) nrm = -nrm;
     out[i] = nrm;
   }
   return out;
@@ -151,7 +151,7 @@ TEST(GrindPlanes, ThreeVisibleFacesOfARidgeRock) {
   const RockMesh& m = rock_mesh(0.0);
   const test::Rock rock = test::ridge_rock();
   std::vector<std::uint8_t> labels;
-  auto r = run(m, 3, GrindParams{}, labels);
+  auto r = run_grind_planes(m, 3, GrindParams{}, labels);
   ASSERT_TRUE(r.ok()) << r.error().message;
   ASSERT_EQ(r->accepted, 3);
   EXPECT_TRUE(r->converged);
@@ -160,7 +160,7 @@ TEST(GrindPlanes, ThreeVisibleFacesOfARidgeRock) {
     const GrindPlane& p = r->planes[k];
     const int f = face_of(rock, p);
     ++seen[f];
-    EXPECT_LT(angle_deg(p.normal, rock.faces[static_cast<std::size_t>(f)].n), 0.05)
+    EXPECT_LT(test::angle_deg(p.normal, rock.faces[static_cast<std::size_t>(f)].n), 0.05)
         << "plane " << k;
     EXPECT_TRUE(on_face(rock, f, p.centroid_mm, 0.01)) << "plane " << k;
     EXPECT_LT(p.rms_mm, 0.01);
@@ -192,13 +192,14 @@ TEST(GrindPlanes, NoisyMeshStillMeetsTheAccuracyTargets) {
   const RockMesh& m = rock_mesh(0.3, 5);
   const test::Rock rock = test::ridge_rock();
   std::vector<std::uint8_t> labels;
-  auto r = run(m, 3, GrindParams{}, labels, smoothed_normals(m));
+  auto r = run_grind_planes(m, 3, GrindParams{}, labels, smoothed_normals(m));
   ASSERT_TRUE(r.ok()) << r.error().message;
   ASSERT_EQ(r->accepted, 3);
   for (int k = 0; k < 3; ++k) {
     const GrindPlane& p = r->planes[k];
     const int f = face_of(rock, p);
-    EXPECT_LT(angle_deg(p.normal, rock.faces[static_cast<std::size_t>(f)].n), 0.5) << "plane " << k;
+    EXPECT_LT(test::angle_deg(p.normal, rock.faces[static_cast<std::size_t>(f)].n), 0.5)
+        << "plane " << k;
     EXPECT_TRUE(on_face(rock, f, p.centroid_mm, 1.0)) << "plane " << k;
   }
 }
@@ -211,7 +212,7 @@ TEST(GrindPlanes, NoisyMeshStillMeetsTheAccuracyTargets) {
 // face is taken back whole by position (regrowth) before the final fit.
 RockMesh bent_face_mesh() {
   return make_rock_mesh(0.0, 1, [](test::Cloud& c) {
-    const Eigen::Vector3d eye = kView.centre();
+    const Eigen::Vector3d eye = kPlanesView.centre();
     for (std::size_t i = 0; i < c.xyz.size(); ++i) {
       if (c.surface[i] != 1) continue;
       const double bend_mm = 2.5 * std::cos(2 * M_PI * (c.xyz[i].x() + 20) / 40);
@@ -236,15 +237,15 @@ TEST(GrindPlanes, BentFaceIsRegrownWhole) {
   const test::Rock rock = test::ridge_rock();
   auto face_error = [&](const GrindParams& params, double& area) {
     std::vector<std::uint8_t> labels;
-    auto r = run(m, 3, params, labels, normals);
+    auto r = run_grind_planes(m, 3, params, labels, normals);
     EXPECT_TRUE(r.ok()) << r.error().message;
     // The whole patch's plane (face_normal): the regrowth's subject. The
     // reported plane may be a footprint disc's own on this bent surface
     // (FootprintOnABentFaceIsItsLocalPlane).
     double err = 180;
     for (int k = 0; r.ok() && k < r->accepted; ++k)
-      if (angle_deg(r->planes[k].face_normal, rock.faces[1].n) < err) {
-        err = angle_deg(r->planes[k].face_normal, rock.faces[1].n);
+      if (test::angle_deg(r->planes[k].face_normal, rock.faces[1].n) < err) {
+        err = test::angle_deg(r->planes[k].face_normal, rock.faces[1].n);
         area = r->planes[k].area_mm2;
       }
     return err;
@@ -272,17 +273,17 @@ TEST(GrindPlanes, FootprintOnABentFaceIsItsLocalPlane) {
   std::vector<std::uint8_t> labels;
   GrindParams params;
   params.report_disc_plane = true;
-  auto r = run(m, 3, params, labels, normals);
+  auto r = run_grind_planes(m, 3, params, labels, normals);
   ASSERT_TRUE(r.ok());
   int k = -1;
   for (int j = 0; j < r->accepted; ++j)
-    if (angle_deg(r->planes[j].face_normal, rock.faces[1].n) < 5) k = j;
+    if (test::angle_deg(r->planes[j].face_normal, rock.faces[1].n) < 5) k = j;
   ASSERT_GE(k, 0);
   const GrindPlane& p = r->planes[k];
   ASSERT_TRUE(p.footprint_local);
   EXPECT_FALSE(p.footprint_agrees);
-  EXPECT_LT(angle_deg(p.normal, p.footprint_normal), 1e-9);
-  EXPECT_GT(angle_deg(p.normal, p.face_normal), 2.0);
+  EXPECT_LT(test::angle_deg(p.normal, p.footprint_normal), 1e-9);
+  EXPECT_GT(test::angle_deg(p.normal, p.face_normal), 2.0);
   // The bent cloud's face-1 points under the disc (radius 10 mm about the
   // centroid, across the normal), fitted by total least squares.
   std::vector<Eigen::Vector3d> under;
@@ -295,22 +296,22 @@ TEST(GrindPlanes, FootprintOnABentFaceIsItsLocalPlane) {
   ASSERT_GT(under.size(), 100u);
   auto fit = fit_plane_tls<double>(std::span<const Eigen::Vector3d>(under));
   ASSERT_TRUE(fit.ok());
-  EXPECT_LT(
-      std::min(angle_deg(fit->plane.normal, p.normal), angle_deg(-fit->plane.normal, p.normal)),
-      1.0);
+  EXPECT_LT(std::min(test::angle_deg(fit->plane.normal, p.normal),
+                     test::angle_deg(-fit->plane.normal, p.normal)),
+            1.0);
   EXPECT_LT(std::abs(fit->plane.distance(p.centroid_mm)), 0.3);
   EXPECT_LT(p.footprint_rms_mm, 1.0);
   // By default the face's plane is reported, through the same disc's centre.
-  auto d = run(m, 3, GrindParams{}, labels, normals);
+  auto d = run_grind_planes(m, 3, GrindParams{}, labels, normals);
   ASSERT_TRUE(d.ok());
   bool found = false;
   for (int j = 0; j < d->accepted; ++j) {
     const GrindPlane& q = d->planes[j];
-    if (angle_deg(q.face_normal, rock.faces[1].n) >= 5) continue;
+    if (test::angle_deg(q.face_normal, rock.faces[1].n) >= 5) continue;
     found = true;
     EXPECT_FALSE(q.footprint_local);
-    EXPECT_LT(angle_deg(q.normal, q.face_normal), 1e-9);
-    EXPECT_LT(angle_deg(q.footprint_normal, p.footprint_normal), 1e-9);
+    EXPECT_LT(test::angle_deg(q.normal, q.face_normal), 1e-9);
+    EXPECT_LT(test::angle_deg(q.footprint_normal, p.footprint_normal), 1e-9);
     EXPECT_NEAR(q.normal.dot(q.centroid_mm - q.face_centroid_mm), 0.0, 1e-9);
   }
   EXPECT_TRUE(found);
@@ -321,7 +322,7 @@ TEST(GrindPlanes, RejectionsCarryTheirReason) {
   std::vector<std::uint8_t> labels;
   GrindParams p;
   p.max_view_angle_deg = 45;  // the front wall is seen at ~40 degrees, the roof at ~53
-  auto r = run(m, 3, p, labels);
+  auto r = run_grind_planes(m, 3, p, labels);
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r->accepted, 1);
   EXPECT_LT(r->planes[0].view_angle_deg, 45);
@@ -334,7 +335,7 @@ TEST(GrindPlanes, RejectionsCarryTheirReason) {
   EXPECT_EQ(roof, 2);
   p = {};
   p.grinder_diameter_mm = 200;  // bigger than the rock
-  r = run(m, 3, p, labels);
+  r = run_grind_planes(m, 3, p, labels);
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r->accepted, 0);
   for (int k = 0; k < r->count; ++k)
@@ -342,8 +343,8 @@ TEST(GrindPlanes, RejectionsCarryTheirReason) {
   EXPECT_STREQ(verdict_name(PlaneVerdict::too_small), "smaller than the grinder footprint");
 }
 
-// The test rig: kView's focal length and a 200 mm baseline.
-const RigGeometry kRig{kView.f_px, 200.0};
+// The test rig: kPlanesView's focal length and a 200 mm baseline.
+const RigGeometry kRig{kPlanesView.f_px, 200.0};
 
 TEST(GrindPlanes, FootprintAndUncertaintyOnEveryPlane) {
   const RockMesh& exact = rock_mesh(0.0);
@@ -351,9 +352,9 @@ TEST(GrindPlanes, FootprintAndUncertaintyOnEveryPlane) {
   std::vector<std::uint8_t> labels;
   // No rig: the fits' residuals alone set the uncertainty (the noise model
   // is tested in test_plane_uncertainty), so the exact mesh's is near zero.
-  auto a = run(exact, 3, GrindParams{}, labels);
-  auto b = run(noisy, 3, GrindParams{}, labels);
-  auto c = run(noisy, 3, GrindParams{}, labels, {}, kRig);
+  auto a = run_grind_planes(exact, 3, GrindParams{}, labels);
+  auto b = run_grind_planes(noisy, 3, GrindParams{}, labels);
+  auto c = run_grind_planes(noisy, 3, GrindParams{}, labels, {}, kRig);
   ASSERT_TRUE(a.ok() && b.ok() && c.ok());
   ASSERT_EQ(c->accepted, 3);
   ASSERT_EQ(a->accepted, 3);
@@ -370,7 +371,7 @@ TEST(GrindPlanes, FootprintAndUncertaintyOnEveryPlane) {
     // Flat faces: the whole face's plane, through the disc's centre, which
     // lies on the face itself (inside its polygon, on its plane).
     EXPECT_FALSE(p.footprint_local);
-    EXPECT_LT(angle_deg(p.normal, p.face_normal), 1e-9);
+    EXPECT_LT(test::angle_deg(p.normal, p.face_normal), 1e-9);
     const test::Rock rock = test::ridge_rock();
     EXPECT_TRUE(on_face(rock, face_of(rock, p), p.centroid_mm, 1.0));
     // The noisier mesh's planes are the more uncertain (same faces).
@@ -380,7 +381,7 @@ TEST(GrindPlanes, FootprintAndUncertaintyOnEveryPlane) {
       if (face_of(rock_a, a->planes[j]) == face_of(rock_a, p)) same = j;
     ASSERT_GE(same, 0);
     const GrindPlane& q = a->planes[same];
-    EXPECT_LT(angle_deg(p.normal, q.normal), 5.0);
+    EXPECT_LT(test::angle_deg(p.normal, q.normal), 5.0);
     EXPECT_GT(p.normal_sigma_deg, q.normal_sigma_deg);
     EXPECT_GT(p.footprint_rms_mm, q.footprint_rms_mm);
     // With the rig, never below the stereo model's noise (here about 1 mm
@@ -395,7 +396,7 @@ TEST(GrindPlanes, RoughOrUncertainFacesAreRefusedWithTheirReason) {
   std::vector<std::uint8_t> labels;
   GrindParams p;
   p.max_footprint_rms_mm = 0.05;  // far below the 0.3 mm noise of the mesh
-  auto r = run(m, 3, p, labels, {}, kRig);
+  auto r = run_grind_planes(m, 3, p, labels, {}, kRig);
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r->accepted, 0);
   int rough = 0;
@@ -404,7 +405,7 @@ TEST(GrindPlanes, RoughOrUncertainFacesAreRefusedWithTheirReason) {
   EXPECT_STREQ(verdict_name(PlaneVerdict::too_rough), "too rough over the grinder footprint");
   p = {};
   p.max_normal_sigma_deg = 1e-4;
-  r = run(m, 3, p, labels, {}, kRig);
+  r = run_grind_planes(m, 3, p, labels, {}, kRig);
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r->accepted, 0);
   int uncertain = 0;
@@ -417,41 +418,41 @@ TEST(GrindPlanes, RoughOrUncertainFacesAreRefusedWithTheirReason) {
 TEST(GrindPlanes, FewerWantedThanQualifyKeepsTheLargest) {
   const RockMesh& m = rock_mesh(0.0);
   std::vector<std::uint8_t> labels;
-  auto three = run(m, 3, GrindParams{}, labels);
+  auto three = run_grind_planes(m, 3, GrindParams{}, labels);
   ASSERT_TRUE(three.ok());
-  auto two = run(m, 2, GrindParams{}, labels);
+  auto two = run_grind_planes(m, 2, GrindParams{}, labels);
   ASSERT_TRUE(two.ok());
   ASSERT_EQ(two->accepted, 2);
   // The same two largest faces, and the third reported as surplus.
   for (int k = 0; k < 2; ++k)
-    EXPECT_LT(angle_deg(two->planes[k].normal, three->planes[k].normal), 0.05);
+    EXPECT_LT(test::angle_deg(two->planes[k].normal, three->planes[k].normal), 0.05);
   bool surplus = false;
   for (int k = 2; k < two->count; ++k) surplus |= two->planes[k].verdict == PlaneVerdict::surplus;
   EXPECT_TRUE(surplus);
-  auto one = run(m, 1, GrindParams{}, labels);
+  auto one = run_grind_planes(m, 1, GrindParams{}, labels);
   ASSERT_TRUE(one.ok());
   EXPECT_EQ(one->accepted, 1);
-  EXPECT_LT(angle_deg(one->planes[0].normal, three->planes[0].normal), 0.05);
+  EXPECT_LT(test::angle_deg(one->planes[0].normal, three->planes[0].normal), 0.05);
 }
 
 TEST(GrindPlanes, BadInputIsNamed) {
   const RockMesh& m = rock_mesh(0.0);
   std::vector<std::uint8_t> labels;
-  auto r = run(m, 0, GrindParams{}, labels);
+  auto r = run_grind_planes(m, 0, GrindParams{}, labels);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.code(), Errc::out_of_range);
   EXPECT_NE(std::string(r.error().message).find("c = 0"), std::string::npos);
-  EXPECT_EQ(run(m, 9, GrindParams{}, labels).code(), Errc::out_of_range);
+  EXPECT_EQ(run_grind_planes(m, 9, GrindParams{}, labels).code(), Errc::out_of_range);
   RockMesh few = m;
   few.tris.resize(4);
-  r = run(few, 2, GrindParams{}, labels);
+  r = run_grind_planes(few, 2, GrindParams{}, labels);
   EXPECT_EQ(r.code(), Errc::degenerate);
   GrindParams p;
   p.max_footprint_rms_mm = -1;
-  EXPECT_EQ(run(m, 2, p, labels).code(), Errc::invalid_argument);
+  EXPECT_EQ(run_grind_planes(m, 2, p, labels).code(), Errc::invalid_argument);
   p = {};
   p.grow_angle_deg = 90;
-  r = run(m, 2, p, labels);
+  r = run_grind_planes(m, 2, p, labels);
   EXPECT_EQ(r.code(), Errc::invalid_argument);
   EXPECT_NE(std::string(r.error().message).find("grow_angle_deg"), std::string::npos);
 }
@@ -462,7 +463,8 @@ TEST(GrindPlanes, NoHeap) {
   Arena arena(block);
   std::vector<std::uint8_t> labels(m.tris.size());
   test::HeapScope scope;
-  auto r = find_grind_planes(m.cloud.xyz, m.tris, kView.centre(), 3, GrindParams{}, arena, labels);
+  auto r =
+      find_grind_planes(m.cloud.xyz, m.tris, kPlanesView.centre(), 3, GrindParams{}, arena, labels);
   EXPECT_EQ(scope.allocations(), 0u);
   EXPECT_TRUE(r.ok());
   EXPECT_EQ(arena.used(), 0u);

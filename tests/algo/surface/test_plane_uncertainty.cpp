@@ -21,7 +21,7 @@ struct Face {
   std::vector<Eigen::Vector3d> pts;
 };
 
-Face make_face(double range) {
+Face make_face_at_range(double range) {
   Face f;
   const double t = 30.0 * M_PI / 180.0;
   f.n = Eigen::Vector3d(0, std::sin(t), -std::cos(t));  // towards the camera
@@ -97,7 +97,7 @@ Spread monte_carlo(const Face& f, const DepthNoise& noise, int trials, unsigned 
 }
 
 TEST(PlaneUncertainty, MatchesTheMonteCarloSpreadOfFits) {
-  const Face f = make_face(1000);
+  const Face f = make_face_at_range(1000);
   const DepthNoise noise = rig(0.3);
   EXPECT_NEAR(noise.sigma_range_mm(1000), 1.0, 1e-12);  // Z^2 sigma_d / (f B)
   const PlaneUncertainty u = predicted(f, noise);
@@ -111,7 +111,7 @@ TEST(PlaneUncertainty, MatchesTheMonteCarloSpreadOfFits) {
 }
 
 TEST(PlaneUncertainty, GrowsWithNoiseAsTheModelSays) {
-  const Face near = make_face(1000), far = make_face(2000);
+  const Face near = make_face_at_range(1000), far = make_face_at_range(2000);
   const PlaneUncertainty a = predicted(near, rig(0.3));
   const PlaneUncertainty b = predicted(near, rig(0.6));
   const PlaneUncertainty c = predicted(far, rig(0.3));
@@ -124,7 +124,7 @@ TEST(PlaneUncertainty, GrowsWithNoiseAsTheModelSays) {
 }
 
 TEST(PlaneUncertainty, SharedErrorsCountOncePerCorrelationBox) {
-  const Face f = make_face(1000);
+  const Face f = make_face_at_range(1000);
   DepthNoise shared = rig(0.3);
   shared.correlation_px = 5;
   const PlaneUncertainty a = predicted(f, rig(0.3));
@@ -136,7 +136,7 @@ TEST(PlaneUncertainty, SharedErrorsCountOncePerCorrelationBox) {
 }
 
 TEST(PlaneUncertainty, RoughnessBeyondTheNoiseWidensIt) {
-  const Face f = make_face(1000);
+  const Face f = make_face_at_range(1000);
   const DepthNoise noise = rig(0.3);
   std::mt19937 rng(3);
   std::normal_distribution<double> g(0.0, 3.0);  // 3 mm relief, three times the noise
@@ -151,7 +151,7 @@ TEST(PlaneUncertainty, RoughnessBeyondTheNoiseWidensIt) {
 }
 
 TEST(PlaneUncertainty, UnknownRigUsesTheResiduals) {
-  const Face f = make_face(1000);
+  const Face f = make_face_at_range(1000);
   std::mt19937 rng(4);
   std::normal_distribution<double> g(0.0, 0.5);
   PlaneInformation info(f.n, f.c, kCamera, DepthNoise{});
@@ -176,7 +176,7 @@ TEST(PlaneUncertainty, DegenerateAndBadInputAreNamed) {
 }
 
 TEST(PlaneUncertainty, NoHeap) {
-  const Face f = make_face(1000);
+  const Face f = make_face_at_range(1000);
   test::HeapScope scope;
   PlaneInformation info(f.n, f.c, kCamera, rig(0.3));
   for (const auto& p : f.pts) info.add(p, 1.0);

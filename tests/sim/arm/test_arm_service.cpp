@@ -14,6 +14,7 @@
 #include "hal/can_loopback.hpp"
 #include "sim/arm/sim_arm_bus.hpp"
 #include "sim/arm/sim_arm_setup.hpp"
+#include "tests/support/angles.hpp"
 #include "tests/support/heap_counter.hpp"
 
 namespace petra {
@@ -22,10 +23,9 @@ namespace {
 using fsw::arm::ArmEventKind;
 using fsw::arm::ArmState;
 using fsw::arm::MotionProgress;
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr std::int64_t kCycleMs = 10;
+constexpr std::int64_t kServiceCycleMs = 10;
 
-struct Rig {
+struct ServiceRig {
   hal::CanLoopbackBus bus;
   fsw::arm::ArmService arm;
   sim::SimArmBus drives;
@@ -34,7 +34,7 @@ struct Rig {
   std::int64_t now = 0;
   std::vector<fsw::arm::ArmEvent> events;
 
-  explicit Rig(fsw::arm::ArmServiceConfig c = {}) : config(c) {
+  explicit ServiceRig(fsw::arm::ArmServiceConfig c = {}) : config(c) {
     auto a = bus.attach();
     auto d = bus.attach();
     EXPECT_TRUE(arm.configure(config, **a).ok());
@@ -44,7 +44,7 @@ struct Rig {
     drives.power_on(0);
   }
   void tick() {
-    now += kCycleMs;
+    now += kServiceCycleMs;
     arm.step(now);
     drives.step(now);
     fsw::arm::ArmEvent e;
@@ -99,16 +99,17 @@ fsw::arm::ArmGoal goal_at(const arm::ArmGeometry& g, const arm::JointVector& q,
 
 arm::JointVector deg(double a, double b, double c, double d, double e) {
   arm::JointVector q;
-  q << a * kDeg, b * kDeg, c * kDeg, d * kDeg, e * kDeg;
+  q << a * test::kRadPerDeg, b * test::kRadPerDeg, c * test::kRadPerDeg, d * test::kRadPerDeg,
+      e * test::kRadPerDeg;
   return q;
 }
 
 double axis_error_deg(const arm::ToolPose& p, const Eigen::Vector3d& normal) {
-  return std::acos(std::clamp(-p.axis.dot(normal), -1.0, 1.0)) / kDeg;
+  return std::acos(std::clamp(-p.axis.dot(normal), -1.0, 1.0)) / test::kRadPerDeg;
 }
 
 TEST(ArmService, GotoPutsTheTipOnTheCentroidAlongTheNormal) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<ServiceRig>();
   ASSERT_TRUE(rig->ready());
   EXPECT_EQ(rig->count(ArmEventKind::ready), 1);
   double worst_tip = 0, worst_axis = 0, worst_line = 0;
@@ -148,7 +149,7 @@ TEST(ArmService, GotoPutsTheTipOnTheCentroidAlongTheNormal) {
 }
 
 TEST(ArmService, TheNextMotionFirstBacksOutAlongTheNormal) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<ServiceRig>();
   ASSERT_TRUE(rig->ready());
   const fsw::arm::ArmGoal goal = goal_at(rig->config.geometry, deg(35, 25, 100, 80, -10));
   ASSERT_TRUE(rig->arm.start_goto(goal, rig->now).ok());
@@ -171,11 +172,11 @@ TEST(ArmService, TheNextMotionFirstBacksOutAlongTheNormal) {
   EXPECT_TRUE(retreated);
   EXPECT_LT(off_line, 2.0);
   EXPECT_EQ(rig->arm.progress(), MotionProgress::reached);
-  EXPECT_LT((rig->sim_joints() - arm::stow_pose()).cwiseAbs().maxCoeff(), 0.2 * kDeg);
+  EXPECT_LT((rig->sim_joints() - arm::stow_pose()).cwiseAbs().maxCoeff(), 0.2 * test::kRadPerDeg);
 }
 
 TEST(ArmService, UnreachablePlanesAreRefusedAndNothingMoves) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<ServiceRig>();
   ASSERT_TRUE(rig->ready());
   const arm::JointVector before = rig->sim_joints();
   fsw::arm::ArmGoal far;
@@ -188,9 +189,12 @@ TEST(ArmService, UnreachablePlanesAreRefusedAndNothingMoves) {
   EXPECT_EQ(rig->arm.telemetry().last_refusal, arm::ArmReason::beyond_reach);
   // A face tilted across the arm: joint 5 would leave its range.
   fsw::arm::ArmGoal tilted = goal_at(rig->config.geometry, deg(35, 25, 100, 80, 0));
-  const Eigen::Vector3d across = rig->config.geometry.world_from_base.linear() *
-                                 Eigen::Vector3d(-std::sin(35 * kDeg), std::cos(35 * kDeg), 0);
-  tilted.normal = (std::cos(60 * kDeg) * tilted.normal + std::sin(60 * kDeg) * across).normalized();
+  const Eigen::Vector3d across =
+      rig->config.geometry.world_from_base.linear() *
+      Eigen::Vector3d(-std::sin(35 * test::kRadPerDeg), std::cos(35 * test::kRadPerDeg), 0);
+  tilted.normal =
+      (std::cos(60 * test::kRadPerDeg) * tilted.normal + std::sin(60 * test::kRadPerDeg) * across)
+          .normalized();
   s = rig->arm.start_goto(tilted, rig->now);
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(rig->arm.telemetry().last_refusal, arm::ArmReason::joint_limit);
@@ -208,7 +212,7 @@ TEST(ArmService, UnreachablePlanesAreRefusedAndNothingMoves) {
 }
 
 TEST(ArmService, QuickStopHaltsAndANewGotoResumes) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<ServiceRig>();
   ASSERT_TRUE(rig->ready());
   const fsw::arm::ArmGoal goal = goal_at(rig->config.geometry, deg(35, 25, 100, 80, -10));
   ASSERT_TRUE(rig->arm.start_goto(goal, rig->now).ok());
@@ -235,11 +239,11 @@ TEST(ArmService, QuickStopHaltsAndANewGotoResumes) {
 // consumer time raised (as the real-time tests on a shared host do) the arm
 // rides it out, and a drive that really goes silent is still caught.
 TEST(ArmService, AStalledHostIsToleratedWithinTheConfiguredHeartbeatTimeout) {
-  const auto stall = [](Rig& rig, std::int64_t ms) {
+  const auto stall = [](ServiceRig& rig, std::int64_t ms) {
     rig.now += ms;  // neither side ran meanwhile
     rig.run_for(100);
   };
-  auto flight = std::make_unique<Rig>();
+  auto flight = std::make_unique<ServiceRig>();
   ASSERT_TRUE(flight->ready());
   stall(*flight, 1000);
   EXPECT_EQ(flight->arm.state(), ArmState::fault);
@@ -247,7 +251,7 @@ TEST(ArmService, AStalledHostIsToleratedWithinTheConfiguredHeartbeatTimeout) {
 
   fsw::arm::ArmServiceConfig tolerant;
   tolerant.heartbeat_timeout_ms = 3000;
-  auto rig = std::make_unique<Rig>(tolerant);
+  auto rig = std::make_unique<ServiceRig>(tolerant);
   ASSERT_TRUE(rig->ready());
   stall(*rig, 2500);
   EXPECT_EQ(rig->arm.state(), ArmState::holding);
@@ -261,7 +265,7 @@ TEST(ArmService, AStalledHostIsToleratedWithinTheConfiguredHeartbeatTimeout) {
 }
 
 TEST(ArmService, ALostHeartbeatEndsInFaultWithAnEventAndResetRecovers) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<ServiceRig>();
   ASSERT_TRUE(rig->ready());
   ASSERT_TRUE(
       rig->arm.start_goto(goal_at(rig->config.geometry, deg(35, 25, 100, 80, -10)), rig->now).ok());
@@ -291,7 +295,7 @@ TEST(ArmService, ALostHeartbeatEndsInFaultWithAnEventAndResetRecovers) {
 }
 
 TEST(ArmService, AnEmergencyMidMoveEndsInFault) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<ServiceRig>();
   ASSERT_TRUE(rig->ready());
   ASSERT_TRUE(
       rig->arm.start_goto(goal_at(rig->config.geometry, deg(35, 25, 100, 80, -10)), rig->now).ok());
@@ -304,7 +308,7 @@ TEST(ArmService, AnEmergencyMidMoveEndsInFault) {
 }
 
 TEST(ArmService, StepDoesNotAllocate) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<ServiceRig>();
   ASSERT_TRUE(rig->ready());
   rig->events.reserve(256);
   const fsw::arm::ArmGoal goal = goal_at(rig->config.geometry, deg(35, 25, 100, 80, -10));

@@ -12,6 +12,7 @@
 #include "hal/can_loopback.hpp"
 #include "hal/canopen/canopen_master.hpp"
 #include "sim/arm/sim_arm_bus.hpp"
+#include "tests/support/angles.hpp"
 #include "tests/support/heap_counter.hpp"
 
 namespace petra {
@@ -22,9 +23,9 @@ using canopen::LinkEvent;
 using canopen::LinkState;
 
 constexpr int kDrives = 5;
-constexpr std::int64_t kCycleMs = 10;
+constexpr std::int64_t kLoopbackCycleMs = 10;
 
-struct Rig {
+struct LoopbackRig {
   hal::CanLoopbackBus bus;
   canopen::CanopenMaster master;
   sim::SimArmBus sim;
@@ -35,7 +36,7 @@ struct Rig {
   std::int64_t now = 0;
   std::vector<canopen::MasterEvent> events;
 
-  explicit Rig(std::function<void(Rig&)> tweak = {}) {
+  explicit LoopbackRig(std::function<void(LoopbackRig&)> tweak = {}) {
     const arm::JointLimits limits = arm::default_joint_limits();
     const arm::JointVector stow = arm::stow_pose();
     for (int i = 0; i < kDrives; ++i) {
@@ -62,7 +63,7 @@ struct Rig {
   }
 
   void tick() {
-    now += kCycleMs;
+    now += kLoopbackCycleMs;
     master.step(now);
     sim.step(now);
     canopen::MasterEvent e;
@@ -106,10 +107,8 @@ struct Rig {
   }
 };
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 TEST(CanopenLoopback, BootConfigureEnableMoveAndStop) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<LoopbackRig>();
   rig->master.boot(rig->now);
   ASSERT_TRUE(rig->run_until([&] { return rig->master.all_in(LinkState::operational); }, 3000));
   const std::int64_t boot_ms = rig->now;
@@ -129,8 +128,9 @@ TEST(CanopenLoopback, BootConfigureEnableMoveAndStop) {
     EXPECT_EQ(rig->sim.drive(i).drive_state(), canopen::DriveState::operation_enabled);
   }
   // Move every joint; track the fastest motion each drive made.
-  const std::array<double, kDrives> target = {40 * kDeg, 50 * kDeg, 70 * kDeg, 130 * kDeg,
-                                              -20 * kDeg};
+  const std::array<double, kDrives> target = {40 * test::kRadPerDeg, 50 * test::kRadPerDeg,
+                                              70 * test::kRadPerDeg, 130 * test::kRadPerDeg,
+                                              -20 * test::kRadPerDeg};
   ASSERT_TRUE(rig->master.set_targets(target).ok());
   std::array<double, kDrives> prev{}, fastest{};
   for (int i = 0; i < kDrives; ++i) prev[i] = rig->sim_rad(i);
@@ -138,7 +138,7 @@ TEST(CanopenLoopback, BootConfigureEnableMoveAndStop) {
   const bool arrived = rig->run_until(
       [&] {
         for (int i = 0; i < kDrives; ++i) {
-          const double v = std::abs(rig->sim_rad(i) - prev[i]) / (kCycleMs * 1e-3);
+          const double v = std::abs(rig->sim_rad(i) - prev[i]) / (kLoopbackCycleMs * 1e-3);
           fastest[i] = std::max(fastest[i], v);
           prev[i] = rig->sim_rad(i);
         }
@@ -150,7 +150,8 @@ TEST(CanopenLoopback, BootConfigureEnableMoveAndStop) {
   for (int i = 0; i < kDrives; ++i) {
     EXPECT_NEAR(rig->sim_rad(i), target[i], 1e-3) << "joint " << i + 1;
     EXPECT_NEAR(rig->master.drive(i).position_rad(), target[i], 1e-3) << "joint " << i + 1;
-    EXPECT_LE(fastest[i], 30 * kDeg * 1.05) << "joint " << i + 1;  // profile velocity 30 deg/s
+    EXPECT_LE(fastest[i], 30 * test::kRadPerDeg * 1.05)
+        << "joint " << i + 1;  // profile velocity 30 deg/s
   }
   // th4 moves 95 deg at 30 deg/s, 60 deg/s^2: 3.67 s plus the motor lag and handshakes.
   EXPECT_GT(move_s, 3.6);
@@ -178,10 +179,11 @@ TEST(CanopenLoopback, BootConfigureEnableMoveAndStop) {
 }
 
 TEST(CanopenLoopback, QuickStopMidMoveHaltsEveryJoint) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<LoopbackRig>();
   ASSERT_TRUE(rig->booted_and_enabled());
-  const std::array<double, kDrives> target = {80 * kDeg, 80 * kDeg, 20 * kDeg, 170 * kDeg,
-                                              40 * kDeg};
+  const std::array<double, kDrives> target = {80 * test::kRadPerDeg, 80 * test::kRadPerDeg,
+                                              20 * test::kRadPerDeg, 170 * test::kRadPerDeg,
+                                              40 * test::kRadPerDeg};
   ASSERT_TRUE(rig->master.set_targets(target).ok());
   rig->run_for(1000);
   rig->master.quick_stop();
@@ -203,11 +205,12 @@ TEST(CanopenLoopback, QuickStopMidMoveHaltsEveryJoint) {
 // Runs a fault scenario: boot and enable, start a move, inject, and expect the
 // master to report `fault` on drive `index` with a fault event, and every
 // other drive quick-stopped.
-void expect_fault_detected(Rig& rig, int index, DriveFault fault,
+void expect_fault_detected(LoopbackRig& rig, int index, DriveFault fault,
                            const std::function<void()>& inject, std::int64_t within_ms) {
   ASSERT_TRUE(rig.booted_and_enabled());
-  const std::array<double, kDrives> target = {30 * kDeg, 30 * kDeg, 100 * kDeg, 100 * kDeg,
-                                              10 * kDeg};
+  const std::array<double, kDrives> target = {30 * test::kRadPerDeg, 30 * test::kRadPerDeg,
+                                              100 * test::kRadPerDeg, 100 * test::kRadPerDeg,
+                                              10 * test::kRadPerDeg};
   ASSERT_TRUE(rig.master.set_targets(target).ok());
   rig.run_for(300);
   inject();
@@ -219,7 +222,7 @@ void expect_fault_detected(Rig& rig, int index, DriveFault fault,
   EXPECT_EQ(link.state(), LinkState::fault);
   EXPECT_EQ(link.fault(), fault) << canopen::drive_fault_name(link.fault());
   EXPECT_TRUE(rig.has_fault_event(static_cast<std::uint8_t>(index + 1), fault));
-  rig.run_for(3 * kCycleMs);
+  rig.run_for(3 * kLoopbackCycleMs);
   for (int i = 0; i < kDrives; ++i) {
     if (i == index) continue;
     EXPECT_EQ(rig.master.drive(i).state(), LinkState::quick_stopped) << "drive " << i + 1;
@@ -227,19 +230,19 @@ void expect_fault_detected(Rig& rig, int index, DriveFault fault,
 }
 
 TEST(CanopenLoopback, AStoppedHeartbeatIsDetected) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<LoopbackRig>();
   expect_fault_detected(
       *rig, 2, DriveFault::heartbeat_lost, [&] { rig->sim.drive(2).stop_heartbeat(true); }, 500);
 }
 
 TEST(CanopenLoopback, ADeadDriveIsDetectedByItsHeartbeat) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<LoopbackRig>();
   expect_fault_detected(
       *rig, 0, DriveFault::heartbeat_lost, [&] { rig->sim.drive(0).power_off(); }, 500);
 }
 
 TEST(CanopenLoopback, AnEmergencyIsAFaultWithItsCode) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<LoopbackRig>();
   expect_fault_detected(
       *rig, 3, DriveFault::emergency,
       [&] { rig->sim.inject_fault(3, canopen::emcy_code::kOverCurrent); }, 50);
@@ -252,7 +255,7 @@ TEST(CanopenLoopback, AnEmergencyIsAFaultWithItsCode) {
 }
 
 TEST(CanopenLoopback, AStalledJointIsAFollowingError) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<LoopbackRig>();
   // The window is 0.05 rad: at 0.5 rad/s the stalled joint passes it in 0.1 s.
   expect_fault_detected(
       *rig, 1, DriveFault::following_error, [&] { rig->sim.drive(1).stall(true); }, 500);
@@ -260,7 +263,7 @@ TEST(CanopenLoopback, AStalledJointIsAFollowingError) {
 }
 
 TEST(CanopenLoopback, ADriveThatWillNotEnableIsRefused) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<LoopbackRig>();
   rig->sim.drive(4).refuse_enable(true);
   rig->master.boot(rig->now);
   ASSERT_TRUE(rig->run_until([&] { return rig->master.all_in(LinkState::operational); }, 3000));
@@ -274,21 +277,21 @@ TEST(CanopenLoopback, ADriveThatWillNotEnableIsRefused) {
 }
 
 TEST(CanopenLoopback, AWrongDeviceIsRefusedAtConfiguration) {
-  auto rig =
-      std::make_unique<Rig>([](Rig& r) { r.params[1].supported_modes = 0x0000'0008; });  // CSP only
+  auto rig = std::make_unique<LoopbackRig>(
+      [](LoopbackRig& r) { r.params[1].supported_modes = 0x0000'0008; });  // CSP only
   rig->master.boot(rig->now);
   ASSERT_TRUE(rig->run_until([&] { return rig->master.any_fault(); }, 3000));
   EXPECT_EQ(rig->master.drive(1).fault(), DriveFault::wrong_device);
   EXPECT_EQ(rig->master.drive(1).fault_detail(), 0x0000'0008u);
-  auto rig2 =
-      std::make_unique<Rig>([](Rig& r) { r.params[0].device_type = 0x0000'0191; });  // CiA 401 I/O
+  auto rig2 = std::make_unique<LoopbackRig>(
+      [](LoopbackRig& r) { r.params[0].device_type = 0x0000'0191; });  // CiA 401 I/O
   rig2->master.boot(rig2->now);
   ASSERT_TRUE(rig2->run_until([&] { return rig2->master.any_fault(); }, 3000));
   EXPECT_EQ(rig2->master.drive(0).fault(), DriveFault::wrong_device);
 }
 
 TEST(CanopenLoopback, AMissingDriveTimesOutAtBoot) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<LoopbackRig>();
   rig->sim.drive(2).power_off();
   rig->master.boot(rig->now);
   ASSERT_TRUE(
@@ -297,11 +300,11 @@ TEST(CanopenLoopback, AMissingDriveTimesOutAtBoot) {
 }
 
 TEST(CanopenLoopback, DrivesFaultWhenTheMasterGoesQuiet) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<LoopbackRig>();
   ASSERT_TRUE(rig->booted_and_enabled());
   // The master stops (no step for 1 s): the drives' heartbeat consumers trip.
   for (int k = 0; k < 100; ++k) {
-    rig->now += kCycleMs;
+    rig->now += kLoopbackCycleMs;
     rig->sim.step(rig->now);
   }
   for (int i = 0; i < kDrives; ++i)
@@ -313,7 +316,7 @@ TEST(CanopenLoopback, DrivesFaultWhenTheMasterGoesQuiet) {
 }
 
 TEST(CanopenLoopback, MalformedAndForeignFramesChangeNothing) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<LoopbackRig>();
   ASSERT_TRUE(rig->booted_and_enabled());
   auto send = [&](std::uint32_t id, std::initializer_list<std::uint8_t> bytes) {
     hal::CanFrame f;
@@ -341,7 +344,7 @@ TEST(CanopenLoopback, MalformedAndForeignFramesChangeNothing) {
 }
 
 TEST(CanopenLoopback, BusOffIsReportedAndEndsInLostHeartbeats) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<LoopbackRig>();
   ASSERT_TRUE(rig->booted_and_enabled());
   rig->bus.set_bus_off(*rig->master_port, true);
   ASSERT_TRUE(rig->run_until([&] { return rig->master.any_fault(); }, 1000));
@@ -357,7 +360,7 @@ TEST(CanopenLoopback, BusOffIsReportedAndEndsInLostHeartbeats) {
 }
 
 TEST(CanopenLoopback, SteadyStateMotionDoesNotAllocate) {
-  auto rig = std::make_unique<Rig>();
+  auto rig = std::make_unique<LoopbackRig>();
   ASSERT_TRUE(rig->booted_and_enabled());
   rig->events.reserve(1024);
   test::HeapScope scope;

@@ -19,6 +19,7 @@
 #include "sim/scene/scene_geometry.hpp"
 #include "sim/scene/scene_render.hpp"
 #include "tests/sim/arm/executive_arm_rig.hpp"
+#include "tests/support/angles.hpp"
 
 namespace petra {
 namespace {
@@ -27,8 +28,6 @@ using cmd::FunctionCode;
 using test::ArmRig;
 using test::ExecutiveHarness;
 using test::start_motion;
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 tlm::GrindPlane plane_of(const sim::VisibleFacet& f) {
   tlm::GrindPlane p;
   for (int k = 0; k < 3; ++k) {
@@ -98,7 +97,8 @@ TEST(ExecutiveArm, GotoOnASimulatedSceneReachesTheChosenPlane) {
   const Eigen::Vector3d normal(p.normal[0], p.normal[1], p.normal[2]);
   const arm::ToolPose tool = rig.sim_tool();
   const double tip_mm = (tool.tip_mm - centroid).norm();
-  const double axis_deg = std::acos(std::clamp(-tool.axis.dot(normal), -1.0, 1.0)) / kDeg;
+  const double axis_deg =
+      std::acos(std::clamp(-tool.axis.dot(normal), -1.0, 1.0)) / test::kRadPerDeg;
   RecordProperty("scene_seed", std::to_string(seed));
   RecordProperty("tip_error_mm", std::to_string(tip_mm));
   RecordProperty("axis_error_deg", std::to_string(axis_deg));
@@ -180,7 +180,8 @@ TEST(ExecutiveArm, TheFullChainOnASimulatedSceneEndsOnTheChosenPlane) {
   const Eigen::Vector3d normal(p.normal[0], p.normal[1], p.normal[2]);
   const arm::ToolPose tool = rig.sim_tool();
   const double tip_mm = (tool.tip_mm - centroid).norm();
-  const double axis_deg = std::acos(std::clamp(-tool.axis.dot(normal), -1.0, 1.0)) / kDeg;
+  const double axis_deg =
+      std::acos(std::clamp(-tool.axis.dot(normal), -1.0, 1.0)) / test::kRadPerDeg;
   RecordProperty("planes", std::to_string(planes.size()));
   RecordProperty("rank", std::to_string(rank));
   RecordProperty("tip_error_mm", std::to_string(tip_mm));

@@ -19,15 +19,11 @@
 namespace petra::calib {
 namespace {
 
-std::string data_dir() {
-  return test::chessboard_data_dir();
-}
-
 struct OpenCvFigures {
   double left_rms = 0, right_rms = 0, stereo_rms = 0, baseline = 0;
 };
 
-using test::opencv_corners;
+using petra::test::opencv_corners;
 
 OpenCvFigures opencv_calibration(const std::vector<StereoPairCorners>& pairs, int half_window) {
   std::vector<cv::Point3f> board;
@@ -63,7 +59,8 @@ OpenCvFigures opencv_calibration(const std::vector<StereoPairCorners>& pairs, in
 
 TEST(CalibrationVsOpenCv, RmsAndBaselineOnTheSampleSet) {
   ChessboardOptions board;
-  auto found = find_boards(data_dir() + "left*.jpg", data_dir() + "right*.jpg", board);
+  auto found = find_boards(petra::test::chessboard_data_dir() + "left*.jpg",
+                           petra::test::chessboard_data_dir() + "right*.jpg", board);
   ASSERT_TRUE(found.ok()) << found.error().message;
   ASSERT_EQ(found->pairs.size(), 13u);
   EXPECT_TRUE(found->rejected.empty());

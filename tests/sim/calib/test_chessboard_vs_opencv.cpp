@@ -23,18 +23,14 @@ namespace {
 const char* const kPairs[] = {"01", "02", "03", "04", "05", "06", "07",
                               "08", "09", "11", "12", "13", "14"};
 
-std::string data_dir() {
-  return test::chessboard_data_dir();
-}
-
-using test::opencv_corners;
+using petra::test::opencv_corners;
 
 TEST(ChessboardVsOpenCv, CornersWithinATenthOfAPixelOfOpenCv) {
   double sum = 0, worst = 0;
   int count = 0;
   for (const char* side : {"left", "right"})
     for (const char* id : kPairs) {
-      const std::string path = data_dir() + side + id + ".jpg";
+      const std::string path = petra::test::chessboard_data_dir() + side + id + ".jpg";
       auto img = io::read_gray_image(path);
       ASSERT_TRUE(img.ok()) << img.error().message;
       auto ours = detect_chessboard(img->view(), {});

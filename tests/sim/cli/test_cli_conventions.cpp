@@ -27,7 +27,7 @@ fs::path build_dir() {
       .parent_path();
 }
 
-struct Outcome {
+struct CliOutcome {
   int status = -1;
   std::string out, err;
 };
@@ -41,12 +41,12 @@ class CliConventions : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  Outcome run(const std::string& binary, const std::string& args) {
+  CliOutcome run(const std::string& binary, const std::string& args) {
     const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
     const std::string cmd = (build_dir() / binary).string() + " " + args + " > " + out.string() +
                             " 2> " + err.string() + " < /dev/null";
     const int rc = std::system(cmd.c_str());
-    Outcome r;
+    CliOutcome r;
     r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
     std::ifstream fo(out), fe(err);
     std::stringstream so, se;
@@ -56,14 +56,15 @@ class CliConventions : public ::testing::Test {
     r.err = se.str();
     return r;
   }
-  Outcome petra(const std::string& args) { return run("sim/petra", args); }
-  Outcome fsw(const std::string& args) { return run("fsw/petra-fsw", args); }
+  CliOutcome petra(const std::string& args) { return run("sim/petra", args); }
+  CliOutcome fsw(const std::string& args) { return run("fsw/petra-fsw", args); }
 
   fs::path dir_;
 };
 
 // One line on stderr, starting with `prefix` and containing `text`.
-void expect_line(const Outcome& r, int status, const std::string& prefix, const std::string& text) {
+void expect_line(const CliOutcome& r, int status, const std::string& prefix,
+                 const std::string& text) {
   EXPECT_EQ(r.status, status) << r.err;
   EXPECT_EQ(r.err.rfind(prefix, 0), 0u) << r.err;
   EXPECT_NE(r.err.find(text), std::string::npos) << r.err;
@@ -84,11 +85,11 @@ TEST_F(CliConventions, UsageErrorsExit2NamingTheCommand) {
 
 TEST_F(CliConventions, HelpAndVersionExit0) {
   for (const char* args : {"--help", "eval --help", "gnd serve --help", "cmd --help"}) {
-    const Outcome r = petra(args);
+    const CliOutcome r = petra(args);
     EXPECT_EQ(r.status, 0) << args << ": " << r.err;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << args;
   }
-  Outcome r = petra("--version");
+  CliOutcome r = petra("--version");
   EXPECT_EQ(r.status, 0);
   EXPECT_EQ(r.out.rfind("petra ", 0), 0u) << r.out;
   EXPECT_NE(r.out.find('.'), std::string::npos) << r.out;
@@ -101,7 +102,7 @@ TEST_F(CliConventions, HelpAndVersionExit0) {
 }
 
 TEST_F(CliConventions, PetraFswUsageErrorsExit2) {
-  Outcome r = fsw("--confg x.json");
+  CliOutcome r = fsw("--confg x.json");
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err.rfind("petra-fsw: unknown argument '--confg'\n", 0), 0u) << r.err;
   r = fsw("");
@@ -112,12 +113,12 @@ TEST_F(CliConventions, PetraFswUsageErrorsExit2) {
 TEST_F(CliConventions, PetraFswRefusesAnUnknownConfigurationKeyByName) {
   std::ofstream(dir_ / "fsw.json")
       << R"({"upink":{"key_file":"k"},"uplink":{"key_file":"k"},"camera":{"dir":"pairs"}})";
-  const Outcome r = fsw("--config " + (dir_ / "fsw.json").string());
+  const CliOutcome r = fsw("--config " + (dir_ / "fsw.json").string());
   expect_line(r, 1, "petra-fsw: config: upink: unknown key", "expected one of uplink, downlink");
 }
 
 TEST_F(CliConventions, PetraFswConfigFileErrorsSayWhy) {
-  const Outcome r = fsw("--config " + (dir_ / "absent.json").string());
+  const CliOutcome r = fsw("--config " + (dir_ / "absent.json").string());
   expect_line(r, 1, "petra-fsw: ", "absent.json: cannot open (No such file or directory)");
   expect_line(fsw("--config " + dir_.string()), 1,
               "petra-fsw: ", dir_.string() + ": cannot read (Is a directory)");
@@ -126,7 +127,7 @@ TEST_F(CliConventions, PetraFswConfigFileErrorsSayWhy) {
 // Was an uncaught std::filesystem::filesystem_error: abort, exit 134.
 TEST_F(CliConventions, DemoIntoAnUnwritablePlaceFailsWithTheReason) {
   std::ofstream(dir_ / "a_file") << "x";
-  const Outcome r = petra("demo --out " + (dir_ / "a_file" / "demo").string());
+  const CliOutcome r = petra("demo --out " + (dir_ / "a_file" / "demo").string());
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_NE(r.err.find("petra demo: cannot create the output folder " +
                        (dir_ / "a_file" / "demo" / "pairs").string() + ": Not a directory"),
@@ -150,7 +151,7 @@ TEST_F(CliConventions, FileErrorsNameTheFileAndTheReason) {
 
 // The matcher's own name stays out of an operator's message.
 TEST_F(CliConventions, AnEmptyDisparityRangeIsNamedByItsOptions) {
-  const Outcome r =
+  const CliOutcome r =
       petra("stereo --left a.png --right b.png --disp-min 10 --disp-max 5 --out o.pfm");
   expect_line(
       r, 1, "petra stereo: ", "--disp-min 10 is above --disp-max 5: the disparity range is empty");

@@ -35,15 +35,15 @@ std::string petra_binary() {
       .string();
 }
 
-struct Outcome {
+struct EvalOutcome {
   int status = -1;
   std::string out, err;
 };
 
-Outcome run(const std::string& args, const fs::path& dir) {
+EvalOutcome run_eval(const std::string& args, const fs::path& dir) {
   const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
   const std::string cmd = petra_binary() + " " + args + " > " + out + " 2> " + err;
-  Outcome o;
+  EvalOutcome o;
   const int rc = std::system(cmd.c_str());
   o.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
   std::ifstream fo(out), fe(err);
@@ -71,7 +71,7 @@ TEST(CmdEval, ProductsOnASceneAndReasonsForBadArguments) {
   const std::string base = "eval --calib " + s + "/calib.json --left " + s + "/left.png --right " +
                            s + "/right.png --roi " + roi + " --out " + (dir / "out").string();
 
-  Outcome ok = run(base + " --planes " + std::to_string(truth.planes), dir);
+  EvalOutcome ok = run_eval(base + " --planes " + std::to_string(truth.planes), dir);
   ASSERT_EQ(ok.status, 0) << ok.err;
   EXPECT_NE(ok.out.find("grind planes found"), std::string::npos);
   EXPECT_NE(ok.out.find("dense points"), std::string::npos);
@@ -87,9 +87,9 @@ TEST(CmdEval, ProductsOnASceneAndReasonsForBadArguments) {
 
   // The truth disparity replayed through the back half (--method gc is run on
   // the scene set by toolchain/eval-scenes.sh and in test_eval_pipeline).
-  Outcome given = run(base + " --planes " + std::to_string(truth.planes) + " --disparity " + s +
-                          "/disparity_truth.pfm",
-                      dir);
+  EvalOutcome given = run_eval(base + " --planes " + std::to_string(truth.planes) +
+                                   " --disparity " + s + "/disparity_truth.pfm",
+                               dir);
   ASSERT_EQ(given.status, 0) << given.err;
   EXPECT_NE(given.out.find("given map"), std::string::npos) << given.out;
 
@@ -128,7 +128,7 @@ TEST(CmdEval, ProductsOnASceneAndReasonsForBadArguments) {
        "roi"},
   };
   for (const Case& c : cases) {
-    Outcome bad = run(c.args, dir);
+    EvalOutcome bad = run_eval(c.args, dir);
     EXPECT_EQ(bad.status, 1) << c.args;
     // The reason is the last line; any before it are progress reports.
     ASSERT_FALSE(bad.err.empty()) << c.args;

@@ -36,7 +36,7 @@ struct CliResult {
   std::string out, err;
 };
 
-CliResult run(const std::string& args) {
+CliResult run_petra(const std::string& args) {
   const fs::path out = tmp("stdout"), err = tmp("stderr");
   const std::string cmd =
       petra().string() + " " + args + " >" + out.string() + " 2>" + err.string();
@@ -51,7 +51,7 @@ class PetraCli : public ::testing::Test {
     scene_ = tmp("scene");
     fs::remove_all(scene_);
     // Plain surfaces render quicker; these tests are about files and exit codes.
-    const CliResult r = run("sim scene --seed 7 --no-texture --out " + scene_.string());
+    const CliResult r = run_petra("sim scene --seed 7 --no-texture --out " + scene_.string());
     ASSERT_EQ(r.status, 0) << r.err;
   }
   static fs::path scene_;
@@ -62,7 +62,7 @@ TEST_F(PetraCli, SceneWritesEveryFile) {
   for (const char* f : {"left.pgm", "right.pgm", "left.png", "right.png", "calib.json",
                         "truth.json", "disparity_truth.pfm", "shadow_truth.pgm"})
     EXPECT_TRUE(fs::exists(scene_ / f)) << f;
-  const CliResult r = run("info --calib " + (scene_ / "calib.json").string());
+  const CliResult r = run_petra("info --calib " + (scene_ / "calib.json").string());
   EXPECT_EQ(r.status, 0) << r.err;
 }
 
@@ -82,11 +82,11 @@ TEST_F(PetraCli, BadSceneArgumentsFailWithAReason) {
       {"sim scene --seed 3 --out " + (scene_ / "truth.json").string(), "not a directory"},
   };
   for (const auto& [args, expect] : cases) {
-    const CliResult r = run(args);
+    const CliResult r = run_petra(args);
     EXPECT_EQ(r.status, 1) << args;
     EXPECT_NE(r.err.find(expect), std::string::npos) << args << " -> " << r.err;
   }
-  EXPECT_NE(run("sim scene --seed abc" + out).status, 0);
+  EXPECT_NE(run_petra("sim scene --seed abc" + out).status, 0);
 }
 
 TEST_F(PetraCli, ScoreExitStatusFollowsTheLimits) {
@@ -114,27 +114,27 @@ TEST_F(PetraCli, ScoreExitStatusFollowsTheLimits) {
   std::ofstream(broken) << "{\"planes\":[{\"normal\":[0,0,1]}]}";
   const std::string limits =
       " --max-normal-deg 2 --max-centroid-mm 1 --require-on-facet --require-count";
-  CliResult r = run("score --truth " + truth_path + " --planes " + good.string() + limits);
+  CliResult r = run_petra("score --truth " + truth_path + " --planes " + good.string() + limits);
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("count agrees"), std::string::npos) << r.out;
-  r = run("score --truth " + truth_path + " --planes " + bad.string() + limits);
+  r = run_petra("score --truth " + truth_path + " --planes " + bad.string() + limits);
   EXPECT_EQ(r.status, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("facet 0: normal error 180.00"), std::string::npos) << r.err;
-  r = run("score --truth " + truth_path + " --planes " + bad.string() + " --json");
+  r = run_petra("score --truth " + truth_path + " --planes " + bad.string() + " --json");
   EXPECT_EQ(r.status, 0);  // no limits given
   EXPECT_NE(r.out.find("\"normal_error_deg\":180"), std::string::npos) << r.out;
-  r = run("score --truth " + truth_path + " --planes " + broken.string());
+  r = run_petra("score --truth " + truth_path + " --planes " + broken.string());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("planes[0].centroid_mm: missing"), std::string::npos) << r.err;
-  r = run("score --truth " + good.string() + " --planes " + good.string());
+  r = run_petra("score --truth " + good.string() + " --planes " + good.string());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("roi: missing"), std::string::npos) << r.err;
-  r = run("score --truth " + tmp("missing.json").string() + " --planes " + good.string());
+  r = run_petra("score --truth " + tmp("missing.json").string() + " --planes " + good.string());
   EXPECT_EQ(r.status, 1);
-  r = run("score --truth " + truth_path);
+  r = run_petra("score --truth " + truth_path);
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("nothing to score"), std::string::npos) << r.err;
-  r = run("score --planes " + good.string());
+  r = run_petra("score --planes " + good.string());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("--planes needs --truth"), std::string::npos) << r.err;
 }
@@ -147,13 +147,13 @@ TEST_F(PetraCli, ScoreProposalsRefusesBadInputByName) {
   const fs::path props = tmp("proposals.json");
   std::ofstream(props) << R"({"proposals":[{"rank":1,"planes":[{"normal":[0,0,1],)"
                        << R"("centroid_mm":[0,0,0],"verdict":"grindable"}]}]})";
-  CliResult r = run("score proposals --truth " + truth + " --proposals " + props.string());
+  CliResult r = run_petra("score proposals --truth " + truth + " --proposals " + props.string());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find(truth + ": rocks: missing"), std::string::npos) << r.err;
-  r = run("score proposals --truth " + truth);
+  r = run_petra("score proposals --truth " + truth);
   EXPECT_EQ(r.status, 2);  // does not parse (docs/ops.md)
   EXPECT_NE(r.err.find("--proposals is required"), std::string::npos) << r.err;
-  r = run("score proposals --truth " + truth + " --proposals " + props.string() + " --top 0");
+  r = run_petra("score proposals --truth " + truth + " --proposals " + props.string() + " --top 0");
   EXPECT_NE(r.status, 0);
 }
 
@@ -162,22 +162,22 @@ TEST_F(PetraCli, ScoresDisparityAndShadowMaps) {
   const std::string s = (scene_ / "shadow_truth.pgm").string();
   const std::string t = (scene_ / "truth.json").string();
   CliResult r =
-      run("score --truth " + t + " --disparity " + d + " --disparity-truth " + d + " --shadow " +
-          s + " --shadow-truth " + s + " --max-bad1 0 --min-shadow-recall 1");
+      run_petra("score --truth " + t + " --disparity " + d + " --disparity-truth " + d +
+                " --shadow " + s + " --shadow-truth " + s + " --max-bad1 0 --min-shadow-recall 1");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("bad-1 0.00 %"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("recall 1.000"), std::string::npos) << r.out;
   // The right camera's mask scored against the left truth fails a recall limit.
-  r = run("score --shadow " + (scene_ / "shadow_truth_right.pgm").string() + " --shadow-truth " +
-          s + " --shadow-roi 0,0,1024,768 --min-shadow-recall 0.99");
+  r = run_petra("score --shadow " + (scene_ / "shadow_truth_right.pgm").string() +
+                " --shadow-truth " + s + " --shadow-roi 0,0,1024,768 --min-shadow-recall 0.99");
   EXPECT_EQ(r.status, 2) << r.out << r.err;
-  r = run("score --disparity " + d + " --disparity-truth " + d +
-          " --disparity-roi 1000,700,100,100");
+  r = run_petra("score --disparity " + d + " --disparity-truth " + d +
+                " --disparity-roi 1000,700,100,100");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("region"), std::string::npos) << r.err;
-  r = run("score --disparity " + d + " --disparity-truth " + s);
+  r = run_petra("score --disparity " + d + " --disparity-truth " + s);
   EXPECT_EQ(r.status, 1);
-  r = run("score --shadow " + s + " --shadow-truth " + s + " --shadow-roi 1,2,3");
+  r = run_petra("score --shadow " + s + " --shadow-truth " + s + " --shadow-roi 1,2,3");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("x,y,w,h"), std::string::npos) << r.err;
 }

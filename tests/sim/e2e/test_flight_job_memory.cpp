@@ -21,17 +21,12 @@
 #include "sim/score/truth_file.hpp"
 #include "tests/support/cached_dir.hpp"
 #include "tests/support/heap_counter.hpp"
+#include "tests/support/text.hpp"
 
 namespace petra {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read_all(const fs::path& p) {
-  std::stringstream s;
-  s << std::ifstream(p).rdbuf();
-  return s.str();
-}
 
 class FlightJob : public ::testing::Test {
  protected:
@@ -42,10 +37,10 @@ class FlightJob : public ::testing::Test {
   }
 
   void SetUp() override {
-    auto rig = parse_calib_json(read_all(dir_ / "calib.json"));
+    auto rig = parse_calib_json(test::read_all(dir_ / "calib.json"));
     ASSERT_TRUE(rig.ok());
     rig_ = *rig;
-    auto truth = sim::parse_truth_json(read_all(dir_ / "truth.json"));
+    auto truth = sim::parse_truth_json(test::read_all(dir_ / "truth.json"));
     ASSERT_TRUE(truth.ok());
     auto left = io::read_gray_image((dir_ / "left.png").string());
     auto right = io::read_gray_image((dir_ / "right.png").string());

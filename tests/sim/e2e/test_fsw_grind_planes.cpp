@@ -21,17 +21,12 @@
 #include "sim/score/plane_score.hpp"
 #include "sim/score/planes_file.hpp"
 #include "sim/score/truth_file.hpp"
+#include "tests/support/text.hpp"
 
 namespace petra {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read_all(const fs::path& p) {
-  std::stringstream s;
-  s << std::ifstream(p).rdbuf();
-  return s.str();
-}
 
 TEST(FswGrindPlanes, TelemetryEqualsTheOnboardChainOnTheSamePair) {
   const fs::path dir = fs::temp_directory_path() / ("petra_planes_" + std::to_string(::getpid()));
@@ -40,20 +35,20 @@ TEST(FswGrindPlanes, TelemetryEqualsTheOnboardChainOnTheSamePair) {
                           " --out " + dir.string() + " --timeout-s 280 > " +
                           (dir.string() + ".txt") + " 2>&1";
   const int status = std::system(cmd.c_str());
-  const std::string log = read_all(dir.string() + ".txt");
+  const std::string log = test::read_all(dir.string() + ".txt");
   ASSERT_EQ(status, 0) << log;
   // `petra eval` on the ground, on the flight's points budget, agrees.
   EXPECT_NE(log.find("identical grind planes"), std::string::npos) << log;
 
   // What came down as telemetry.
-  auto received = sim::parse_planes_json(read_all(dir / "planes.json"));
+  auto received = sim::parse_planes_json(test::read_all(dir / "planes.json"));
   ASSERT_TRUE(received.ok()) << log;
   ASSERT_FALSE(received->planes.empty()) << log;
 
   // The same pair, the same request, the flight parameters, in this process.
-  auto rig = parse_calib_json(read_all(dir / "scene/calib.json"));
+  auto rig = parse_calib_json(test::read_all(dir / "scene/calib.json"));
   ASSERT_TRUE(rig.ok());
-  auto truth = sim::parse_truth_json(read_all(dir / "scene/truth.json"));
+  auto truth = sim::parse_truth_json(test::read_all(dir / "scene/truth.json"));
   ASSERT_TRUE(truth.ok());
   auto left = io::read_gray_image((dir / "pairs/left.pgm").string());
   auto right = io::read_gray_image((dir / "pairs/right.pgm").string());

@@ -19,6 +19,7 @@
 #include "sim/score/truth_file.hpp"
 #include "tests/fsw/executive_harness.hpp"
 #include "tests/support/cached_dir.hpp"
+#include "tests/support/text.hpp"
 
 namespace petra {
 namespace {
@@ -26,17 +27,11 @@ namespace {
 namespace fs = std::filesystem;
 using cmd::FunctionCode;
 
-std::string read_all(const fs::path& p) {
-  std::stringstream s;
-  s << std::ifstream(p).rdbuf();
-  return s.str();
-}
-
 TEST(FswPropose, TheRockIsProposedAndItsSelectionGivesTheSamePlane) {
   const fs::path scene =
       test::cached_petra_output("scene_seed3", PETRA_CLI_BIN, "sim scene --seed 3");
   ASSERT_FALSE(scene.empty()) << "petra sim scene --seed 3 failed";
-  auto truth = sim::parse_truth_json(read_all(scene / "truth.json"));
+  auto truth = sim::parse_truth_json(test::read_all(scene / "truth.json"));
   ASSERT_TRUE(truth.ok());
   test::ExecutiveHarness h(R"(,"calib":"calib.json")");
   const fs::path dir = h.dir();

@@ -18,7 +18,7 @@
 namespace petra {
 namespace {
 
-const std::string kRoot = eval::default_data_root(PETRA_SOURCE_DIR);
+const std::string kCalibDataRoot = eval::default_data_root(PETRA_SOURCE_DIR);
 
 struct Scratch {
   std::vector<std::byte> block = std::vector<std::byte>(calib_check_scratch_bytes({}));
@@ -46,7 +46,7 @@ CalibCheck check(const io::GrayImage& l, const io::GrayImage& r, int dmin, int d
 
 TEST(CalibCheck, MiddleburyPairsAreRowAlignedAndKnownShiftsAreMeasured) {
   for (const eval::MiddleburyScene& scene : eval::middlebury_scenes()) {
-    auto d = eval::load_middlebury(scene, kRoot);
+    auto d = eval::load_middlebury(scene, kCalibDataRoot);
     ASSERT_TRUE(d.ok()) << scene.name << ": " << d.error().message;
     const CalibCheck c0 = check(d->left, d->right, 0, scene.disp_max);
     std::printf("%-9s shift 0: offset %+.3f px, spread %.3f px, %d of %d features\n", scene.name,
@@ -64,7 +64,7 @@ TEST(CalibCheck, MiddleburyPairsAreRowAlignedAndKnownShiftsAreMeasured) {
 }
 
 TEST(CalibCheck, MarsPairShowsItsRowOffset) {
-  const std::string dir = kRoot + "/real-rocks/mars-boulder/";
+  const std::string dir = kCalibDataRoot + "/real-rocks/mars-boulder/";
   auto l = io::read_gray_image(dir + "left.png");
   auto r = io::read_gray_image(dir + "right.png");
   ASSERT_TRUE(l.ok() && r.ok());

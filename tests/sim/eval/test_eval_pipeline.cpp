@@ -30,10 +30,10 @@ namespace {
 
 // Standard-set entry 17 (weak boundary, slab, 3 faces, low sun); fewer edge
 // samples than the set so the Debug build renders it in seconds.
-using Fixture = test::RenderedScene;
+using PipelineScene = test::RenderedScene;
 
-const Fixture& fixture() {
-  static const Fixture f = [] {
+const PipelineScene& pipeline_scene() {
+  static const PipelineScene f = [] {
     sim::SceneOptions o = sim::standard_scene_set()[17];
     o.edge_supersampling = 2;
     return test::render_for_test(o);
@@ -58,7 +58,7 @@ PipelineBudget budget_for(const StereoRig& rig, bool graph_cut = false) {
   return b;
 }
 
-std::unique_ptr<Run> make_run(const Fixture& f, const PipelineParams& params = {},
+std::unique_ptr<Run> make_run(const PipelineScene& f, const PipelineParams& params = {},
                               bool graph_cut = false) {
   auto r = std::make_unique<Run>();
   const PipelineBudget b = budget_for(f.rig, graph_cut);
@@ -69,7 +69,7 @@ std::unique_ptr<Run> make_run(const Fixture& f, const PipelineParams& params = {
   return r;
 }
 
-PipelineRequest request(const Fixture& f) {
+PipelineRequest request(const PipelineScene& f) {
   PipelineRequest q;
   q.roi = f.truth.roi;
   q.planes = f.truth.planes;
@@ -138,7 +138,7 @@ void products_are_well_formed(const PipelineOutput& run_out, const RectifiedPair
 }
 
 TEST(EvalPipeline, FindsTheSceneFacesWithinTheTargetsWithoutHeap) {
-  const Fixture& f = fixture();
+  const PipelineScene& f = pipeline_scene();
   auto run = make_run(f);
   auto out = run->pipeline->run(f.products.left.image.view(), f.products.right.image.view(),
                                 request(f), {});
@@ -172,7 +172,7 @@ TEST(EvalPipeline, FindsTheSceneFacesWithinTheTargetsWithoutHeap) {
 }
 
 TEST(EvalPipeline, GraphCutMatcherFindsTheSceneFacesWithoutHeap) {
-  const Fixture& f = fixture();
+  const PipelineScene& f = pipeline_scene();
   auto run = make_run(f, {}, true);
   // The graph cut's state is taken per run in the matching step (in bands), inside the bound.
   EXPECT_GT(Pipeline::run_bytes(budget_for(f.rig, true), PipelineParams{}),
@@ -215,7 +215,7 @@ std::string error_of(const Result<PipelineOutput>& r) {
 }
 
 TEST(EvalPipeline, BadRequestsAreRefusedWithTheReason) {
-  const Fixture& f = fixture();
+  const PipelineScene& f = pipeline_scene();
   auto run = make_run(f);
   const ConstGray8View l = f.products.left.image.view(), r = f.products.right.image.view();
   PipelineRequest q = request(f);

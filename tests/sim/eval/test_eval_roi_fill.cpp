@@ -25,10 +25,10 @@
 namespace petra {
 namespace {
 
-using Fixture = test::RenderedScene;
+using RoiFillScene = test::RenderedScene;
 
-const Fixture& fixture() {
-  static const Fixture f = [] {
+const RoiFillScene& roi_fill_scene() {
+  static const RoiFillScene f = [] {
     sim::SceneOptions o = sim::real_scene_set()[31];
     o.edge_supersampling = 2;
     return test::render_for_test(o, 48);
@@ -36,13 +36,13 @@ const Fixture& fixture() {
   return f;
 }
 
-struct Outcome {
+struct RoiFillOutcome {
   Result<PipelineOutput> out = Error::make(Errc::not_ready, "not run");
   sim::PlaneScore score;
 };
 
 // The chain on the fixture with the truth's ROI, c and click.
-Outcome evaluate(const Fixture& f, const PipelineParams& params) {
+RoiFillOutcome evaluate(const RoiFillScene& f, const PipelineParams& params) {
   const PipelineBudget b = test::eval_budget(f.rig.left.width, f.rig.left.height, 320, params);
   std::vector<std::byte> block(Pipeline::arena_bytes(b, params));
   Arena arena(block);
@@ -56,7 +56,7 @@ Outcome evaluate(const Fixture& f, const PipelineParams& params) {
     q.click_u = f.products.truth.click->x();
     q.click_v = f.products.truth.click->y();
   }
-  Outcome o;
+  RoiFillOutcome o;
   o.out = pipeline->run(f.products.left.image.view(), f.products.right.image.view(), q, {});
   if (o.out.ok()) {
     auto planes = sim::parse_planes_json(eval::format_planes_json(o.out->result));
@@ -67,16 +67,16 @@ Outcome evaluate(const Fixture& f, const PipelineParams& params) {
 }
 
 TEST(EvalRoiFill, TwoFacesAreNotTakenForGround) {
-  const Fixture& f = fixture();
+  const RoiFillScene& f = roi_fill_scene();
   ASSERT_TRUE(f.products.truth.click.has_value());
   // Without the normals' check the two faces pass as ground (the trap).
   PipelineParams off;
   off.reconstruction.ground_normals.min_share = 0.0;
-  const Outcome trap = evaluate(f, off);
+  const RoiFillOutcome trap = evaluate(f, off);
   ASSERT_TRUE(trap.out.ok()) << trap.out.error().message;
   EXPECT_EQ(trap.out->result.segmentation, SegmentMethod::ground_plane);
   // With it (the flight default) the rock is grown from the click.
-  const Outcome o = evaluate(f, {});
+  const RoiFillOutcome o = evaluate(f, {});
   ASSERT_TRUE(o.out.ok()) << o.out.error().message;
   EXPECT_EQ(o.out->result.segmentation, SegmentMethod::click_region);
   EXPECT_TRUE(o.score.count_agrees) << o.score.output_planes << " for " << o.score.truth_planes;

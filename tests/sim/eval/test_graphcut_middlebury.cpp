@@ -22,7 +22,7 @@ double thread_cpu_s() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-struct Outcome {
+struct MiddleburyOutcome {
   eval::MiddleburyScore score;
   GraphCutReport report;
   double cpu_s = 0;
@@ -43,8 +43,8 @@ void keep_last_guided(void* context, const GraphCutStep& step) {
 }
 
 // Whole image, budget sized for it (as `petra stereo --method gc` does).
-Outcome run_scene(const eval::MiddleburyScene& s, const GraphCutParams& base) {
-  Outcome o;
+MiddleburyOutcome run_scene(const eval::MiddleburyScene& s, const GraphCutParams& base) {
+  MiddleburyOutcome o;
   auto data = eval::load_middlebury(s, eval::default_data_root(PETRA_SOURCE_DIR));
   EXPECT_TRUE(data.ok()) << (data ? "" : data.error().message);
   if (!data) return o;
@@ -130,7 +130,7 @@ TEST(GraphCutMiddlebury, Bad1WithinTargetsOrGuards) {
   for (const Bound& b : kBounds) {
     const eval::MiddleburyScene* s = eval::find_middlebury_scene(b.scene);
     ASSERT_NE(s, nullptr) << b.scene;
-    const Outcome o = run_scene(*s, GraphCutParams{});
+    const MiddleburyOutcome o = run_scene(*s, GraphCutParams{});
     EXPECT_LE(o.score.strict.nonocc, b.strict_nonocc) << b.scene;
     EXPECT_LE(o.score.filled.nonocc, b.filled_nonocc) << b.scene;
     EXPECT_LE(o.score.filled.all, b.filled_all) << b.scene;

@@ -23,16 +23,16 @@
 namespace petra {
 namespace {
 
-const std::string kDir = "../shared/data/real-rocks/mars-boulder/";
+const std::string kMarsDir = "../shared/data/real-rocks/mars-boulder/";
 const std::string kCalib = "tests/data/mars_boulder_calib.json";
 // The boulder in the left image (px), by eye: columns 365..595, rows 400..615.
 constexpr double kBoulderU0 = 365, kBoulderU1 = 595, kBoulderV0 = 400, kBoulderV1 = 615;
 
 TEST(MarsBoulder, TheBestPlaneLiesOnTheBoulderWithTheNominalCalibration) {
-  if (!std::filesystem::exists(kDir + "left.png"))
-    GTEST_SKIP() << "skipped: " << kDir << " missing";
-  auto left = io::read_gray_image(kDir + "left.png");
-  auto right = io::read_gray_image(kDir + "right.png");
+  if (!std::filesystem::exists(kMarsDir + "left.png"))
+    GTEST_SKIP() << "skipped: " << kMarsDir << " missing";
+  auto left = io::read_gray_image(kMarsDir + "left.png");
+  auto right = io::read_gray_image(kMarsDir + "right.png");
   auto text = io::read_text_file(kCalib);
   ASSERT_TRUE(left.ok() && right.ok() && text.ok());
   auto rig = parse_calib_json(*text);

@@ -29,7 +29,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Fixture {
+struct ProposeFixture {
   io::GrayImage left, right;
   sim::TruthFile truth;
   StereoRig rig;
@@ -41,9 +41,9 @@ std::string text_of(const fs::path& p) {
   return t.ok() ? *t : std::string("{}");
 }
 
-const Fixture& fixture() {
-  static const Fixture f = [] {
-    Fixture x;
+const ProposeFixture& propose_fixture() {
+  static const ProposeFixture f = [] {
+    ProposeFixture x;
     const fs::path& dir = test::multirock_scene_dir();
     EXPECT_FALSE(dir.empty()) << "the multi-rock scene could not be rendered";
     auto l = io::read_gray_image((dir / "left.png").string());
@@ -71,7 +71,7 @@ struct ProposerRun {
   Result<Proposer> proposer = Error::make(Errc::not_ready, "not created");
 };
 
-void create(const Fixture& f, ProposerRun& run) {
+void create(const ProposeFixture& f, ProposerRun& run) {
   auto budget = eval::ground_proposer_budget(f.rig, PipelineParams{});
   ASSERT_TRUE(budget.ok()) << budget.error().message;
   run.block.resize(Proposer::arena_bytes(*budget, PipelineParams{}));
@@ -84,7 +84,7 @@ void create(const Fixture& f, ProposerRun& run) {
 }
 
 TEST(ProposeScene, EveryGrindableReachableFaceIsOfferedAndNothingElse) {
-  const Fixture& f = fixture();
+  const ProposeFixture& f = propose_fixture();
   ASSERT_FALSE(f.truth.rocks.empty());
   ProposerRun run;
   create(f, run);

@@ -35,7 +35,7 @@
 namespace petra {
 namespace {
 
-const std::string kDir = "../shared/data/real-rocks/rocks1/";
+const std::string kRocks1Dir = "../shared/data/real-rocks/rocks1/";
 // PROVENANCE.txt: half size, f = 1870 px, B = 160 mm, d offset 137 px, left camera = world.
 constexpr double kF = 1870, kB = 160, kOffset = 137, kCx = 319, kCy = 277.5;
 constexpr double kFootprintRadiusMm = 10;  // grinder diameter 20 mm (GrindParams)
@@ -49,11 +49,11 @@ struct Data {
 const Data& data() {
   static const Data d = [] {
     Data x;
-    if (!std::filesystem::exists(kDir + "view1.png")) return x;
-    auto l = io::read_gray_image(kDir + "view1.png");
-    auto r = io::read_gray_image(kDir + "view5.png");
-    auto t = io::read_gray_image(kDir + "disp1.png");
-    auto text = io::read_text_file(kDir + "calib.json");
+    if (!std::filesystem::exists(kRocks1Dir + "view1.png")) return x;
+    auto l = io::read_gray_image(kRocks1Dir + "view1.png");
+    auto r = io::read_gray_image(kRocks1Dir + "view5.png");
+    auto t = io::read_gray_image(kRocks1Dir + "disp1.png");
+    auto text = io::read_text_file(kRocks1Dir + "calib.json");
     if (!l || !r || !t || !text) return x;
     auto rig = parse_calib_json(*text);
     if (!rig) return x;
@@ -230,7 +230,8 @@ void run_case(const RoiCase& c, Source source, bool surface_check) {
 class Rocks1 : public ::testing::TestWithParam<Source> {
  protected:
   void SetUp() override {
-    if (!data().ok) GTEST_SKIP() << "no Rocks1 data at " << kDir << " (run from the repo root)";
+    if (!data().ok)
+      GTEST_SKIP() << "no Rocks1 data at " << kRocks1Dir << " (run from the repo root)";
   }
 };
 

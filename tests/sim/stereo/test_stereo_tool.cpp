@@ -19,12 +19,13 @@ namespace petra::stereo {
 namespace {
 
 const std::string kData = eval::default_data_root(PETRA_SOURCE_DIR) + "/middlebury/";
-const std::string kTmp = ::testing::TempDir();
+const std::string kDpTmp = ::testing::TempDir();
 
 // ctest runs each test as its own process, in parallel: each writes its own file.
 std::string test_out(const char* suffix) {
-  return kTmp + "petra_stereo_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() +
-         "_" + std::to_string(::getpid()) + suffix;
+  return kDpTmp + "petra_stereo_" +
+         ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+         std::to_string(::getpid()) + suffix;
 }
 
 struct RemoveAtEnd {
@@ -110,7 +111,7 @@ TEST(StereoTool, CalibRectifiesFirstAndMapsTheRoi) {
   char text[4096];
   auto n = format_calib_json(rig, std::span<char>(text, sizeof text));
   ASSERT_TRUE(n.ok());
-  const std::string calib = kTmp + "petra_stereo_calib.json";
+  const std::string calib = kDpTmp + "petra_stereo_calib.json";
   ASSERT_TRUE(io::write_text_file(calib, std::string_view(text, *n)).ok());
   StereoToolOptions plain = tsukuba();
   const RemoveAtEnd cleanup{plain.out};
@@ -119,7 +120,7 @@ TEST(StereoTool, CalibRectifiesFirstAndMapsTheRoi) {
   auto a = io::read_pfm(plain.out);
   StereoToolOptions rect = plain;
   rect.calib = calib;
-  rect.out = kTmp + "petra_stereo_rect.pfm";
+  rect.out = kDpTmp + "petra_stereo_rect.pfm";
   auto r = run_stereo_tool(rect);
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->roi, (Rect{60, 60, 100, 80}));
@@ -143,7 +144,7 @@ TEST(StereoTool, EveryBadInputIsRejectedWithItsName) {
     EXPECT_EQ(std::fopen(o.out.c_str(), "rb"), nullptr) << "nothing written on error";
   };
   StereoToolOptions o = tsukuba();
-  o.out = kTmp + "petra_stereo_bad.pfm";
+  o.out = kDpTmp + "petra_stereo_bad.pfm";
   StereoToolOptions a = o;
   a.roi = "300,200,200,200";
   expect(a, "outside");
@@ -160,11 +161,11 @@ TEST(StereoTool, EveryBadInputIsRejectedWithItsName) {
   c.right = kData + "teddy/im6.png";
   expect(c, "left image is 384x288 but right image is 450x375");
   StereoToolOptions d = o;
-  d.left = kTmp + "petra_not_an_image.pgm";
+  d.left = kDpTmp + "petra_not_an_image.pgm";
   ASSERT_TRUE(io::write_text_file(d.left, "P5\n10 10\n255\nshort").ok());
   expect(d, "petra_not_an_image.pgm");
   StereoToolOptions e = o;
-  e.left = kTmp + "petra_missing.png";
+  e.left = kDpTmp + "petra_missing.png";
   expect(e, "petra_missing.png");
   StereoToolOptions f = o;
   f.method = "sgm";
@@ -173,7 +174,7 @@ TEST(StereoTool, EveryBadInputIsRejectedWithItsName) {
   g.shadow_fraction = 1.5;
   expect(g, "fraction");
   StereoToolOptions h = o;
-  h.calib = kTmp + "petra_bad_calib.json";
+  h.calib = kDpTmp + "petra_bad_calib.json";
   ASSERT_TRUE(io::write_text_file(h.calib, "{\"model\":\"tsai-rac\"}").ok());
   expect(h, "missing");
   StereoToolOptions i = o;
@@ -183,7 +184,7 @@ TEST(StereoTool, EveryBadInputIsRejectedWithItsName) {
   // A textureless pair and an all-shadow ROI.
   io::GrayImage flat(64, 48, 128);
   StereoToolOptions j = o;
-  j.left = j.right = kTmp + "petra_flat.pgm";
+  j.left = j.right = kDpTmp + "petra_flat.pgm";
   ASSERT_TRUE(io::write_pgm(j.left, flat.view()).ok());
   expect(j, "textureless");
   j.shadow_fraction = 0.2;
@@ -202,12 +203,12 @@ TEST(StereoTool, HandlesA1024x768PairWith128Disparities) {
       R.view()(x, y) = r->view()(std::min(x / 2, 449), std::min(y / 2, 374));
     }
   StereoToolOptions o;
-  o.left = kTmp + "petra_big_l.pgm";
-  o.right = kTmp + "petra_big_r.pgm";
+  o.left = kDpTmp + "petra_big_l.pgm";
+  o.right = kDpTmp + "petra_big_r.pgm";
   ASSERT_TRUE(io::write_pgm(o.left, L.view()).ok() && io::write_pgm(o.right, R.view()).ok());
   o.disp_min = 0;
   o.disp_max = 127;
-  o.out = kTmp + "petra_big.pfm";
+  o.out = kDpTmp + "petra_big.pfm";
   auto res = run_stereo_tool(o);
   ASSERT_TRUE(res.ok()) << res.error().message;
   EXPECT_GT(res->stats.matched, 1024L * 768 / 2);

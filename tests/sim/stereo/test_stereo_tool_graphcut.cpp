@@ -18,7 +18,7 @@ namespace petra::stereo {
 namespace {
 
 const std::string kRoot = eval::default_data_root(PETRA_SOURCE_DIR);
-const std::string kTmp = ::testing::TempDir();
+const std::string kGcTmp = ::testing::TempDir();
 
 StereoToolOptions middlebury(const char* name) {
   const eval::MiddleburyScene* s = eval::find_middlebury_scene(name);
@@ -28,7 +28,7 @@ StereoToolOptions middlebury(const char* name) {
   o.right = kRoot + "/" + s->dir + "/" + s->right;
   o.disp_min = 0;
   o.disp_max = s->disp_max;
-  o.out = kTmp + "petra_stereo_gc_" + name + ".pfm";
+  o.out = kGcTmp + "petra_stereo_gc_" + name + ".pfm";
   return o;
 }
 
@@ -130,7 +130,7 @@ TEST(StereoToolGraphCut, SimulatedScenesAgreeWithTheRenderedTruth) {
   for (int k : {0, 5, 11}) {
     auto products = sim::render_scene(set[k]);
     ASSERT_TRUE(products.ok()) << products.error().message;
-    const std::string dir = kTmp + "petra_gc_scene_" + std::to_string(k);
+    const std::string dir = kGcTmp + "petra_gc_scene_" + std::to_string(k);
     ASSERT_TRUE(sim::write_scene(*products, dir).ok());
     const sim::SceneTruth& t = products->truth;
     StereoToolOptions o;
