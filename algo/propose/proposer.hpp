@@ -37,6 +37,7 @@
 #include "algo/core/arena.hpp"
 #include "algo/core/result.hpp"
 #include "algo/core/step_clock.hpp"
+#include "algo/propose/further_planes.hpp"
 #include "algo/propose/proposals.hpp"
 #include "algo/propose/rock_detection.hpp"
 
@@ -59,6 +60,10 @@ Status validate(const ProposerBudget& b);
 struct ProposerParams {
   DetectionParams detection;
   double standoff_mm = arm::kDefaultStandoffMm;
+  // c of the further pass over a rock's faces the chain's planes leave
+  // (algo/propose/further_planes; 0: off): fills the slots after the chain's
+  // accepted planes.
+  int further_planes_c = 2;
 };
 
 // Field-named refusal of a request for an image of width x height.
@@ -75,6 +80,19 @@ ProposalScore score_plane(const GrindPlane* best, bool reachable, double footpri
 // pixels). The chain takes every rock in its ROI; the proposal keeps its own.
 void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::uint8_t> rock_map,
                            int map_width, int cell_px, int index, bool (&other)[kMaxClasses]);
+
+// A rock's grindable planes in the order they are offered, one per face
+// (same_face: the chain's merge rule). A surplus plane passed every check
+// (only the run's c left it out): added as accepted.
+struct PlaneCandidates {
+  static constexpr int kMaxCandidates = 2 * kMaxClasses;
+  GrindPlane planes[kMaxCandidates];
+  int count = 0;
+  void add(const GrindPlane& p, const GrindParams& grind);  // skipped when its face is in
+  // Drops the planes from `first` on whose whole patch is rougher than the
+  // footprint's tolerance (a patch across a crease: two faces in one plane).
+  void keep_flat(int first, const GrindParams& grind);
+};
 
 class Proposer {
  public:
@@ -110,7 +128,9 @@ class Proposer {
   Status evaluate(ConstGray8View left, ConstGray8View right, int index,
                   const arm::JointVector& current, const ProposalWeights& weights,
                   const StepClock& clock, RockProposal& out);
-  void own_planes(int index, const PipelineOutput& out, RockProposal& proposal) const;
+  Status own_planes(int index, const PipelineOutput& out, const arm::JointVector& current,
+                    RockProposal& proposal);
+  arm::ArmReason reach(const GrindPlane& plane, const arm::JointVector& current) const;
   void rank(const ProposalRequest& request, int evaluated);
 
   Pipeline* pipeline_ = nullptr;  // the caller's
@@ -124,6 +144,7 @@ class Proposer {
   RockMapShape rock_map_shape_;
   std::uint8_t rock_map_[kRockMapMaxWidth * kRockMapMaxHeight] = {};  // detection's rocks
   RockProposal evaluated_[kMaxProposals];
+  PlaneCandidates candidates_;  // the rock's being evaluated (own_planes)
   ProposalList list_;
 };
 
