@@ -7,22 +7,32 @@
 //   matcher) -> the run's planes that lie on this rock (their vertices' votes
 //   on detection's rock map: the chain takes every rock in the ROI, so a
 //   neighbour's faces are dropped here and offered by the neighbour's own run)
-//   -> each accepted plane's approach (algo/arm plan_approach from `current`,
-//   standoff arm::kDefaultStandoffMm) -> the score's terms and weighted total
+//   -> the rock's further flat faces from the same run (its surplus planes,
+//   then algo/propose/further_planes on its mesh triangles no kept plane
+//   explains) in the slots the chain's accepted planes leave
+//   -> each plane's approach (algo/arm plan_approach from `current`,
+//   standoff arm::kDefaultStandoffMm; reachable planes first)
+//   -> the score's terms and weighted total
 //   -> ranking (offered proposals first, then by total) and truncation.
 // c: the chain is run once per rock with c = kMaxProposalPlanes (3, the most
 // faces a proposal carries); the planes it accepts (qualified, not surplus:
-// grind_planes ranks by area and keeps at most c) are the rock's answer, so
-// the normal clustering's own evidence (classes it found, merges, the
-// qualification) decides how many planes a rock offers, from 0 to 3. The
-// operator sending a proposal back as SELECT_ROI with its roi, click and
-// planes_c reruns exactly this chain request (its planes, with any that lie
-// on a neighbour in the ROI).
+// grind_planes ranks by area and keeps at most c) come first. The run's c
+// counts a neighbour's planes in the ROI too, and its clustering into
+// cluster_count(3) classes merges a rounded rock's smaller flat facets into a
+// neighbouring class: the rock's own surplus planes (qualified past c) and a
+// further pass on the rest of its mesh (c = further_planes_c) fill the
+// remaining slots, one plane per face, each qualified by the chain's checks,
+// its whole patch within the footprint's flatness tolerance. The operator
+// sending a proposal back as SELECT_ROI with its roi, click and planes_c
+// reruns exactly this chain request: the chain's accepted planes again (with
+// any on a neighbour in the ROI), not the further ones (docs/proposals.md 2).
 // Memory: the caller's Pipeline and its arena, shared (the flight job's one
 // pipeline serves EVALUATE too): arena_bytes() = the chain's remap tables,
 // then one space that detection and each chain run use in turn (the chain's
 // run releases the arena to its own mark, a proposer's run to where create
-// found it). The proposer's own need is the detection's (detection_bytes()).
+// found it). The further pass takes the run's grind-plane scratch again, past
+// its outputs (within the run's bytes: its grind step needed the same). The
+// proposer's own need is the detection's (detection_bytes()).
 // The list and detection's rock map (12 KiB, kept through the chain runs)
 // live in the Proposer. No heap after create.
 #pragma once
@@ -61,8 +71,10 @@ struct ProposerParams {
   DetectionParams detection;
   double standoff_mm = arm::kDefaultStandoffMm;
   // c of the further pass over a rock's faces the chain's planes leave
-  // (algo/propose/further_planes; 0: off): fills the slots after the chain's
-  // accepted planes.
+  // (algo/propose/further_planes; 0: off), which fills the slots after the
+  // chain's accepted and surplus planes. 2 (5 classes): on the multi-rock set
+  // the same recall as 3 with one wrong plane fewer; 4 and more find fewer
+  // (docs/proposals.md 5).
   int further_planes_c = 2;
 };
 
