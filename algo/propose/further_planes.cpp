@@ -51,12 +51,15 @@ Result<GrindResult> further_planes(const StereoRig& rig, const RectifiedPair& re
   ArenaScope scope(arena);
   auto taken = arena.allocate<std::uint8_t>(nt, "further planes' triangles");
   if (!taken) return taken.error();
+  std::size_t left = 0;
   for (std::size_t i = 0; i < nt; ++i) {
     const int cls = r.mesh_class[i];
     const int k = cls - kVertexPlane0;
     const bool free = cls == kVertexRock || (k >= 0 && k < kMaxClasses && !explained[k]);
     (*taken)[i] = free && rock.holds(r, r.mesh[i]) ? 1 : 0;
+    left += (*taken)[i];
   }
+  if (left < 3 * static_cast<std::size_t>(c)) return GrindResult{};  // too few for c: none
   return grind_planes_on_mesh(rig, rect, r, c, params, arena, *taken);
 }
 

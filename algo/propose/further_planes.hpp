@@ -50,7 +50,8 @@ std::size_t further_planes_bytes(std::size_t triangles);
 // The further pass (c classes asked; cluster_count(c) clustered) on the run
 // `r` (made with rig, rect and params) for the rock, leaving out the
 // triangles of the chain's planes marked in `explained` (by rank). Its
-// planes ranked as the chain ranks them.
+// planes ranked as the chain ranks them; none (count 0) when fewer than 3c
+// triangles are left.
 Result<GrindResult> further_planes(const StereoRig& rig, const RectifiedPair& rect,
                                    const ReconstructionParams& params,
                                    const ReconstructionOutput& r, const RockOnMap& rock,

@@ -270,8 +270,8 @@ Status Proposer::own_planes(int index, const PipelineOutput& out, const arm::Joi
     const Rectifier& rect = pipeline_->rectifier();
     auto f = further_planes(rect.rig(), rect.geometry(), pipeline_->params().reconstruction,
                             out.result, rock, taken, params_.further_planes_c, *arena_);
-    if (!f) return f.error();
-    for (int k = 0; k < f->accepted; ++k) c.add(f->planes[k], gp);
+    if (!f && f.code() != Errc::degenerate) return f.error();
+    for (int k = 0; f && k < f->accepted; ++k) c.add(f->planes[k], gp);  // degenerate: none
   }
   c.keep_flat(chain_accepted, gp);
   int n = 0;
