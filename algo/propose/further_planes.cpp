@@ -1,6 +1,5 @@
 #include "algo/propose/further_planes.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -34,10 +33,6 @@ void planes_mostly_on(const ReconstructionOutput& r, const RockOnMap& rock,
     if (rock.at(r.pixels[i].u, r.pixels[i].v) == rock.index) ++own[k];
   }
   for (int k = 0; k < kMaxClasses; ++k) on[k] = 2 * own[k] > all[k];
-}
-
-std::size_t further_planes_bytes(std::size_t triangles) {
-  return triangles + alignof(std::max_align_t) + grind_planes_on_mesh_bytes(triangles);
 }
 
 Result<GrindResult> further_planes(const StereoRig& rig, const RectifiedPair& rect,

@@ -44,9 +44,6 @@ struct RockOnMap {
 void planes_mostly_on(const ReconstructionOutput& r, const RockOnMap& rock,
                       bool (&on)[kMaxClasses]);
 
-// Bytes the further pass takes from the arena for a mesh of `triangles`.
-std::size_t further_planes_bytes(std::size_t triangles);
-
 // The further pass (c classes asked; cluster_count(c) clustered) on the run
 // `r` (made with rig, rect and params) for the rock, leaving out the
 // triangles of the chain's planes marked in `explained` (by rank). Its
