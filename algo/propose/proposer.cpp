@@ -118,6 +118,7 @@ Result<Proposer> Proposer::create(Pipeline& pipeline, const ProposerBudget& budg
                                   Arena& arena, const ProposerParams& proposer) {
   PETRA_TRY(validate(budget));
   PETRA_TRY(validate(proposer.detection));
+  PETRA_TRY(validate(proposer.discs));
   PETRA_TRY(validate(detection_budget(budget, pipeline.params())));
   if (!(proposer.standoff_mm > 0.0 && proposer.standoff_mm <= 500.0))
     return Error::make(Errc::invalid_argument, "proposer: standoff %g mm not within (0, 500]",
@@ -272,6 +273,15 @@ Status Proposer::own_planes(int index, const PipelineOutput& out, const arm::Joi
                             out.result, rock, taken, params_.further_planes_c, *arena_);
     if (!f && f.code() != Errc::degenerate) return f.error();
     for (int k = 0; f && k < f->accepted; ++k) c.add(f->planes[k], gp);  // degenerate: none
+  }
+  if (params_.flat_discs) {
+    const Rectifier& rect = pipeline_->rectifier();
+    auto d = flat_discs(rect.rig(), rect.geometry(), pipeline_->params().reconstruction, out.result,
+                        rock, taken,
+                        std::span<const GrindPlane>(c.planes, static_cast<std::size_t>(c.count)),
+                        params_.discs, *arena_);
+    if (!d) return d.error();
+    for (int k = 0; k < d->accepted; ++k) c.add(d->planes[k], gp);
   }
   c.keep_flat(chain_accepted, gp);
   int n = 0;

@@ -9,7 +9,8 @@
 //   neighbour's faces are dropped here and offered by the neighbour's own run)
 //   -> the rock's further flat faces from the same run (its surplus planes,
 //   then algo/propose/further_planes on its mesh triangles no kept plane
-//   explains) in the slots the chain's accepted planes leave
+//   explains, then algo/propose/flat_discs, the tool's disc over what is
+//   still unexplained) in the slots the chain's accepted planes leave
 //   -> each plane's approach (algo/arm plan_approach from `current`,
 //   standoff arm::kDefaultStandoffMm; reachable planes first)
 //   -> the score's terms and weighted total
@@ -19,8 +20,9 @@
 // grind_planes ranks by area and keeps at most c) come first. The run's c
 // counts a neighbour's planes in the ROI too, and its clustering into
 // cluster_count(3) classes merges a rounded rock's smaller flat facets into a
-// neighbouring class: the rock's own surplus planes (qualified past c) and a
-// further pass on the rest of its mesh (c = further_planes_c) fill the
+// neighbouring class: the rock's own surplus planes (qualified past c), a
+// further pass on the rest of its mesh (c = further_planes_c) and the disc
+// search, which does not depend on the clustering (flat_discs), fill the
 // remaining slots, one plane per face, each qualified by the chain's checks,
 // its whole patch within the footprint's flatness tolerance. The operator
 // sending a proposal back as SELECT_ROI with its roi, click and planes_c
@@ -31,7 +33,8 @@
 // then one space that detection and each chain run use in turn (the chain's
 // run releases the arena to its own mark, a proposer's run to where create
 // found it). The further pass takes the run's grind-plane scratch again, past
-// its outputs (within the run's bytes: its grind step needed the same). The
+// its outputs (within the run's bytes: its grind step needed the same), and
+// the disc search less than that after it. The
 // proposer's own need is the detection's (detection_bytes()).
 // The list and detection's rock map (12 KiB, kept through the chain runs)
 // live in the Proposer. No heap after create.
@@ -47,6 +50,7 @@
 #include "algo/core/arena.hpp"
 #include "algo/core/result.hpp"
 #include "algo/core/step_clock.hpp"
+#include "algo/propose/flat_discs.hpp"
 #include "algo/propose/further_planes.hpp"
 #include "algo/propose/proposals.hpp"
 #include "algo/propose/rock_detection.hpp"
@@ -76,6 +80,10 @@ struct ProposerParams {
   // the same recall as 3 with one wrong plane fewer; 4 and more find fewer
   // (docs/proposals.md 5).
   int further_planes_c = 2;
+  // The grinder-disc search over the faces the kept planes leave
+  // (algo/propose/flat_discs), after the further pass.
+  bool flat_discs = true;
+  FlatDiscParams discs;
 };
 
 // Field-named refusal of a request for an image of width x height.
@@ -97,7 +105,7 @@ void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::u
 // (same_face: the chain's merge rule). A surplus plane passed every check
 // (only the run's c left it out): added as accepted.
 struct PlaneCandidates {
-  static constexpr int kMaxCandidates = 2 * kMaxClasses;
+  static constexpr int kMaxCandidates = 3 * kMaxClasses;
   GrindPlane planes[kMaxCandidates];
   int count = 0;
   void add(const GrindPlane& p, const GrindParams& grind);  // skipped when its face is in

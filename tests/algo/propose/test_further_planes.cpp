@@ -14,44 +14,24 @@
 #include <vector>
 
 #include "algo/propose/proposer.hpp"
+#include "tests/algo/propose/ridge_run.hpp"
 #include "tests/support/heap_counter.hpp"
-#include "tests/support/synthetic_disparity.hpp"
-#include "tests/support/test_rig.hpp"
 
 namespace petra {
 namespace {
 
-double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / M_PI;
-}
-
-// The rock face nearest in normal to n, and the angle to it.
-std::pair<int, double> nearest_face(const test::Rock& rock, const Eigen::Vector3d& n) {
-  std::pair<int, double> best{-1, 180.0};
-  for (std::size_t k = 0; k < rock.faces.size(); ++k)
-    if (angle_deg(n, rock.faces[k].n) < best.second)
-      best = {static_cast<int>(k), angle_deg(n, rock.faces[k].n)};
-  return best;
-}
-
 TEST(FurtherPlanes, FindTheFacesTheChainsPlanesLeaveOnTheRocksOwnCells) {
-  const StereoRig rig = test::looking_rig(1);
-  const RectifiedPair pair = *rectify_geometry(rig, 1024, 768);
-  const test::Rock rock = test::ridge_rock();
-  const Rect roi = test::rock_box(pair, rock, 40, 30, 55, 30);
-  const test::SyntheticDisparity disp = test::render_disparity(pair, roi, rock, 0.0, 1);
-  const ReconstructionBudget budget;
-  std::vector<std::byte> block(reconstruction_arena_bytes(budget));
-  Arena arena(block);
-  ReconstructionRequest req;
-  req.planes = 1;  // the chain explains one face
-  StepTimings timings;
-  const ReconstructionParams params;
-  auto r = reconstruct(rig, pair, disp.view(), req, params, budget, arena, {}, timings);
+  test::RidgeRun ridge;
+  auto r = ridge.run(1);  // the chain explains one face
   ASSERT_TRUE(r.ok()) << r.error().message;
   ASSERT_EQ(r->planes.accepted, 1);
+  const StereoRig& rig = ridge.rig;
+  const RectifiedPair& pair = ridge.pair;
+  const test::Rock& rock = ridge.rock;
+  const ReconstructionParams& params = ridge.params;
+  Arena& arena = ridge.arena;
   const GrindPlane& first = r->planes.planes[0];
-  const int first_face = nearest_face(rock, first.normal).first;
+  const int first_face = test::nearest_face(rock, first.normal).first;
 
   const std::uint8_t map[1] = {3};  // one cell over the whole ROI: rock 3
   const RockOnMap on_rock{map, 1, 4096, 3};
@@ -66,7 +46,7 @@ TEST(FurtherPlanes, FindTheFacesTheChainsPlanesLeaveOnTheRocksOwnCells) {
   ASSERT_GE(f->accepted, 1) << "the ridge rock shows more than one flat face";
   for (int k = 0; k < f->accepted; ++k) {
     const GrindPlane& p = f->planes[k];
-    const auto [face, deg] = nearest_face(rock, p.normal);
+    const auto [face, deg] = test::nearest_face(rock, p.normal);
     EXPECT_LT(deg, 1.0) << "further plane " << k;
     EXPECT_NE(face, first_face) << "further plane " << k << " is the explained face";
     EXPECT_FALSE(same_face(p, first, params.grind)) << "further plane " << k;
