@@ -41,9 +41,7 @@ std::size_t transient_bytes(const ReconstructionBudget& b) {
       static_cast<std::size_t>(b.max_roi_width) * static_cast<std::size_t>(b.max_roi_height);
   const std::size_t normals =
       arena_bytes_for<Eigen::Vector3d>(roi) + surface_normals_scratch_bytes(b.max_roi_width);
-  const std::size_t grind = arena_bytes_for<MeshTriangle>(t) + arena_bytes_for<std::int32_t>(t) +
-                            arena_bytes_for<std::uint8_t>(t) +
-                            std::max(mesh_filter_scratch_bytes(t), grind_planes_scratch_bytes(t));
+  const std::size_t grind = arena_bytes_for<std::uint8_t>(t) + grind_planes_on_mesh_bytes(t);
   const std::size_t region = click_region_scratch_bytes(n, t);
   return std::max(std::max(std::max(filter, delaunay), region),
                   std::max(std::max(mesh, normals), grind));
@@ -344,47 +342,83 @@ Status grind_planes_step(const StereoRig& rig, const RectifiedPair& rect,
   PETRA_TRY(checkpoint(clock, PipelineStep::grind_planes));
   StepTimer timer(clock, timings, PipelineStep::grind_planes);
   ArenaScope scope(arena);
-  auto is_rock = [&](const MeshTriangle& t) {
-    for (int k = 0; k < 3; ++k)
-      if (out.point_class[static_cast<std::size_t>(t.v[k])] != PointClass::rock) return false;
-    return true;
-  };
-  auto rock = arena.allocate<MeshTriangle>(nt, "rock triangles");
-  if (!rock) return rock.error();
-  auto origin = arena.allocate<std::int32_t>(nt, "rock triangle origins");
-  if (!origin) return origin.error();
-  auto plane_of = arena.allocate<std::uint8_t>(nt, "rock triangle planes");
+  auto plane_of = arena.allocate<std::uint8_t>(nt, "mesh triangle planes");
   if (!plane_of) return plane_of.error();
   std::size_t nr = 0;
   for (std::size_t i = 0; i < nt; ++i) {
-    const bool r = is_rock(out.mesh[i]);
+    bool r = true;
+    for (int k = 0; k < 3; ++k)
+      r = r && out.point_class[static_cast<std::size_t>(out.mesh[i].v[k])] == PointClass::rock;
     out.mesh_class[i] = r ? kVertexRock : kVertexGround;
-    (*rock)[i] = out.mesh[i];
-    if (r) (*origin)[nr++] = static_cast<std::int32_t>(i);
+    (*plane_of)[i] = r ? 1 : 0;
+    nr += r ? 1 : 0;
   }
-  auto kept = keep_triangles(
-      rock->first(nt), [&](std::size_t i) { return is_rock(out.mesh[i]); }, arena);
-  if (!kept) return kept.error();
-  PETRA_ASSERT(*kept == nr);
   out.stats.rock_triangles = nr;
-  auto g = find_grind_planes(
-      out.xyz_mm, rock->first(nr), camera_centre_world(rig.left), request.planes, params.grind,
-      arena, plane_of->first(nr), out.normals,
-      RigGeometry{rect.left.f_px, rect.baseline_mm, static_cast<double>(params.filter.window)});
+  auto g = grind_planes_on_mesh(rig, rect, out, request.planes, params, arena, *plane_of);
   if (!g) return g.error();
   out.planes = *g;
-  for (std::size_t j = 0; j < nr; ++j) {
-    const std::uint8_t p = (*plane_of)[j];
+  for (std::size_t i = 0; i < nt; ++i) {
+    const std::uint8_t p = (*plane_of)[i];
     if (p == 0xFF) continue;
     const std::uint8_t cls = static_cast<std::uint8_t>(kVertexPlane0 + p);
-    const MeshTriangle& t = out.mesh[static_cast<std::size_t>((*origin)[j])];
-    out.mesh_class[static_cast<std::size_t>((*origin)[j])] = cls;
-    for (int k = 0; k < 3; ++k) out.vertex_class[static_cast<std::size_t>(t.v[k])] = cls;
+    out.mesh_class[i] = cls;
+    for (int k = 0; k < 3; ++k) out.vertex_class[static_cast<std::size_t>(out.mesh[i].v[k])] = cls;
   }
   return ok_status();
 }
 
+// Spreads the plane index of subset triangle j (plane[j]) to its mesh index
+// origin[j] >= j, in place from the back; 0xFF where no subset triangle is.
+void spread_to_mesh(std::span<const std::int32_t> origin, std::span<std::uint8_t> plane) {
+  std::size_t next = plane.size();  // plane[next..] hold their final value
+  for (std::size_t j = origin.size(); j-- > 0;) {
+    const std::size_t o = static_cast<std::size_t>(origin[j]);
+    const std::uint8_t p = plane[j];
+    for (std::size_t i = o + 1; i < next; ++i) plane[i] = 0xFF;
+    plane[o] = p;
+    next = o;
+  }
+  for (std::size_t i = 0; i < next; ++i) plane[i] = 0xFF;
+}
+
 }  // namespace
+
+std::size_t grind_planes_on_mesh_bytes(std::size_t triangles) {
+  return bytes_for<MeshTriangle>(triangles) + bytes_for<std::int32_t>(triangles) +
+         std::max(mesh_filter_scratch_bytes(triangles), grind_planes_scratch_bytes(triangles));
+}
+
+Result<GrindResult> grind_planes_on_mesh(const StereoRig& rig, const RectifiedPair& rect,
+                                         const ReconstructionOutput& out, int c,
+                                         const ReconstructionParams& params, Arena& arena,
+                                         std::span<std::uint8_t> triangle_plane) {
+  const std::size_t nt = out.mesh.size();
+  if (triangle_plane.size() != nt)
+    return Error::make(Errc::invalid_argument,
+                       "grind planes on the mesh: %zu triangle marks for %zu triangles",
+                       triangle_plane.size(), nt);
+  ArenaScope scope(arena);
+  auto subset = arena.allocate<MeshTriangle>(nt, "taken triangles");
+  if (!subset) return subset.error();
+  auto origin = arena.allocate<std::int32_t>(nt, "taken triangle origins");
+  if (!origin) return origin.error();
+  std::size_t nr = 0;
+  for (std::size_t i = 0; i < nt; ++i) {
+    (*subset)[i] = out.mesh[i];
+    if (triangle_plane[i] != 0) (*origin)[nr++] = static_cast<std::int32_t>(i);
+  }
+  auto kept = keep_triangles(
+      subset->first(nt), [&](std::size_t i) { return triangle_plane[i] != 0; }, arena);
+  if (!kept) return kept.error();
+  PETRA_ASSERT(*kept == nr);
+  auto g = find_grind_planes(
+      out.xyz_mm, subset->first(nr), camera_centre_world(rig.left), c, params.grind, arena,
+      triangle_plane.first(nr), out.normals,
+      RigGeometry{rect.left.f_px, rect.baseline_mm, static_cast<double>(params.filter.window)});
+  if (!g) return g.error();
+  spread_to_mesh(origin->first(nr), triangle_plane);
+  return *g;
+}
 
 Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPair& rect,
                                          ConstDisparityMap disparity,

@@ -107,4 +107,17 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
                                          const ReconstructionBudget& budget, Arena& arena,
                                          const StepClock& clock, StepTimings& timings);
 
+// Grind planes (find_grind_planes, c planes, the chain's grind parameters
+// and rig) on the triangles of out.mesh marked in triangle_plane (one byte
+// per triangle; in: nonzero = taken; out: the index of the plane whose patch
+// holds it, 0..count-1 in rank order, 0xFF none). The chain's own step takes
+// every rock triangle; the proposer takes a rock's triangles that no accepted
+// plane explains (algo/propose/further_planes). Scratch from the arena:
+// grind_planes_on_mesh_bytes(out.mesh.size()), released on return.
+std::size_t grind_planes_on_mesh_bytes(std::size_t triangles);
+Result<GrindResult> grind_planes_on_mesh(const StereoRig& rig, const RectifiedPair& rect,
+                                         const ReconstructionOutput& out, int c,
+                                         const ReconstructionParams& params, Arena& arena,
+                                         std::span<std::uint8_t> triangle_plane);
+
 }  // namespace petra

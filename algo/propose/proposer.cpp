@@ -118,10 +118,14 @@ Result<Proposer> Proposer::create(Pipeline& pipeline, const ProposerBudget& budg
                                   Arena& arena, const ProposerParams& proposer) {
   PETRA_TRY(validate(budget));
   PETRA_TRY(validate(proposer.detection));
+  PETRA_TRY(validate(proposer.discs));
   PETRA_TRY(validate(detection_budget(budget, pipeline.params())));
   if (!(proposer.standoff_mm > 0.0 && proposer.standoff_mm <= 500.0))
     return Error::make(Errc::invalid_argument, "proposer: standoff %g mm not within (0, 500]",
                        proposer.standoff_mm);
+  if (proposer.further_planes_c < 0 || proposer.further_planes_c > kMaxClasses)
+    return Error::make(Errc::invalid_argument, "proposer: further_planes_c %d not within 0..%d",
+                       proposer.further_planes_c, kMaxClasses);
   const PipelineBudget& pb = pipeline.budget();
   if (pb.image_width != budget.pipeline.image_width ||
       pb.image_height != budget.pipeline.image_height ||
@@ -192,6 +196,22 @@ PipelineRequest Proposer::chain_request(const RockCandidate& rock) const {
   return q;
 }
 
+void PlaneCandidates::add(const GrindPlane& p, const GrindParams& grind) {
+  if (count >= kMaxCandidates) return;
+  for (int k = 0; k < count; ++k)
+    if (same_face(planes[k], p, grind)) return;
+  planes[count] = p;
+  if (p.verdict == PlaneVerdict::surplus) planes[count].verdict = PlaneVerdict::accepted;
+  ++count;
+}
+
+void PlaneCandidates::keep_flat(int first, const GrindParams& grind) {
+  int n = first;
+  for (int k = first; k < count; ++k)
+    if (planes[k].rms_mm <= grind.max_footprint_rms_mm) planes[n++] = planes[k];
+  count = n;
+}
+
 void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::uint8_t> map,
                            int map_w, int cell_px, int index, bool (&neighbour)[kMaxClasses]) {
   long own[kMaxClasses] = {}, other[kMaxClasses] = {};
@@ -211,26 +231,71 @@ void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::u
   for (int k = 0; k < kMaxClasses; ++k) neighbour[k] = other[k] > own[k];
 }
 
-// The proposal's planes (3 at most): this rock's accepted planes in the
-// chain's order, then its refused ones that say why (never the surplus:
-// qualified, but c larger did). A neighbour's planes are left to its own run.
-void Proposer::own_planes(int index, const PipelineOutput& out, RockProposal& proposal) const {
+arm::ArmReason Proposer::reach(const GrindPlane& plane, const arm::JointVector& current) const {
+  arm::ApproachRequest a;
+  a.centroid_mm = plane.centroid_mm;
+  a.normal = plane.normal;
+  a.standoff_mm = params_.standoff_mm;
+  return arm::plan_approach(geometry_, limits_, a, current).refusal.reason;
+}
+
+// The proposal's planes (3 at most), from this rock's candidates in order:
+// the chain's accepted planes, its surplus ones (qualified, past the run's
+// c = 3, which a neighbour's planes in the ROI also take), then the further
+// pass's accepted planes (further_planes), each not of the same face as an
+// earlier one; the reachable ones first, each group in that order, then the
+// rock's refused planes that say why. A neighbour's planes are left to its
+// own run.
+Status Proposer::own_planes(int index, const PipelineOutput& out, const arm::JointVector& current,
+                            RockProposal& proposal) {
   const GrindResult& g = out.result.planes;
-  bool neighbour[kMaxClasses] = {};
+  const GrindParams& gp = pipeline_->params().reconstruction.grind;
+  bool neighbour[kMaxClasses] = {}, taken[kMaxClasses] = {};
   const RockMapShape& m = rock_map_shape_;
-  planes_on_other_rocks(out.result, std::span<const std::uint8_t>(rock_map_, m.cells()), m.w,
-                        budget_.detection_factor * m.step, index, neighbour);
-  int n = 0;
-  for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k) {
-    const PlaneVerdict v = g.planes[k].verdict;
-    if (!neighbour[k] && v == PlaneVerdict::accepted) proposal.planes[n++] = g.planes[k];
+  const RockOnMap rock{std::span<const std::uint8_t>(rock_map_, m.cells()), m.w,
+                       budget_.detection_factor * m.step, index};
+  planes_on_other_rocks(out.result, rock.map, rock.map_width, rock.cell_px, index, neighbour);
+  PlaneCandidates& c = candidates_;
+  c.count = 0;
+  for (int k = 0; k < g.count; ++k)
+    if (!neighbour[k] && g.planes[k].verdict == PlaneVerdict::accepted) c.add(g.planes[k], gp);
+  const int chain_accepted = c.count;
+  bool on_rock[kMaxClasses] = {};
+  planes_mostly_on(out.result, rock, on_rock);
+  for (int k = 0; k < g.count; ++k)
+    if (on_rock[k] && g.planes[k].verdict == PlaneVerdict::surplus) c.add(g.planes[k], gp);
+  for (int k = 0; k < g.count; ++k)
+    taken[k] = !neighbour[k] && (g.planes[k].verdict == PlaneVerdict::accepted ||
+                                 (on_rock[k] && g.planes[k].verdict == PlaneVerdict::surplus));
+  if (params_.further_planes_c > 0) {
+    const Rectifier& rect = pipeline_->rectifier();
+    auto f = further_planes(rect.rig(), rect.geometry(), pipeline_->params().reconstruction,
+                            out.result, rock, taken, params_.further_planes_c, *arena_);
+    if (!f && f.code() != Errc::degenerate) return f.error();
+    for (int k = 0; f && k < f->accepted; ++k) c.add(f->planes[k], gp);  // degenerate: none
   }
+  if (params_.flat_discs) {
+    const Rectifier& rect = pipeline_->rectifier();
+    auto d = flat_discs(rect.rig(), rect.geometry(), pipeline_->params().reconstruction, out.result,
+                        rock, taken,
+                        std::span<const GrindPlane>(c.planes, static_cast<std::size_t>(c.count)),
+                        params_.discs, *arena_);
+    if (!d) return d.error();
+    for (int k = 0; k < d->accepted; ++k) c.add(d->planes[k], gp);
+  }
+  c.keep_flat(chain_accepted, gp);
+  int n = 0;
+  for (int pass = 0; pass < 2; ++pass)  // reachable first, then the others
+    for (int k = 0; k < c.count && n < kMaxProposalPlanes; ++k)
+      if ((reach(c.planes[k], current) == arm::ArmReason::ok) == (pass == 0))
+        proposal.planes[n++] = c.planes[k];
   for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k) {
     const PlaneVerdict v = g.planes[k].verdict;
     if (!neighbour[k] && v != PlaneVerdict::accepted && v != PlaneVerdict::surplus)
       proposal.planes[n++] = g.planes[k];
   }
   proposal.plane_count = n;
+  return {};
 }
 
 Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
@@ -249,16 +314,12 @@ Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
     out.chain_error = r.error();
     return {};
   }
-  own_planes(index, *r, out);
+  PETRA_TRY(own_planes(index, *r, current, out));
   const GrindResult& g = r->result.planes;
   const GrindPlane* best = nullptr;
   bool reachable = false, grindable_any = false;
   for (int k = 0; k < out.plane_count; ++k) {
-    arm::ApproachRequest a;
-    a.centroid_mm = out.planes[k].centroid_mm;
-    a.normal = out.planes[k].normal;
-    a.standoff_mm = params_.standoff_mm;
-    out.reach[k] = arm::plan_approach(geometry_, limits_, a, current).refusal.reason;
+    out.reach[k] = reach(out.planes[k], current);
     const bool grindable = out.planes[k].verdict == PlaneVerdict::accepted;
     const bool offered = grindable && out.reach[k] == arm::ArmReason::ok;
     grindable_any = grindable_any || grindable;

@@ -7,22 +7,35 @@
 //   matcher) -> the run's planes that lie on this rock (their vertices' votes
 //   on detection's rock map: the chain takes every rock in the ROI, so a
 //   neighbour's faces are dropped here and offered by the neighbour's own run)
-//   -> each accepted plane's approach (algo/arm plan_approach from `current`,
-//   standoff arm::kDefaultStandoffMm) -> the score's terms and weighted total
+//   -> the rock's further flat faces from the same run (its surplus planes,
+//   then algo/propose/further_planes on its mesh triangles no kept plane
+//   explains, then algo/propose/flat_discs, the tool's disc over what is
+//   still unexplained) in the slots the chain's accepted planes leave
+//   -> each plane's approach (algo/arm plan_approach from `current`,
+//   standoff arm::kDefaultStandoffMm; reachable planes first)
+//   -> the score's terms and weighted total
 //   -> ranking (offered proposals first, then by total) and truncation.
 // c: the chain is run once per rock with c = kMaxProposalPlanes (3, the most
 // faces a proposal carries); the planes it accepts (qualified, not surplus:
-// grind_planes ranks by area and keeps at most c) are the rock's answer, so
-// the normal clustering's own evidence (classes it found, merges, the
-// qualification) decides how many planes a rock offers, from 0 to 3. The
-// operator sending a proposal back as SELECT_ROI with its roi, click and
-// planes_c reruns exactly this chain request (its planes, with any that lie
-// on a neighbour in the ROI).
+// grind_planes ranks by area and keeps at most c) come first. The run's c
+// counts a neighbour's planes in the ROI too, and its clustering into
+// cluster_count(3) classes merges a rounded rock's smaller flat facets into a
+// neighbouring class: the rock's own surplus planes (qualified past c), a
+// further pass on the rest of its mesh (c = further_planes_c) and the disc
+// search, which does not depend on the clustering (flat_discs), fill the
+// remaining slots, one plane per face, each qualified by the chain's checks,
+// its whole patch within the footprint's flatness tolerance. The operator
+// sending a proposal back as SELECT_ROI with its roi, click and planes_c
+// reruns exactly this chain request: the chain's accepted planes again (with
+// any on a neighbour in the ROI), not the further ones (docs/proposals.md 2).
 // Memory: the caller's Pipeline and its arena, shared (the flight job's one
 // pipeline serves EVALUATE too): arena_bytes() = the chain's remap tables,
 // then one space that detection and each chain run use in turn (the chain's
 // run releases the arena to its own mark, a proposer's run to where create
-// found it). The proposer's own need is the detection's (detection_bytes()).
+// found it). The further pass takes the run's grind-plane scratch again, past
+// its outputs (within the run's bytes: its grind step needed the same), and
+// the disc search less than that after it. The
+// proposer's own need is the detection's (detection_bytes()).
 // The list and detection's rock map (12 KiB, kept through the chain runs)
 // live in the Proposer. No heap after create.
 #pragma once
@@ -37,6 +50,8 @@
 #include "algo/core/arena.hpp"
 #include "algo/core/result.hpp"
 #include "algo/core/step_clock.hpp"
+#include "algo/propose/flat_discs.hpp"
+#include "algo/propose/further_planes.hpp"
 #include "algo/propose/proposals.hpp"
 #include "algo/propose/rock_detection.hpp"
 
@@ -59,6 +74,16 @@ Status validate(const ProposerBudget& b);
 struct ProposerParams {
   DetectionParams detection;
   double standoff_mm = arm::kDefaultStandoffMm;
+  // c of the further pass over a rock's faces the chain's planes leave
+  // (algo/propose/further_planes; 0: off), which fills the slots after the
+  // chain's accepted and surplus planes. 2 (5 classes): on the multi-rock set
+  // the same recall as 3 with one wrong plane fewer; 4 and more find fewer
+  // (docs/proposals.md 5).
+  int further_planes_c = 2;
+  // The grinder-disc search over the faces the kept planes leave
+  // (algo/propose/flat_discs), after the further pass.
+  bool flat_discs = true;
+  FlatDiscParams discs;
 };
 
 // Field-named refusal of a request for an image of width x height.
@@ -75,6 +100,19 @@ ProposalScore score_plane(const GrindPlane* best, bool reachable, double footpri
 // pixels). The chain takes every rock in its ROI; the proposal keeps its own.
 void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::uint8_t> rock_map,
                            int map_width, int cell_px, int index, bool (&other)[kMaxClasses]);
+
+// A rock's grindable planes in the order they are offered, one per face
+// (same_face: the chain's merge rule). A surplus plane passed every check
+// (only the run's c left it out): added as accepted.
+struct PlaneCandidates {
+  static constexpr int kMaxCandidates = 3 * kMaxClasses;
+  GrindPlane planes[kMaxCandidates];
+  int count = 0;
+  void add(const GrindPlane& p, const GrindParams& grind);  // skipped when its face is in
+  // Drops the planes from `first` on whose whole patch is rougher than the
+  // footprint's tolerance (a patch across a crease: two faces in one plane).
+  void keep_flat(int first, const GrindParams& grind);
+};
 
 class Proposer {
  public:
@@ -110,7 +148,9 @@ class Proposer {
   Status evaluate(ConstGray8View left, ConstGray8View right, int index,
                   const arm::JointVector& current, const ProposalWeights& weights,
                   const StepClock& clock, RockProposal& out);
-  void own_planes(int index, const PipelineOutput& out, RockProposal& proposal) const;
+  Status own_planes(int index, const PipelineOutput& out, const arm::JointVector& current,
+                    RockProposal& proposal);
+  arm::ArmReason reach(const GrindPlane& plane, const arm::JointVector& current) const;
   void rank(const ProposalRequest& request, int evaluated);
 
   Pipeline* pipeline_ = nullptr;  // the caller's
@@ -124,6 +164,7 @@ class Proposer {
   RockMapShape rock_map_shape_;
   std::uint8_t rock_map_[kRockMapMaxWidth * kRockMapMaxHeight] = {};  // detection's rocks
   RockProposal evaluated_[kMaxProposals];
+  PlaneCandidates candidates_;  // the rock's being evaluated (own_planes)
   ProposalList list_;
 };
 
