@@ -384,7 +384,7 @@ void spread_to_mesh(std::span<const std::int32_t> origin, std::span<std::uint8_t
 }  // namespace
 
 std::size_t grind_planes_on_mesh_bytes(std::size_t triangles) {
-  return bytes_for<MeshTriangle>(triangles) + bytes_for<std::int32_t>(triangles) +
+  return arena_bytes_for<MeshTriangle>(triangles) + arena_bytes_for<std::int32_t>(triangles) +
          std::max(mesh_filter_scratch_bytes(triangles), grind_planes_scratch_bytes(triangles));
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "algo/core/arena.hpp"
 #include "algo/surface/grind_qualify.hpp"
 #include "algo/surface/plane_fit.hpp"
 
@@ -14,11 +15,6 @@ namespace {
 constexpr int kMaxFaces = 32;  // faces tracked per rock; the largest kMaxClasses reported
 constexpr std::uint8_t kNoFace = 0xFF;
 constexpr std::uint8_t kKeptFace = 0xFE;  // on a plane the proposal keeps already
-
-template <class T>
-std::size_t bytes_for(std::size_t n) {
-  return n * sizeof(T) + alignof(T);
-}
 
 struct Face {
   Eigen::Vector3d normal, centre;  // its first disc's plane
@@ -276,9 +272,9 @@ Status validate(const FlatDiscParams& p) {
 }
 
 std::size_t flat_discs_bytes(std::size_t triangles, int max_seeds) {
-  return bytes_for<FlatSeed>(static_cast<std::size_t>(max_seeds)) +
-         2 * bytes_for<FaceSample>(triangles) + bytes_for<std::uint8_t>(triangles) +
-         3 * bytes_for<std::int32_t>(triangles) + footprint_scratch_bytes(triangles);
+  return arena_bytes_for<FlatSeed>(static_cast<std::size_t>(max_seeds)) +
+         2 * arena_bytes_for<FaceSample>(triangles) + arena_bytes_for<std::uint8_t>(triangles) +
+         3 * arena_bytes_for<std::int32_t>(triangles) + footprint_scratch_bytes(triangles);
 }
 
 Result<GrindResult> flat_discs(const StereoRig& rig, const RectifiedPair& rect,
