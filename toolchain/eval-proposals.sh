@@ -22,7 +22,7 @@ tot = {"targets": 0, "targets_found": 0, "offered": 0, "offered_on_target": 0}
 best_err, best_cpl, best_on, best_target, scenes = [], [], 0, 0, 0
 print("| scene | proposals | targets found | offered on target | best: normal deg / centroid-plane mm / on facet |")
 print("|---|---|---|---|---|")
-for s in sorted(d for d in os.listdir(set_dir) if d.startswith("scene_")):
+for s in sorted(d for d in os.listdir(set_dir) if d.startswith("scene_") and os.path.isdir(os.path.join(set_dir, d))):
     sd, od = os.path.join(set_dir, s), os.path.join(out_dir, s)
     r = subprocess.run([petra, "propose", "--calib", f"{sd}/calib.json", "--left", f"{sd}/left.png",
                         "--right", f"{sd}/right.png", "--count", "8", "--out", od],

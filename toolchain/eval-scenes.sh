@@ -34,7 +34,8 @@ use_click = os.environ.get("CLICK", "1") != "0"
 label = ("real-" if real else "") + "eval" + "".join("-" + a.lstrip("-") for a in extra) + \
         ("-truth" if os.environ.get("DISPARITY") == "truth" else "") + ("" if use_click else "-noclick")
 stats = []  # per scene: found == c, [(normal err, centroid dist, on facet)], refusal
-scenes = sorted(d for d in os.listdir(os.path.join(work, set_dir)) if d.startswith("scene_"))
+scenes = sorted(d for d in os.listdir(os.path.join(work, set_dir)) if d.startswith("scene_")
+          and os.path.isdir(os.path.join(work, set_dir, d)))
 for s in scenes:
     sd = os.path.join(work, set_dir, s)
     truth = json.load(open(os.path.join(sd, "truth.json")))
