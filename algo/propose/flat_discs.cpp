@@ -95,17 +95,10 @@ bool flat_disc(Free& f, std::size_t s, const GrindParams& g, const FlatDiscParam
   return true;
 }
 
-GrindPlane as_plane(const Eigen::Vector3d& normal, const Eigen::Vector3d& centre) {
-  GrindPlane p;
-  p.normal = normal;
-  p.centroid_mm = centre;
-  return p;
-}
-
 // Whether the disc lies on a plane the proposal keeps (the chain's merge rule).
 bool on_kept(const Disc& d, std::span<const GrindPlane> kept, const GrindParams& g) {
   for (const GrindPlane& k : kept)
-    if (same_face(k, as_plane(d.normal, d.centre), g)) return true;
+    if (same_plane(k.normal, k.centroid_mm, d.normal, d.centre, g)) return true;
   return false;
 }
 
@@ -114,9 +107,7 @@ bool on_kept(const Disc& d, std::span<const GrindPlane> kept, const GrindParams&
 void place_disc(Free& f, const Disc& d, std::span<const GrindPlane> kept, const GrindParams& g,
                 Face (&faces)[kMaxFaces], int& count) {
   int k = 0;
-  while (k < count &&
-         !same_face(as_plane(faces[k].normal, faces[k].centre), as_plane(d.normal, d.centre), g))
-    ++k;
+  while (k < count && !same_plane(faces[k].normal, faces[k].centre, d.normal, d.centre, g)) ++k;
   std::uint8_t label = static_cast<std::uint8_t>(k);
   if (on_kept(d, kept, g)) {
     label = kKeptFace;

@@ -1,7 +1,6 @@
 #include "algo/propose/further_planes.hpp"
 
 #include <cmath>
-#include <numbers>
 
 namespace petra {
 
@@ -59,10 +58,7 @@ Result<GrindResult> further_planes(const StereoRig& rig, const RectifiedPair& re
 }
 
 bool same_face(const GrindPlane& a, const GrindPlane& b, const GrindParams& p) {
-  const double cos_limit = std::cos(p.merge_angle_deg * std::numbers::pi / 180.0);
-  if (a.normal.dot(b.normal) < cos_limit) return false;
-  return std::abs(a.normal.dot(b.centroid_mm - a.centroid_mm)) <= p.merge_distance_mm &&
-         std::abs(b.normal.dot(a.centroid_mm - b.centroid_mm)) <= p.merge_distance_mm;
+  return same_plane(a.normal, a.centroid_mm, b.normal, b.centroid_mm, p);
 }
 
 }  // namespace petra

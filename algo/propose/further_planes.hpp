@@ -54,8 +54,8 @@ Result<GrindResult> further_planes(const StereoRig& rig, const RectifiedPair& re
                                    const ReconstructionOutput& r, const RockOnMap& rock,
                                    const bool (&explained)[kMaxClasses], int c, Arena& arena);
 
-// Whether two planes are one face by the chain's merge rule: normals within
-// merge_angle_deg and each centroid within merge_distance_mm of the other's plane.
+// Whether two reported planes are one face by the chain's merge rule
+// (same_plane on their normals and centroids).
 bool same_face(const GrindPlane& a, const GrindPlane& b, const GrindParams& p);
 
 }  // namespace petra

@@ -212,18 +212,14 @@ void PlaneCandidates::keep_flat(int first, const GrindParams& grind) {
   count = n;
 }
 
-void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::uint8_t> map,
-                           int map_w, int cell_px, int index, bool (&neighbour)[kMaxClasses]) {
+void planes_on_other_rocks(const ReconstructionOutput& r, const RockOnMap& rock,
+                           bool (&neighbour)[kMaxClasses]) {
   long own[kMaxClasses] = {}, other[kMaxClasses] = {};
-  const std::size_t map_h = map.size() / static_cast<std::size_t>(map_w);
   for (std::size_t i = 0; i < r.pixels.size(); ++i) {
     const int k = r.vertex_class[i] - kVertexPlane0;
     if (k < 0 || k >= kMaxClasses) continue;
-    const std::size_t x = static_cast<std::size_t>(r.pixels[i].u / cell_px);
-    const std::size_t y = static_cast<std::size_t>(r.pixels[i].v / cell_px);
-    if (x >= static_cast<std::size_t>(map_w) || y >= map_h) continue;
-    const std::uint8_t at = map[y * static_cast<std::size_t>(map_w) + x];
-    if (at == index)
+    const std::uint8_t at = rock.at(r.pixels[i].u, r.pixels[i].v);
+    if (at == rock.index)
       ++own[k];
     else if (at != kNoRock)
       ++other[k];
@@ -254,19 +250,22 @@ Status Proposer::own_planes(int index, const PipelineOutput& out, const arm::Joi
   const RockMapShape& m = rock_map_shape_;
   const RockOnMap rock{std::span<const std::uint8_t>(rock_map_, m.cells()), m.w,
                        budget_.detection_factor * m.step, index};
-  planes_on_other_rocks(out.result, rock.map, rock.map_width, rock.cell_px, index, neighbour);
+  planes_on_other_rocks(out.result, rock, neighbour);
   PlaneCandidates& c = candidates_;
   c.count = 0;
   for (int k = 0; k < g.count; ++k)
-    if (!neighbour[k] && g.planes[k].verdict == PlaneVerdict::accepted) c.add(g.planes[k], gp);
+    if (!neighbour[k] && g.planes[k].verdict == PlaneVerdict::accepted) {
+      c.add(g.planes[k], gp);
+      taken[k] = true;
+    }
   const int chain_accepted = c.count;
   bool on_rock[kMaxClasses] = {};
   planes_mostly_on(out.result, rock, on_rock);
   for (int k = 0; k < g.count; ++k)
-    if (on_rock[k] && g.planes[k].verdict == PlaneVerdict::surplus) c.add(g.planes[k], gp);
-  for (int k = 0; k < g.count; ++k)
-    taken[k] = !neighbour[k] && (g.planes[k].verdict == PlaneVerdict::accepted ||
-                                 (on_rock[k] && g.planes[k].verdict == PlaneVerdict::surplus));
+    if (on_rock[k] && g.planes[k].verdict == PlaneVerdict::surplus) {
+      c.add(g.planes[k], gp);
+      taken[k] = !neighbour[k];
+    }
   if (params_.further_planes_c > 0) {
     const Rectifier& rect = pipeline_->rectifier();
     auto f = further_planes(rect.rig(), rect.geometry(), pipeline_->params().reconstruction,
@@ -284,15 +283,21 @@ Status Proposer::own_planes(int index, const PipelineOutput& out, const arm::Joi
     for (int k = 0; k < d->accepted; ++k) c.add(d->planes[k], gp);
   }
   c.keep_flat(chain_accepted, gp);
+  arm::ArmReason why[PlaneCandidates::kMaxCandidates];
+  for (int k = 0; k < c.count; ++k) why[k] = reach(c.planes[k], current);
   int n = 0;
   for (int pass = 0; pass < 2; ++pass)  // reachable first, then the others
     for (int k = 0; k < c.count && n < kMaxProposalPlanes; ++k)
-      if ((reach(c.planes[k], current) == arm::ArmReason::ok) == (pass == 0))
+      if ((why[k] == arm::ArmReason::ok) == (pass == 0)) {
+        proposal.reach[n] = why[k];
         proposal.planes[n++] = c.planes[k];
+      }
   for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k) {
     const PlaneVerdict v = g.planes[k].verdict;
-    if (!neighbour[k] && v != PlaneVerdict::accepted && v != PlaneVerdict::surplus)
+    if (!neighbour[k] && v != PlaneVerdict::accepted && v != PlaneVerdict::surplus) {
+      proposal.reach[n] = reach(g.planes[k], current);
       proposal.planes[n++] = g.planes[k];
+    }
   }
   proposal.plane_count = n;
   return {};
@@ -318,8 +323,7 @@ Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
   const GrindResult& g = r->result.planes;
   const GrindPlane* best = nullptr;
   bool reachable = false, grindable_any = false;
-  for (int k = 0; k < out.plane_count; ++k) {
-    out.reach[k] = reach(out.planes[k], current);
+  for (int k = 0; k < out.plane_count; ++k) {  // own_planes set each plane's reach
     const bool grindable = out.planes[k].verdict == PlaneVerdict::accepted;
     const bool offered = grindable && out.reach[k] == arm::ArmReason::ok;
     grindable_any = grindable_any || grindable;

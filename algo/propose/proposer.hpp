@@ -94,12 +94,11 @@ ProposalScore score_plane(const GrindPlane* best, bool reachable, double footpri
                           const GrindParams& grind, const ProposalWeights& w);
 
 // Per plane k of a chain run (its vertices: vertex_class kVertexPlane0 + k),
-// whether it lies on another rock than detection's rock `index`: more of its
-// vertices on another region standing out of the ground than on this one, in
-// detection's rock map (map_width wide, a cell of cell_px x cell_px rectified
-// pixels). The chain takes every rock in its ROI; the proposal keeps its own.
-void planes_on_other_rocks(const ReconstructionOutput& r, std::span<const std::uint8_t> rock_map,
-                           int map_width, int cell_px, int index, bool (&other)[kMaxClasses]);
+// whether it lies on another rock than `rock`: more of its vertices on
+// another region standing out of the ground than on this one, in detection's
+// rock map. The chain takes every rock in its ROI; the proposal keeps its own.
+void planes_on_other_rocks(const ReconstructionOutput& r, const RockOnMap& rock,
+                           bool (&other)[kMaxClasses]);
 
 // A rock's grindable planes in the order they are offered, one per face
 // (same_face: the chain's merge rule). A surplus plane passed every check

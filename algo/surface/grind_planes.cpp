@@ -657,30 +657,23 @@ struct ClassFitter {
   }
 };
 
-// Two classes on one face (its normals spread over both): true when their
-// planes agree in direction and each centroid lies on the other's plane.
-bool coplanar(const GrindPlane& a, const GrindPlane& b, double cos_merge,
-              const GrindParams& params) {
+// Two classes on one face (its normals spread over both), by the whole
+// patches' planes (the reported ones may be a footprint's).
+bool coplanar(const GrindPlane& a, const GrindPlane& b, const GrindParams& params) {
   if (a.verdict == PlaneVerdict::no_support || b.verdict == PlaneVerdict::no_support) return false;
-  // The whole patches' planes (the reported ones may be a footprint's).
-  const Eigen::Vector3d &na = a.face_normal, &nb = b.face_normal;
-  const Eigen::Vector3d &ca = a.face_centroid_mm, &cb = b.face_centroid_mm;
-  return na.dot(nb) >= cos_merge && std::abs(na.dot(cb - ca)) <= params.merge_distance_mm &&
-         std::abs(nb.dot(ca - cb)) <= params.merge_distance_mm;
+  return same_plane(a.face_normal, a.face_centroid_mm, b.face_normal, b.face_centroid_mm, params);
 }
 
 // Merges coplanar classes, one pair at a time (each merge refits the
 // survivor, which may then match another); returns the merges.
 int merge_coplanar(ClassFitter& fitter, int classes, GrindPlane* candidates, bool* alive) {
-  const double cos_merge = std::cos(fitter.params.merge_angle_deg * M_PI / 180.0);
   const Scratch& s = fitter.s;
   int merges = 0;
   for (int guard = 0; guard < kMaxClasses; ++guard) {
     bool merged = false;
     for (int i = 0; i < classes && !merged; ++i)
       for (int j = i + 1; j < classes && !merged; ++j) {
-        if (!alive[i] || !alive[j] ||
-            !coplanar(candidates[i], candidates[j], cos_merge, fitter.params))
+        if (!alive[i] || !alive[j] || !coplanar(candidates[i], candidates[j], fitter.params))
           continue;
         for (std::size_t t = 0; t < s.cls.size(); ++t) {
           if (s.cls[t] == j) s.cls[t] = static_cast<std::uint8_t>(i);
@@ -786,6 +779,13 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
   out.classes = distinct;
   rank_planes(c, ac->c, candidates, alive, triangle_plane, out);
   return out;
+}
+
+bool same_plane(const Eigen::Vector3d& na, const Eigen::Vector3d& ca, const Eigen::Vector3d& nb,
+                const Eigen::Vector3d& cb, const GrindParams& p) {
+  return na.dot(nb) >= std::cos(p.merge_angle_deg * M_PI / 180.0) &&
+         std::abs(na.dot(cb - ca)) <= p.merge_distance_mm &&
+         std::abs(nb.dot(ca - cb)) <= p.merge_distance_mm;
 }
 
 }  // namespace petra

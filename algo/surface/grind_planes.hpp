@@ -166,6 +166,12 @@ struct GrindResult {
 };
 
 Status validate(const GrindParams& p);
+
+// The merge rule: two planes (unit normal, point on it) are one face when the
+// normals agree within p.merge_angle_deg and each point lies within
+// p.merge_distance_mm of the other's plane.
+bool same_plane(const Eigen::Vector3d& na, const Eigen::Vector3d& ca, const Eigen::Vector3d& nb,
+                const Eigen::Vector3d& cb, const GrindParams& p);
 // Classes clustered for c planes: min(8, max(c + 3, 2c)).
 int cluster_count(int c);
 std::size_t grind_planes_scratch_bytes(std::size_t triangles);

@@ -124,12 +124,12 @@ TEST(Proposer, PlanesOnAnotherRockAreTheNeighbours) {
   r.pixels = px;
   r.vertex_class = cls;
   bool other[kMaxClasses] = {};
-  planes_on_other_rocks(r, map, 4, 4, 1, other);
+  planes_on_other_rocks(r, RockOnMap{map, 4, 4, 1}, other);
   EXPECT_FALSE(other[0]);
   EXPECT_TRUE(other[1]);
   EXPECT_FALSE(other[2]);  // no rock's: kept (the rock's low flank is ground-labelled)
   EXPECT_FALSE(other[3]);  // a tie stays with the clicked rock
-  planes_on_other_rocks(r, map, 4, 4, 0, other);  // the neighbour's own run
+  planes_on_other_rocks(r, RockOnMap{map, 4, 4, 0}, other);  // the neighbour's own run
   EXPECT_TRUE(other[0]);
   EXPECT_FALSE(other[1]);
 }
