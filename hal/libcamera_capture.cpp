@@ -24,10 +24,16 @@ namespace lc = libcamera;
 namespace {
 
 // libcamera allows one CameraManager per process: shared by every capture.
+// Once a camera is abandoned (LibcameraCapture::abandon) the manager is never
+// stopped or destroyed: it still runs that camera.
 struct SharedManager {
   std::mutex mutex;
   std::unique_ptr<lc::CameraManager> manager;
   int users = 0;
+  bool abandoned = false;
+  ~SharedManager() {
+    if (abandoned) (void)manager.release();
+  }
 };
 SharedManager& shared_manager() {
   static SharedManager m;
@@ -74,26 +80,57 @@ struct LibcameraCapture::Impl {
   lc::Request* held = nullptr;
   FrameChecker checker;
   bool gaps_are_faults = true;
+  // What tells a camera that can no longer be stopped (stop() below).
+  int in_flight = 0;             // requests libcamera holds, not yet completed
+  bool stalled = false;          // a wait ran out with requests in flight, none came since
+  bool disconnected = false;     // libcamera saw the device go
+  bool abandoned = false;
 
   void on_complete(lc::Request* r) {
     {
       std::lock_guard lock(mutex);
       if (count < done.size()) done[(head + count++) % done.size()] = r;
+      if (in_flight > 0) --in_flight;
+      stalled = false;
     }
     completed.notify_one();
+  }
+  void on_disconnected() {
+    std::lock_guard lock(mutex);
+    disconnected = true;
   }
   lc::Request* pop(int timeout_ms) {
     std::unique_lock lock(mutex);
     completed.wait_for(lock, std::chrono::milliseconds(timeout_ms), [this] { return count > 0; });
-    if (count == 0) return nullptr;
+    if (count == 0) {
+      if (timeout_ms > 0 && in_flight > 0) stalled = true;
+      return nullptr;
+    }
     lc::Request* r = done[head];
     head = (head + 1) % done.size();
     --count;
     return r;
   }
+  int queue(lc::Request* r) {
+    {
+      std::lock_guard lock(mutex);
+      ++in_flight;  // before queueing: the completion may come first
+    }
+    const int rc = camera->queueRequest(r);
+    if (rc < 0) {
+      std::lock_guard lock(mutex);
+      --in_flight;
+    }
+    return rc;
+  }
   int requeue(lc::Request* r) {
     r->reuse(lc::Request::ReuseBuffers);
-    return camera->queueRequest(r);
+    return queue(r);
+  }
+  // The device is gone (or silent) while libcamera still holds requests of ours.
+  bool lost() {
+    std::lock_guard lock(mutex);
+    return in_flight > 0 && (stalled || disconnected);
   }
 };
 
@@ -128,6 +165,7 @@ Status LibcameraCapture::open(const LibcameraCaptureConfig& cfg) {
   PETRA_TRY(map_requests());
   Impl& m = *impl_;
   m.camera->requestCompleted.connect(&m, &Impl::on_complete);
+  m.camera->disconnected.connect(&m, &Impl::on_disconnected);
   m.checker.reset(format_, m.gaps_are_faults);
   return ok_status();
 }
@@ -139,7 +177,7 @@ Status LibcameraCapture::acquire_camera(const LibcameraCaptureConfig& cfg) {
   {
     SharedManager& sm = shared_manager();
     std::lock_guard lock(sm.mutex);
-    if (sm.users == 0) {
+    if (!sm.manager) {
       sm.manager = std::make_unique<lc::CameraManager>();
       if (const int r = sm.manager->start(); r < 0) {
         sm.manager.reset();
@@ -269,16 +307,24 @@ Status LibcameraCapture::start() {
     return Error::make(Errc::io_error, "libcamera: '%s' did not start", id_.data());
   m.started = true;
   for (auto& r : m.requests)
-    if (m.camera->queueRequest(r.get()) < 0)
+    if (m.queue(r.get()) < 0)
       return Error::make(Errc::io_error, "libcamera: '%s' refused a request", id_.data());
   m.checker.reset(format_, m.gaps_are_faults);
   return ok_status();
 }
 
+// libcamera 0.0.3 cannot stop a camera whose device vanished while it held our
+// requests: the pipeline's stop asserts they all came back, and the process
+// aborts. Such a camera is left running (abandon()); the error says so.
 Status LibcameraCapture::stop() {
   if (!is_open() || !impl_->started) return ok_status();
   Impl& m = *impl_;
   m.started = false;
+  if (m.lost()) {
+    m.abandoned = true;
+    return Error::make(Errc::io_error, "libcamera: '%s' lost with requests in flight: left unstopped",
+                       id_.data());
+  }
   const int r = m.camera->stop();  // completes every queued request as cancelled
   std::lock_guard lock(m.mutex);
   m.count = 0;
@@ -291,7 +337,14 @@ void LibcameraCapture::close() {
   if (!impl_) return;
   Impl& m = *impl_;
   (void)stop();
-  if (m.camera) m.camera->requestCompleted.disconnect(&m, &Impl::on_complete);
+  if (m.abandoned) {
+    abandon();
+    return;
+  }
+  if (m.camera) {
+    m.camera->requestCompleted.disconnect(&m, &Impl::on_complete);
+    m.camera->disconnected.disconnect(&m, &Impl::on_disconnected);
+  }
   m.requests.clear();
   for (std::size_t i = 0; i < m.map.size(); ++i)
     if (m.map[i] != nullptr) ::munmap(m.map[i], m.map_length[i]);
@@ -302,12 +355,26 @@ void LibcameraCapture::close() {
   if (m.manager) {
     SharedManager& sm = shared_manager();
     std::lock_guard lock(sm.mutex);
-    if (--sm.users == 0) {
+    if (--sm.users == 0 && !sm.abandoned) {
       sm.manager->stop();
       sm.manager.reset();
     }
   }
   impl_.reset();
+}
+
+// A lost camera's objects (requests, buffers, mappings, the camera itself) stay
+// as libcamera holds them until the process ends; so does the camera manager.
+void LibcameraCapture::abandon() {
+  Impl* m = impl_.release();
+  if (m->manager) {
+    SharedManager& sm = shared_manager();
+    std::lock_guard lock(sm.mutex);
+    sm.abandoned = true;
+    --sm.users;
+  }
+  (void)std::fprintf(stderr, "camera: libcamera '%s' lost with requests in flight: left unstopped\n",
+                     id_.data());
 }
 
 Result<RawFrame> LibcameraCapture::next(int timeout_ms) {

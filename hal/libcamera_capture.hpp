@@ -60,6 +60,7 @@ class LibcameraCapture final : public FrameSource {
   Status acquire_camera(const LibcameraCaptureConfig& cfg);
   Status configure_stream(const LibcameraCaptureConfig& cfg);
   Status map_requests();
+  void abandon();  // close() of a camera stop() could not stop
   std::unique_ptr<Impl> impl_;
   FrameFormat format_{};
   CameraHealth health_;

@@ -61,9 +61,23 @@ arm_leave_safe() {  # SET_MODE IDLE; true when COMPLETED
   c=$(arm_cmd SET_MODE mode=1)
   arm_ack SET_MODE "$c" COMPLETED 20
 }
-arm_stop() {  # stops what this check started, by pid
+alive() {  # alive PID: the process runs (a zombie has ended)
+  [ -r /proc/$1/stat ] && ! grep -q '^[0-9]* ([^)]*) Z' /proc/$1/stat
+}
+# arm_stop: stops what this check started, by pid. One still running 30 s after SIGTERM is
+# killed and named (FAIL system/stops-on-sigterm); FSW_RC is petra-fsw's exit status.
+arm_stop() {
+  local p t hung=
   for p in $FSW_PID $DRIVES_PID $TLM_PID $DUMP_PID; do kill "$p" 2> /dev/null; done
+  for p in $FSW_PID $DRIVES_PID $TLM_PID $DUMP_PID; do
+    t=150
+    while [ $t -gt 0 ] && alive "$p"; do sleep 0.2; t=$((t - 1)); done
+    alive "$p" && hung="$hung $(cat /proc/$p/comm)" && kill -9 "$p"
+  done
+  FSW_RC=
+  [ -n "$FSW_PID" ] && { wait "$FSW_PID" 2> /dev/null; FSW_RC=$?; }
   wait 2> /dev/null
+  [ -n "$hung" ] && hil_fail system/stops-on-sigterm "killed after 30 s:$hung"
   FSW_PID= DRIVES_PID= TLM_PID= DUMP_PID=
 }
 arm_start_fsw() {  # arm_start_fsw CONFIG: petra-fsw and the telemetry log, true once booted
@@ -401,6 +415,15 @@ if arm_start_fsw $A/fsw-libcamera.json; then
   # libcamera fails the requests in flight (io_error) or, when the unbind comes between
   # requests, never completes the next ones (timeout): either way the command fails.
   cam_gone_fails system/libcamera-camera-gone-fails-commands "$n" "(io_error|timeout)"
+  # ... and petra-fsw still stops cleanly: libcamera 0.0.3 aborts stopping a camera gone
+  # with requests in flight (the timeout case), so the hal leaves that one unstopped.
+  arm_stop
+  if [ "$FSW_RC" = 0 ] && grep -q '^petra-fsw: stopped after' $A/fsw.log; then
+    hil_pass system/libcamera-camera-gone-fsw-stops "exit 0$(grep -q 'left unstopped' $A/fsw.log && echo ', camera left unstopped')"
+  else
+    hil_fail system/libcamera-camera-gone-fsw-stops "exit $FSW_RC"
+    sed 's/^/  | /' $A/fsw.log | grep -v '^  | \[' | tail -15
+  fi
 else
   hil_fail system/libcamera-fsw-acquires "petra-fsw did not boot"
   sed 's/^/  | /' $A/fsw.log | tail -5
