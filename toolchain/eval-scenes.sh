@@ -60,17 +60,20 @@ for s in scenes:
                         capture_output=True, text=True)
     found = len(json.load(open(f"{out}/planes.json"))["planes"])
     seg = json.load(open(f"{out}/planes.json")).get("segmentation", "?")
-    errs, facets = [], []
+    # Every plane is scored on the facet it lies on: a designed grind face, or
+    # (after the "other visible facets" line) another real face, shown "fK:".
+    errs, facets, other = [], [], False
     for line in sr.stdout.splitlines():
+        other = other or line.startswith("planes on other visible facets")
         m = re.match(r"^(\d+)\s+([0-9.]+)\s+(\d+|-)\s+([0-9.]+|-)\s+([0-9.]+|-)\s+(yes|no|-)", line)
         if not m or m.group(3) == "-":
             continue
         ne, cd, on = float(m.group(4)), float(m.group(5)), m.group(6) == "yes"
-        facets.append((ne, cd, on))
-        errs.append(f"{ne:.2f}/{cd:.2f}{'' if on else '!'}")
+        facets.append((ne, cd, on, other))
+        errs.append(f"{'f' + m.group(1) + ':' if other else ''}{ne:.2f}/{cd:.2f}{'' if on else '!'}")
     stats.append((found == truth["planes"], facets, None))
     rows.append(f"| {s} | {desc} | {truth['planes']} | {found} | {' '.join(errs)} | {seg} | {cpu.group(1) if cpu else '?'} |")
-print("| scene | case | c | found | normal err deg / centroid-plane mm per facet (! = off facet) | segmentation | CPU ms |")
+print("| scene | case | c | found | normal err deg / centroid-plane mm per plane on its facet (! = off facet, fK: on undesigned facet K) | segmentation | CPU ms |")
 print("|---|---|---|---|---|---|---|")
 print("\n".join(rows))
 
@@ -79,6 +82,7 @@ def summary(title, part):
     facets = [f for _, fs, _ in part for f in fs]
     normal_errs, dists = [f[0] for f in facets], [f[1] for f in facets]
     matched_all, on_facet_all = len(facets), sum(1 for f in facets if f[2])
+    undesigned = sum(1 for f in facets if f[3])
     refusals = {}
     for _, _, why in part:
         if why:
@@ -88,7 +92,7 @@ def summary(title, part):
         print(f"plane count right: {count_ok} of {len(part)}; matched facets {matched_all}; "
               f"normal error median {statistics.median(normal_errs):.2f} deg, max {max(normal_errs):.2f} deg; "
               f"centroid-plane distance median {statistics.median(dists):.2f} mm, max {max(dists):.2f} mm; "
-              f"centroids on their facet {on_facet_all} of {matched_all}")
+              f"centroids on their facet {on_facet_all} of {matched_all}; planes on a face the truth did not design {undesigned}")
         # The issue's targets: clean set (issue 1: 95 % of scenes, 0.5 / 1.5 deg,
         # 1 mm); realistic set (issue 21: 90 %, 1.0 / 3.0 deg, 2 mm).
         share, med, mx, cd = (0.90, 1.0, 3.0, 2.0) if real else (0.95, 0.5, 1.5, 1.0)

@@ -73,7 +73,8 @@ PlaneScore score_planes(const TruthFile& truth, const PlanesFile& out) {
   s.truth_planes = truth.planes;
   s.output_planes = static_cast<int>(out.planes.size());
   s.count_agrees = s.truth_planes == s.output_planes;
-  const int nf = std::min(truth.planes, 16);
+  const int nf = std::min(static_cast<int>(truth.facets.size()), 16);
+  const int designed = std::min(truth.planes, nf);
   const int np = s.output_planes;
   std::vector<std::vector<double>> cost(static_cast<std::size_t>(nf),
                                         std::vector<double>(static_cast<std::size_t>(np)));
@@ -88,6 +89,7 @@ PlaneScore score_planes(const TruthFile& truth, const PlanesFile& out) {
     FacetScore fs;
     fs.facet = i;
     fs.plane = plane_of[static_cast<std::size_t>(i)];
+    if (i >= designed && fs.plane < 0) continue;
     if (fs.plane >= 0) {
       const OutputPlane& p = out.planes[static_cast<std::size_t>(fs.plane)];
       used[static_cast<std::size_t>(fs.plane)] = true;
@@ -96,7 +98,7 @@ PlaneScore score_planes(const TruthFile& truth, const PlanesFile& out) {
       fs.centroid_outside_mm = in_plane_distance_to_polygon(f.polygon_mm, f.normal, p.centroid_mm);
       fs.centroid_on_facet = fs.centroid_outside_mm == 0.0;
     }
-    s.facets.push_back(fs);
+    (i < designed ? s.facets : s.other_facets).push_back(fs);
   }
   for (int j = 0; j < np; ++j)
     if (!used[static_cast<std::size_t>(j)]) s.extra_planes.push_back(j);
@@ -109,8 +111,8 @@ PlaneScore score_planes(const TruthFile& truth, const PlanesFile& out) {
     // Where the ground is under the rock: the scored facets' mean centroid,
     // dropped onto the truth ground plane.
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (int i = 0; i < nf; ++i) c += truth.facets[static_cast<std::size_t>(i)].centroid_mm;
-    if (nf > 0) c /= nf;
+    for (int i = 0; i < designed; ++i) c += truth.facets[static_cast<std::size_t>(i)].centroid_mm;
+    if (designed > 0) c /= designed;
     const Eigen::Vector3d q = c - nt * (nt.dot(c) + truth.ground_d_mm);
     g.height_error_mm = std::abs(no.dot(q) + out.ground->d_mm);
     s.ground = g;

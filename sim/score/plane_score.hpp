@@ -1,10 +1,13 @@
-// Scores grind planes (planes.json) against the simulator's truth: the
-// truth's first `planes` facets (the designed flat faces) are each matched to
-// at most one output plane. The matching minimises, over all one-to-one
-// assignments that match as many facets as possible, the sum of
+// Scores grind planes (planes.json) against the simulator's truth. The
+// truth's first `planes` facets are the designed flat faces; the others are
+// the rest of the rock's visible facets. Every output plane is matched to at
+// most one facet, designed or not: the matching minimises, over all
+// one-to-one assignments that match as many planes as possible, the sum of
 //   distance from the plane's centroid to the facet polygon (mm)
 //   + 1 mm per degree between the normals,
-// so a plane is matched by where it is even when its normal is wrong.
+// so a plane is matched by where it is even when its normal is wrong, and a
+// plane on a real face the truth did not design is measured against that
+// face (not forced onto a designed face it does not lie on).
 #pragma once
 
 #include <optional>
@@ -38,8 +41,9 @@ struct PlaneScore {
   int truth_planes = 0;
   int output_planes = 0;
   bool count_agrees = false;
-  std::vector<FacetScore> facets;  // one per scored truth facet, in truth order
-  std::vector<int> extra_planes;   // output planes matched to no facet
+  std::vector<FacetScore> facets;        // one per designed facet, in truth order
+  std::vector<FacetScore> other_facets;  // planes on the other visible facets, by facet
+  std::vector<int> extra_planes;         // output planes matched to no facet
   std::optional<GroundScore> ground;
 };
 

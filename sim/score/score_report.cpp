@@ -26,6 +26,37 @@ std::string fraction(double v) {
   return buf;
 }
 
+// One matched (or unmatched designed) facet against the limits.
+void facet_failures(const FacetScore& f, const ScoreLimits& l, std::vector<std::string>& out) {
+  std::string line;
+  const bool wants_match = l.max_normal_deg || l.max_centroid_mm || l.require_on_facet;
+  if (f.plane < 0) {
+    if (wants_match) {
+      line.clear();
+      append(line, "facet %d: no plane matched", f.facet);
+      out.push_back(line);
+    }
+    return;
+  }
+  if (l.max_normal_deg && f.normal_error_deg > *l.max_normal_deg) {
+    line.clear();
+    append(line, "facet %d: normal error %.2f deg > %.2f", f.facet, f.normal_error_deg,
+           *l.max_normal_deg);
+    out.push_back(line);
+  }
+  if (l.max_centroid_mm && f.centroid_plane_distance_mm > *l.max_centroid_mm) {
+    line.clear();
+    append(line, "facet %d: centroid %.2f mm off the facet plane > %.2f", f.facet,
+           f.centroid_plane_distance_mm, *l.max_centroid_mm);
+    out.push_back(line);
+  }
+  if (l.require_on_facet && !f.centroid_on_facet) {
+    line.clear();
+    append(line, "facet %d: centroid %.2f mm outside the facet", f.facet, f.centroid_outside_mm);
+    out.push_back(line);
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> limit_failures(const ScoreReport& r, const ScoreLimits& l) {
@@ -38,35 +69,9 @@ std::vector<std::string> limit_failures(const ScoreReport& r, const ScoreLimits&
       append(line, "plane count %d, truth %d", p.output_planes, p.truth_planes);
       out.push_back(line);
     }
-    for (const FacetScore& f : p.facets) {
-      const bool wants_match = l.max_normal_deg || l.max_centroid_mm || l.require_on_facet;
-      if (f.plane < 0) {
-        if (wants_match) {
-          line.clear();
-          append(line, "facet %d: no plane matched", f.facet);
-          out.push_back(line);
-        }
-        continue;
-      }
-      if (l.max_normal_deg && f.normal_error_deg > *l.max_normal_deg) {
-        line.clear();
-        append(line, "facet %d: normal error %.2f deg > %.2f", f.facet, f.normal_error_deg,
-               *l.max_normal_deg);
-        out.push_back(line);
-      }
-      if (l.max_centroid_mm && f.centroid_plane_distance_mm > *l.max_centroid_mm) {
-        line.clear();
-        append(line, "facet %d: centroid %.2f mm off the facet plane > %.2f", f.facet,
-               f.centroid_plane_distance_mm, *l.max_centroid_mm);
-        out.push_back(line);
-      }
-      if (l.require_on_facet && !f.centroid_on_facet) {
-        line.clear();
-        append(line, "facet %d: centroid %.2f mm outside the facet", f.facet,
-               f.centroid_outside_mm);
-        out.push_back(line);
-      }
-    }
+    // Every plane must meet the limits, on a designed facet or on another one.
+    for (const FacetScore& f : p.facets) facet_failures(f, l, out);
+    for (const FacetScore& f : p.other_facets) facet_failures(f, l, out);
   }
   if (r.disparity) {
     if (l.max_bad1_pct && r.disparity->bad1_pct > *l.max_bad1_pct) {
@@ -106,7 +111,7 @@ std::string format_score_text(const ScoreReport& r, const std::vector<std::strin
            p.count_agrees ? "count agrees" : "COUNT DIFFERS");
     append(s, "%-6s %10s %6s %15s %17s %9s %11s\n", "facet", "area_mm2", "plane", "normal_err_deg",
            "centroid_dist_mm", "on_facet", "outside_mm");
-    for (const FacetScore& f : p.facets) {
+    auto row = [&](const FacetScore& f) {
       const double area = static_cast<std::size_t>(f.facet) < r.facet_areas_mm2.size()
                               ? r.facet_areas_mm2[static_cast<std::size_t>(f.facet)]
                               : 0.0;
@@ -116,6 +121,11 @@ std::string format_score_text(const ScoreReport& r, const std::vector<std::strin
         append(s, "%-6d %10.1f %6d %15.2f %17.2f %9s %11.2f\n", f.facet, area, f.plane,
                f.normal_error_deg, f.centroid_plane_distance_mm, f.centroid_on_facet ? "yes" : "no",
                f.centroid_outside_mm);
+    };
+    for (const FacetScore& f : p.facets) row(f);
+    if (!p.other_facets.empty()) {
+      append(s, "planes on other visible facets (not designed grind faces):\n");
+      for (const FacetScore& f : p.other_facets) row(f);
     }
     if (!p.extra_planes.empty()) {
       append(s, "extra planes:");
@@ -163,22 +173,26 @@ std::string format_score_json(const ScoreReport& r, const std::vector<std::strin
     w.key("output").integer(p.output_planes);
     w.key("truth").integer(p.truth_planes);
     w.key("count_agrees").boolean(p.count_agrees);
-    w.key("facets").begin_array();
-    for (const FacetScore& f : p.facets) {
-      w.begin_object();
-      w.key("facet").integer(f.facet);
-      if (f.plane < 0) {
-        w.key("plane").number(NAN);
-      } else {
-        w.key("plane").integer(f.plane);
-        num("normal_error_deg", f.normal_error_deg);
-        num("centroid_plane_distance_mm", f.centroid_plane_distance_mm);
-        w.key("centroid_on_facet").boolean(f.centroid_on_facet);
-        num("centroid_outside_mm", f.centroid_outside_mm);
+    auto facet_array = [&](const char* key, const std::vector<FacetScore>& list) {
+      w.key(key).begin_array();
+      for (const FacetScore& f : list) {
+        w.begin_object();
+        w.key("facet").integer(f.facet);
+        if (f.plane < 0) {
+          w.key("plane").number(NAN);
+        } else {
+          w.key("plane").integer(f.plane);
+          num("normal_error_deg", f.normal_error_deg);
+          num("centroid_plane_distance_mm", f.centroid_plane_distance_mm);
+          w.key("centroid_on_facet").boolean(f.centroid_on_facet);
+          num("centroid_outside_mm", f.centroid_outside_mm);
+        }
+        w.end_object();
       }
-      w.end_object();
-    }
-    w.end_array();
+      w.end_array();
+    };
+    facet_array("facets", p.facets);
+    facet_array("other_facets", p.other_facets);
     w.key("extra_planes").begin_array();
     for (int j : p.extra_planes) w.integer(j);
     w.end_array();

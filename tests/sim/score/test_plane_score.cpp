@@ -117,6 +117,31 @@ TEST(PlaneScore, TooManyPlanesAreListedAsExtra) {
   EXPECT_EQ(s.extra_planes[0], 0);
 }
 
+// A plane on a real face the truth did not design (the box's right side) is
+// measured against that face; the designed top it does not lie on is missed,
+// not matched 90 degrees off.
+TEST(PlaneScore, APlaneOnAnUndesignedFacetIsMeasuredThere) {
+  TruthFile t = box_truth();
+  TruthFacet side;
+  side.normal = {1, 0, 0};
+  side.polygon_mm = {{40, 0, 0}, {40, 30, 0}, {40, 30, 50}, {40, 0, 50}};
+  side.centroid_mm = {40, 15, 25};
+  side.visible_area_mm2 = 1500;
+  t.facets.push_back(side);  // past t.planes = 2: not a designed face
+  PlanesFile f = perfect();
+  f.planes[1] = plane({1, 0, 0.01}, {40, 15, 26});
+  const PlaneScore s = score_planes(t, f);
+  ASSERT_EQ(s.facets.size(), 2u);
+  EXPECT_EQ(s.facets[0].plane, 0);
+  EXPECT_EQ(s.facets[1].plane, -1);
+  ASSERT_EQ(s.other_facets.size(), 1u);
+  EXPECT_EQ(s.other_facets[0].facet, 2);
+  EXPECT_EQ(s.other_facets[0].plane, 1);
+  EXPECT_LT(s.other_facets[0].normal_error_deg, 1.0);
+  EXPECT_TRUE(s.other_facets[0].centroid_on_facet);
+  EXPECT_TRUE(s.extra_planes.empty());
+}
+
 TEST(PlaneScore, NoPlanesAtAll) {
   PlanesFile f;
   const PlaneScore s = score_planes(box_truth(), f);
