@@ -7,7 +7,9 @@ so the arena is sized for it), then for each ROI size and matcher: SET_PARAM
 MATCH_METHOD, SELECT_ROI centred on the simulated rock, EVALUATE; reads the
 acknowledgements and the process's VmHWM (/proc/PID/status) after each run.
 One petra-fsw per (size, matcher), so each VmHWM is that run's own peak.
-Writes a CSV and an SVG plot; prints a Markdown table.
+Writes a CSV and an SVG plot; prints a Markdown table. --breakdown also prints, for
+each run, what is resident after EVALUATE (/proc/PID/smaps, Rss): every anonymous
+mapping of 256 KiB or more, the heap, the stacks, and each library's file mappings.
 
   python3 tests/bench/fsw_memory.py --build build/release --roi-budget \
       --out docs/img/fsw_memory.svg --csv /tmp/fsw_memory.csv
@@ -32,6 +34,28 @@ def vm_kb(pid, field):
             if line.startswith(field + ":"):
                 return int(line.split()[1])
     return 0
+
+
+def rss_breakdown(pid):
+    """[(what, rss_kb)] from /proc/PID/smaps, largest first: each anonymous mapping of
+    256 KiB or more by its size, the rest of the anonymous ones, [heap], [stack], and
+    the file mappings summed per file."""
+    parts, name, size_kb = {}, None, 0
+    with open("/proc/%d/smaps" % pid) as f:
+        for line in f:
+            head = line.split()
+            if "-" in head[0] and not head[0].endswith(":"):  # a mapping's first line
+                path = head[5] if len(head) > 5 else ""
+                name = os.path.basename(path) if path.startswith("/") else (path or "anon")
+            elif head[0] == "Size:":
+                size_kb = int(head[1])
+            elif head[0] == "Rss:" and int(head[1]) > 0:
+                rss = int(head[1])
+                key = name
+                if name == "anon":
+                    key = "anon mapping of %.1f MiB" % (size_kb / 1024) if rss >= 256 else "anon, small"
+                parts[key] = parts.get(key, 0) + rss
+    return sorted(parts.items(), key=lambda kv: -kv[1])
 
 
 def free_port():
@@ -99,6 +123,10 @@ def run_one(a, work, width, height, truth, w, h, method):
         sel = fsw.cmd("SELECT_ROI", "x_px=%d" % x, "y_px=%d" % y, "w_px=%d" % w, "h_px=%d" % h,
                       "planes=%d" % truth.get("planes", 2))
         ev = fsw.cmd("EVALUATE", "acquire=1", timeout_ms=600000) if "COMPLETED" in sel else ""
+        if a.breakdown:
+            print("  resident after EVALUATE, %dx%d: %s" % (w, h, ", ".join(
+                "%s %.1f" % (k, v / 1024) for k, v in rss_breakdown(fsw.proc.pid) if v >= 128)),
+                file=sys.stderr)
         return {"select": sel, "evaluate": ev, "boot_kb": fsw.boot_hwm_kb,
                 "hwm_kb": vm_kb(fsw.proc.pid, "VmHWM")}
     finally:
@@ -156,6 +184,8 @@ def main():
     p.add_argument("--roi-budget", action="store_true",
                    help="budget.roi_width/roi_height = each ROI (default: the flight default budget)")
     p.add_argument("--fsw", help="petra-fsw binary (default: BUILD/fsw/petra-fsw)")
+    p.add_argument("--breakdown", action="store_true",
+                   help="print what is resident after each EVALUATE (MiB, on stderr)")
     a = p.parse_args()
     a.petra = os.path.join(a.build, "sim/petra")
     a.fsw = a.fsw or os.path.join(a.build, "fsw/petra-fsw")
