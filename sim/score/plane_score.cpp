@@ -9,9 +9,12 @@ namespace petra::sim {
 
 namespace {
 
+// The normals' angle counts without their sign: a flipped plane is matched to
+// the facet it lies on (and reads 180 deg there), not to another facet.
 double match_cost(const TruthFacet& f, const OutputPlane& p) {
+  const double a = angle_between_deg(f.normal, p.normal);
   return distance_to_polygon(f.polygon_mm, f.normal, p.centroid_mm) +
-         kMatchMmPerDeg * angle_between_deg(f.normal, p.normal);
+         kMatchMmPerDeg * std::min(a, 180.0 - a);
 }
 
 // Optimal one-to-one assignment by dynamic programming over the subsets of

@@ -4,7 +4,7 @@
 // most one facet, designed or not: the matching minimises, over all
 // one-to-one assignments that match as many planes as possible, the sum of
 //   distance from the plane's centroid to the facet polygon (mm)
-//   + 1 mm per degree between the normals,
+//   + 1 mm per degree between the normals (their sign ignored),
 // so a plane is matched by where it is even when its normal is wrong, and a
 // plane on a real face the truth did not design is measured against that
 // face (not forced onto a designed face it does not lie on).

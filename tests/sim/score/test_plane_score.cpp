@@ -140,6 +140,14 @@ TEST(PlaneScore, APlaneOnAnUndesignedFacetIsMeasuredThere) {
   EXPECT_LT(s.other_facets[0].normal_error_deg, 1.0);
   EXPECT_TRUE(s.other_facets[0].centroid_on_facet);
   EXPECT_TRUE(s.extra_planes.empty());
+  // Flipped, the plane on the top still reads 180 deg there, not a smaller
+  // angle on the side.
+  f = perfect();
+  f.planes[1].normal = -f.planes[1].normal;
+  const PlaneScore flipped = score_planes(t, f);
+  EXPECT_EQ(flipped.facets[1].plane, 1);
+  EXPECT_NEAR(flipped.facets[1].normal_error_deg, 180.0, 1e-6);
+  EXPECT_TRUE(flipped.other_facets.empty());
 }
 
 TEST(PlaneScore, NoPlanesAtAll) {
