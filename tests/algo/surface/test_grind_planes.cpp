@@ -263,6 +263,35 @@ TEST(GrindPlanes, BentFaceIsRegrownWhole) {
   EXPECT_GT(area_after, area_before);
 }
 
+// The matcher rounds a crease: the normals of a band along it point between
+// the two faces (here the ridge of the roof, 50 deg, given the bisector's
+// normal within 6 mm of it). Their class's patch is a strip of each face; its
+// plane lies between them (25 deg off both) and is refused (no_support), not
+// regrown over one face; every accepted plane is a face's.
+TEST(GrindPlanes, PatchOverTwoFacesIsRefused) {
+  const RockMesh& m = rock_mesh(0.0);
+  const test::Rock rock = test::ridge_rock();
+  std::vector<Eigen::Vector3d> normals(m.cloud.xyz.size(), Eigen::Vector3d::Zero());
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    if ((m.cloud.surface[i] == 0 || m.cloud.surface[i] == 1) && std::abs(m.cloud.xyz[i].x()) < 6)
+      normals[i] = Eigen::Vector3d::UnitZ();
+  std::vector<std::uint8_t> labels;
+  auto r = run_grind_planes(m, 3, GrindParams{}, labels, normals);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(r->accepted, 3);
+  for (int k = 0; k < r->accepted; ++k) {
+    const GrindPlane& p = r->planes[k];
+    const int f = face_of(rock, p);
+    EXPECT_LT(test::angle_deg(p.normal, rock.faces[static_cast<std::size_t>(f)].n), 1.0)
+        << "plane " << k;
+  }
+  int between = 0;  // the crease band's class, refused
+  for (int k = r->accepted; k < r->count; ++k)
+    between += r->planes[k].verdict == PlaneVerdict::no_support &&
+               test::angle_deg(r->planes[k].normal, Eigen::Vector3d::UnitZ()) < 5.0;
+  EXPECT_EQ(between, 1);
+}
+
 // On the bent face the disc's own plane differs from the face's by far more
 // than the noise: it is the bent surface's own plane under the disc, and
 // with report_disc_plane it is the plane reported.
