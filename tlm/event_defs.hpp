@@ -31,7 +31,7 @@
   X(FEWER_PLANES, 18, INFO,                                                                   \
     "evaluation {0}: only {1} planes qualified of the {2} asked; the largest refused face: "  \
     "verdict {3} (1 faces away, 2 too small for the tool, 3 too rough over the footprint, "   \
-    "4 no support, 6 too uncertain)")                                                         \
+    "4 no support, 6 too uncertain, 7 spans two faces)")                                      \
   X(PRODUCT_SENT, 19, INFO, "product {0} of id {1} queued: {2} chunks, {3} bytes")            \
   X(ARM_READY, 20, INFO, "arm: {0} drives booted and enabled")                                \
   X(ARM_REFUSED, 21, WARNING,                                                                 \

@@ -135,7 +135,7 @@
   F(f64, area_mm2, 1, "mm2", 0, 1e12, "supporting area")                                 \
   F(f64, flatness_rms_mm, 1, "mm", 0, 1e6, "RMS distance of its points to the plane")    \
   F(u32, triangles, 1, "", 0, PETRA_U32_MAX, "mesh triangles supporting it")             \
-  F(u8, verdict, 1, "enum", 0, 6,                                                        \
+  F(u8, verdict, 1, "enum", 0, 7,                                                        \
     "0 grindable (only grindable planes are sent; docs/reconstruction.md)")              \
   F(u8, plane_source, 1, "enum", 0, 1,                                                   \
     "0 the face's whole-patch plane, 1 the footprint disc's own (the face curves)")      \
@@ -202,9 +202,9 @@
   F(f32, area_mm2, PETRA_MAX_PROPOSALS, "mm2", 0, 1e12, "plane shown: supporting area")            \
   F(f32, normal_sigma_deg, PETRA_MAX_PROPOSALS, "deg", 0, 180, "plane shown: normal 1-sigma")      \
   F(f32, offset_sigma_mm, PETRA_MAX_PROPOSALS, "mm", 0, 1e6, "plane shown: offset 1-sigma")        \
-  F(u8, verdict, PETRA_MAX_PROPOSALS, "enum", 0, 6,                                                \
+  F(u8, verdict, PETRA_MAX_PROPOSALS, "enum", 0, 7,                                                \
     "plane shown: 0 grindable, 1 faces away, 2 too small, 3 too rough, 4 no support, 5 surplus, "  \
-    "6 too uncertain")                                                                             \
+    "6 too uncertain, 7 spans two faces")                                                          \
   F(u8, reach, PETRA_MAX_PROPOSALS, "enum", 0, 6,                                                  \
     "plane shown: arm reach, 0 ok, 1 bad target, 2 beyond reach, 3 inside reach, 4 joint "         \
     "limit, 5 path blocked, 6 bad request (ARM_STATUS refusal)")

@@ -232,6 +232,8 @@ const char* verdict_name(PlaneVerdict v) {
       return "plane too uncertain for the grinder";
     case PlaneVerdict::no_support:
       return "no supporting triangles";
+    case PlaneVerdict::two_faces:
+      return "spans two faces (a crease between them)";
   }
   return "?";
 }
@@ -252,6 +254,8 @@ const char* verdict_key(PlaneVerdict v) {
       return "too_uncertain";
     case PlaneVerdict::no_support:
       return "no_support";
+    case PlaneVerdict::two_faces:
+      return "two_faces";
   }
   return "?";
 }
@@ -694,10 +698,10 @@ struct ClassFitter {
   }
 
   // A class whose patch spans two faces has no plane of its own: refused
-  // (no_support), its triangles left for the faces' own classes to regrow
+  // (two_faces), its triangles left for the faces' own classes to regrow
   // into and claim.
   void refuse_two_faces(const PlaneFitT<double>& fit, GrindPlane& plane) const {
-    plane.verdict = PlaneVerdict::no_support;
+    plane.verdict = PlaneVerdict::two_faces;
     plane.normal = plane.face_normal = up_of(fit);
     plane.centroid_mm = plane.face_centroid_mm = fit.centroid;
     plane.rms_mm = fit.rms;
@@ -742,7 +746,10 @@ struct ClassFitter {
 // Two classes on one face (its normals spread over both), by the whole
 // patches' planes (the reported ones may be a footprint's).
 bool coplanar(const GrindPlane& a, const GrindPlane& b, const GrindParams& params) {
-  if (a.verdict == PlaneVerdict::no_support || b.verdict == PlaneVerdict::no_support) return false;
+  auto planeless = [](PlaneVerdict v) {
+    return v == PlaneVerdict::no_support || v == PlaneVerdict::two_faces;
+  };
+  if (planeless(a.verdict) || planeless(b.verdict)) return false;
   return same_plane(a.face_normal, a.face_centroid_mm, b.face_normal, b.face_centroid_mm, params);
 }
 

@@ -115,13 +115,14 @@ enum class PlaneVerdict : std::uint8_t {
   too_rough,  // the flattest footprint disc is rougher than the tolerance
   no_support,
   surplus,  // qualified, but c larger ones did too
-  too_uncertain
+  too_uncertain,
+  two_faces  // the class's patch spans two faces (a crease between them): no plane of its own
 };
 const char* verdict_name(PlaneVerdict v);
 
 // Short machine name of a verdict (planes.json "verdict"): "grindable",
 // "faces_away", "too_small", "too_rough", "too_uncertain", "no_support",
-// "surplus".
+// "surplus", "two_faces".
 const char* verdict_key(PlaneVerdict v);
 
 struct GrindPlane {

@@ -287,9 +287,10 @@ TEST(GrindPlanes, PatchOverTwoFacesIsRefused) {
   }
   int between = 0;  // the crease band's class, refused
   for (int k = r->accepted; k < r->count; ++k)
-    between += r->planes[k].verdict == PlaneVerdict::no_support &&
+    between += r->planes[k].verdict == PlaneVerdict::two_faces &&
                test::angle_deg(r->planes[k].normal, Eigen::Vector3d::UnitZ()) < 5.0;
   EXPECT_EQ(between, 1);
+  EXPECT_STREQ(verdict_key(PlaneVerdict::two_faces), "two_faces");
 }
 
 // On the bent face the disc's own plane differs from the face's by far more
