@@ -418,10 +418,12 @@ Stop evaluate(const Scene& scene, int timeout_s, Session& fsw, Uplink& up, Downl
     down.pump(200);
   down.pump(300);
   if (down.link.kernel_drops() > 0 || down.assembler.incomplete() > 0)
-    std::fprintf(out,
-                 "   telemetry: %u packets dropped by this end's receive buffer; %zu products not "
-                 "complete when the wait ended (lost chunks, or still streaming)\n",
-                 down.link.kernel_drops(), down.assembler.incomplete());
+    std::fprintf(
+        out,
+        "   telemetry: %u packets dropped by this end's receive buffer; not complete when "
+        "the wait ended (lost chunks, or still streaming): %s\n",
+        down.link.kernel_drops(),
+        down.assembler.incomplete() > 0 ? down.assembler.incomplete_text().c_str() : "none");
   return std::nullopt;
 }
 

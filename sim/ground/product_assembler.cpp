@@ -22,6 +22,16 @@ const char* product_name(std::uint8_t kind) {
   return "product";
 }
 
+std::string ProductAssembler::incomplete_text() const {
+  std::string text;
+  for (const auto& [key, p] : partial_) {
+    if (!text.empty()) text += ", ";
+    text += std::string(product_name(p.product.kind)) + " " + std::to_string(p.product.id) + " (" +
+            std::to_string(p.count) + " of " + std::to_string(p.have.size()) + " chunks)";
+  }
+  return text;
+}
+
 std::optional<Product> ProductAssembler::add(const tlm::Product& c) {
   if (c.chunks == 0 || c.chunk >= c.chunks || c.total_bytes > 64u << 20) return std::nullopt;
   const auto key = std::make_pair(int{c.product}, c.id);

@@ -29,6 +29,8 @@ class ProductAssembler {
   std::optional<Product> add(const tlm::Product& chunk);
   // Chunks of products never completed (lost packets).
   std::size_t incomplete() const { return partial_.size(); }
+  // Those products, "<name> <id> (<got> of <total> chunks)", comma-separated.
+  std::string incomplete_text() const;
 
  private:
   struct Partial {
