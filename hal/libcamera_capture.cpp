@@ -81,9 +81,9 @@ struct LibcameraCapture::Impl {
   FrameChecker checker;
   bool gaps_are_faults = true;
   // What tells a camera that can no longer be stopped (stop() below).
-  int in_flight = 0;             // requests libcamera holds, not yet completed
-  bool stalled = false;          // a wait ran out with requests in flight, none came since
-  bool disconnected = false;     // libcamera saw the device go
+  int in_flight = 0;          // requests libcamera holds, not yet completed
+  bool stalled = false;       // a wait ran out with requests in flight, none came since
+  bool disconnected = false;  // libcamera saw the device go
   bool abandoned = false;
 
   void on_complete(lc::Request* r) {
@@ -322,8 +322,8 @@ Status LibcameraCapture::stop() {
   m.started = false;
   if (m.lost()) {
     m.abandoned = true;
-    return Error::make(Errc::io_error, "libcamera: '%s' lost with requests in flight: left unstopped",
-                       id_.data());
+    return Error::make(Errc::io_error,
+                       "libcamera: '%s' lost with requests in flight: left unstopped", id_.data());
   }
   const int r = m.camera->stop();  // completes every queued request as cancelled
   std::lock_guard lock(m.mutex);
@@ -336,8 +336,9 @@ Status LibcameraCapture::stop() {
 void LibcameraCapture::close() {
   if (!impl_) return;
   Impl& m = *impl_;
-  (void)stop();
+  const Status stopped = stop();
   if (m.abandoned) {
+    (void)std::fprintf(stderr, "camera: %s\n", stopped.error().message);
     abandon();
     return;
   }
@@ -373,8 +374,6 @@ void LibcameraCapture::abandon() {
     sm.abandoned = true;
     --sm.users;
   }
-  (void)std::fprintf(stderr, "camera: libcamera '%s' lost with requests in flight: left unstopped\n",
-                     id_.data());
 }
 
 Result<RawFrame> LibcameraCapture::next(int timeout_ms) {
