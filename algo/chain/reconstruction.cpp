@@ -179,10 +179,10 @@ Status mean_filter_step(ConstDisparityMap disparity, const ReconstructionParams&
   return ok_status();
 }
 
-// Triangulation (eq. 8) of the filtered map into at most `n_max` points.
-Status triangulate_step(const StereoRig& rig, const RectifiedPair& rect, std::size_t n_max,
-                        Arena& arena, const StepClock& clock, StepTimings& timings,
-                        ReconstructionOutput& out) {
+// Triangulation of the filtered map into at most `n_max` points (eq. 8's
+// point, by the rectified pair's closed form: algo/mesh/triangulate).
+Status triangulate_step(const RectifiedPair& rect, std::size_t n_max, Arena& arena,
+                        const StepClock& clock, StepTimings& timings, ReconstructionOutput& out) {
   ReconstructionStats& st = out.stats;
   auto xyz = arena.allocate<Eigen::Vector3d>(n_max, "cloud positions");
   if (!xyz) return xyz.error();
@@ -204,7 +204,7 @@ Status triangulate_step(const StereoRig& rig, const RectifiedPair& rect, std::si
       if (!thinned) return thinned.error();
       input = on_stride(input, st.point_stride, *thinned);
     }
-    auto t = triangulate_disparity(rig, rect, input, *xyz, *px);
+    auto t = triangulate_disparity(rect, input, *xyz, *px);
     if (!t) return t.error();
     n = t->points;
     st.triangulated = t->points;
@@ -438,7 +438,7 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
   ReconstructionOutput out;
   disparity_extent(disparity, out.stats);
   PETRA_TRY(mean_filter_step(disparity, params, arena, clock, timings, out));
-  PETRA_TRY(triangulate_step(rig, rect, budget.max_points, arena, clock, timings, out));
+  PETRA_TRY(triangulate_step(rect, budget.max_points, arena, clock, timings, out));
   PETRA_TRY(mesh_step(rig, params, arena, clock, timings, out));
   PETRA_TRY(normals_step(rect, params, arena, clock, timings, out));
   PETRA_TRY(

@@ -2,7 +2,7 @@
 
 namespace petra {
 
-Result<TriangulationStats> triangulate_disparity(const StereoRig& rig, const RectifiedPair& rect,
+Result<TriangulationStats> triangulate_disparity(const RectifiedPair& rect,
                                                  ConstDisparityMap disparity,
                                                  std::span<Eigen::Vector3d> xyz_mm,
                                                  std::span<PixelPos> pixels, int factor) {
@@ -14,8 +14,6 @@ Result<TriangulationStats> triangulate_disparity(const StereoRig& rig, const Rec
   if (factor < 1 || factor > 8)
     return Error::make(Errc::invalid_argument, "triangulate: factor %d not within 1..8", factor);
   const double f = factor, centre = 0.5 * (factor - 1);
-  const Eq8Camera<double> left = eq8_camera<double>(rig.left);
-  const Eq8Camera<double> right = eq8_camera<double>(rig.right);
   TriangulationStats stats;
   for (int y = 0; y < disparity.q4.height(); ++y) {
     const std::int16_t* row = disparity.q4.row(y);
@@ -31,13 +29,7 @@ Result<TriangulationStats> triangulate_disparity(const StereoRig& rig, const Rec
                            "triangulate: more valid disparities than the point budget %zu",
                            capacity);
       const double u = (roi.x + x) * f + centre, v = (roi.y + y) * f + centre;
-      auto ol = rectified_to_original(rig.left, rect.left, {u, v});
-      auto orr = rectified_to_original(rig.right, rect.right, {u - disparity_px(q) * f, v});
-      if (!ol || !orr) {
-        ++stats.rejected;
-        continue;
-      }
-      auto p = triangulate_eq8<double>(left, right, *ol, *orr);
+      auto p = rectified_point(rect, u, v, disparity_px(q) * f);
       if (!p) {
         ++stats.rejected;
         continue;

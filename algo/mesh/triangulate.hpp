@@ -10,10 +10,13 @@
 // (The paper prints du(u-u0) for A only and dv(v-v0) for C: a typo; C is the
 // right camera's Xu.) Written over a scalar type S so it also runs in Q format.
 //
-// triangulate_disparity: every valid pixel of a rectified disparity map
-// becomes a correspondence rectified left (u, v) <-> right (u - d, v), mapped
-// back to ORIGINAL pixels with rectified_to_original, then triangulated by eq. 8.
-// Inputs: rig, its rectified geometry, the map; outputs: positions and pixels
+// triangulate_disparity: every valid pixel of a rectified disparity map is a
+// correspondence rectified left (u, v) <-> right (u - d, v). Its two rays meet
+// exactly, so the point is the rectified pair's closed form (rectified_point:
+// Z = f B / d, rotated into the world): the point eq. 8 gives from the same
+// correspondence mapped back to original pixels (within 1e-6 mm, the lens
+// distortion's round trip; test_triangulate) at a twentieth of the cost.
+// Inputs: the rectified geometry, the map; outputs: positions and pixels
 // into caller spans (capacity = point budget). No heap, no scratch.
 #pragma once
 
@@ -95,14 +98,12 @@ struct TriangulationStats {
   std::size_t rejected = 0;  // valid disparities that gave no point (see header)
 };
 
-// Rejected (counted, not written): d <= 0, a pixel that maps outside the
-// camera model, parallel rays. The output spans must hold every valid pixel
-// of the map; otherwise capacity_exceeded names the budget.
-// `factor` > 1: the map was matched on the pair box-downsampled by it
-// (algo/stereo/downsample): pixel x stands for the rectified pixels
-// x f .. x f + f - 1 (centre x f + (f - 1) / 2) and its disparity is d f;
-// `pixels` stay in the map's own (downsampled) coordinates.
-Result<TriangulationStats> triangulate_disparity(const StereoRig& rig, const RectifiedPair& rect,
+// Rejected (counted, not written): d <= 0 (at or beyond infinity). The output spans must hold every
+// valid pixel of the map; otherwise capacity_exceeded names the budget. `factor` > 1: the map was
+// matched on the pair box-downsampled by it (algo/stereo/downsample): pixel x stands for the
+// rectified pixels x f .. x f + f - 1 (centre x f + (f - 1) / 2) and its disparity is d f; `pixels`
+// stay in the map's own (downsampled) coordinates.
+Result<TriangulationStats> triangulate_disparity(const RectifiedPair& rect,
                                                  ConstDisparityMap disparity,
                                                  std::span<Eigen::Vector3d> xyz_mm,
                                                  std::span<PixelPos> pixels, int factor = 1);

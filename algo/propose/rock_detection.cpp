@@ -170,8 +170,7 @@ Result<GridCloud> grid_cloud(const Rectifier& rectifier, ConstDisparityMap dispa
   if (!px) return px.error();
   auto index = arena.allocate<std::int32_t>(g.px(), "detection: grid index");
   if (!index) return index.error();
-  auto t =
-      triangulate_disparity(rectifier.rig(), rectifier.geometry(), disparity, *xyz, *px, b.factor);
+  auto t = triangulate_disparity(rectifier.geometry(), disparity, *xyz, *px, b.factor);
   if (!t) return t.error();
   GridCloud c{xyz->first(t->points), px->first(t->points), *index, g.w, g.h};
   std::fill(index->begin(), index->end(), kNone);

@@ -81,32 +81,44 @@ struct DispMap {
   ConstDisparityMap view() const { return {ImageView<const std::int16_t>(q.data(), w, h), roi}; }
 };
 
-TEST(Triangulate, DisparityMapAgreesWithRectifiedPoint) {
-  const StereoRig rig = test::bumblebee_rig(6);
+// The map's closed form (rectified_point) against the method's eq. 8 from the
+// same correspondences mapped back to original pixels, on a rig with lens
+// distortion, at full resolution and at a downsampling factor.
+TEST(Triangulate, DisparityMapAgreesWithEq8ThroughTheOriginalCameras) {
+  const StereoRig rig = test::bumblebee_rig(6, -0.004);
   auto pair = rectify_geometry(rig, 1024, 768);
   ASSERT_TRUE(pair.ok());
-  DispMap m(Rect{400, 300, 40, 30});
-  std::mt19937 rng(1);
-  for (auto& q : m.q) q = static_cast<std::int16_t>(40 * 16 + static_cast<int>(rng() % 400));
-  m.q[5] = kInvalidDisparity;
-  m.q[7] = 0;  // at infinity: rejected
-  std::vector<Eigen::Vector3d> xyz(m.q.size());
-  std::vector<PixelPos> px(m.q.size());
-  test::HeapScope scope;
-  auto stats = triangulate_disparity(rig, *pair, m.view(), xyz, px);
-  EXPECT_EQ(scope.allocations(), 0u);
-  ASSERT_TRUE(stats.ok()) << stats.error().message;
-  EXPECT_EQ(stats->points, m.q.size() - 2);
-  EXPECT_EQ(stats->rejected, 1u);
-  double worst = 0;
-  for (std::size_t i = 0; i < stats->points; ++i) {
-    const int x = px[i].u - m.roi.x, y = px[i].v - m.roi.y;
-    const std::int16_t q = m.q[static_cast<std::size_t>(y) * m.w + x];
-    auto ref = rectified_point(*pair, px[i].u, px[i].v, disparity_px(q));
-    ASSERT_TRUE(ref.ok());
-    worst = std::max(worst, (*ref - xyz[i]).norm());
+  const auto l = eq8_camera<double>(rig.left), r = eq8_camera<double>(rig.right);
+  for (const int factor : {1, 4}) {
+    DispMap m(Rect{400 / factor, 300 / factor, 40, 30});
+    std::mt19937 rng(1);
+    for (auto& q : m.q)
+      q = static_cast<std::int16_t>(40 * 16 / factor + static_cast<int>(rng() % 400));
+    m.q[5] = kInvalidDisparity;
+    m.q[7] = 0;  // at infinity: rejected
+    std::vector<Eigen::Vector3d> xyz(m.q.size());
+    std::vector<PixelPos> px(m.q.size());
+    test::HeapScope scope;
+    auto stats = triangulate_disparity(*pair, m.view(), xyz, px, factor);
+    EXPECT_EQ(scope.allocations(), 0u);
+    ASSERT_TRUE(stats.ok()) << stats.error().message;
+    EXPECT_EQ(stats->points, m.q.size() - 2);
+    EXPECT_EQ(stats->rejected, 1u);
+    double worst = 0;
+    const double f = factor, centre = 0.5 * (factor - 1);
+    for (std::size_t i = 0; i < stats->points; ++i) {
+      const int x = px[i].u - m.roi.x, y = px[i].v - m.roi.y;
+      const std::int16_t q = m.q[static_cast<std::size_t>(y) * m.w + x];
+      const double u = px[i].u * f + centre, v = px[i].v * f + centre;
+      auto ol = rectified_to_original(rig.left, pair->left, {u, v});
+      auto orr = rectified_to_original(rig.right, pair->right, {u - disparity_px(q) * f, v});
+      ASSERT_TRUE(ol.ok() && orr.ok());
+      auto ref = triangulate_eq8<double>(l, r, *ol, *orr);
+      ASSERT_TRUE(ref.ok());
+      worst = std::max(worst, (*ref - xyz[i]).norm());
+    }
+    EXPECT_LT(worst, 1e-5) << "factor " << factor;  // mm, at about 1-4 m
   }
-  EXPECT_LT(worst, 1e-6);  // mm: eq. 8 through the original cameras == rectified geometry
 }
 
 TEST(Triangulate, PointBudgetIsEnforced) {
@@ -117,7 +129,7 @@ TEST(Triangulate, PointBudgetIsEnforced) {
   for (auto& q : m.q) q = 50 * 16;
   std::vector<Eigen::Vector3d> xyz(99);
   std::vector<PixelPos> px(99);
-  auto stats = triangulate_disparity(rig, *pair, m.view(), xyz, px);
+  auto stats = triangulate_disparity(*pair, m.view(), xyz, px);
   ASSERT_FALSE(stats.ok());
   EXPECT_EQ(stats.code(), Errc::capacity_exceeded);
   EXPECT_NE(std::string(stats.error().message).find("budget 99"), std::string::npos);
