@@ -100,7 +100,7 @@ struct EvalOutput {
   float calib_vertical_offset_px = 0;  // calibration check (algo/camera/calib_check)
   float calib_spread_px = 0;
   std::uint16_t calib_features = 0;
-  std::uint8_t calib_verdict = 0;  // CalibVerdict: 0 unknown, 1 ok, 2 drifted
+  std::uint8_t calib_verdict = 0;  // CalibVerdict: 0 unknown, 1 ok, 2 drifted, 3 corrected
   std::uint32_t dense_points = 0;
   std::uint32_t filtered_points = 0;
   float disparity_min = 0;

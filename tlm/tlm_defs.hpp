@@ -123,7 +123,9 @@
     "calibration check: median row offset of matched features, right minus left")                 \
   F(f32, calib_spread_px, 1, "px", 0, 100, "calibration check: 1.4826 x MAD of the row offsets")  \
   F(u16, calib_features, 1, "", 0, 4096, "calibration check: matched features kept")              \
-  F(u8, calib_verdict, 1, "enum", 0, 2, "calibration check: 0 unknown, 1 ok, 2 drifted")
+  F(u8, calib_verdict, 1, "enum", 0, 3,                                                           \
+    "calibration check: 0 unknown, 1 ok, 2 drifted, 3 drifted and corrected (right view's rows "  \
+    "moved by the offset before matching)")
 
 #define PETRA_GRIND_PLANE_FIELDS(F)                                                      \
   F(u32, eval_id, 1, "", 0, PETRA_U32_MAX, "evaluation it belongs to")                   \

@@ -12,6 +12,10 @@
 # summary is printed for the first 24 scenes (the table before the hard
 # cases), for the rest (touching neighbours, the rock filling the ROI) and
 # for all. Each scene's truth.json click is passed as --click (CLICK=0: not).
+# With DRIFT_DEG=a the rig has drifted since its calibration: each scene's
+# right camera is pitched by a deg about its own x axis in the calib.json
+# petra eval gets (the images are unchanged), e.g. 0.1 deg: rows about 1.5-1.9
+# px apart (docs/reconstruction.md "Calibration check").
 set -euo pipefail
 PETRA=${1:-build/release/sim/petra}
 WORK=${2:-out/eval-scenes}
@@ -31,8 +35,23 @@ real = set_dir == "real-set"
 rows = []
 # One output folder per configuration, so runs of both matchers share the set.
 use_click = os.environ.get("CLICK", "1") != "0"
+drift = os.environ.get("DRIFT_DEG")
 label = ("real-" if real else "") + "eval" + "".join("-" + a.lstrip("-") for a in extra) + \
-        ("-truth" if os.environ.get("DISPARITY") == "truth" else "") + ("" if use_click else "-noclick")
+        ("-truth" if os.environ.get("DISPARITY") == "truth" else "") + ("" if use_click else "-noclick") + \
+        (f"-drift{drift}" if drift else "")
+
+def drifted_calib(src, deg, dst):
+    """src's calib.json with the right camera pitched by deg about its own x axis (centre kept)."""
+    c = json.load(open(src))
+    a = math.radians(float(deg))
+    rx = [[1, 0, 0], [0, math.cos(a), -math.sin(a)], [0, math.sin(a), math.cos(a)]]
+    r = c["right"]
+    R = [r["R"][0:3], r["R"][3:6], r["R"][6:9]]
+    r["R"] = [sum(rx[i][k] * R[k][j] for k in range(3)) for i in range(3) for j in range(3)]
+    r["T"] = [sum(rx[i][k] * r["T"][k] for k in range(3)) for i in range(3)]
+    os.makedirs(os.path.dirname(dst), exist_ok=True)
+    json.dump(c, open(dst, "w"))
+    return dst
 stats = []  # per scene: found == c, [(normal err, centroid dist, on facet)], refusal
 scenes = sorted(d for d in os.listdir(os.path.join(work, set_dir)) if d.startswith("scene_")
           and os.path.isdir(os.path.join(work, set_dir, d)))
@@ -41,7 +60,10 @@ for s in scenes:
     truth = json.load(open(os.path.join(sd, "truth.json")))
     roi = ",".join(str(v) for v in truth["roi"])
     out = os.path.join(work, label, s)
-    cmd = [petra, "eval", "--calib", f"{sd}/calib.json", "--left", f"{sd}/left.png", "--right", f"{sd}/right.png",
+    calib = f"{sd}/calib.json"
+    if drift:
+        calib = drifted_calib(calib, drift, os.path.join(work, label + "-calib", s + ".json"))
+    cmd = [petra, "eval", "--calib", calib, "--left", f"{sd}/left.png", "--right", f"{sd}/right.png",
            "--roi", roi, "--planes", str(truth["planes"]), "--out", out] + extra
     if os.environ.get("DISPARITY") == "truth":
         cmd += ["--disparity", f"{sd}/disparity_truth.pfm"]

@@ -238,6 +238,8 @@ const char* to_string(CalibVerdict v) {
       return "ok";
     case CalibVerdict::drifted:
       return "drifted";
+    case CalibVerdict::corrected:
+      return "corrected";
     case CalibVerdict::unknown:
       break;
   }

@@ -18,7 +18,10 @@
 // Outputs (px): median row offset (right row - left row; + = the right
 // view's content sits lower), spread = 1.4826 x MAD (a robust 1-sigma), the
 // count of kept features and a verdict: unknown below min_features kept,
-// drifted when |offset| > drift_px, else ok.
+// drifted when |offset| > drift_px, else ok. A drifted pair is corrected by
+// its user (the pipeline moves the right view's rows by the offset before
+// matching, Rectifier::rectify_rows_moved, when correct_drift is set): the
+// verdict is then `corrected`, with the rows moved in corrected_px.
 // Memory: calib_check_scratch_bytes(params) from the caller's arena (one
 // float per feature, twice; three int rows of the disparity range: the
 // per-disparity best, one row offset's patch sums and costs), released on
@@ -43,10 +46,13 @@ struct CalibCheckParams {
   double uniqueness = 0.8;     // best cost < this x the best >= 2 px away in d, (0, 1]
   int min_features = 20;       // fewer kept -> verdict unknown
   double drift_px = 0.5;       // |median offset| above this -> drifted
+  // A drifted pair's right view moved by the offset before matching (a
+  // rotation of the rig about its baseline, which the pair itself measures).
+  bool correct_drift = true;
 };
 Status validate(const CalibCheckParams& p);
 
-enum class CalibVerdict : std::uint8_t { unknown = 0, ok = 1, drifted = 2 };
+enum class CalibVerdict : std::uint8_t { unknown = 0, ok = 1, drifted = 2, corrected = 3 };
 const char* to_string(CalibVerdict v);
 
 struct CalibCheck {
@@ -56,6 +62,7 @@ struct CalibCheck {
   int features = 0;               // kept matches
   int candidates = 0;             // corners tried
   CalibVerdict verdict = CalibVerdict::unknown;
+  double corrected_px = 0;  // rows the right view was moved up by before matching (0: none)
 };
 
 std::size_t calib_check_scratch_bytes(const CalibCheckParams& p);

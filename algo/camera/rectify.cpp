@@ -79,39 +79,75 @@ Result<Rectifier> Rectifier::create(const StereoRig& rig, std::span<RemapEntry> 
   return r;
 }
 
-Status Rectifier::rectify(StereoSide side, ConstGray8View original, Gray8View rectified,
-                          Rect region) const {
+namespace {
+
+// Bilinear sample of `src` at the table entry's Q4 position (weights sum to
+// 256: one rounding shift, no division). The second column (row) is read
+// only when its weight is non-zero, so the last column and row of the image
+// need no margin.
+std::uint8_t sample(const std::uint8_t* src, std::ptrdiff_t stride, RemapEntry m) {
+  if (m.x_q4 == kRemapOutside) return kRectifyFill;
+  const int fx = m.x_q4 & (kOne - 1);
+  const int fy = m.y_q4 & (kOne - 1);
+  const std::uint8_t* p = src + (m.y_q4 >> kRemapFracBits) * stride + (m.x_q4 >> kRemapFracBits);
+  const int dx = (fx + kOne - 1) >> kRemapFracBits;
+  const std::ptrdiff_t dy = stride * ((fy + kOne - 1) >> kRemapFracBits);
+  const int top = p[0] * (kOne - fx) + p[dx] * fx;
+  const int bottom = p[dy] * (kOne - fx) + p[dy + dx] * fx;
+  return static_cast<std::uint8_t>((top * (kOne - fy) + bottom * fy + 128) >> 8);
+}
+
+// The entry between two table rows' entries, weight w / 16 on `b`; outside
+// when either is.
+RemapEntry between(RemapEntry a, RemapEntry b, int w) {
+  if (a.x_q4 == kRemapOutside || b.x_q4 == kRemapOutside) return RemapEntry{kRemapOutside, 0};
+  auto mix = [w](int u, int v) {
+    return static_cast<std::int16_t>((u * (kOne - w) + v * w + kOne / 2) >> kRemapFracBits);
+  };
+  return RemapEntry{mix(a.x_q4, b.x_q4), mix(a.y_q4, b.y_q4)};
+}
+
+}  // namespace
+
+Status Rectifier::check_rectify(ConstGray8View original, Gray8View rectified, Rect region) const {
   if (width_ == 0) return Error::make(Errc::not_ready, "rectify: rectifier not initialised");
   PETRA_TRY(check_image("original", original, width_, height_));
   PETRA_TRY(check_image("rectified", rectified, width_, height_));
   if (!region.inside(width_, height_))
     return Error::make(Errc::out_of_range, "rectify: region (%d,%d %dx%d) outside the %dx%d image",
                        region.x, region.y, region.w, region.h, width_, height_);
+  return ok_status();
+}
+
+Status Rectifier::rectify(StereoSide side, ConstGray8View original, Gray8View rectified,
+                          Rect region) const {
+  PETRA_TRY(check_rectify(original, rectified, region));
   const std::span<const RemapEntry> t = table(side);
-  const std::ptrdiff_t stride = original.stride();
-  const std::uint8_t* src = original.data();
   for (int y = region.y; y < region.y + region.h; ++y) {
     const RemapEntry* e = t.data() + static_cast<std::size_t>(y) * width_;
     std::uint8_t* out = rectified.row(y);
-    for (int x = region.x; x < region.x + region.w; ++x) {
-      const RemapEntry m = e[x];
-      if (m.x_q4 == kRemapOutside) {
-        out[x] = kRectifyFill;
-        continue;
-      }
-      const int fx = m.x_q4 & (kOne - 1);
-      const int fy = m.y_q4 & (kOne - 1);
-      const std::uint8_t* p =
-          src + (m.y_q4 >> kRemapFracBits) * stride + (m.x_q4 >> kRemapFracBits);
-      // The second column (row) is read only when its weight is non-zero, so
-      // the last column and row of the image need no margin.
-      const int dx = (fx + kOne - 1) >> kRemapFracBits;
-      const std::ptrdiff_t dy = stride * ((fy + kOne - 1) >> kRemapFracBits);
-      // Weights sum to 256: one rounding shift, no division.
-      const int top = p[0] * (kOne - fx) + p[dx] * fx;
-      const int bottom = p[dy] * (kOne - fx) + p[dy + dx] * fx;
-      out[x] = static_cast<std::uint8_t>((top * (kOne - fy) + bottom * fy + 128) >> 8);
+    for (int x = region.x; x < region.x + region.w; ++x)
+      out[x] = sample(original.data(), original.stride(), e[x]);
+  }
+  return ok_status();
+}
+
+Status Rectifier::rectify_rows_moved(StereoSide side, ConstGray8View original, Gray8View rectified,
+                                     Rect region, int rows_q4) const {
+  PETRA_TRY(check_rectify(original, rectified, region));
+  const std::span<const RemapEntry> t = table(side);
+  const int whole = rows_q4 >> kRemapFracBits, w = rows_q4 & (kOne - 1);  // floor, fraction
+  for (int y = region.y; y < region.y + region.h; ++y) {
+    std::uint8_t* out = rectified.row(y);
+    const int ya = y + whole, yb = ya + (w > 0 ? 1 : 0);
+    if (ya < 0 || yb >= height_) {  // no table row there: nothing to sample
+      std::fill(out + region.x, out + region.x + region.w, kRectifyFill);
+      continue;
     }
+    const RemapEntry* a = t.data() + static_cast<std::size_t>(ya) * width_;
+    const RemapEntry* b = t.data() + static_cast<std::size_t>(yb) * width_;
+    for (int x = region.x; x < region.x + region.w; ++x)
+      out[x] = sample(original.data(), original.stride(), between(a[x], b[x], w));
   }
   return ok_status();
 }

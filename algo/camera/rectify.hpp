@@ -63,6 +63,13 @@ class Rectifier {
   // both images have the calibrated size. Pixels outside `region` are untouched.
   Status rectify(StereoSide side, ConstGray8View original, Gray8View rectified, Rect region) const;
   Status rectify(StereoSide side, ConstGray8View original, Gray8View rectified) const;
+  // As rectify(), each rectified row y sampled where row y + rows_q4 / 16
+  // of the table points (the rows' entries interpolated): the view's content
+  // moved up by that many rows, so a pair whose rows drifted apart by a
+  // measured offset (algo/camera/calib_check) is aligned again. Rows whose
+  // source row lies outside the table are filled.
+  Status rectify_rows_moved(StereoSide side, ConstGray8View original, Gray8View rectified,
+                            Rect region, int rows_q4) const;
 
   // Point mappings (double precision, exact model, not the tables).
   Result<Eigen::Vector2d> to_rectified(StereoSide side, const Eigen::Vector2d& original_px) const;
@@ -87,6 +94,7 @@ class Rectifier {
   const RectifiedCamera& rect(StereoSide s) const {
     return s == StereoSide::left ? pair_.left : pair_.right;
   }
+  Status check_rectify(ConstGray8View original, Gray8View rectified, Rect region) const;
   std::span<const RemapEntry> table(StereoSide s) const {
     return s == StereoSide::left ? left_ : right_;
   }

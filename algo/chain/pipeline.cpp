@@ -243,6 +243,22 @@ Result<RectifiedViews> rectify_pair(const Rectifier& rectifier, const PipelineBu
   return pair;
 }
 
+// A drifted pair's right view rectified again with its rows moved by the
+// offset the check measured (a rotation of the rig about its baseline, which
+// the pair itself tells): the matcher then sees aligned rows. The check's
+// figures stay the measured ones; its verdict becomes `corrected`.
+Status correct_drift(const Rectifier& rectifier, ConstGray8View right, const RectifiedViews& pair,
+                     Rect right_rectified, const CalibCheckParams& params, CalibCheck& check) {
+  if (!params.correct_drift || check.verdict != CalibVerdict::drifted) return ok_status();
+  const int rows_q4 =
+      static_cast<int>(std::lround(check.vertical_offset_px * (1 << kRemapFracBits)));
+  PETRA_TRY(
+      rectifier.rectify_rows_moved(StereoSide::right, right, pair.right, right_rectified, rows_q4));
+  check.corrected_px = rows_q4 / static_cast<double>(1 << kRemapFracBits);
+  check.verdict = CalibVerdict::corrected;
+  return ok_status();
+}
+
 // The disparity range for the fine matcher, within the budget.
 Status disparity_range_step(const RectifiedViews& pair, Rect roi, const PipelineParams& params,
                             const PipelineBudget& budget, Arena& arena, const StepClock& clock,
@@ -377,6 +393,9 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
                                out.range.max_px, params_.calib_check, arena);
     if (!c) return c.error();
     out.calibration = last_calibration_ = *c;
+    PETRA_TRY(correct_drift(rectifier_, right, *pair, right_rectified, params_.calib_check,
+                            out.calibration));
+    last_calibration_ = out.calibration;
   }
   MatchDpParams mp = params_.match;
   mp.disp_min = out.range.min_px;

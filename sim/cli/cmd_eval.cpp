@@ -128,6 +128,12 @@ void print_calibration(const CalibCheck& c) {
   if (c.verdict == CalibVerdict::drifted)
     std::printf("  the pair's rows differ by %.1f px: calibration has drifted\n",
                 std::fabs(c.vertical_offset_px));
+  else if (c.verdict == CalibVerdict::corrected)
+    std::printf(
+        "  the pair's rows differ by %.1f px: calibration has drifted; the right view was moved "
+        "%s by %.2f rows before matching\n",
+        std::fabs(c.vertical_offset_px), c.corrected_px > 0 ? "up" : "down",
+        std::fabs(c.corrected_px));
   else if (c.verdict == CalibVerdict::unknown)
     std::printf("  too few features matched (%d) to check the calibration\n", c.features);
 }

@@ -81,6 +81,8 @@ std::string format_planes_json(const ReconstructionOutput& r, const CalibCheck* 
     w.key("spread_px").number(calibration->spread_px);
     w.key("features").integer(calibration->features);
     w.key("verdict").string(to_string(calibration->verdict));
+    if (calibration->verdict == CalibVerdict::corrected)
+      w.key("corrected_px").number(calibration->corrected_px);
     w.end_object();
     w.raw("\n");
   }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -150,6 +151,53 @@ TEST(Rectify, RegionWritesOnlyTheRegion) {
       else
         EXPECT_EQ(v, 7);
     }
+}
+
+// A drifted pair's right view rectified with its rows moved (the
+// calibration check's correction): a whole row equals the plain view one row
+// further down; half a row is the two rows' mean on a smooth image; rows whose
+// source row is outside the table are filled; zero changes nothing.
+TEST(Rectify, RowsMovedSampleTheTableRowsThatFar) {
+  const int w = 160, h = 120;
+  const StereoRig rig = test_rig(w, h);
+  Tables t(rig);
+  auto rect = Rectifier::create(rig, t.l, t.r);
+  ASSERT_TRUE(rect.ok());
+  std::vector<std::uint8_t> img(static_cast<std::size_t>(w) * h);  // smooth: sampling commutes
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      img[static_cast<std::size_t>(y) * w + x] =
+          static_cast<std::uint8_t>(128 + 100 * std::sin(x / 7.0) * std::cos(y / 9.0));
+  const ConstGray8View src(img.data(), w, h);
+  const Rect all{0, 0, w, h};
+  auto rectified = [&](int rows_q4) {
+    std::vector<std::uint8_t> out(img.size(), 7);
+    EXPECT_TRUE(
+        rect->rectify_rows_moved(StereoSide::right, src, Gray8View(out.data(), w, h), all, rows_q4)
+            .ok());
+    return out;
+  };
+  std::vector<std::uint8_t> plain(img.size());
+  ASSERT_TRUE(rect->rectify(StereoSide::right, src, Gray8View(plain.data(), w, h), all).ok());
+  EXPECT_EQ(rectified(0), plain);
+  const auto up = rectified(16), half = rectified(8), down = rectified(-16);
+  auto at = [w](const std::vector<std::uint8_t>& v, int x, int y) {
+    return static_cast<int>(v[static_cast<std::size_t>(y) * w + x]);
+  };
+  int between = 0, inside = 0;
+  for (int y = 1; y < h - 1; ++y)
+    for (int x = 0; x < w; ++x) {
+      EXPECT_EQ(at(up, x, y), at(plain, x, y + 1));
+      EXPECT_EQ(at(down, x, y), at(plain, x, y - 1));
+      const int mid = at(plain, x, y) + at(plain, x, y + 1);  // twice the two rows' mean
+      between += std::abs(2 * at(half, x, y) - mid) <= 4;
+      ++inside;
+    }
+  EXPECT_GT(between, inside * 99 / 100);
+  for (int x = 0; x < w; ++x) {
+    EXPECT_EQ(at(up, x, h - 1), kRectifyFill);
+    EXPECT_EQ(at(down, x, 0), kRectifyFill);
+  }
 }
 
 TEST(Rectify, RoiMapsToABoxHoldingItsOutline) {

@@ -1,0 +1,109 @@
+// A rig that drifted after its calibration: the right camera pitched by
+// 0.1 deg about its own x axis, while calib.json still holds the old pose
+// (realistic set entry 14, two faces). The rectified rows then differ by
+// about 1.5 px; the DP matches along rows, so uncorrected the chain loses the
+// ground and refuses the pair. The calibration check measures the offset and
+// the chain rectifies the right view again with its rows moved by it
+// (Rectifier::rectify_rows_moved): the faces come back within the realistic
+// targets. Rendered only where the chain reads (see test_eval_roi_fill).
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <vector>
+
+#include "algo/chain/pipeline.hpp"
+#include "sim/eval/planes_json.hpp"
+#include "sim/scene/scene_set.hpp"
+#include "sim/score/plane_score.hpp"
+#include "sim/score/planes_file.hpp"
+#include "sim/score/truth_file.hpp"
+#include "tests/support/eval_budget.hpp"
+#include "tests/support/rendered_scene.hpp"
+
+namespace petra {
+namespace {
+
+const test::RenderedScene& drift_scene() {
+  static const test::RenderedScene f = [] {
+    sim::SceneOptions o = sim::real_scene_set()[14];
+    o.edge_supersampling = 2;
+    return test::render_for_test(o, 48);
+  }();
+  return f;
+}
+
+// The calibration as it was: the right camera pitched back by `deg` about
+// its own x axis (its centre kept).
+StereoRig drifted(StereoRig rig, double deg) {
+  const Eigen::Matrix3d pitch =
+      Eigen::AngleAxisd(deg * M_PI / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  rig.right.R = pitch * rig.right.R;
+  rig.right.T_mm = pitch * rig.right.T_mm;
+  return rig;
+}
+
+struct DriftOutcome {
+  Result<PipelineOutput> out = Error::make(Errc::not_ready, "not run");
+  sim::PlaneScore score;
+};
+
+DriftOutcome evaluate(const test::RenderedScene& f, const StereoRig& rig,
+                      const PipelineParams& params) {
+  const PipelineBudget b = test::eval_budget(rig.left.width, rig.left.height, 256, params);
+  std::vector<std::byte> block(Pipeline::arena_bytes(b, params));
+  Arena arena(block);
+  auto pipeline = Pipeline::create(rig, b, params, arena);
+  EXPECT_TRUE(pipeline.ok()) << pipeline.error().message;
+  PipelineRequest q;
+  q.roi = f.truth.roi;
+  q.planes = f.truth.planes;
+  DriftOutcome o;
+  o.out = pipeline->run(f.products.left.image.view(), f.products.right.image.view(), q, {});
+  if (o.out.ok()) {
+    auto planes = sim::parse_planes_json(eval::format_planes_json(o.out->result));
+    EXPECT_TRUE(planes.ok());
+    if (planes.ok()) o.score = sim::score_planes(f.truth, *planes);
+  }
+  return o;
+}
+
+TEST(EvalDrift, ARowDriftIsMeasuredAndCorrected) {
+  const test::RenderedScene& f = drift_scene();
+  const StereoRig rig = drifted(f.rig, 0.1);
+  // Uncorrected (the check only says so) the DP's rows miss: refused.
+  PipelineParams off;
+  off.calib_check.correct_drift = false;
+  const DriftOutcome before = evaluate(f, rig, off);
+  EXPECT_FALSE(before.out.ok());
+  // Corrected (the flight default): the offset measured, the rows moved by
+  // it, every face found within the realistic targets.
+  const DriftOutcome o = evaluate(f, rig, {});
+  ASSERT_TRUE(o.out.ok()) << o.out.error().message;
+  const CalibCheck& c = o.out->calibration;
+  std::printf("drift: rows differ by %+.3f px, moved by %+.4f px\n", c.vertical_offset_px,
+              c.corrected_px);
+  EXPECT_EQ(c.verdict, CalibVerdict::corrected);
+  EXPECT_GT(c.vertical_offset_px, 1.0);
+  EXPECT_NEAR(c.corrected_px, c.vertical_offset_px, 1.0 / 32);
+  EXPECT_TRUE(o.score.count_agrees) << o.score.output_planes << " for " << o.score.truth_planes;
+  for (const sim::FacetScore& s : o.score.facets) {
+    ASSERT_GE(s.plane, 0) << "facet " << s.facet << " unmatched";
+    EXPECT_LE(s.normal_error_deg, 3.0) << "facet " << s.facet;
+    EXPECT_LE(s.centroid_plane_distance_mm, 2.0) << "facet " << s.facet;
+    EXPECT_TRUE(s.centroid_on_facet) << "facet " << s.facet;
+  }
+}
+
+// Within the tolerance nothing is moved: the undrifted rig's pair is matched
+// as rectified.
+TEST(EvalDrift, AnAlignedPairIsLeftAsItIs) {
+  const test::RenderedScene& f = drift_scene();
+  const DriftOutcome o = evaluate(f, f.rig, {});
+  ASSERT_TRUE(o.out.ok()) << o.out.error().message;
+  EXPECT_EQ(o.out->calibration.verdict, CalibVerdict::ok);
+  EXPECT_EQ(o.out->calibration.corrected_px, 0.0);
+}
+
+}  // namespace
+}  // namespace petra
