@@ -64,6 +64,23 @@ std::size_t clicked_point(const ReconstructionOutput& out, const ClickPx& click,
   return best;
 }
 
+// From the click: "ground" is the plane of the points around the rock (its
+// RMS says how far from a plane); the counts from the labels.
+void fit_surroundings(ReconstructionOutput& out) {
+  GroundResultT<double>& g = out.ground;
+  std::size_t rock = 0;
+  for (PointClass c : out.point_class) rock += c == PointClass::rock ? 1 : 0;
+  g.rock_points = rock;
+  g.ground_points = out.xyz_mm.size() - rock;
+  auto f = fit_plane_tls_by<double>(
+      out.xyz_mm.size(), [&](std::size_t i) -> const Eigen::Vector3d& { return out.xyz_mm[i]; },
+      [&](std::size_t i) { return out.point_class[i] == PointClass::ground; });
+  if (f) {
+    g.plane = f->plane;
+    g.rms_mm = f->rms;
+  }
+}
+
 // No ground: the rock is the region grown from the click; "ground" becomes
 // the plane of the points around it (its RMS says how far from a plane).
 Status segment_from_click(const ReconstructionRequest& request, const ReconstructionParams& params,
@@ -89,18 +106,9 @@ Status segment_from_click(const ReconstructionRequest& request, const Reconstruc
   if (!r) return r.error();
   out.segmentation = SegmentMethod::click_region;
   out.click_region = *r;
-  GroundResultT<double>& g = out.ground;
-  g = {};
-  g.click_point = seed;
-  g.rock_points = r->points;
-  g.ground_points = out.xyz_mm.size() - r->points;
-  auto f = fit_plane_tls_by<double>(
-      out.xyz_mm.size(), [&](std::size_t i) -> const Eigen::Vector3d& { return out.xyz_mm[i]; },
-      [&](std::size_t i) { return out.point_class[i] == PointClass::ground; });
-  if (f) {
-    g.plane = f->plane;
-    g.rms_mm = f->rms;
-  }
+  out.ground = {};
+  out.ground.click_point = seed;
+  fit_surroundings(out);
   return {};
 }
 
@@ -328,7 +336,49 @@ Status segmentation_step(const StereoRig& rig, const RectifiedPair& rect, Rect r
   return ok_status();
 }
 
+// A triangle with three rock vertices.
+bool rock_triangle(const ReconstructionOutput& out, std::size_t i) {
+  for (int k = 0; k < 3; ++k)
+    if (out.point_class[static_cast<std::size_t>(out.mesh[i].v[k])] != PointClass::rock)
+      return false;
+  return true;
+}
+
+// Grind planes on the rock triangles into out.planes; plane_of out: each
+// triangle's plane (0..count-1 in rank order, 0xFF none).
+Status grind_rock_triangles(const StereoRig& rig, const RectifiedPair& rect,
+                            const ReconstructionRequest& request,
+                            const ReconstructionParams& params, Arena& arena,
+                            std::span<std::uint8_t> plane_of, ReconstructionOutput& out) {
+  std::size_t nr = 0;
+  for (std::size_t i = 0; i < out.mesh.size(); ++i) {
+    const bool r = rock_triangle(out, i);
+    plane_of[i] = r ? 1 : 0;
+    nr += r ? 1 : 0;
+  }
+  out.stats.rock_triangles = nr;
+  auto g = grind_planes_on_mesh(rig, rect, out, request.planes, params, arena, plane_of);
+  if (!g) return g.error();
+  out.planes = *g;
+  return ok_status();
+}
+
+// A rock grown from the click may have run onto the surface it stands on
+// (support_surface.hpp): whether an accepted plane lies there (into as_support).
+bool support_plane(const ReconstructionOutput& out, const SupportParams& params,
+                   SupportPlane& as_support) {
+  for (int k = 0; k < out.planes.accepted; ++k) {
+    const GrindPlane& g = out.planes.planes[k];
+    as_support = {g.face_normal, g.face_centroid_mm, g.area_mm2, g.rms_mm};
+    const RockInFront f =
+        rock_in_front(out.xyz_mm, out.point_class, out.ground.click_point, as_support, params);
+    if (stands_on(f, params)) return true;
+  }
+  return false;
+}
+
 // Grind planes on the rock triangles; mesh and vertex classes from them.
+// From the click: planes on the support dropped with its points, found again.
 Status grind_planes_step(const StereoRig& rig, const RectifiedPair& rect,
                          const ReconstructionRequest& request, const ReconstructionParams& params,
                          Arena& arena, const StepClock& clock, StepTimings& timings,
@@ -337,27 +387,25 @@ Status grind_planes_step(const StereoRig& rig, const RectifiedPair& rect,
   auto mclass = arena.allocate<std::uint8_t>(nt, "mesh classes");
   if (!mclass) return mclass.error();
   out.mesh_class = *mclass;
-  for (std::size_t i = 0; i < n; ++i)
-    out.vertex_class[i] = out.point_class[i] == PointClass::rock ? kVertexRock : kVertexGround;
+  PETRA_TRY(validate(params.support));
   PETRA_TRY(checkpoint(clock, PipelineStep::grind_planes));
   StepTimer timer(clock, timings, PipelineStep::grind_planes);
   ArenaScope scope(arena);
   auto plane_of = arena.allocate<std::uint8_t>(nt, "mesh triangle planes");
   if (!plane_of) return plane_of.error();
-  std::size_t nr = 0;
-  for (std::size_t i = 0; i < nt; ++i) {
-    bool r = true;
-    for (int k = 0; k < 3; ++k)
-      r = r && out.point_class[static_cast<std::size_t>(out.mesh[i].v[k])] == PointClass::rock;
-    out.mesh_class[i] = r ? kVertexRock : kVertexGround;
-    (*plane_of)[i] = r ? 1 : 0;
-    nr += r ? 1 : 0;
+  PETRA_TRY(grind_rock_triangles(rig, rect, request, params, arena, *plane_of, out));
+  SupportPlane s;
+  while (out.segmentation == SegmentMethod::click_region && out.support_planes < kMaxClasses &&
+         support_plane(out, params.support, s)) {
+    ++out.support_planes;
+    out.support_points += drop_support(out.xyz_mm, out.point_class, s, params.support);
+    fit_surroundings(out);
+    PETRA_TRY(grind_rock_triangles(rig, rect, request, params, arena, *plane_of, out));
   }
-  out.stats.rock_triangles = nr;
-  auto g = grind_planes_on_mesh(rig, rect, out, request.planes, params, arena, *plane_of);
-  if (!g) return g.error();
-  out.planes = *g;
+  for (std::size_t i = 0; i < n; ++i)
+    out.vertex_class[i] = out.point_class[i] == PointClass::rock ? kVertexRock : kVertexGround;
   for (std::size_t i = 0; i < nt; ++i) {
+    out.mesh_class[i] = rock_triangle(out, i) ? kVertexRock : kVertexGround;
     const std::uint8_t p = (*plane_of)[i];
     if (p == 0xFF) continue;
     const std::uint8_t cls = static_cast<std::uint8_t>(kVertexPlane0 + p);

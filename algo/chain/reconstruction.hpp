@@ -32,6 +32,7 @@
 #include "algo/surface/grind_planes.hpp"
 #include "algo/surface/ground_normals.hpp"
 #include "algo/surface/ground_segment.hpp"
+#include "algo/surface/support_surface.hpp"
 
 namespace petra {
 
@@ -50,6 +51,7 @@ struct ReconstructionParams {
   GroundParams ground;
   GroundNormalParams ground_normals;
   ClickRegionParams click_region;
+  SupportParams support;  // click_region: a plane on the surface the rock stands on
   GrindParams grind;
 };
 
@@ -96,6 +98,10 @@ struct ReconstructionOutput {
   GroundResultT<double> ground;  // click_region: plane of the points around the rock
   SegmentMethod segmentation = SegmentMethod::ground_plane;
   ClickRegionResult click_region;  // when segmentation == click_region
+  // click_region: planes found on the surface the rock stands on (support_surface),
+  // their points dropped from the rock and the planes found again.
+  int support_planes = 0;
+  std::size_t support_points = 0;
   GrindResult planes;
   ReconstructionStats stats;
 };

@@ -184,6 +184,11 @@ void print_summary(const EvalOptions& o, const PipelineOutput& out, double total
               gn.x(), gn.y(), gn.z(), r.ground.plane.d, r.ground.rms_mm, r.ground.ground_points);
   std::printf("  rock                   %zu points, %zu triangles\n", r.ground.rock_points,
               s.rock_triangles);
+  if (r.support_planes > 0)
+    std::printf(
+        "  support                %d plane(s) on the surface the rock stands on: %zu points "
+        "dropped from the rock, planes found again\n",
+        r.support_planes, r.support_points);
   std::printf("  grind planes found     %d of %d   (%d of them refined on the gray levels)\n",
               r.planes.accepted, o.planes, out.planes_refined);
   for (int k = 0; k < r.planes.accepted; ++k) {
