@@ -10,16 +10,12 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <vector>
+#include <cstdio>
 
 #include "algo/chain/pipeline.hpp"
-#include "sim/eval/planes_json.hpp"
 #include "sim/scene/scene_set.hpp"
-#include "sim/score/plane_score.hpp"
-#include "sim/score/planes_file.hpp"
-#include "sim/score/truth_file.hpp"
-#include "tests/support/eval_budget.hpp"
 #include "tests/support/rendered_scene.hpp"
+#include "tests/support/scene_chain_run.hpp"
 
 namespace petra {
 namespace {
@@ -43,29 +39,10 @@ StereoRig drifted(StereoRig rig, double deg) {
   return rig;
 }
 
-struct DriftOutcome {
-  Result<PipelineOutput> out = Error::make(Errc::not_ready, "not run");
-  sim::PlaneScore score;
-};
-
-DriftOutcome evaluate(const test::RenderedScene& f, const StereoRig& rig,
-                      const PipelineParams& params) {
-  const PipelineBudget b = test::eval_budget(rig.left.width, rig.left.height, 256, params);
-  std::vector<std::byte> block(Pipeline::arena_bytes(b, params));
-  Arena arena(block);
-  auto pipeline = Pipeline::create(rig, b, params, arena);
-  EXPECT_TRUE(pipeline.ok()) << pipeline.error().message;
-  PipelineRequest q;
-  q.roi = f.truth.roi;
-  q.planes = f.truth.planes;
-  DriftOutcome o;
-  o.out = pipeline->run(f.products.left.image.view(), f.products.right.image.view(), q, {});
-  if (o.out.ok()) {
-    auto planes = sim::parse_planes_json(eval::format_planes_json(o.out->result));
-    EXPECT_TRUE(planes.ok());
-    if (planes.ok()) o.score = sim::score_planes(f.truth, *planes);
-  }
-  return o;
+// The chain given `rig` on the fixture with the truth's ROI and c.
+test::SceneChainRun evaluate(const test::RenderedScene& f, const StereoRig& rig,
+                             const PipelineParams& params) {
+  return test::run_chain_on_scene(f, rig, params, 256, false);
 }
 
 TEST(EvalDrift, ARowDriftIsMeasuredAndCorrected) {
@@ -74,11 +51,11 @@ TEST(EvalDrift, ARowDriftIsMeasuredAndCorrected) {
   // Uncorrected (the check only says so) the DP's rows miss: refused.
   PipelineParams off;
   off.calib_check.correct_drift = false;
-  const DriftOutcome before = evaluate(f, rig, off);
+  const test::SceneChainRun before = evaluate(f, rig, off);
   EXPECT_FALSE(before.out.ok());
   // Corrected (the flight default): the offset measured, the rows moved by
   // it, every face found within the realistic targets.
-  const DriftOutcome o = evaluate(f, rig, {});
+  const test::SceneChainRun o = evaluate(f, rig, {});
   ASSERT_TRUE(o.out.ok()) << o.out.error().message;
   const CalibCheck& c = o.out->calibration;
   std::printf("drift: rows differ by %+.3f px, moved by %+.4f px\n", c.vertical_offset_px,
@@ -99,7 +76,7 @@ TEST(EvalDrift, ARowDriftIsMeasuredAndCorrected) {
 // as rectified.
 TEST(EvalDrift, AnAlignedPairIsLeftAsItIs) {
   const test::RenderedScene& f = drift_scene();
-  const DriftOutcome o = evaluate(f, f.rig, {});
+  const test::SceneChainRun o = evaluate(f, f.rig, {});
   ASSERT_TRUE(o.out.ok()) << o.out.error().message;
   EXPECT_EQ(o.out->calibration.verdict, CalibVerdict::ok);
   EXPECT_EQ(o.out->calibration.corrected_px, 0.0);

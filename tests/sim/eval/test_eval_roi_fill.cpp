@@ -10,17 +10,10 @@
 // (docs/reconstruction.md).
 #include <gtest/gtest.h>
 
-#include <memory>
-#include <vector>
-
 #include "algo/chain/pipeline.hpp"
-#include "sim/eval/planes_json.hpp"
 #include "sim/scene/scene_set.hpp"
-#include "sim/score/plane_score.hpp"
-#include "sim/score/planes_file.hpp"
-#include "sim/score/truth_file.hpp"
-#include "tests/support/eval_budget.hpp"
 #include "tests/support/rendered_scene.hpp"
+#include "tests/support/scene_chain_run.hpp"
 
 namespace petra {
 namespace {
@@ -36,34 +29,9 @@ const RoiFillScene& roi_fill_scene() {
   return f;
 }
 
-struct RoiFillOutcome {
-  Result<PipelineOutput> out = Error::make(Errc::not_ready, "not run");
-  sim::PlaneScore score;
-};
-
 // The chain on the fixture with the truth's ROI, c and click.
-RoiFillOutcome evaluate(const RoiFillScene& f, const PipelineParams& params) {
-  const PipelineBudget b = test::eval_budget(f.rig.left.width, f.rig.left.height, 320, params);
-  std::vector<std::byte> block(Pipeline::arena_bytes(b, params));
-  Arena arena(block);
-  auto pipeline = Pipeline::create(f.rig, b, params, arena);
-  EXPECT_TRUE(pipeline.ok()) << pipeline.error().message;
-  PipelineRequest q;
-  q.roi = f.truth.roi;
-  q.planes = f.truth.planes;
-  q.has_click = f.products.truth.click.has_value();
-  if (q.has_click) {
-    q.click_u = f.products.truth.click->x();
-    q.click_v = f.products.truth.click->y();
-  }
-  RoiFillOutcome o;
-  o.out = pipeline->run(f.products.left.image.view(), f.products.right.image.view(), q, {});
-  if (o.out.ok()) {
-    auto planes = sim::parse_planes_json(eval::format_planes_json(o.out->result));
-    EXPECT_TRUE(planes.ok());
-    if (planes.ok()) o.score = sim::score_planes(f.truth, *planes);
-  }
-  return o;
+test::SceneChainRun evaluate(const RoiFillScene& f, const PipelineParams& params) {
+  return test::run_chain_on_scene(f, f.rig, params, 320, true);
 }
 
 TEST(EvalRoiFill, TwoFacesAreNotTakenForGround) {
@@ -72,11 +40,11 @@ TEST(EvalRoiFill, TwoFacesAreNotTakenForGround) {
   // Without the normals' check the two faces pass as ground (the trap).
   PipelineParams off;
   off.reconstruction.ground_normals.min_share = 0.0;
-  const RoiFillOutcome trap = evaluate(f, off);
+  const test::SceneChainRun trap = evaluate(f, off);
   ASSERT_TRUE(trap.out.ok()) << trap.out.error().message;
   EXPECT_EQ(trap.out->result.segmentation, SegmentMethod::ground_plane);
   // With it (the flight default) the rock is grown from the click.
-  const RoiFillOutcome o = evaluate(f, {});
+  const test::SceneChainRun o = evaluate(f, {});
   ASSERT_TRUE(o.out.ok()) << o.out.error().message;
   EXPECT_EQ(o.out->result.segmentation, SegmentMethod::click_region);
   EXPECT_TRUE(o.score.count_agrees) << o.score.output_planes << " for " << o.score.truth_planes;
