@@ -62,7 +62,11 @@ arm_leave_safe() {  # SET_MODE IDLE; true when COMPLETED
   arm_ack SET_MODE "$c" COMPLETED 20
 }
 alive() {  # alive PID: the process runs (a zombie has ended)
-  [ -r /proc/$1/stat ] && ! grep -q '^[0-9]* ([^)]*) Z' /proc/$1/stat
+  # One read: a process reaped between a test of its stat file and a grep of it
+  # was taken for running (grep's error negated), and a stopped one for hung.
+  local s
+  s=$(cat /proc/$1/stat 2> /dev/null) || return 1
+  case "$s" in *") Z "*) return 1 ;; esac
 }
 # arm_stop: stops what this check started, by pid. One still running 30 s after SIGTERM is
 # killed and named (FAIL system/stops-on-sigterm); FSW_RC is petra-fsw's exit status.
@@ -72,7 +76,7 @@ arm_stop() {
   for p in $FSW_PID $DRIVES_PID $TLM_PID $DUMP_PID; do
     t=150
     while [ $t -gt 0 ] && alive "$p"; do sleep 0.2; t=$((t - 1)); done
-    alive "$p" && hung="$hung $(cat /proc/$p/comm)" && kill -9 "$p"
+    alive "$p" && hung="$hung $(cat /proc/$p/comm 2> /dev/null || echo "pid $p")" && kill -9 "$p"
   done
   FSW_RC=
   [ -n "$FSW_PID" ] && { wait "$FSW_PID" 2> /dev/null; FSW_RC=$?; }
