@@ -85,7 +85,7 @@ namespace {
 // 256: one rounding shift, no division). The second column (row) is read
 // only when its weight is non-zero, so the last column and row of the image
 // need no margin.
-std::uint8_t sample(const std::uint8_t* src, std::ptrdiff_t stride, RemapEntry m) {
+std::uint8_t remap_sample(const std::uint8_t* src, std::ptrdiff_t stride, RemapEntry m) {
   if (m.x_q4 == kRemapOutside) return kRectifyFill;
   const int fx = m.x_q4 & (kOne - 1);
   const int fy = m.y_q4 & (kOne - 1);
@@ -127,7 +127,7 @@ Status Rectifier::rectify(StereoSide side, ConstGray8View original, Gray8View re
     const RemapEntry* e = t.data() + static_cast<std::size_t>(y) * width_;
     std::uint8_t* out = rectified.row(y);
     for (int x = region.x; x < region.x + region.w; ++x)
-      out[x] = sample(original.data(), original.stride(), e[x]);
+      out[x] = remap_sample(original.data(), original.stride(), e[x]);
   }
   return ok_status();
 }
@@ -147,7 +147,7 @@ Status Rectifier::rectify_rows_moved(StereoSide side, ConstGray8View original, G
     const RemapEntry* a = t.data() + static_cast<std::size_t>(ya) * width_;
     const RemapEntry* b = t.data() + static_cast<std::size_t>(yb) * width_;
     for (int x = region.x; x < region.x + region.w; ++x)
-      out[x] = sample(original.data(), original.stride(), between(a[x], b[x], w));
+      out[x] = remap_sample(original.data(), original.stride(), between(a[x], b[x], w));
   }
   return ok_status();
 }

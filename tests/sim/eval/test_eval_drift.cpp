@@ -41,8 +41,8 @@ StereoRig drifted(StereoRig rig, double deg) {
 }
 
 // The chain given `rig` on the fixture with the truth's ROI and c.
-test::SceneChainRun evaluate(const test::RenderedScene& f, const StereoRig& rig,
-                             const PipelineParams& params) {
+test::SceneChainRun run_with_rig(const test::RenderedScene& f, const StereoRig& rig,
+                                 const PipelineParams& params) {
   return test::run_chain_on_scene(f, rig, params, 256, false);
 }
 
@@ -50,7 +50,7 @@ test::SceneChainRun evaluate(const test::RenderedScene& f, const StereoRig& rig,
 TEST(EvalDrift, ARowDriftIsCorrectedAndAnAlignedPairLeftAsItIs) {
   const test::RenderedScene& f = drift_scene();
   // Within the tolerance nothing is moved.
-  const test::SceneChainRun aligned = evaluate(f, f.rig, {});
+  const test::SceneChainRun aligned = run_with_rig(f, f.rig, {});
   ASSERT_TRUE(aligned.out.ok()) << aligned.out.error().message;
   EXPECT_EQ(aligned.out->calibration.verdict, CalibVerdict::ok);
   EXPECT_EQ(aligned.out->calibration.corrected_px, 0.0);
@@ -58,11 +58,11 @@ TEST(EvalDrift, ARowDriftIsCorrectedAndAnAlignedPairLeftAsItIs) {
   // Uncorrected (the check only says so) the DP's rows miss: refused.
   PipelineParams off;
   off.calib_check.correct_drift = false;
-  const test::SceneChainRun before = evaluate(f, rig, off);
+  const test::SceneChainRun before = run_with_rig(f, rig, off);
   EXPECT_FALSE(before.out.ok());
   // Corrected (the flight default): the offset measured, the rows moved by
   // it, every face found within the realistic targets.
-  const test::SceneChainRun o = evaluate(f, rig, {});
+  const test::SceneChainRun o = run_with_rig(f, rig, {});
   ASSERT_TRUE(o.out.ok()) << o.out.error().message;
   const CalibCheck& c = o.out->calibration;
   std::printf("drift: rows differ by %+.3f px, moved by %+.4f px\n", c.vertical_offset_px,
