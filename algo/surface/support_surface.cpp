@@ -6,8 +6,6 @@ namespace petra {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // Height in front of the plane and whether the point lies within the radius along it.
 struct Placed {
   double height_mm;
@@ -21,7 +19,7 @@ Placed place(const Eigen::Vector3d& x, const SupportPlane& plane, double radius_
 }
 
 double plane_radius_mm(const SupportPlane& plane) {
-  return std::sqrt(plane.area_mm2 / kPi);
+  return std::sqrt(plane.area_mm2 / M_PI);
 }
 
 double radius_mm(const SupportPlane& plane, const SupportParams& params) {

@@ -49,4 +49,16 @@ inline SceneChainRun run_chain_on_scene(const RenderedScene& f, const StereoRig&
   return o;
 }
 
+// Every designed face found within the realistic set's targets (3 deg, 2 mm,
+// on its facet) and the plane count right.
+inline void expect_realistic_targets(const sim::PlaneScore& score) {
+  EXPECT_TRUE(score.count_agrees) << score.output_planes << " for " << score.truth_planes;
+  for (const sim::FacetScore& s : score.facets) {
+    ASSERT_GE(s.plane, 0) << "facet " << s.facet << " unmatched";
+    EXPECT_LE(s.normal_error_deg, 3.0) << "facet " << s.facet;
+    EXPECT_LE(s.centroid_plane_distance_mm, 2.0) << "facet " << s.facet;
+    EXPECT_TRUE(s.centroid_on_facet) << "facet " << s.facet;
+  }
+}
+
 }  // namespace petra::test

@@ -70,13 +70,7 @@ TEST(EvalDrift, ARowDriftIsCorrectedAndAnAlignedPairLeftAsItIs) {
   EXPECT_EQ(c.verdict, CalibVerdict::corrected);
   EXPECT_GT(c.vertical_offset_px, 1.0);
   EXPECT_NEAR(c.corrected_px, c.vertical_offset_px, 1.0 / 32);
-  EXPECT_TRUE(o.score.count_agrees) << o.score.output_planes << " for " << o.score.truth_planes;
-  for (const sim::FacetScore& s : o.score.facets) {
-    ASSERT_GE(s.plane, 0) << "facet " << s.facet << " unmatched";
-    EXPECT_LE(s.normal_error_deg, 3.0) << "facet " << s.facet;
-    EXPECT_LE(s.centroid_plane_distance_mm, 2.0) << "facet " << s.facet;
-    EXPECT_TRUE(s.centroid_on_facet) << "facet " << s.facet;
-  }
+  test::expect_realistic_targets(o.score);
 }
 
 }  // namespace

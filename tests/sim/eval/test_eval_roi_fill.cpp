@@ -47,13 +47,7 @@ TEST(EvalRoiFill, TwoFacesAreNotTakenForGround) {
   const test::SceneChainRun o = evaluate(f, {});
   ASSERT_TRUE(o.out.ok()) << o.out.error().message;
   EXPECT_EQ(o.out->result.segmentation, SegmentMethod::click_region);
-  EXPECT_TRUE(o.score.count_agrees) << o.score.output_planes << " for " << o.score.truth_planes;
-  for (const sim::FacetScore& s : o.score.facets) {
-    ASSERT_GE(s.plane, 0) << "facet " << s.facet << " unmatched";
-    EXPECT_LE(s.normal_error_deg, 3.0) << "facet " << s.facet;
-    EXPECT_LE(s.centroid_plane_distance_mm, 2.0) << "facet " << s.facet;
-    EXPECT_TRUE(s.centroid_on_facet) << "facet " << s.facet;
-  }
+  test::expect_realistic_targets(o.score);
 }
 
 }  // namespace
