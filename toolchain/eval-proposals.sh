@@ -6,6 +6,8 @@
 # proposals' plane accuracy (docs/proposals.md, docs/performance.md).
 #   toolchain/eval-proposals.sh [PETRA_BINARY] [WORK_DIR]
 # e.g. toolchain/eval-proposals.sh build/release/sim/petra out/eval-scenes
+# DISPARITY=truth replays each scene's disparity_truth.pfm in the candidates'
+# chain runs (detection still matches): the back half's share of the misses.
 set -euo pipefail
 PETRA=${1:-build/release/sim/petra}
 WORK=${2:-out/eval-scenes}
@@ -15,9 +17,12 @@ if [ ! -f "$SET/done" ]; then
   "$PETRA" sim set --multi --out "$SET" > "$WORK/multi-set.log"
   touch "$SET/done"
 fi
-python3 - "$PETRA" "$SET" "$WORK/multi-propose" <<'PY'
+OUT="$WORK/multi-propose"
+if [ "${DISPARITY:-}" = truth ]; then OUT="$WORK/multi-propose-truth"; fi
+python3 - "$PETRA" "$SET" "$OUT" <<'PY'
 import json, os, subprocess, sys, statistics
 petra, set_dir, out_dir = sys.argv[1:4]
+replay = os.environ.get("DISPARITY") == "truth"
 tot = {"targets": 0, "targets_found": 0, "offered": 0, "offered_on_target": 0}
 best_err, best_cpl, best_on, best_target, scenes = [], [], 0, 0, 0
 print("| scene | proposals | targets found | offered on target | best: normal deg / centroid-plane mm / on facet |")
@@ -25,7 +30,8 @@ print("|---|---|---|---|---|")
 for s in sorted(d for d in os.listdir(set_dir) if d.startswith("scene_") and os.path.isdir(os.path.join(set_dir, d))):
     sd, od = os.path.join(set_dir, s), os.path.join(out_dir, s)
     r = subprocess.run([petra, "propose", "--calib", f"{sd}/calib.json", "--left", f"{sd}/left.png",
-                        "--right", f"{sd}/right.png", "--count", "8", "--out", od],
+                        "--right", f"{sd}/right.png", "--count", "8", "--out", od] +
+                       (["--disparity", f"{sd}/disparity_truth.pfm"] if replay else []),
                        capture_output=True, text=True)
     scenes += 1
     if r.returncode != 0:

@@ -303,16 +303,31 @@ Status Proposer::own_planes(int index, const PipelineOutput& out, const arm::Joi
   return {};
 }
 
+Result<PipelineOutput> Proposer::run_chain(ConstGray8View left, ConstGray8View right,
+                                           const PipelineRequest& q, const StepClock& clock,
+                                           const ConstDisparityMap* given) {
+  if (given == nullptr) return pipeline_->run(left, right, q, clock);
+  auto roi = pipeline_->rectifier().roi_to_rectified(StereoSide::left, q.roi);
+  if (!roi) return roi.error();
+  const Rect inside{roi->x - given->roi.x, roi->y - given->roi.y, roi->w, roi->h};
+  if (inside.x < 0 || inside.y < 0 || inside.x + inside.w > given->q4.width() ||
+      inside.y + inside.h > given->q4.height())
+    return Error::make(Errc::invalid_argument, "given: the map does not cover the ROI");
+  return pipeline_->run_with_disparity(left, ConstDisparityMap(given->q4.sub(inside), *roi), q,
+                                       clock);
+}
+
 Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
                           const arm::JointVector& current, const ProposalWeights& weights,
-                          const StepClock& clock, RockProposal& out) {
+                          const StepClock& clock, const ConstDisparityMap* given,
+                          RockProposal& out) {
   const RockCandidate& rock = detection_.rocks[index];
   const PipelineRequest q = chain_request(rock);
   out = RockProposal{};
   out.rock = rock;
   out.rock.roi = q.roi;  // what SELECT_ROI sends back
   out.planes_c = q.planes;
-  auto r = pipeline_->run(left, right, q, clock);
+  auto r = run_chain(left, right, q, clock, given);
   if (!r) {
     if (r.code() == Errc::cancelled) return r.error();
     out.note = ProposalNote::chain_refused;
@@ -381,7 +396,8 @@ void Proposer::rank(const ProposalRequest& request, int evaluated) {
 
 Result<const ProposalList*> Proposer::run(ConstGray8View left, ConstGray8View right,
                                           const ProposalRequest& request,
-                                          const arm::JointVector& current, const StepClock& clock) {
+                                          const arm::JointVector& current, const StepClock& clock,
+                                          const ConstDisparityMap* given) {
   if (arena_ == nullptr) return Error::make(Errc::not_ready, "proposer: not created");
   const PipelineBudget& pb = budget_.pipeline;
   PETRA_TRY(validate(request, pb.image_width, pb.image_height));
@@ -395,7 +411,8 @@ Result<const ProposalList*> Proposer::run(ConstGray8View left, ConstGray8View ri
   detection_ = *d;
   int evaluated = 0;
   for (int i = 0; i < detection_.count && evaluated < budget_.max_evaluated; ++i) {
-    PETRA_TRY(evaluate(left, right, i, current, request.weights, clock, evaluated_[evaluated++]));
+    PETRA_TRY(
+        evaluate(left, right, i, current, request.weights, clock, given, evaluated_[evaluated++]));
   }
   rank(request, evaluated);
   return &list_;

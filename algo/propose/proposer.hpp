@@ -58,7 +58,7 @@
 namespace petra {
 
 // c the proposer asks of the chain for every rock (see above).
-inline constexpr int kProposalPlanesC = kMaxProposalPlanes;
+inline constexpr int kProposalPlanesC = 3;
 
 struct ProposerBudget {
   PipelineBudget pipeline;  // the chain's (its max ROI is in rectified px)
@@ -133,9 +133,13 @@ class Proposer {
   // Bounded; no heap. `current` = the arm's pose now (IK branch hint). The
   // list is valid until the next run; the detection's ground and counts
   // until then too (detection()).
+  // `given`, when set, is a disparity map of the whole rectified left view
+  // (a ground truth or another matcher's) each candidate's chain run replays
+  // instead of matching (run_with_disparity): it tells the back half's share
+  // of a miss from the matcher's. Detection matches as always.
   Result<const ProposalList*> run(ConstGray8View left, ConstGray8View right,
                                   const ProposalRequest& request, const arm::JointVector& current,
-                                  const StepClock& clock);
+                                  const StepClock& clock, const ConstDisparityMap* given = nullptr);
 
   const DetectionResult& detection() const { return detection_; }
   const Pipeline& pipeline() const { return *pipeline_; }
@@ -146,7 +150,11 @@ class Proposer {
  private:
   Status evaluate(ConstGray8View left, ConstGray8View right, int index,
                   const arm::JointVector& current, const ProposalWeights& weights,
-                  const StepClock& clock, RockProposal& out);
+                  const StepClock& clock, const ConstDisparityMap* given, RockProposal& out);
+  // The candidate's chain run: matched, or `given` (whole rectified view) replayed.
+  Result<PipelineOutput> run_chain(ConstGray8View left, ConstGray8View right,
+                                   const PipelineRequest& q, const StepClock& clock,
+                                   const ConstDisparityMap* given);
   Status own_planes(int index, const PipelineOutput& out, const arm::JointVector& current,
                     RockProposal& proposal);
   arm::ArmReason reach(const GrindPlane& plane, const arm::JointVector& current) const;

@@ -24,6 +24,7 @@
 #include "sim/eval/eval_images.hpp"
 #include "sim/eval/planes_json.hpp"
 #include "sim/eval/ply_writer.hpp"
+#include "sim/io/disparity_replay.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/io/parse_point.hpp"
 #include "sim/io/parse_roi.hpp"
@@ -306,22 +307,13 @@ int run(const EvalOptions& o) {
   if (o.disparity.empty()) {
     out = pipeline->run(left->view(), right->view(), req, clock);
   } else {
-    auto pfm = io::read_pfm(o.disparity);
-    if (!pfm) return fail("eval", pfm.error().message);
-    if (pfm->width != left->width || pfm->height != left->height)
-      return fail("eval", ("--disparity " + o.disparity + ": not the size of the images").c_str());
+    auto read = io::read_disparity_q4(o.disparity, left->width, left->height);
+    if (!read) return fail("eval", read.error().message);
+    given = std::move(*read);
     auto droi = pipeline->rectifier().roi_to_rectified(StereoSide::left, req.roi);
     if (!droi) return fail("eval", droi.error().message);
-    given.assign(static_cast<std::size_t>(droi->w) * static_cast<std::size_t>(droi->h),
-                 kInvalidDisparity);
-    for (int y = 0; y < droi->h; ++y)
-      for (int x = 0; x < droi->w; ++x) {
-        const float d = pfm->view()(droi->x + x, droi->y + y);
-        if (std::isfinite(d) && std::abs(d) < 2000)
-          given[static_cast<std::size_t>(y) * droi->w + x] = disparity_q4(d);
-      }
-    const ConstDisparityMap map(ImageView<const std::int16_t>(given.data(), droi->w, droi->h),
-                                *droi);
+    const ImageView<const std::int16_t> whole(given.data(), left->width, left->height);
+    const ConstDisparityMap map(whole.sub(*droi), *droi);
     out = pipeline->run_with_disparity(left->view(), map, req, clock);
   }
   if (!out) {

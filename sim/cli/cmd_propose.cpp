@@ -1,5 +1,5 @@
 // `petra propose --calib C --left L --right R [--region x,y,w,h] [--count K]
-//                [--weights g,r,c,s] --out DIR`:
+//                [--weights g,r,c,s] [--disparity D.pfm] --out DIR`:
 // rock proposals over the whole pair as the rover would make them
 // (algo/propose/proposer, docs/proposals.md): writes DIR/proposals.json (the
 // issue-26 contract) and DIR/proposals.png, and prints the ranked list.
@@ -19,6 +19,7 @@
 #include "sim/eval/proposals_json.hpp"
 #include "sim/eval/proposals_picture.hpp"
 #include "sim/eval/propose_budget.hpp"
+#include "sim/io/disparity_replay.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/io/parse_roi.hpp"
 #include "sim/io/thread_cpu_clock.hpp"
@@ -28,7 +29,7 @@ namespace petra::cli {
 namespace {
 
 struct ProposeOptions {
-  std::string calib, left, right, region, weights, out;
+  std::string calib, left, right, region, weights, out, disparity;
   int count = ProposalRequest{}.max_proposals;
 };
 
@@ -103,9 +104,20 @@ int run(const ProposeOptions& o) {
   auto proposer = Proposer::create(*pipeline, budget, arm::rover_arm_geometry(),
                                    arm::default_joint_limits(), arena);
   if (!proposer) return fail("propose", proposer.error().message);
+  std::vector<std::int16_t> given;  // --disparity: replayed in every candidate's chain run
+  ConstDisparityMap given_map;
+  if (!o.disparity.empty()) {
+    auto read = io::read_disparity_q4(o.disparity, left->width, left->height);
+    if (!read) return fail("propose", read.error().message);
+    given = std::move(*read);
+    given_map =
+        ConstDisparityMap(ImageView<const std::int16_t>(given.data(), left->width, left->height),
+                          Rect{0, 0, left->width, left->height});
+  }
   const StepClock clock{sim::thread_cpu_ns, nullptr};
   const std::uint64_t t0 = sim::thread_cpu_ns(nullptr);
-  auto list = proposer->run(left->view(), right->view(), req, arm::stow_pose(), clock);
+  auto list = proposer->run(left->view(), right->view(), req, arm::stow_pose(), clock,
+                            given.empty() ? nullptr : &given_map);
   const double ms = static_cast<double>(sim::thread_cpu_ns(nullptr) - t0) / 1e6;
   if (!list) return fail("propose", list.error().message);
   std::error_code ec;
@@ -135,6 +147,9 @@ void add_propose(CLI::App& app, Outcome& outcome) {
   cmd->add_option("--weights", o.weights,
                   "g,r,c,s: weights of grindable, reach, certainty, size, each 0..1 "
                   "(default 1,1,0.5,0.25)");
+  cmd->add_option("--disparity", o.disparity,
+                  "replay this rectified left-view PFM in every candidate's chain run instead of "
+                  "matching (e.g. disparity_truth.pfm; detection still matches)");
   cmd->add_option("--out", o.out, "output directory")->required();
   cmd->callback([&outcome] {
     try {

@@ -7,8 +7,9 @@
 // a target (precision 1), the best plane within 3 deg and 2 mm of its facet;
 // sent back as SELECT_ROI, the chain gives the proposal's first plane again,
 // bit for bit; the run takes no heap; a region of bare ground gives an empty
-// list with its reason. The realistic multi-rock set's figures:
-// docs/proposals.md.
+// list with its reason. Replaying the scene's true disparity (`petra propose
+// --disparity`) offers the same faces, each exactly on its facet. The
+// realistic multi-rock set's figures: docs/proposals.md.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -18,6 +19,7 @@
 #include "algo/propose/proposer.hpp"
 #include "sim/eval/proposals_json.hpp"
 #include "sim/eval/propose_budget.hpp"
+#include "sim/io/disparity_replay.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/score/proposal_score.hpp"
 #include "sim/score/proposals_file.hpp"
@@ -163,6 +165,57 @@ TEST(ProposeScene, EveryGrindableReachableFaceIsOfferedAndNothingElse) {
   ASSERT_TRUE(none.ok()) << none.error().message;
   EXPECT_EQ((*none)->count, 0);
   EXPECT_STREQ((*none)->empty_reason, "no rock stands out of the ground");
+}
+
+// The candidates' chain runs replay a given map instead of matching: on the
+// exact map the back half puts every offered plane on its facet (the matched
+// run's are up to about a degree off), so a miss left then is the back
+// half's, not the matcher's. A map that does not cover a candidate's ROI is
+// that candidate's refusal, with the reason.
+TEST(ProposeScene, ReplayedTruthMapPutsEveryOfferedPlaneOnItsFacet) {
+  const ProposeFixture& f = propose_fixture();
+  ASSERT_FALSE(f.truth.rocks.empty());
+  auto q4 = io::read_disparity_q4((test::multirock_scene_dir() / "disparity_truth.pfm").string(),
+                                  f.left.width, f.left.height);
+  ASSERT_TRUE(q4.ok()) << q4.error().message;
+  const ConstDisparityMap whole(
+      ImageView<const std::int16_t>(q4->data(), f.left.width, f.left.height),
+      Rect{0, 0, f.left.width, f.left.height});
+  ProposerRun run;
+  create(f, run);
+  ASSERT_TRUE(run.proposer.ok());
+  ProposalRequest all;
+  all.max_proposals = kMaxProposals;
+  auto list = run.proposer->run(f.left.view(), f.right.view(), all, arm::stow_pose(), {}, &whole);
+  ASSERT_TRUE(list.ok()) << list.error().message;
+  auto file = sim::parse_proposals_json(eval::format_proposals_json(**list));
+  ASSERT_TRUE(file.ok()) << file.error().message;
+  auto score = sim::score_proposals(f.truth, *file, std::nullopt);
+  ASSERT_TRUE(score.ok()) << score.error().message;
+  EXPECT_GE(score->targets_found, 4);
+  int offered = 0;
+  for (const sim::ScoredPlane& p : score->planes) {
+    if (!p.offered) continue;
+    ++offered;
+    EXPECT_TRUE(p.best.matches && p.best.target) << "rank " << p.rank << " plane " << p.index;
+    EXPECT_LT(p.best.normal_error_deg, 0.1) << "rank " << p.rank << " plane " << p.index;
+    EXPECT_LT(p.best.centroid_plane_mm, 0.05) << "rank " << p.rank << " plane " << p.index;
+  }
+  EXPECT_GE(offered, 4);
+
+  // A map of the top-left quarter only: no candidate's ROI lies inside it.
+  const ConstDisparityMap quarter(
+      ImageView<const std::int16_t>(q4->data(), f.left.width / 2, f.left.height / 2, f.left.width),
+      Rect{0, 0, f.left.width / 2, f.left.height / 2});
+  auto refused =
+      run.proposer->run(f.left.view(), f.right.view(), all, arm::stow_pose(), {}, &quarter);
+  ASSERT_TRUE(refused.ok()) << refused.error().message;
+  ASSERT_GE((*refused)->candidates, 1);
+  const RockProposal& first = (*refused)->items[0];
+  EXPECT_EQ(first.note, ProposalNote::chain_refused);
+  EXPECT_NE(std::string(first.chain_error.message).find("does not cover the ROI"),
+            std::string::npos)
+      << first.chain_error.message;
 }
 
 }  // namespace
