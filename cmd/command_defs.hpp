@@ -59,6 +59,12 @@
   F(u8, rank, 1, "", 1, 8, "proposal by rank in that list (1 = best); its best offered plane") \
   F(f32, standoff_mm, 1, "mm", 0, 300, "approach waypoint distance along the plane normal")
 
+#define PETRA_ARM_GOTO_PROPOSAL_PLANE_FIELDS(F)                                                 \
+  F(u32, proposal_id, 1, "", 1, PETRA_CMD_U32_MAX, "the PROPOSALS packet's proposal_id")        \
+  F(u8, rank, 1, "", 1, 8, "proposal by rank in that list (1 = best)")                          \
+  F(u8, plane, 1, "", 1, 3, "its plane by PROPOSAL_PLANES' order (1 = first); must be offered") \
+  F(f32, standoff_mm, 1, "mm", 0, 300, "approach waypoint distance along the plane normal")
+
 #define PETRA_SET_MODE_FIELDS(F) \
   F(u8, mode, 1, "enum", 0, 5, "target mode: 1 IDLE (only from SAFE) or 5 SAFE (from any mode)")
 
@@ -91,6 +97,10 @@
   X(ArmGotoProposal, ARM_GOTO_PROPOSAL, 0x22, ::petra::kInIdle,                                   \
     "move the grinder to a proposal's best offered plane, with ARM_GOTO's checks",                \
     PETRA_ARM_GOTO_PROPOSAL_FIELDS)                                                               \
+  X(ArmGotoProposalPlane, ARM_GOTO_PROPOSAL_PLANE, 0x23, ::petra::kInIdle,                        \
+    "move the grinder to one offered plane of a proposal (PROPOSAL_PLANES), with ARM_GOTO's "     \
+    "checks",                                                                                     \
+    PETRA_ARM_GOTO_PROPOSAL_PLANE_FIELDS)                                                         \
   X(ArmStow, ARM_STOW, 0x21, ::petra::kInIdleOrSafe, "move the arm to its stowed pose",           \
     PETRA_NO_FIELDS)                                                                              \
   X(Abort, ABORT, 0x30, ::petra::kInAnyMode,                                                      \

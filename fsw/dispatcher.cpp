@@ -158,6 +158,7 @@ void Executive::dispatch(const cmd::Command& c) {
       return;
     case FC::ARM_GOTO:
     case FC::ARM_GOTO_PROPOSAL:
+    case FC::ARM_GOTO_PROPOSAL_PLANE:
     case FC::ARM_STOW:
       on_arm(c);
       return;
@@ -325,6 +326,22 @@ void Executive::poll_pipeline() {
     fail(done.function_code, done.counter, Reason::PIPELINE_ERROR);
 }
 
+// ARM_GOTO_PROPOSAL's target (the proposal's best offered plane) or
+// ARM_GOTO_PROPOSAL_PLANE's (the plane named, when it is offered); no plane
+// when the list, the rank or an offered plane is not there.
+Executive::ProposalTarget Executive::proposal_target(const cmd::Command& c) const {
+  if (c.code == cmd::FunctionCode::ARM_GOTO_PROPOSAL) {
+    const auto& a = std::get<cmd::ArmGotoProposalArgs>(c.args);
+    const RockProposal* p = evaluation_.proposal(a.proposal_id, a.rank);
+    const int k = p != nullptr ? offered_plane(*p) : -1;
+    return {k >= 0 ? &p->planes[k] : nullptr, a.standoff_mm};
+  }
+  const auto& a = std::get<cmd::ArmGotoProposalPlaneArgs>(c.args);
+  const RockProposal* p = evaluation_.proposal(a.proposal_id, a.rank);
+  const int k = a.plane - 1;
+  return {p != nullptr && plane_offered(*p, k) ? &p->planes[k] : nullptr, a.standoff_mm};
+}
+
 void Executive::on_arm(const cmd::Command& c) {
   if (deps_.arm == nullptr) return fail(fc_of(c), c.counter, Reason::ARM_UNAVAILABLE);
   if (estop_latched_) return fail(fc_of(c), c.counter, Reason::ARM_NOT_READY);  // e-stop held
@@ -334,15 +351,13 @@ void Executive::on_arm(const cmd::Command& c) {
     const tlm::GrindPlane* p = evaluation_.plane(a.plane_rank);
     if (p == nullptr) return fail(fc_of(c), c.counter, Reason::NO_SUCH_PLANE);
     s = deps_.arm->start_goto(ArmTarget{p->normal, p->centroid_mm, a.standoff_mm});
-  } else if (c.code == cmd::FunctionCode::ARM_GOTO_PROPOSAL) {
-    const auto& a = std::get<cmd::ArmGotoProposalArgs>(c.args);
-    const RockProposal* p = evaluation_.proposal(a.proposal_id, a.rank);
-    const int k = p != nullptr ? offered_plane(*p) : -1;
-    if (k < 0) return fail(fc_of(c), c.counter, Reason::NO_SUCH_PROPOSAL);
-    const GrindPlane& g = p->planes[k];
+  } else if (c.code != cmd::FunctionCode::ARM_STOW) {
+    const ProposalTarget t = proposal_target(c);
+    if (t.plane == nullptr) return fail(fc_of(c), c.counter, Reason::NO_SUCH_PROPOSAL);
+    const GrindPlane& g = *t.plane;
     s = deps_.arm->start_goto(ArmTarget{{g.normal.x(), g.normal.y(), g.normal.z()},
                                         {g.centroid_mm.x(), g.centroid_mm.y(), g.centroid_mm.z()},
-                                        a.standoff_mm});
+                                        t.standoff_mm});
   } else {
     s = deps_.arm->start_stow();
   }

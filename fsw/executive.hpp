@@ -122,6 +122,11 @@ class Executive {
   cmd::SelectionRefusal pick_refusal(const cmd::Command& c) const;
   ::petra::arm::JointVector arm_pose() const;
   void on_arm(const cmd::Command& c);
+  struct ProposalTarget {
+    const GrindPlane* plane = nullptr;
+    float standoff_mm = 0;
+  };
+  ProposalTarget proposal_target(const cmd::Command& c) const;
   void on_abort(const cmd::Command& c);
   void on_set_mode(const cmd::Command& c);
   Result<std::uint32_t> acquire_pair();  // the acquisition time, us

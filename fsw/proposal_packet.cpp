@@ -14,14 +14,11 @@ float unit(double v) {
   return static_cast<float>(std::clamp(v, 0.0, 1.0));
 }
 
-// The plane shown: the best offered one, else the first (its verdict and reach say why).
-void put_plane(const RockProposal& p, std::size_t i, tlm::Proposals& t) {
-  t.plane_count[i] = static_cast<std::uint8_t>(std::clamp(p.plane_count, 0, kMaxProposalPlanes));
-  if (p.plane_count <= 0) return;
-  const int offered = offered_plane(p);
-  const int k = offered >= 0 ? offered : 0;
+// Plane k of p into plane slot i of the arrays of a packet (PROPOSALS shows
+// one plane per proposal, PROPOSAL_PLANES every one: the same fields).
+template <class Packet>
+void put_plane_fields(const RockProposal& p, int k, std::size_t i, Packet& t) {
   const GrindPlane& g = p.planes[k];
-  t.plane_offered[i] = offered >= 0 ? 1 : 0;
   for (std::size_t c = 0; c < 3; ++c) {
     t.normal[3 * i + c] = static_cast<float>(g.normal[static_cast<int>(c)]);
     t.centroid_mm[3 * i + c] = static_cast<float>(g.centroid_mm[static_cast<int>(c)]);
@@ -31,6 +28,19 @@ void put_plane(const RockProposal& p, std::size_t i, tlm::Proposals& t) {
   t.offset_sigma_mm[i] = static_cast<float>(g.offset_sigma_mm);
   t.verdict[i] = static_cast<std::uint8_t>(g.verdict);
   t.reach[i] = static_cast<std::uint8_t>(p.reach[k]);
+}
+
+std::uint8_t carried(const RockProposal& p) {
+  return static_cast<std::uint8_t>(std::clamp(p.plane_count, 0, kMaxProposalPlanes));
+}
+
+// The plane shown: the best offered one, else the first (its verdict and reach say why).
+void put_plane(const RockProposal& p, std::size_t i, tlm::Proposals& t) {
+  t.plane_count[i] = carried(p);
+  if (p.plane_count <= 0) return;
+  const int offered = offered_plane(p);
+  t.plane_offered[i] = offered >= 0 ? 1 : 0;
+  put_plane_fields(p, offered >= 0 ? offered : 0, i, t);
 }
 
 void put_slot(const RockProposal& p, std::size_t i, tlm::Proposals& t) {
@@ -56,11 +66,14 @@ void put_slot(const RockProposal& p, std::size_t i, tlm::Proposals& t) {
 
 }  // namespace
 
+bool plane_offered(const RockProposal& p, int k) {
+  return k >= 0 && k < std::min(p.plane_count, kMaxProposalPlanes) &&
+         p.planes[k].verdict == PlaneVerdict::accepted && p.reach[k] == ::petra::arm::ArmReason::ok;
+}
+
 int offered_plane(const RockProposal& p) {
-  const int n = std::min(p.plane_count, kMaxProposalPlanes);
-  for (int k = 0; k < n; ++k)
-    if (p.planes[k].verdict == PlaneVerdict::accepted && p.reach[k] == ::petra::arm::ArmReason::ok)
-      return k;
+  for (int k = 0; k < kMaxProposalPlanes; ++k)
+    if (plane_offered(p, k)) return k;
   return -1;
 }
 
@@ -86,6 +99,22 @@ tlm::Proposals proposals_packet(const ProposalList& list) {
   t.empty_reason = static_cast<std::uint8_t>(why);
   t.status = why == ProposalEmpty::NONE ? 0 : 1;
   for (int i = 0; i < n; ++i) put_slot(list.items[i], static_cast<std::size_t>(i), t);
+  return t;
+}
+
+tlm::ProposalPlanes proposal_planes_packet(const ProposalList& list) {
+  tlm::ProposalPlanes t;
+  const int n = std::clamp(list.count, 0, kMaxProposals);
+  t.count = static_cast<std::uint8_t>(n);
+  for (int i = 0; i < n; ++i) {
+    const RockProposal& p = list.items[i];
+    t.plane_count[static_cast<std::size_t>(i)] = carried(p);
+    for (int k = 0; k < carried(p); ++k) {
+      const auto slot = static_cast<std::size_t>(i * kMaxProposalPlanes + k);
+      t.offered[slot] = plane_offered(p, k) ? 1 : 0;
+      put_plane_fields(p, k, slot, t);
+    }
+  }
   return t;
 }
 

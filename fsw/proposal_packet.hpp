@@ -20,7 +20,14 @@ enum class ProposalEmpty : std::uint8_t {
 #undef PETRA_EMPTY_ENUM
 };
 
-// Index of the proposal's best offered plane (verdict grindable, reach ok), or -1.
+static_assert(PETRA_MAX_PROPOSAL_PLANES == kMaxProposalPlanes,
+              "PROPOSAL_PLANES holds every plane a proposal carries");
+
+// Whether the proposal's plane k (0-based) is offered: carried, verdict
+// grindable and reach ok.
+bool plane_offered(const RockProposal& p, int k);
+
+// Index of the proposal's best offered plane (its first offered), or -1.
 int offered_plane(const RockProposal& p);
 
 // Why nothing is offered (NONE when a proposal offers a plane), from the list's counts and notes.
@@ -29,6 +36,10 @@ ProposalEmpty empty_reason(const ProposalList& list);
 // The packet of a finished run (identity, region and time are the caller's):
 // status 0 or 1, count, candidates, empty_reason and every slot.
 tlm::Proposals proposals_packet(const ProposalList& list);
+
+// The PROPOSAL_PLANES packet of the same run: every carried plane of every
+// proposal (identity and frame are the caller's).
+tlm::ProposalPlanes proposal_planes_packet(const ProposalList& list);
 
 // SELECT_PROPOSAL's selection: the proposal's ROI, click and c as SELECT_ROI
 // arguments, for SELECT_ROI's checks (cmd::selection_refusal).

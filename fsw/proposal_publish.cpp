@@ -1,6 +1,7 @@
 // EvaluationService's rock proposals: a PROPOSE run on the evaluation's
-// worker, then its list to telemetry (PROPOSALS), the picture (PRODUCT kind
-// 5) and events, and the list kept for SELECT_PROPOSAL and ARM_GOTO_PROPOSAL.
+// worker, then its list to telemetry (PROPOSALS, then PROPOSAL_PLANES), the
+// picture (PRODUCT kind 5) and events, and the list kept for SELECT_PROPOSAL,
+// ARM_GOTO_PROPOSAL and ARM_GOTO_PROPOSAL_PLANE.
 #include <algorithm>
 
 #include "fsw/evaluation_service.hpp"
@@ -75,6 +76,10 @@ bool EvaluationService::publish_proposals() {
   }
   p.picture_step = static_cast<std::uint8_t>(stage_picture(listed_));
   w_.queue->push(p, t);
+  tlm::ProposalPlanes planes = proposal_planes_packet(listed_);
+  planes.proposal_id = proposal_id_;
+  planes.frame = frame_;
+  w_.queue->push(planes, t);
   int offered = 0;
   for (int i = 0; i < p.count; ++i) offered += offered_plane(listed_.items[i]) >= 0 ? 1 : 0;
   if (p.status == 0)

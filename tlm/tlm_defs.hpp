@@ -225,6 +225,31 @@
   F(u16, data_len, 1, "bytes", 0, PETRA_PRODUCT_DATA_BYTES, "bytes of data used in this chunk")  \
   F(u8, data, PETRA_PRODUCT_DATA_BYTES, "", 0, 255, "product bytes [chunk*1024, +data_len)")
 
+// PROPOSAL_PLANES: follows each PROPOSALS packet of a finished run (same
+// proposal_id): every plane each proposal carries on board, not only the one
+// PROPOSALS shows, as parallel arrays of PETRA_MAX_PROPOSALS x
+// PETRA_MAX_PROPOSAL_PLANES slots (slot 3 i + j = plane j + 1 of rank i + 1;
+// slots from plane_count on are 0). ARM_GOTO_PROPOSAL_PLANE takes any offered one.
+#define PETRA_MAX_PROPOSAL_PLANES 3
+#define PETRA_PROPOSAL_PLANE_SLOTS (PETRA_MAX_PROPOSALS * PETRA_MAX_PROPOSAL_PLANES)
+#define PETRA_PROPOSAL_PLANES_FIELDS(F)                                                 \
+  F(u32, proposal_id, 1, "", 0, PETRA_U32_MAX, "the PROPOSALS packet's proposal_id")    \
+  F(u32, frame, 1, "", 0, PETRA_U32_MAX, "stereo pair it ran on")                       \
+  F(u8, count, 1, "", 0, PETRA_MAX_PROPOSALS, "proposals in the list")                  \
+  F(u8, plane_count, PETRA_MAX_PROPOSALS, "", 0, PETRA_MAX_PROPOSAL_PLANES,             \
+    "per proposal: planes it carries on board")                                         \
+  F(u8, offered, PETRA_PROPOSAL_PLANE_SLOTS, "bool", 0, 1,                              \
+    "1: grindable and reached (ARM_GOTO_PROPOSAL_PLANE's target)")                      \
+  F(f32, normal, 3 * PETRA_PROPOSAL_PLANE_SLOTS, "1", -1, 1,                            \
+    "unit normal out of the rock, calibration world frame")                             \
+  F(f32, centroid_mm, 3 * PETRA_PROPOSAL_PLANE_SLOTS, "mm", -1e7, 1e7,                  \
+    "where the grinder goes, world frame")                                              \
+  F(f32, area_mm2, PETRA_PROPOSAL_PLANE_SLOTS, "mm2", 0, 1e12, "supporting area")       \
+  F(f32, normal_sigma_deg, PETRA_PROPOSAL_PLANE_SLOTS, "deg", 0, 180, "normal 1-sigma") \
+  F(f32, offset_sigma_mm, PETRA_PROPOSAL_PLANE_SLOTS, "mm", 0, 1e6, "offset 1-sigma")   \
+  F(u8, verdict, PETRA_PROPOSAL_PLANE_SLOTS, "enum", 0, 7, "as PROPOSALS' verdict")     \
+  F(u8, reach, PETRA_PROPOSAL_PLANE_SLOTS, "enum", 0, 6, "as PROPOSALS' reach")
+
 #define PETRA_TELEMETRY(X)                                                                       \
   X(Housekeeping, HK, 0x010, "housekeeping: mode, counters, memory, loop and pipeline timing",   \
     PETRA_HK_FIELDS)                                                                             \
@@ -244,6 +269,9 @@
     PETRA_GROUND_PLANE_FIELDS)                                                                   \
   X(Proposals, PROPOSALS, 0x023, "the ranked rock proposals of one PROPOSE run",                 \
     PETRA_PROPOSALS_FIELDS)                                                                      \
+  X(ProposalPlanes, PROPOSAL_PLANES, 0x024,                                                      \
+    "every plane each proposal of one PROPOSE run carries (PROPOSALS shows one)",                \
+    PETRA_PROPOSAL_PLANES_FIELDS)                                                                \
   X(Product, PRODUCT, 0x030,                                                                     \
     "one chunk of a product (image or point cloud); sequence flags mark first/last chunk",       \
     PETRA_PRODUCT_FIELDS)

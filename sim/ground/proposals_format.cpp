@@ -62,7 +62,41 @@ std::string slot_line(const tlm::Proposals& p, std::size_t i) {
          std::string(buf, static_cast<std::size_t>(n < 0 ? 0 : std::min<int>(n, sizeof(buf) - 1)));
 }
 
+// Plane slot k of PROPOSAL_PLANES: rank k / 3 + 1, plane k % 3 + 1.
+std::string plane_line(const tlm::ProposalPlanes& p, std::size_t k) {
+  char buf[384];
+  const int n = std::snprintf(
+      buf, sizeof(buf),
+      "  #%zu.%zu %s: normal (%.4f, %.4f, %.4f) centroid (%.2f, %.2f, %.2f) mm area %.0f mm2 "
+      "sigma %.2f deg %.2f mm, %s, reach %s",
+      k / PETRA_MAX_PROPOSAL_PLANES + 1, k % PETRA_MAX_PROPOSAL_PLANES + 1,
+      p.offered[k] != 0 ? "offered" : "not offered", static_cast<double>(p.normal[3 * k]),
+      static_cast<double>(p.normal[3 * k + 1]), static_cast<double>(p.normal[3 * k + 2]),
+      static_cast<double>(p.centroid_mm[3 * k]), static_cast<double>(p.centroid_mm[3 * k + 1]),
+      static_cast<double>(p.centroid_mm[3 * k + 2]), static_cast<double>(p.area_mm2[k]),
+      static_cast<double>(p.normal_sigma_deg[k]), static_cast<double>(p.offset_sigma_mm[k]),
+      verdict_key(static_cast<PlaneVerdict>(p.verdict[k])),
+      arm::arm_reason_name(static_cast<arm::ArmReason>(p.reach[k])));
+  return std::string(buf, static_cast<std::size_t>(n < 0 ? 0 : std::min<int>(n, sizeof(buf) - 1)));
+}
+
 }  // namespace
+
+std::string format_proposal_planes(const tlm::ProposalPlanes& p) {
+  const std::size_t n = p.count < PETRA_MAX_PROPOSALS ? p.count : PETRA_MAX_PROPOSALS;
+  std::size_t planes = 0, offered = 0;
+  std::string lines;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < p.plane_count[i] && j < PETRA_MAX_PROPOSAL_PLANES; ++j) {
+      const std::size_t k = i * PETRA_MAX_PROPOSAL_PLANES + j;
+      ++planes;
+      offered += p.offered[k] != 0 ? 1 : 0;
+      lines += "\n" + plane_line(p, k);
+    }
+  return "proposal planes " + std::to_string(p.proposal_id) + " on pair " +
+         std::to_string(p.frame) + ": " + std::to_string(planes) + " planes of " +
+         std::to_string(n) + " proposals, " + std::to_string(offered) + " offered" + lines;
+}
 
 std::string format_proposals(const tlm::Proposals& p) {
   char buf[256];

@@ -1,4 +1,4 @@
-// The PROPOSALS packet in the operator's words (`petra tlm`, the ground
+// The PROPOSALS and PROPOSAL_PLANES packets in the operator's words (`petra tlm`, the ground
 // station's line): a summary, then one line per proposal with its ROI, click,
 // rock, c, note, score and terms, and the plane shown with its verdict and
 // reach. Names come from the packet definition (tlm/tlm_defs.hpp) and algo's
@@ -18,5 +18,8 @@ std::string proposal_empty_name(long code);
 const char* proposal_note_key(std::uint8_t note);
 // The summary and one indented line per proposal (no trailing newline).
 std::string format_proposals(const tlm::Proposals& p);
+// PROPOSAL_PLANES: a summary, then one indented line per carried plane
+// ("#rank.plane offered|not offered: normal, centroid, area, sigma, verdict, reach").
+std::string format_proposal_planes(const tlm::ProposalPlanes& p);
 
 }  // namespace petra::ground

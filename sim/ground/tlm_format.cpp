@@ -171,6 +171,8 @@ std::string format_line(const tlm::TmPacket& p, std::uint32_t missing_before) {
             << ")";
         } else if constexpr (std::is_same_v<B, tlm::Proposals>) {
           o << format_proposals(b);
+        } else if constexpr (std::is_same_v<B, tlm::ProposalPlanes>) {
+          o << format_proposal_planes(b);
         } else if constexpr (std::is_same_v<B, tlm::GrindPlane>) {
           char buf[384];
           std::snprintf(

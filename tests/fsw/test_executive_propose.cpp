@@ -1,7 +1,8 @@
 // PROPOSE end to end in-process (real UDP, file camera, the scripted job
 // returning a hand-built ProposalList in place of the proposer): routing,
-// the PROPOSALS packet and picture, SELECT_PROPOSAL and ARM_GOTO_PROPOSAL,
-// and the refusals (wrong mode, busy, no proposer, no such proposal).
+// the PROPOSALS and PROPOSAL_PLANES packets and picture, SELECT_PROPOSAL,
+// ARM_GOTO_PROPOSAL and ARM_GOTO_PROPOSAL_PLANE, and the refusals (wrong
+// mode, busy, no proposer, no such proposal).
 #include <gtest/gtest.h>
 
 #include <map>
@@ -47,6 +48,17 @@ ProposalList two_proposals() {
   b.planes[0] = plane(PlaneVerdict::too_rough, {0, 0, 1}, {1, 2, 3});
   b.note = ProposalNote::no_grindable_plane;
   b.score = ProposalScore{0.1, 0.0, 0.5, 0.2, 0.15};
+  return l;
+}
+
+// Rank 1 carries a third plane, offered too: ARM_GOTO_PROPOSAL still takes
+// the second (the best offered), ARM_GOTO_PROPOSAL_PLANE either.
+ProposalList three_planes_on_rank_1() {
+  ProposalList l = two_proposals();
+  RockProposal& a = l.items[0];
+  a.plane_count = 3;
+  a.planes[2] = plane(PlaneVerdict::accepted, {-0.6, 0, 0.8}, {30.5, 240, 70.25});
+  a.reach[2] = arm::ArmReason::ok;
   return l;
 }
 
@@ -320,6 +332,74 @@ TEST(ExecutivePropose, ArmGotoProposalTargetsTheOfferedPlaneThroughTheArmsChecks
   EXPECT_EQ(arm.goal.normal[0], want.normal.x());
   EXPECT_EQ(arm.goal.centroid_mm[1], want.centroid_mm.y());
   EXPECT_EQ(arm.goal.standoff_mm, 40.0);
+}
+
+TEST(ExecutivePropose, ProposalPlanesFollowTheListWithEveryCarriedPlane) {
+  ExecutiveHarness h;
+  h.job.proposals = three_planes_on_rank_1();
+  ASSERT_TRUE(h.boot().ok());
+  const tlm::Proposals p = propose(h, whole_image());
+  const auto all = h.all<tlm::ProposalPlanes>();
+  ASSERT_EQ(all.size(), 1u);
+  const tlm::ProposalPlanes& q = all[0];
+  EXPECT_EQ(q.proposal_id, p.proposal_id);
+  EXPECT_EQ(q.frame, p.frame);
+  EXPECT_EQ(q.count, 2);
+  EXPECT_EQ(q.plane_count[0], 3);
+  EXPECT_EQ(q.plane_count[1], 1);
+  EXPECT_EQ(q.plane_count[2], 0);
+  // Slot 3 i + k: rank i + 1's plane k + 1.
+  EXPECT_EQ(q.offered[0], 0);  // out of reach
+  EXPECT_EQ(q.reach[0], static_cast<std::uint8_t>(arm::ArmReason::beyond_reach));
+  EXPECT_EQ(q.offered[1], 1);
+  EXPECT_EQ(q.offered[2], 1);
+  EXPECT_FLOAT_EQ(q.normal[3 * 2 + 0], -0.6f);
+  EXPECT_FLOAT_EQ(q.centroid_mm[3 * 2 + 2], 70.25f);
+  EXPECT_FLOAT_EQ(q.area_mm2[2], 1500.0f);
+  EXPECT_EQ(q.offered[3], 0);
+  EXPECT_EQ(q.verdict[3], static_cast<std::uint8_t>(PlaneVerdict::too_rough));
+  EXPECT_FLOAT_EQ(q.centroid_mm[3 * 3 + 2], 3.0f);
+  EXPECT_EQ(q.area_mm2[4], 0.0f);  // rank 2 carries one plane
+  // PROPOSALS still shows rank 1's best offered plane, the second.
+  EXPECT_FLOAT_EQ(p.normal[0], 0.6f);
+}
+
+TEST(ExecutivePropose, ArmGotoProposalPlaneTakesAnyOfferedPlaneAndRefusesTheRest) {
+  ExecutiveHarness h;
+  RecordingArm arm;
+  h.arm = &arm;
+  h.job.proposals = three_planes_on_rank_1();
+  ASSERT_TRUE(h.boot().ok());
+  const tlm::Proposals p = propose(h, whole_image());
+  auto refused = [&](std::uint32_t id, int rank, int plane) {
+    cmd::ArmGotoProposalPlaneArgs a;
+    a.proposal_id = id;
+    a.rank = static_cast<std::uint8_t>(rank);
+    a.plane = static_cast<std::uint8_t>(plane);
+    a.standoff_mm = 40.0f;
+    const auto c = h.make(FunctionCode::ARM_GOTO_PROPOSAL_PLANE, a);
+    h.send(c);
+    EXPECT_TRUE(h.cycle_until([&] { return h.has_ack(c.counter, AckStage::FAILED); }));
+    return ack_reason(h, c.counter);
+  };
+  EXPECT_EQ(refused(p.proposal_id, 1, 1), Reason::NO_SUCH_PROPOSAL);  // out of reach
+  EXPECT_EQ(refused(p.proposal_id, 2, 1), Reason::NO_SUCH_PROPOSAL);  // too rough
+  EXPECT_EQ(refused(p.proposal_id, 2, 2), Reason::NO_SUCH_PROPOSAL);  // not carried
+  EXPECT_EQ(refused(p.proposal_id + 1, 1, 3), Reason::NO_SUCH_PROPOSAL);
+  EXPECT_EQ(arm.gotos, 0);
+  cmd::ArmGotoProposalPlaneArgs a;
+  a.proposal_id = p.proposal_id;
+  a.rank = 1;
+  a.plane = 3;
+  a.standoff_mm = 60.0f;
+  const auto go = h.make(FunctionCode::ARM_GOTO_PROPOSAL_PLANE, a);
+  h.send(go);
+  ASSERT_TRUE(h.cycle_until([&] { return h.has_ack(go.counter, AckStage::COMPLETED); }));
+  ASSERT_EQ(arm.gotos, 1);
+  const GrindPlane& want = h.job.proposals.items[0].planes[2];
+  EXPECT_EQ(arm.goal.normal[0], want.normal.x());
+  EXPECT_EQ(arm.goal.centroid_mm[2], want.centroid_mm.z());
+  EXPECT_EQ(arm.goal.standoff_mm, 60.0);
 }
 
 }  // namespace

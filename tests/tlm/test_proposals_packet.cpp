@@ -1,5 +1,6 @@
 // The PROPOSALS packet: a full list round trips through the codec field by
-// field, and the packet stays within the downlink's largest packet (PRODUCT).
+// field, and the packet stays within the downlink's largest packet (PRODUCT),
+// as PROPOSAL_PLANES does.
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -87,6 +88,17 @@ TEST(ProposalsPacket, FitsWithinTheLargestPacketAndChecksItsRanges) {
   const int bad = p.out_of_range();
   ASSERT_GE(bad, 0);
   EXPECT_STREQ(Proposals::fields()[static_cast<std::size_t>(bad)].name, "score_total");
+}
+
+TEST(ProposalsPacket, ProposalPlanesFitWithinTheLargestPacket) {
+  // 953 payload bytes (11 + 24 planes x 39 + 8 plane counts): within PRODUCT's.
+  EXPECT_EQ(ProposalPlanes::wire_bytes(), 953u);
+  EXPECT_LE(ProposalPlanes::wire_bytes(), Product::wire_bytes());
+  ProposalPlanes p;
+  p.plane_count[5] = 4;  // a proposal carries at most 3 planes
+  const int bad = p.out_of_range();
+  ASSERT_GE(bad, 0);
+  EXPECT_STREQ(ProposalPlanes::fields()[static_cast<std::size_t>(bad)].name, "plane_count");
 }
 
 }  // namespace

@@ -161,6 +161,7 @@ function onTlm(m) {
       break;
     case 'GROUND_PLANE': state.ground = f; break;
     case 'PROPOSALS': proposals.onPacket(f, m.names); break;
+    case 'PROPOSAL_PLANES': proposals.onPlanes(f); break;
     case 'ARM_STATUS': onArmStatus(f, m.skeleton); break;
     case 'PARAM_VALUE': addEvent('INFO', m.line); break;
   }

@@ -17,6 +17,7 @@ export class ProposalsPanel {
     this.palette = palette;
     this.onPicked = onPicked;
     this.list = null;   // fields of the last PROPOSALS
+    this.planes = null; // fields of the last PROPOSAL_PLANES (every plane a proposal carries)
     this.names = null;  // its names (notes, verdicts, reaches, empty reason)
     this.picked = null; // rank
     els.picture.addEventListener('click', (e) => this.pickAt(e));
@@ -36,6 +37,27 @@ export class ProposalsPanel {
     this.names = names;
     this.picked = null;
     this.render();
+  }
+
+  // Every carried plane of the list shown (it follows PROPOSALS with the same id).
+  onPlanes(fields) {
+    this.planes = fields;
+    this.render(false);
+  }
+
+  // The offered planes of rank i + 1 beyond the one shown, as "plane k: n (...)"
+  // (ARM_GOTO_PROPOSAL_PLANE takes any of them).
+  morePlanes(i) {
+    const p = this.planes;
+    if (!p || !this.list || p.proposal_id !== this.list.proposal_id) return '';
+    const shown = slot(this.list.normal, i, 3).join();
+    const more = [];
+    for (let j = 0; j < p.plane_count[i]; ++j) {
+      const k = 3 * i + j;
+      const n = slot(p.normal, k, 3);
+      if (p.offered[k] === 1 && n.join() !== shown) more.push(`plane ${j + 1}: n (${n.map((a) => fmt(a, 3)).join(', ')})`);
+    }
+    return more.length ? `; also offered ${more.join('; ')}` : '';
   }
 
   // The picture of the list shown (same id); its pixels are image px / picture_step.
@@ -102,7 +124,8 @@ export class ProposalsPanel {
     const offered = l.plane_offered[i] === 1;
     const plane = l.plane_count[i] === 0 ? 'none'
       : `${offered ? 'offered' : 'not offered'}: n (${slot(l.normal, i, 3).map((a) => fmt(a, 3)).join(', ')}), `
-        + `${this.names.verdicts[i]}, reach ${this.names.reaches[i]}, σ ${fmt(l.normal_sigma_deg[i], 2)}° ${fmt(l.offset_sigma_mm[i], 2)} mm`;
+        + `${this.names.verdicts[i]}, reach ${this.names.reaches[i]}, σ ${fmt(l.normal_sigma_deg[i], 2)}° ${fmt(l.offset_sigma_mm[i], 2)} mm`
+        + this.morePlanes(i);
     const cells = [l.rank[i], `${x}, ${y}, ${w} × ${h}`, `${u}, ${v}`, `${fmt(l.height_mm[i])} / ${fmt(l.size_mm[i])}`,
       l.planes_c[i], this.names.notes[i],
       `${fmt(l.score_total[i], 3)} (${[l.score_grindable[i], l.score_reach[i], l.score_certainty[i], l.score_size[i]].map((a) => fmt(a, 2)).join(' ')})`,

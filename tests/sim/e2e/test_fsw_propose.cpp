@@ -4,7 +4,8 @@
 // test_flight_job_memory), in a region around its rock: the rock is listed
 // first and offers a plane; SELECT_PROPOSAL then EVALUATE (the chain rebuilt
 // in the proposer's place) downlinks that very plane (the same chain request:
-// identical up to the PROPOSALS packet's f32); the picture follows. The whole
+// identical up to the PROPOSALS packet's f32); PROPOSAL_PLANES carries it among
+// rank 1's planes; the picture follows. The whole
 // 1024 x 768 view with neighbour rocks is algo/propose's own test
 // (tests/sim/eval/test_propose_scene.cpp).
 #include <gtest/gtest.h>
@@ -78,6 +79,18 @@ TEST(FswPropose, TheRockIsProposedAndItsSelectionGivesTheSamePlane) {
   EXPECT_GE(cv, l.roi_px[1]);
   EXPECT_LT(cv, l.roi_px[1] + l.roi_px[3]);
   ASSERT_EQ(l.plane_offered[0], 1);
+  // PROPOSAL_PLANES follows with every plane rank 1 carries; the one shown is among its offered.
+  const auto carried = h.all<tlm::ProposalPlanes>();
+  ASSERT_EQ(carried.size(), 1u);
+  EXPECT_EQ(carried[0].proposal_id, l.proposal_id);
+  EXPECT_EQ(carried[0].plane_count[0], l.plane_count[0]);
+  int shown = 0;
+  for (std::size_t j = 0; j < carried[0].plane_count[0]; ++j)
+    shown += carried[0].offered[j] == 1 && carried[0].normal[3 * j] == l.normal[0] &&
+                     carried[0].centroid_mm[3 * j + 2] == l.centroid_mm[2]
+                 ? 1
+                 : 0;
+  EXPECT_EQ(shown, 1);
 
   cmd::SelectProposalArgs pick;
   pick.proposal_id = l.proposal_id;

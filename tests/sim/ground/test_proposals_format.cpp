@@ -1,5 +1,6 @@
-// `petra tlm` on PROPOSALS and on PROPOSE's refusals: the list readably, the
-// empty reason and the refused field by name.
+// `petra tlm` on PROPOSALS, PROPOSAL_PLANES and on PROPOSE's refusals: the
+// list and every carried plane readably, the empty reason and the refused
+// field by name.
 #include "sim/ground/proposals_format.hpp"
 
 #include <gtest/gtest.h>
@@ -50,6 +51,33 @@ TEST(ProposalsFormat, ListsEachProposalWithItsScoreAndPlane) {
   EXPECT_NE(s.find("no_grindable_plane"), std::string::npos) << s;
   EXPECT_NE(s.find("best (not offered) plane"), std::string::npos) << s;
   EXPECT_NE(s.find("too_rough, reach ok"), std::string::npos) << s;
+}
+
+TEST(ProposalsFormat, ListsEveryCarriedPlaneByRankAndPlane) {
+  tlm::ProposalPlanes p;
+  p.proposal_id = 3;
+  p.frame = 9;
+  p.count = 2;
+  p.plane_count = {2, 1};
+  p.offered = {0, 1, 0, 1};  // rank 1 plane 2, rank 2 plane 1
+  p.normal[3 * 1 + 0] = 0.6f, p.normal[3 * 1 + 2] = 0.8f;
+  p.centroid_mm[3 * 3 + 1] = 250.5f;
+  p.verdict = {0, 0, 0, 0};
+  p.reach = {2, 0, 0, 0};
+  tlm::TmPacket packet;
+  packet.header.primary.apid = static_cast<std::uint16_t>(tlm::Apid::PROPOSAL_PLANES);
+  packet.body = p;
+  const std::string s = format_line(packet);
+  EXPECT_NE(s.find("proposal planes 3 on pair 9: 3 planes of 2 proposals, 2 offered"),
+            std::string::npos)
+      << s;
+  EXPECT_NE(s.find("#1.1 not offered"), std::string::npos) << s;
+  EXPECT_NE(s.find("reach beyond_reach"), std::string::npos) << s;
+  EXPECT_NE(s.find("#1.2 offered: normal (0.6000, 0.0000, 0.8000)"), std::string::npos) << s;
+  EXPECT_NE(s.find("#2.1 offered: normal (0.0000, 0.0000, 0.0000) centroid (0.00, 250.50, 0.00)"),
+            std::string::npos)
+      << s;
+  EXPECT_EQ(s.find("#1.3"), std::string::npos) << s;  // not carried
 }
 
 TEST(ProposalsFormat, SaysWhyNothingIsOffered) {
