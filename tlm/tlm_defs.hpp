@@ -157,6 +157,23 @@
 // 0). The plane shown per proposal is its best offered one (verdict grindable,
 // reach ok) when it has one (plane_offered 1), else its first plane (verdict
 // and reach say why it is not offered); none when plane_count is 0.
+// A proposal's plane as parallel arrays of N slots: PROPOSALS (the plane
+// shown, one per proposal) and PROPOSAL_PLANES (every carried plane) share it.
+#define PETRA_PLANE_SLOT_FIELDS(F, N, WHAT)                                                        \
+  F(f32, normal, 3 * (N), "1", -1, 1, WHAT "unit normal out of the rock, calibration world frame") \
+  F(f32, centroid_mm, 3 * (N), "mm", -1e7, 1e7, WHAT "where the grinder goes, world frame")        \
+  F(f32, area_mm2, N, "mm2", 0, 1e12, WHAT "supporting area")                                      \
+  F(f32, normal_sigma_deg, N, "deg", 0, 180, WHAT "normal 1-sigma")                                \
+  F(f32, offset_sigma_mm, N, "mm", 0, 1e6, WHAT "offset 1-sigma")                                  \
+  F(u8, verdict, N, "enum", 0, 7,                                                                  \
+    WHAT                                                                                           \
+    "0 grindable, 1 faces away, 2 too small, 3 too rough, 4 no support, 5 surplus, "               \
+    "6 too uncertain, 7 spans two faces")                                                          \
+  F(u8, reach, N, "enum", 0, 6,                                                                    \
+    WHAT                                                                                           \
+    "arm reach, 0 ok, 1 bad target, 2 beyond reach, 3 inside reach, 4 joint "                      \
+    "limit, 5 path blocked, 6 bad request (ARM_STATUS refusal)")
+
 #define PETRA_MAX_PROPOSALS 8
 #define PETRA_PROPOSAL_EMPTY_REASONS(X)                                                \
   X(NONE, 0, "at least one proposal offers a plane")                                   \
@@ -197,19 +214,7 @@
   F(f32, score_reach, PETRA_MAX_PROPOSALS, "1", 0, 1, "score term: reach")                         \
   F(f32, score_certainty, PETRA_MAX_PROPOSALS, "1", 0, 1, "score term: certainty")                 \
   F(f32, score_size, PETRA_MAX_PROPOSALS, "1", 0, 1, "score term: size")                           \
-  F(f32, normal, 3 * PETRA_MAX_PROPOSALS, "1", -1, 1,                                              \
-    "plane shown: unit normal out of the rock, calibration world frame")                           \
-  F(f32, centroid_mm, 3 * PETRA_MAX_PROPOSALS, "mm", -1e7, 1e7,                                    \
-    "plane shown: where the grinder goes, world frame")                                            \
-  F(f32, area_mm2, PETRA_MAX_PROPOSALS, "mm2", 0, 1e12, "plane shown: supporting area")            \
-  F(f32, normal_sigma_deg, PETRA_MAX_PROPOSALS, "deg", 0, 180, "plane shown: normal 1-sigma")      \
-  F(f32, offset_sigma_mm, PETRA_MAX_PROPOSALS, "mm", 0, 1e6, "plane shown: offset 1-sigma")        \
-  F(u8, verdict, PETRA_MAX_PROPOSALS, "enum", 0, 7,                                                \
-    "plane shown: 0 grindable, 1 faces away, 2 too small, 3 too rough, 4 no support, 5 surplus, "  \
-    "6 too uncertain, 7 spans two faces")                                                          \
-  F(u8, reach, PETRA_MAX_PROPOSALS, "enum", 0, 6,                                                  \
-    "plane shown: arm reach, 0 ok, 1 bad target, 2 beyond reach, 3 inside reach, 4 joint "         \
-    "limit, 5 path blocked, 6 bad request (ARM_STATUS refusal)")
+  PETRA_PLANE_SLOT_FIELDS(F, PETRA_MAX_PROPOSALS, "plane shown: ")
 
 #define PETRA_PRODUCT_DATA_BYTES 1024
 #define PETRA_PRODUCT_FIELDS(F)                                                                  \
@@ -232,23 +237,15 @@
 // slots from plane_count on are 0). ARM_GOTO_PROPOSAL_PLANE takes any offered one.
 #define PETRA_MAX_PROPOSAL_PLANES 3
 #define PETRA_PROPOSAL_PLANE_SLOTS (PETRA_MAX_PROPOSALS * PETRA_MAX_PROPOSAL_PLANES)
-#define PETRA_PROPOSAL_PLANES_FIELDS(F)                                                 \
-  F(u32, proposal_id, 1, "", 0, PETRA_U32_MAX, "the PROPOSALS packet's proposal_id")    \
-  F(u32, frame, 1, "", 0, PETRA_U32_MAX, "stereo pair it ran on")                       \
-  F(u8, count, 1, "", 0, PETRA_MAX_PROPOSALS, "proposals in the list")                  \
-  F(u8, plane_count, PETRA_MAX_PROPOSALS, "", 0, PETRA_MAX_PROPOSAL_PLANES,             \
-    "per proposal: planes it carries on board")                                         \
-  F(u8, offered, PETRA_PROPOSAL_PLANE_SLOTS, "bool", 0, 1,                              \
-    "1: grindable and reached (ARM_GOTO_PROPOSAL_PLANE's target)")                      \
-  F(f32, normal, 3 * PETRA_PROPOSAL_PLANE_SLOTS, "1", -1, 1,                            \
-    "unit normal out of the rock, calibration world frame")                             \
-  F(f32, centroid_mm, 3 * PETRA_PROPOSAL_PLANE_SLOTS, "mm", -1e7, 1e7,                  \
-    "where the grinder goes, world frame")                                              \
-  F(f32, area_mm2, PETRA_PROPOSAL_PLANE_SLOTS, "mm2", 0, 1e12, "supporting area")       \
-  F(f32, normal_sigma_deg, PETRA_PROPOSAL_PLANE_SLOTS, "deg", 0, 180, "normal 1-sigma") \
-  F(f32, offset_sigma_mm, PETRA_PROPOSAL_PLANE_SLOTS, "mm", 0, 1e6, "offset 1-sigma")   \
-  F(u8, verdict, PETRA_PROPOSAL_PLANE_SLOTS, "enum", 0, 7, "as PROPOSALS' verdict")     \
-  F(u8, reach, PETRA_PROPOSAL_PLANE_SLOTS, "enum", 0, 6, "as PROPOSALS' reach")
+#define PETRA_PROPOSAL_PLANES_FIELDS(F)                                              \
+  F(u32, proposal_id, 1, "", 0, PETRA_U32_MAX, "the PROPOSALS packet's proposal_id") \
+  F(u32, frame, 1, "", 0, PETRA_U32_MAX, "stereo pair it ran on")                    \
+  F(u8, count, 1, "", 0, PETRA_MAX_PROPOSALS, "proposals in the list")               \
+  F(u8, plane_count, PETRA_MAX_PROPOSALS, "", 0, PETRA_MAX_PROPOSAL_PLANES,          \
+    "per proposal: planes it carries on board")                                      \
+  F(u8, offered, PETRA_PROPOSAL_PLANE_SLOTS, "bool", 0, 1,                           \
+    "1: grindable and reached (ARM_GOTO_PROPOSAL_PLANE's target)")                   \
+  PETRA_PLANE_SLOT_FIELDS(F, PETRA_PROPOSAL_PLANE_SLOTS, "")
 
 #define PETRA_TELEMETRY(X)                                                                       \
   X(Housekeeping, HK, 0x010, "housekeeping: mode, counters, memory, loop and pipeline timing",   \
