@@ -351,7 +351,8 @@ void Executive::on_arm(const cmd::Command& c) {
     const tlm::GrindPlane* p = evaluation_.plane(a.plane_rank);
     if (p == nullptr) return fail(fc_of(c), c.counter, Reason::NO_SUCH_PLANE);
     s = deps_.arm->start_goto(ArmTarget{p->normal, p->centroid_mm, a.standoff_mm});
-  } else if (c.code != cmd::FunctionCode::ARM_STOW) {
+  } else if (c.code == cmd::FunctionCode::ARM_GOTO_PROPOSAL ||
+             c.code == cmd::FunctionCode::ARM_GOTO_PROPOSAL_PLANE) {
     const ProposalTarget t = proposal_target(c);
     if (t.plane == nullptr) return fail(fc_of(c), c.counter, Reason::NO_SUCH_PROPOSAL);
     const GrindPlane& g = *t.plane;

@@ -14,6 +14,12 @@ WORK=${2:-out/eval-scenes}
 mkdir -p "$WORK"
 SET="$WORK/multi-set"
 if [ ! -f "$SET/done" ]; then
+  # Scenes without the marker are someone else's (a held-out set): never render over them.
+  if compgen -G "$SET/scene_*" > /dev/null; then
+    echo "eval-proposals: $SET holds scenes but no 'done' file; refusing to render over them" \
+         "(touch $SET/done to use them)" >&2
+    exit 2
+  fi
   "$PETRA" sim set --multi --out "$SET" > "$WORK/multi-set.log"
   touch "$SET/done"
 fi

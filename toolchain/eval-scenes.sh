@@ -25,6 +25,12 @@ SET=set
 SET_OPTS=()
 if [ "${REAL:-0}" = 1 ]; then SET=real-set; SET_OPTS=(--real); fi
 if [ ! -f "$WORK/$SET/done" ]; then
+  # Scenes without the marker are someone else's: never render over them.
+  if compgen -G "$WORK/$SET/scene_*" > /dev/null; then
+    echo "eval-scenes: $WORK/$SET holds scenes but no 'done' file; refusing to render over them" \
+         "(touch $WORK/$SET/done to use them)" >&2
+    exit 2
+  fi
   "$PETRA" sim set "${SET_OPTS[@]}" --out "$WORK/$SET" > "$WORK/$SET.log"
   touch "$WORK/$SET/done"
 fi

@@ -58,7 +58,7 @@
 namespace petra {
 
 // c the proposer asks of the chain for every rock (see above).
-inline constexpr int kProposalPlanesC = 3;
+inline constexpr int kProposalPlanesC = kMaxProposalPlanes;
 
 struct ProposerBudget {
   PipelineBudget pipeline;  // the chain's (its max ROI is in rectified px)

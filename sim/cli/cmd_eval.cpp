@@ -8,7 +8,6 @@
 // matcher's errors from the reconstruction's).
 #include <atomic>
 #include <chrono>
-#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <exception>

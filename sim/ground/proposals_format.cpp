@@ -32,9 +32,28 @@ const char* proposal_note_key(std::uint8_t note) {
 
 namespace {
 
+// Plane slot k of either packet (PROPOSALS' plane shown, PROPOSAL_PLANES'
+// carried planes: the same fields): normal, centroid, area, sigma, verdict, reach.
+template <class Packet>
+std::string plane_text(const Packet& p, std::size_t k) {
+  char buf[320];
+  const int n = std::snprintf(
+      buf, sizeof(buf),
+      "normal (%.4f, %.4f, %.4f) centroid (%.2f, %.2f, %.2f) mm area %.0f mm2 "
+      "sigma %.2f deg %.2f mm, %s, reach %s",
+      static_cast<double>(p.normal[3 * k]), static_cast<double>(p.normal[3 * k + 1]),
+      static_cast<double>(p.normal[3 * k + 2]), static_cast<double>(p.centroid_mm[3 * k]),
+      static_cast<double>(p.centroid_mm[3 * k + 1]), static_cast<double>(p.centroid_mm[3 * k + 2]),
+      static_cast<double>(p.area_mm2[k]), static_cast<double>(p.normal_sigma_deg[k]),
+      static_cast<double>(p.offset_sigma_mm[k]),
+      verdict_key(static_cast<PlaneVerdict>(p.verdict[k])),
+      arm::arm_reason_name(static_cast<arm::ArmReason>(p.reach[k])));
+  return std::string(buf, static_cast<std::size_t>(n < 0 ? 0 : std::min<int>(n, sizeof(buf) - 1)));
+}
+
 std::string slot_line(const tlm::Proposals& p, std::size_t i) {
   char buf[512];
-  int n = std::snprintf(
+  const int n = std::snprintf(
       buf, sizeof(buf),
       "  #%u roi (%u, %u, %u x %u) click (%u, %u) rock %.1f mm high %.1f mm wide, c = %u, %s; "
       "score %.3f (grindable %.2f reach %.2f certainty %.2f size %.2f)",
@@ -46,38 +65,15 @@ std::string slot_line(const tlm::Proposals& p, std::size_t i) {
       static_cast<double>(p.score_size[i]));
   std::string out(buf, static_cast<std::size_t>(n < 0 ? 0 : std::min<int>(n, sizeof(buf) - 1)));
   if (p.plane_count[i] == 0) return out + "; no plane";
-  n = std::snprintf(
-      buf, sizeof(buf),
-      "; %s plane normal (%.4f, %.4f, %.4f) centroid (%.2f, %.2f, %.2f) mm area %.0f mm2 "
-      "sigma %.2f deg %.2f mm, %s, reach %s (%u planes)",
-      p.plane_offered[i] != 0 ? "offered" : "best (not offered)",
-      static_cast<double>(p.normal[3 * i]), static_cast<double>(p.normal[3 * i + 1]),
-      static_cast<double>(p.normal[3 * i + 2]), static_cast<double>(p.centroid_mm[3 * i]),
-      static_cast<double>(p.centroid_mm[3 * i + 1]), static_cast<double>(p.centroid_mm[3 * i + 2]),
-      static_cast<double>(p.area_mm2[i]), static_cast<double>(p.normal_sigma_deg[i]),
-      static_cast<double>(p.offset_sigma_mm[i]),
-      verdict_key(static_cast<PlaneVerdict>(p.verdict[i])),
-      arm::arm_reason_name(static_cast<arm::ArmReason>(p.reach[i])), p.plane_count[i]);
-  return out +
-         std::string(buf, static_cast<std::size_t>(n < 0 ? 0 : std::min<int>(n, sizeof(buf) - 1)));
+  return out + "; " + (p.plane_offered[i] != 0 ? "offered" : "best (not offered)") + " plane " +
+         plane_text(p, i) + " (" + std::to_string(p.plane_count[i]) + " planes)";
 }
 
 // Plane slot k of PROPOSAL_PLANES: rank k / 3 + 1, plane k % 3 + 1.
 std::string plane_line(const tlm::ProposalPlanes& p, std::size_t k) {
-  char buf[384];
-  const int n = std::snprintf(
-      buf, sizeof(buf),
-      "  #%zu.%zu %s: normal (%.4f, %.4f, %.4f) centroid (%.2f, %.2f, %.2f) mm area %.0f mm2 "
-      "sigma %.2f deg %.2f mm, %s, reach %s",
-      k / PETRA_MAX_PROPOSAL_PLANES + 1, k % PETRA_MAX_PROPOSAL_PLANES + 1,
-      p.offered[k] != 0 ? "offered" : "not offered", static_cast<double>(p.normal[3 * k]),
-      static_cast<double>(p.normal[3 * k + 1]), static_cast<double>(p.normal[3 * k + 2]),
-      static_cast<double>(p.centroid_mm[3 * k]), static_cast<double>(p.centroid_mm[3 * k + 1]),
-      static_cast<double>(p.centroid_mm[3 * k + 2]), static_cast<double>(p.area_mm2[k]),
-      static_cast<double>(p.normal_sigma_deg[k]), static_cast<double>(p.offset_sigma_mm[k]),
-      verdict_key(static_cast<PlaneVerdict>(p.verdict[k])),
-      arm::arm_reason_name(static_cast<arm::ArmReason>(p.reach[k])));
-  return std::string(buf, static_cast<std::size_t>(n < 0 ? 0 : std::min<int>(n, sizeof(buf) - 1)));
+  return "  #" + std::to_string(k / PETRA_MAX_PROPOSAL_PLANES + 1) + "." +
+         std::to_string(k % PETRA_MAX_PROPOSAL_PLANES + 1) + " " +
+         (p.offered[k] != 0 ? "offered" : "not offered") + ": " + plane_text(p, k);
 }
 
 }  // namespace
