@@ -724,15 +724,7 @@ void bounds_from_anchors(const MatchContext& c, std::span<const match::EdgePair>
   }
 }
 
-// Steps 2-3: edge pairs -> anchors -> bounds of row t (lanes k = d - dmin).
-template <int kLanes>
-Status edge_bounds(const MatchContext& c, MatchBuffers& b, Arena& arena, MatchDpStats& st, int t,
-                   RowBuffers& rb) {
-  for (int i = 0; i < c.w; ++i) {
-    rb.lo[i] = 0;
-    rb.hi[i] = static_cast<std::int16_t>(c.D - 1);
-  }
-  if (!c.p.edge_constraint) return ok_status();
+match::EdgeRowInputs edge_row_inputs(const MatchContext& c, int t) {
   match::EdgeRowInputs ei;
   ei.left = c.in.left;
   ei.right = c.in.right;
@@ -746,7 +738,50 @@ Status edge_bounds(const MatchContext& c, MatchBuffers& b, Arena& arena, MatchDp
   ei.disp_min = c.p.disp_min;
   ei.disp_max = c.p.disp_max;
   ei.zncc_floor_q10 = c.zfloor;
-  auto n_pairs = match::match_edge_row(ei, arena, b.pairs);
+  return ei;
+}
+
+// Step 0 from correspondences: the gray levels of the edge pairs of every
+// kMapRowStep-th row (ZNCC pairs, unchanged by a gain and offset).
+constexpr int kMapRowStep = 4;
+template <typename Sink>
+Status for_each_sampled_pair(const MatchContext& c, MatchBuffers& b, Arena& arena, Sink& sink) {
+  for (int t = 0; t < c.roi.h; t += kMapRowStep) {
+    auto n = match::match_edge_row(edge_row_inputs(c, t), arena, b.pairs);
+    if (!n) return n.error();
+    for (int a = 0; a < *n; ++a) {
+      const match::EdgePair e = b.pairs[static_cast<std::size_t>(a)];
+      sink.add(c.in.left, e.x_left, c.in.right, e.x_right, c.roi.y + t);
+    }
+  }
+  return ok_status();
+}
+Status choose_gray_map(MatchContext& c, MatchBuffers& b, Arena& arena) {
+  c.gray_map = match::identity_gray_map();
+  if (!c.p.normalise_gray) return ok_status();
+  if (!c.p.edge_constraint) {  // no right edges, so no pairs: the areas' statistics
+    c.gray_map = match::gray_map_for_roi(c.in.left, c.in.right, c.roi, c.p.disp_min, c.p.disp_max);
+    return ok_status();
+  }
+  match::PairGainVotes votes;
+  PETRA_TRY(for_each_sampled_pair(c, b, arena, votes));
+  match::PairOffsetVotes sums;
+  sums.gain_q8 = votes.median_gain_q8();
+  PETRA_TRY(for_each_sampled_pair(c, b, arena, sums));
+  c.gray_map = match::gray_map_from_pairs(sums);
+  return ok_status();
+}
+
+// Steps 2-3: edge pairs -> anchors -> bounds of row t (lanes k = d - dmin).
+template <int kLanes>
+Status edge_bounds(const MatchContext& c, MatchBuffers& b, Arena& arena, MatchDpStats& st, int t,
+                   RowBuffers& rb) {
+  for (int i = 0; i < c.w; ++i) {
+    rb.lo[i] = 0;
+    rb.hi[i] = static_cast<std::int16_t>(c.D - 1);
+  }
+  if (!c.p.edge_constraint) return ok_status();
+  auto n_pairs = match::match_edge_row(edge_row_inputs(c, t), arena, b.pairs);
   if (!n_pairs) return n_pairs.error();
   st.edge_pairs += *n_pairs;
   const int n_anchor = confirmed_anchors<kLanes>(c, rb, b.pairs, *n_pairs);
@@ -857,14 +892,14 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
 
   MatchContext c(in, roi, band, p, L);
   PETRA_ASSERT(kPathLanes == 0 || kPathLanes == c.Ds);
-  // The right view's gray levels on the left's scale (the cameras' gain and
-  // offset), for the intensity term; census does not depend on them.
-  c.gray_map = p.normalise_gray
-                   ? match::gray_map_for_roi(in.left, in.right, roi, p.disp_min, p.disp_max)
-                   : match::identity_gray_map();
   PETRA_TRY(find_edges(c, arena, st));
   MatchBuffers b;
   PETRA_TRY(take_buffers(arena, L, c.sp, b));
+  // Step 0: the right view's gray levels on the left's scale (the cameras'
+  // gain and offset), for the intensity term; census does not depend on them.
+  PETRA_TRY(choose_gray_map(c, b, arena));
+  st.gray_gain_q8 = c.gray_map.gain_q8;
+  st.gray_offset_q8 = c.gray_map.offset_q8;
 
   // Fill the window for the first ROI row (ring and sums start at zero).
   for (int r = 0; r < kWindowRows; ++r)

@@ -85,11 +85,11 @@ struct MatchDpParams {
   int uniqueness_pct = 5;
   int max_mean_cost = 10;  // ceiling of the mean raw cost (0..24) in the window
   bool median = true;
-  // The right view's gray levels mapped to the left's statistics before the
-  // intensity term (algo/stereo/match_photometric). Off by default: on, it moved one
-  // face of the simulator's clean scene 10 from 1.03 to 4.63 deg
-  // (docs/performance.md, "Camera differences").
-  bool normalise_gray = false;
+  // The right view's gray levels mapped to the left's before the intensity
+  // term (algo/stereo/match_photometric), the map measured on the edge pairs'
+  // windows (on the areas' statistics without the edge constraint); the
+  // identity where the two cameras agree within what it resolves.
+  bool normalise_gray = true;
 };
 
 struct MatchDpStats {
@@ -105,6 +105,8 @@ struct MatchDpStats {
   long right_edges = 0;
   long edge_pairs = 0;                 // from the edge DP
   long anchors = 0;                    // pairs kept as constraints
+  int gray_gain_q8 = 256;              // the gray-level map applied (step 0), 1/256
+  int gray_offset_q8 = 0;              // its level(0), 1/256 gray level
   std::size_t scratch_high_water = 0;  // arena bytes used at the peak
 };
 

@@ -26,6 +26,21 @@ std::int64_t div_round(std::int64_t a, std::int64_t b) {
 // change with it.
 constexpr int kBlockW = 4, kBlockH = 2;
 
+GrayStats stats_of_histogram(const std::int32_t* hist) {
+  GrayStats s;
+  std::int64_t sum = 0;
+  for (int g = 0; g < 256; ++g) {
+    s.count += hist[g];
+    sum += static_cast<std::int64_t>(hist[g]) * g;
+  }
+  if (s.count == 0) return s;
+  s.mean_q8 = div_round(sum * 256, s.count);
+  std::int64_t dev = 0;
+  for (int g = 0; g < 256; ++g) dev += hist[g] * std::llabs(g * 256 - s.mean_q8);
+  s.mad_q8 = div_round(dev, s.count);
+  return s;
+}
+
 GrayStats stats_of(ConstGray8View img, Rect area) {
   GrayStats s;
   const int x0 = std::max(area.x, 0), y0 = std::max(area.y, 0);
@@ -44,38 +59,13 @@ GrayStats stats_of(ConstGray8View img, Rect area) {
       ++hist[(sum + kBlockW * kBlockH / 2) / (kBlockW * kBlockH)];
     }
   }
-  std::int64_t sum = 0;
-  for (int g = 0; g < 256; ++g) {
-    s.count += hist[g];
-    sum += static_cast<std::int64_t>(hist[g]) * g;
-  }
-  s.mean_q8 = div_round(sum * 256, s.count);
-  std::int64_t dev = 0;
-  for (int g = 0; g < 256; ++g) dev += hist[g] * std::llabs(g * 256 - s.mean_q8);
-  s.mad_q8 = div_round(dev, s.count);
-  return s;
+  return stats_of_histogram(hist);
 }
 
 }  // namespace
 
-GrayMap identity_gray_map() {
+GrayMap linear_gray_map(std::int64_t gain_q8, std::int64_t offset_q8) {
   GrayMap m;
-  for (int g = 0; g < 256; ++g) m.level[g] = static_cast<std::uint8_t>(g);
-  return m;
-}
-
-GrayMap right_to_left_gray_map(ConstGray8View left, Rect left_area, ConstGray8View right,
-                               Rect right_area) {
-  const GrayStats l = stats_of(left, left_area), r = stats_of(right, right_area);
-  GrayMap m = identity_gray_map();
-  if (l.count == 0 || r.count == 0) return m;
-  // gain in 1/256: mad_L / mad_R within [1/4, 4]; a flat area keeps gain 1.
-  std::int64_t gain_q8 = 256;
-  if (l.mad_q8 > 0 && r.mad_q8 > 0)
-    gain_q8 = std::clamp<std::int64_t>(div_round(l.mad_q8 * 256, r.mad_q8), 256 / kMaxGrayGain,
-                                       256 * kMaxGrayGain);
-  // level(v) in 1/256: mean_L + (v - mean_R) gain.
-  const std::int64_t offset_q8 = l.mean_q8 - div_round(r.mean_q8 * gain_q8, 256);
   m.gain_q8 = static_cast<int>(gain_q8);
   m.offset_q8 = static_cast<int>(offset_q8);
   for (int g = 0; g < 256; ++g) {
@@ -84,6 +74,126 @@ GrayMap right_to_left_gray_map(ConstGray8View left, Rect left_area, ConstGray8Vi
   }
   return m;
 }
+
+GrayMap identity_gray_map() {
+  GrayMap m;
+  for (int g = 0; g < 256; ++g) m.level[g] = static_cast<std::uint8_t>(g);
+  return m;
+}
+
+namespace {
+GrayMap map_of_stats(const GrayStats& l, const GrayStats& r);
+}  // namespace
+
+GrayMap right_to_left_gray_map(ConstGray8View left, Rect left_area, ConstGray8View right,
+                               Rect right_area) {
+  return map_of_stats(stats_of(left, left_area), stats_of(right, right_area));
+}
+
+namespace {
+
+// The 5x5 window at (x, y): its sum, and the absolute deviation of its 2x2
+// block sums (the blocks, not single pixels: a view resampled at a sub-pixel
+// offset has a smaller pixel-to-pixel deviation, which read as a gain).
+struct WindowSums {
+  int sum = 0;
+  int dev = 0;  // sum over the 16 blocks of |16 block - sum of blocks|
+};
+WindowSums window_sums(ConstGray8View img, int x, int y) {
+  constexpr int n = 2 * kPairWindowRadius + 1;
+  int v[n][n];
+  for (int j = 0; j < n; ++j) {
+    const std::uint8_t* r = img.row(std::clamp(y + j - kPairWindowRadius, 0, img.height() - 1));
+    for (int i = 0; i < n; ++i) v[j][i] = r[std::clamp(x + i - kPairWindowRadius, 0, img.width() - 1)];
+  }
+  WindowSums w;
+  int blocks[n - 1][n - 1];
+  int total = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) w.sum += v[j][i];
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      blocks[j][i] = v[j][i] + v[j][i + 1] + v[j + 1][i] + v[j + 1][i + 1];
+      total += blocks[j][i];
+    }
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) w.dev += std::abs((n - 1) * (n - 1) * blocks[j][i] - total);
+  return w;
+}
+
+// The pair's own gain (left deviation over right), 1/256; 0 where either
+// window is too flat to tell.
+int pair_gain_q8(const WindowSums& l, const WindowSums& r) {
+  if (l.dev < kMinWindowDev || r.dev < kMinWindowDev) return 0;
+  return static_cast<int>(div_round(static_cast<std::int64_t>(l.dev) * 256, r.dev));
+}
+
+}  // namespace
+
+void PairGainVotes::add(ConstGray8View left, int xl, ConstGray8View right, int xr, int y) {
+  const int g = pair_gain_q8(window_sums(left, xl, y), window_sums(right, xr, y));
+  if (g < kMinGainQ8 || g > kMaxGainQ8) return;
+  ++votes[g - kMinGainQ8];
+  ++pairs;
+}
+
+int PairGainVotes::median_gain_q8() const {
+  if (pairs == 0) return 256;
+  int seen = 0;
+  for (int i = 0; i < kGainBins; ++i) {
+    seen += votes[i];
+    if (2 * seen >= pairs) return kMinGainQ8 + i;
+  }
+  return 256;
+}
+
+void PairOffsetVotes::add(ConstGray8View left, int xl, ConstGray8View right, int xr, int y) {
+  const WindowSums l = window_sums(left, xl, y), r = window_sums(right, xr, y);
+  const int g = pair_gain_q8(l, r);
+  // Only the pairs whose own gain agrees with the median (within 1/8).
+  if (g == 0 || 8 * std::abs(g - gain_q8) > gain_q8) return;
+  // mean_L - gain mean_R in half gray levels.
+  const std::int64_t o2 = div_round(
+      2 * (static_cast<std::int64_t>(l.sum) * 256 - static_cast<std::int64_t>(r.sum) * gain_q8),
+      static_cast<std::int64_t>(kPairWindowArea) * 256);
+  if (o2 < -kMaxOffset2 || o2 > kMaxOffset2) return;
+  ++votes[o2 + kMaxOffset2];
+  ++pairs;
+}
+
+GrayMap gray_map_from_pairs(const PairOffsetVotes& s) {
+  if (s.pairs < kMinMapPairs) return identity_gray_map();
+  int seen = 0, o2 = 0;
+  for (int i = 0; i < kOffsetBins; ++i) {
+    seen += s.votes[i];
+    if (2 * seen >= s.pairs) {
+      o2 = i - kMaxOffset2;
+      break;
+    }
+  }
+  const std::int64_t offset_q8 = o2 * 128;
+  // Within what the estimate resolves on two identical cameras: no map. The
+  // change of a mid-gray level decides the offset, not level(0).
+  const std::int64_t mid_change_q8 = offset_q8 + 128 * (s.gain_q8 - 256);
+  if (std::abs(s.gain_q8 - 256) <= kIdentityGainQ8 &&
+      std::llabs(mid_change_q8) <= kIdentityLevels * 256)
+    return identity_gray_map();
+  return linear_gray_map(s.gain_q8, offset_q8);
+}
+
+namespace {
+GrayMap map_of_stats(const GrayStats& l, const GrayStats& r) {
+  GrayMap m = identity_gray_map();
+  if (l.count == 0 || r.count == 0) return m;
+  // gain in 1/256: mad_L / mad_R within [1/4, 4]; a flat area keeps gain 1.
+  std::int64_t gain_q8 = 256;
+  if (l.mad_q8 > 0 && r.mad_q8 > 0)
+    gain_q8 = std::clamp<std::int64_t>(div_round(l.mad_q8 * 256, r.mad_q8), 256 / kMaxGrayGain,
+                                       256 * kMaxGrayGain);
+  // level(v) in 1/256: mean_L + (v - mean_R) gain.
+  return linear_gray_map(gain_q8, l.mean_q8 - div_round(r.mean_q8 * gain_q8, 256));
+}
+}  // namespace
 
 GrayMap gray_map_for_roi(ConstGray8View left, ConstGray8View right, Rect roi, int disp_min,
                          int disp_max) {

@@ -46,6 +46,40 @@ GrayMap gray_map_for_roi(ConstGray8View left, ConstGray8View right, Rect roi, in
 GrayMap right_to_left_gray_map(ConstGray8View left, Rect left_area, ConstGray8View right,
                                Rect right_area);
 
+// The map from corresponding windows: the 5x5 windows of the edge pairs
+// (matched by ZNCC, which a gain and offset do not change) see the same
+// scene points in both views. Pass 1 takes the median of the pairs' own
+// gains (ratio of the windows' deviations); pass 2 the median of their
+// offsets (mean_L - gain mean_R) over the pairs whose gain agrees with it.
+// Medians, not moments: pairs across a depth edge or wrongly matched see
+// other content.
+inline constexpr int kPairWindowRadius = 2;
+inline constexpr int kPairWindowArea = (2 * kPairWindowRadius + 1) * (2 * kPairWindowRadius + 1);
+inline constexpr int kMinWindowDev = 16 * 16 * 4 * 4;  // 2x2 blocks' mean |dev| >= 4 levels
+inline constexpr int kMinGainQ8 = 256 / kMaxGrayGain, kMaxGainQ8 = 256 * kMaxGrayGain;
+inline constexpr int kGainBins = kMaxGainQ8 - kMinGainQ8 + 1;
+inline constexpr int kMaxOffset2 = 510;  // offsets within +-255 levels, in half levels
+inline constexpr int kOffsetBins = 2 * kMaxOffset2 + 1;
+inline constexpr int kMinMapPairs = 50;    // fewer: the identity
+inline constexpr int kIdentityGainQ8 = 5;  // |gain - 1| <= 2 %
+inline constexpr int kIdentityLevels = 2;  // and mid-gray moved by <= 2 levels
+struct PairGainVotes {
+  std::int32_t votes[kGainBins] = {};
+  int pairs = 0;
+  void add(ConstGray8View left, int xl, ConstGray8View right, int xr, int y);
+  int median_gain_q8() const;
+};
+struct PairOffsetVotes {
+  int gain_q8 = 256;  // the median of pass 1
+  std::int32_t votes[kOffsetBins] = {};
+  int pairs = 0;
+  void add(ConstGray8View left, int xl, ConstGray8View right, int xr, int y);
+};
+GrayMap gray_map_from_pairs(const PairOffsetVotes& s);
+
+// The map level(v) = (gain_q8 v + offset_q8) / 256, rounded and clamped.
+GrayMap linear_gray_map(std::int64_t gain_q8, std::int64_t offset_q8);
+
 // dst[i] = map(src[i]) for n bytes (dst may be src).
 void apply_gray_map(const GrayMap& map, const std::uint8_t* src, int n, std::uint8_t* dst);
 

@@ -2,7 +2,8 @@
 // the shared data (convention of sim/eval/middlebury.hpp) and prints the
 // bad-1 table, strict and filled; the last column, whole-vis, scores the
 // output on the terms of the published scanline-DP figures (whole pixels,
-// occluded pixels left out; sim/eval/middlebury.hpp). The benchmark
+// occluded pixels left out; sim/eval/middlebury.hpp); gray-map the right
+// view's gray-level map the matcher applied (gain / level of 0). The benchmark
 // tests/bench/bench_stereo.cpp adds the OpenCV peers and timing. Rocks1
 // (real-rocks/, same convention) follows the eight Middlebury scenes.
 // --perturb changes the right view's gain, offset, noise and vignetting
@@ -25,7 +26,7 @@ struct MiddleburyOptions {
   std::string data = "../shared/data";  // run from the project directory
   std::string scene;
   bool no_edges = false;
-  bool normalise = false;
+  bool normalise = true;  // the matcher's default
   std::string perturb;  // "gain,offset,sigma[,seed[,vignetting]]"
 };
 
@@ -36,8 +37,8 @@ int run(const MiddleburyOptions& o) {
     if (!parsed) return fail("middlebury", parsed.error().message);
     perturbation = *parsed;
   }
-  std::printf("%-9s %9s %9s %9s %9s %8s %8s %8s %9s\n", "scene", "strict-no", "strict-al",
-              "filled-no", "filled-al", "invalid%", "anchors", "ms", "whole-vis");
+  std::printf("%-9s %9s %9s %9s %9s %8s %8s %8s %9s %13s\n", "scene", "strict-no", "strict-al",
+              "filled-no", "filled-al", "invalid%", "anchors", "ms", "whole-vis", "gray-map");
   int scored = 0;
   std::vector<eval::MiddleburyScene> scenes(eval::middlebury_scenes().begin(),
                                             eval::middlebury_scenes().end());
@@ -60,9 +61,10 @@ int run(const MiddleburyOptions& o) {
     if (!run) return fail("middlebury", run.error().message);
     auto score = eval::score_middlebury(run->disparity.view(), *data);
     if (!score) return fail("middlebury", score.error().message);
-    std::printf("%-9s %9.2f %9.2f %9.2f %9.2f %8.2f %8ld %8.1f %9.2f\n", s.name,
+    std::printf("%-9s %9.2f %9.2f %9.2f %9.2f %8.2f %8ld %8.1f %9.2f %6.3f/%+6.1f\n", s.name,
                 score->strict.nonocc, score->strict.all, score->filled.nonocc, score->filled.all,
-                score->invalid_pct, run->stats.anchors, ms, score->filled_whole_visible);
+                score->invalid_pct, run->stats.anchors, ms, score->filled_whole_visible,
+                run->stats.gray_gain_q8 / 256.0, run->stats.gray_offset_q8 / 256.0);
     ++scored;
   }
   if (scored == 0) return fail("middlebury", ("unknown scene \"" + o.scene + "\"").c_str());
@@ -79,9 +81,9 @@ void add_middlebury(CLI::App& app, Outcome& outcome) {
   cmd->add_option("--scene", o.scene,
                   "one scene (tsukuba, venus, sawtooth, map, teddy, cones, Aloe, Baby1, Rocks1)");
   cmd->add_flag("--no-edges", o.no_edges, "skip the edge constraint (for comparisons)");
-  cmd->add_flag(
-      "--normalise", o.normalise,
-      "map the right view's gray levels to the left's first (algo/stereo/match_photometric)");
+  cmd->add_flag("--normalise,!--no-normalise", o.normalise,
+                "map the right view's gray levels to the left's first (the default; "
+                "algo/stereo/match_photometric); --no-normalise compares raw levels");
   cmd->add_option("--perturb", o.perturb,
                   "change the right view before matching: gain,offset,sigma[,seed[,vignetting]] "
                   "(e.g. 0.82,12,2: another camera's gain and offset, noise sigma 2)");

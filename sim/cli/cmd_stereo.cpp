@@ -36,9 +36,10 @@ int run(const stereo::StereoToolOptions& o) {
   const MatchDpStats& s = r->stats;
   std::printf(
       "stereo: edges %ld left / %ld right, %ld edge pairs, %ld anchors; rejected: left-right %ld, "
-      "uniqueness %ld, cost %ld, range %ld, shadow %ld + %ld\n",
+      "uniqueness %ld, cost %ld, range %ld, shadow %ld + %ld; right gray levels x %.3f %+.1f\n",
       s.left_edges, s.right_edges, s.edge_pairs, s.anchors, s.rejected_lr, s.rejected_uniqueness,
-      s.rejected_cost, s.rejected_range, s.shadow_left, s.rejected_shadow_right);
+      s.rejected_cost, s.rejected_range, s.shadow_left, s.rejected_shadow_right,
+      s.gray_gain_q8 / 256.0, s.gray_offset_q8 / 256.0);
   return 0;
 }
 

@@ -37,7 +37,8 @@ void grind_fields(json::Writer& w, const GrindPlane& p, double diameter_mm) {
 
 }  // namespace
 
-std::string format_planes_json(const ReconstructionOutput& r, const CalibCheck* calibration) {
+std::string format_planes_json(const ReconstructionOutput& r, const CalibCheck* calibration,
+                               const MatchDpStats* match) {
   const double grinder_diameter_mm = r.planes.footprint_diameter_mm;
   std::vector<char> buf(4096 + 1536 * static_cast<std::size_t>(r.planes.count));
   json::Writer w(buf);
@@ -83,6 +84,14 @@ std::string format_planes_json(const ReconstructionOutput& r, const CalibCheck* 
     w.key("verdict").string(to_string(calibration->verdict));
     if (calibration->verdict == CalibVerdict::corrected)
       w.key("corrected_px").number(calibration->corrected_px);
+    w.end_object();
+    w.raw("\n");
+  }
+  // The right view's gray levels as the DP matcher mapped them (optional field).
+  if (match != nullptr) {
+    w.key("gray_map").begin_object();
+    w.key("gain").number(match->gray_gain_q8 / 256.0);
+    w.key("offset").number(match->gray_offset_q8 / 256.0);
     w.end_object();
     w.raw("\n");
   }

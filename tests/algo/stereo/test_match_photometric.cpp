@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -75,6 +76,72 @@ TEST(MatchPhotometric, GainIsBoundedWhenTheContentDiffers) {
   const GrayMap m = right_to_left_gray_map(l, {0, 0, w, h}, r, {0, 0, w, h});
   EXPECT_EQ(m.gain_q8, 256 * kMaxGrayGain);
   for (int g = 1; g < 256; ++g) EXPECT_GE(m.level[g], m.level[g - 1]);  // still increasing
+}
+
+// The pairs' map: `right` is `left` shifted by `d` columns, so left column
+// x and right column x - d see the same point; every `wrong`-th pair is
+// given a wrong right column (a mismatched edge pair).
+GrayMap map_of_pairs(ConstGray8View l, ConstGray8View r, int d, int wrong) {
+  PairGainVotes votes;
+  PairOffsetVotes sums;
+  auto each_pair = [&](auto& sink) {
+    int k = 0;
+    for (int y = 4; y < l.height() - 4; y += 2)
+      for (int x = d + 4; x < l.width() - 4; x += 3, ++k)
+        sink.add(l, x, r, (wrong > 0 && k % wrong == 0) ? x - d + 7 : x - d, y);
+  };
+  each_pair(votes);
+  sums.gain_q8 = votes.median_gain_q8();
+  each_pair(sums);
+  return gray_map_from_pairs(sums);
+}
+
+// A shifted copy of `left` through v -> gain v + offset (rounded, clamped).
+std::vector<std::uint8_t> other_camera(const std::vector<std::uint8_t>& left, int w, int d,
+                                       double gain, double offset) {
+  std::vector<std::uint8_t> right(left.size());
+  for (std::size_t i = 0; i < left.size(); ++i) {
+    const int x = static_cast<int>(i % static_cast<std::size_t>(w));
+    const std::size_t src = i - static_cast<std::size_t>(x) + static_cast<std::size_t>(std::min(x + d, w - 1));
+    right[i] = static_cast<std::uint8_t>(std::clamp(std::lround(gain * left[src] + offset), 0L, 255L));
+  }
+  return right;
+}
+
+TEST(MatchPhotometric, PairsUndoAGainAndAnOffsetDespiteWrongPairs) {
+  const int w = 96, h = 48, d = 9;
+  const auto left = textured(w, h);
+  const auto right = other_camera(left, w, d, 0.82, 12.0);
+  const ConstGray8View l(left.data(), w, h), r(right.data(), w, h);
+  for (int wrong : {0, 5}) {  // none, one pair in five
+    const GrayMap m = map_of_pairs(l, r, d, wrong);
+    EXPECT_NEAR(m.gain_q8, 256 / 0.82, 4.0) << wrong;
+    EXPECT_NEAR(m(static_cast<std::uint8_t>(0.82 * 128 + 12)), 128, 1) << wrong;
+  }
+}
+
+TEST(MatchPhotometric, PairsOfEqualCamerasGiveTheIdentity) {
+  const int w = 96, h = 48, d = 9;
+  const auto left = textured(w, h);
+  const auto right = other_camera(left, w, d, 1.0, 1.0);  // within what the map resolves
+  const ConstGray8View l(left.data(), w, h), r(right.data(), w, h);
+  const GrayMap m = map_of_pairs(l, r, d, 5);
+  EXPECT_EQ(m.gain_q8, 256);
+  for (int g = 0; g < 256; ++g) EXPECT_EQ(m.level[g], g);
+  const auto brighter = other_camera(left, w, d, 1.0, 4.0);  // beyond it: mapped
+  EXPECT_EQ(map_of_pairs(l, ConstGray8View(brighter.data(), w, h), d, 5)(104), 100);
+}
+
+TEST(MatchPhotometric, TooFewPairsGiveTheIdentity) {
+  PairOffsetVotes votes;
+  votes.gain_q8 = 300;
+  votes.votes[kMaxOffset2 + 40] = kMinMapPairs - 1;  // 20 levels
+  votes.pairs = kMinMapPairs - 1;
+  EXPECT_EQ(gray_map_from_pairs(votes).gain_q8, 256);
+  votes.votes[kMaxOffset2 + 40] = votes.pairs = kMinMapPairs;
+  EXPECT_EQ(gray_map_from_pairs(votes).gain_q8, 300);
+  EXPECT_EQ(gray_map_from_pairs(votes).offset_q8, 20 * 256);
+  EXPECT_EQ(PairGainVotes{}.median_gain_q8(), 256);
 }
 
 TEST(MatchPhotometric, NoHeap) {

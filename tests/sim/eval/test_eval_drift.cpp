@@ -5,7 +5,8 @@
 // ground and refuses the pair. The calibration check measures the offset and
 // the chain rectifies the right view again with its rows moved by it
 // (Rectifier::rectify_rows_moved): the faces come back within the realistic
-// targets, and an aligned pair is left as it is. Rendered only where the chain
+// targets, and an aligned pair is left as it is. The same pair checks the
+// DP's gray-level map against the cameras' gain and offset. Rendered only where the chain
 // reads (see test_eval_roi_fill).
 #include <gtest/gtest.h>
 
@@ -46,6 +47,20 @@ test::SceneChainRun run_with_rig(const test::RenderedScene& f, const StereoRig& 
   return test::run_chain_on_scene(f, rig, params, 256, false);
 }
 
+// The DP's gray-level map (measured on its edge pairs) against the cameras
+// that rendered the pair: left level = (g_L / g_R)(right level - o_R) + o_L,
+// compared at mid-gray; vignetting and noise make it approximate.
+void expect_gray_map_undoes_the_cameras(const MatchDpStats& m, const sim::World& w) {
+  const double gain = w.gain_left / w.gain_right;
+  const double truth_mid = gain * (128.0 - w.offset_right_dn) + w.offset_left_dn;
+  const double mid = (m.gray_gain_q8 * 128.0 + m.gray_offset_q8) / 256.0;
+  std::printf("gray map: x %.3f %+.1f (cameras: x %.3f), mid-gray %.1f (cameras %.1f)\n",
+              m.gray_gain_q8 / 256.0, m.gray_offset_q8 / 256.0, gain, mid, truth_mid);
+  ASSERT_GT(std::abs(gain - 1.0), 0.03) << "the scene's cameras no longer differ: nothing tested";
+  EXPECT_NEAR(m.gray_gain_q8 / 256.0, gain, 0.03 * gain);
+  EXPECT_NEAR(mid, truth_mid, 3.0);
+}
+
 // One test, one render (the check build renders for about 20 s).
 TEST(EvalDrift, ARowDriftIsCorrectedAndAnAlignedPairLeftAsItIs) {
   const test::RenderedScene& f = drift_scene();
@@ -54,6 +69,7 @@ TEST(EvalDrift, ARowDriftIsCorrectedAndAnAlignedPairLeftAsItIs) {
   ASSERT_TRUE(aligned.out.ok()) << aligned.out.error().message;
   EXPECT_EQ(aligned.out->calibration.verdict, CalibVerdict::ok);
   EXPECT_EQ(aligned.out->calibration.corrected_px, 0.0);
+  expect_gray_map_undoes_the_cameras(aligned.out->match, sim::real_scene_set()[14].world);
   const StereoRig rig = drifted(f.rig, 0.1);
   // Uncorrected (the check only says so) the DP's rows miss: refused.
   PipelineParams off;
