@@ -743,7 +743,7 @@ match::EdgeRowInputs edge_row_inputs(const MatchContext& c, int t) {
 
 // Step 0 from correspondences: the gray levels of the edge pairs of every
 // kMapRowStep-th row (ZNCC pairs, unchanged by a gain and offset).
-constexpr int kMapRowStep = 4;
+constexpr int kMapRowStep = 8;
 template <typename Sink>
 Status for_each_sampled_pair(const MatchContext& c, MatchBuffers& b, Arena& arena, Sink& sink) {
   for (int t = 0; t < c.roi.h; t += kMapRowStep) {
