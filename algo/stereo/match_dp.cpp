@@ -114,8 +114,8 @@ void shadow_row(const ShadowMask* m, int y, int x0, int n, std::uint8_t yes, std
   for (int x = a; x < b; ++x) out[x - x0] = row[x] != 0 ? yes : no;
 }
 
-Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const MatchBudget& budget,
-                const DisparityMap& out, ImageView<std::uint8_t> confidence) {
+Status validate_inputs(const StereoInput& in, Rect roi, const MatchDpParams& p,
+                       const MatchBudget& budget) {
   if (in.left.empty() || in.right.empty())
     return Error::make(Errc::invalid_argument, "match_dp: empty image");
   if (in.left.width() != in.right.width() || in.left.height() != in.right.height())
@@ -143,12 +143,6 @@ Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const M
   if (roi.w > budget.max_width || roi.h > budget.max_height)
     return Error::make(Errc::capacity_exceeded, "match_dp: ROI %dx%d exceeds the budget of %dx%d",
                        roi.w, roi.h, budget.max_width, budget.max_height);
-  if (out.q4.width() != roi.w || out.q4.height() != roi.h)
-    return Error::make(Errc::invalid_argument, "match_dp: output is %dx%d, ROI is %dx%d",
-                       out.q4.width(), out.q4.height(), roi.w, roi.h);
-  if (!confidence.empty() && (confidence.width() != roi.w || confidence.height() != roi.h))
-    return Error::make(Errc::invalid_argument, "match_dp: confidence is %dx%d, ROI is %dx%d",
-                       confidence.width(), confidence.height(), roi.w, roi.h);
   if (p.p1 < 0 || p.p2 < p.p1 || p.p2 > match::kMaxP2)
     return Error::make(Errc::invalid_argument,
                        "match_dp: penalties P1 %d, P2 %d (need 0 <= P1 <= P2 <= %d)", p.p1, p.p2,
@@ -159,6 +153,18 @@ Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const M
   if (p.edge_tolerance_px < 0 || p.lr_tolerance_px < 0 || p.max_mean_cost <= 0)
     return Error::make(Errc::invalid_argument,
                        "match_dp: tolerances must be >= 0 and the cost ceiling > 0");
+  return ok_status();
+}
+
+Status validate(const StereoInput& in, Rect roi, const MatchDpParams& p, const MatchBudget& budget,
+                const DisparityMap& out, ImageView<std::uint8_t> confidence) {
+  PETRA_TRY(validate_inputs(in, roi, p, budget));
+  if (out.q4.width() != roi.w || out.q4.height() != roi.h)
+    return Error::make(Errc::invalid_argument, "match_dp: output is %dx%d, ROI is %dx%d",
+                       out.q4.width(), out.q4.height(), roi.w, roi.h);
+  if (!confidence.empty() && (confidence.width() != roi.w || confidence.height() != roi.h))
+    return Error::make(Errc::invalid_argument, "match_dp: confidence is %dx%d, ROI is %dx%d",
+                       confidence.width(), confidence.height(), roi.w, roi.h);
   return ok_status();
 }
 
@@ -745,18 +751,19 @@ match::EdgeRowInputs edge_row_inputs(const MatchContext& c, int t) {
 // kMapRowStep-th row (ZNCC pairs, unchanged by a gain and offset).
 constexpr int kMapRowStep = 8;
 template <typename Sink>
-Status for_each_sampled_pair(const MatchContext& c, MatchBuffers& b, Arena& arena, Sink& sink) {
+Status for_each_sampled_pair(const MatchContext& c, std::span<match::EdgePair> pairs, Arena& arena,
+                             Sink& sink) {
   for (int t = 0; t < c.roi.h; t += kMapRowStep) {
-    auto n = match::match_edge_row(edge_row_inputs(c, t), arena, b.pairs);
+    auto n = match::match_edge_row(edge_row_inputs(c, t), arena, pairs);
     if (!n) return n.error();
     for (int a = 0; a < *n; ++a) {
-      const match::EdgePair e = b.pairs[static_cast<std::size_t>(a)];
+      const match::EdgePair e = pairs[static_cast<std::size_t>(a)];
       sink.add(c.in.left, e.x_left, c.in.right, e.x_right, c.roi.y + t);
     }
   }
   return ok_status();
 }
-Status choose_gray_map(MatchContext& c, MatchBuffers& b, Arena& arena) {
+Status choose_gray_map(MatchContext& c, std::span<match::EdgePair> pairs, Arena& arena) {
   c.gray_map = match::identity_gray_map();
   if (!c.p.normalise_gray) return ok_status();
   if (!c.p.edge_constraint) {  // no right edges, so no pairs: the areas' statistics
@@ -764,10 +771,10 @@ Status choose_gray_map(MatchContext& c, MatchBuffers& b, Arena& arena) {
     return ok_status();
   }
   match::PairGainVotes votes;
-  PETRA_TRY(for_each_sampled_pair(c, b, arena, votes));
+  PETRA_TRY(for_each_sampled_pair(c, pairs, arena, votes));
   match::PairOffsetVotes sums;
   sums.gain_q8 = votes.median_gain_q8();
-  PETRA_TRY(for_each_sampled_pair(c, b, arena, sums));
+  PETRA_TRY(for_each_sampled_pair(c, pairs, arena, sums));
   c.gray_map = match::gray_map_from_pairs(sums);
   return ok_status();
 }
@@ -897,7 +904,7 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
   PETRA_TRY(take_buffers(arena, L, c.sp, b));
   // Step 0: the right view's gray levels on the left's scale (the cameras'
   // gain and offset), for the intensity term; census does not depend on them.
-  PETRA_TRY(choose_gray_map(c, b, arena));
+  PETRA_TRY(choose_gray_map(c, b.pairs, arena));
   st.gray_gain_q8 = c.gray_map.gain_q8;
   st.gray_offset_q8 = c.gray_map.offset_q8;
 
@@ -933,6 +940,26 @@ PETRA_VECTOR_CLONES Result<MatchDpStats> match_impl(const StereoInput& in, Rect 
 }
 
 }  // namespace
+
+Result<match::GrayMap> match_dp_gray_map(const StereoInput& in, Rect roi, const MatchDpParams& p,
+                                         const MatchBudget& budget, Arena& arena) {
+  PETRA_TRY(validate_inputs(in, roi, p, budget));
+  const Rect band = right_search_area(roi, p.disp_min, p.disp_max, in.left.width());
+  if (band.empty() || !p.normalise_gray) return match::identity_gray_map();
+  const Layout L(roi.w, roi.h, p.disp_max - p.disp_min + 1);
+  ArenaScope scope(arena);
+  MatchDpStats st;
+  MatchContext c(in, roi, band, p, L);
+  auto edges = find_edges(c, arena, st);
+  if (!edges) {  // a textureless ROI has no pairs to measure on
+    if (edges.error().code == Errc::degenerate) return match::identity_gray_map();
+    return edges.error();
+  }
+  std::span<match::EdgePair> pairs;
+  PETRA_TRY(take(arena, static_cast<std::size_t>(roi.w), "edge pairs", pairs));
+  PETRA_TRY(choose_gray_map(c, pairs, arena));
+  return c.gray_map;
+}
 
 Result<MatchDpStats> match_dp(const StereoInput& in, Rect roi, const MatchDpParams& p,
                               const MatchBudget& budget, Arena& arena, DisparityMap& out,

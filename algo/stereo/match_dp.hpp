@@ -60,6 +60,7 @@
 #include "algo/core/image_view.hpp"
 #include "algo/core/result.hpp"
 #include "algo/stereo/canny.hpp"
+#include "algo/stereo/match_photometric.hpp"
 #include "algo/stereo/shadow.hpp"
 
 namespace petra {
@@ -125,6 +126,14 @@ std::size_t match_dp_scratch_bytes(const MatchBudget& budget);
 // of the ROI), clipped to the image; empty when none. Shadow masks of the
 // right view should cover it.
 Rect right_search_area(Rect roi, int disp_min, int disp_max, int image_width);
+
+// Step 0 alone: the gray-level map match_dp would apply to the right view
+// (the identity with normalise_gray off, no right search area or a
+// textureless ROI); the graph cut reads its right view through it. Scratch
+// from `arena` (at most match_dp_scratch_bytes(budget)), released on return.
+Result<match::GrayMap> match_dp_gray_map(const StereoInput& in, Rect roi,
+                                         const MatchDpParams& params, const MatchBudget& budget,
+                                         Arena& arena);
 
 // Matches `roi` of the left view. `out.q4` must have the ROI's size; out.roi
 // is set to `roi`. `confidence` is empty or ROI-sized.

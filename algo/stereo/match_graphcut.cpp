@@ -221,7 +221,20 @@ Status GraphCutMatcher::validate(const StereoInput& in, Rect roi, const GraphCut
   return ok_status();
 }
 
-void GraphCutMatcher::prepare(const StereoInput& in, Rect roi, const GraphCutParams& params) {
+// The DP's gray-level map of the right view for this ROI and range (in the
+// DP start's scratch, free until the start runs); the identity when off.
+Result<match::GrayMap> GraphCutMatcher::right_gray_map(const StereoInput& in, Rect roi,
+                                                       const GraphCutParams& params) {
+  if (!params.normalise_gray) return match::identity_gray_map();
+  MatchDpParams dp = params.dp_start;
+  dp.disp_min = params.disp_min;
+  dp.disp_max = params.disp_max;
+  dp.normalise_gray = true;
+  Arena scratch(dp_scratch_);
+  return match_dp_gray_map(in, roi, dp, dp_budget(budget_), scratch);
+}
+
+Status GraphCutMatcher::prepare(const StereoInput& in, Rect roi, const GraphCutParams& params) {
   const ConstGray8View& left = in.left;
   const ConstGray8View& right = in.right;
   w_ = roi.w;
@@ -238,10 +251,9 @@ void GraphCutMatcher::prepare(const StereoInput& in, Rect roi, const GraphCutPar
   const int threshold = params.edge_threshold;
   // The right view's gray levels on the left's scale (camera gain and offset).
   const match::GrayMap same = match::identity_gray_map();
-  const match::GrayMap to_left =
-      params.normalise_gray
-          ? match::gray_map_for_roi(left, right, roi, params.disp_min, params.disp_max)
-          : same;
+  auto mapped = right_gray_map(in, roi, params);
+  if (!mapped) return mapped.error();
+  const match::GrayMap& to_left = *mapped;
   for (int y = 0; y < h_; ++y) {
     const int gy = roi.y + y;
     for (int x = 0; x < w_; ++x) {
@@ -264,6 +276,7 @@ void GraphCutMatcher::prepare(const StereoInput& in, Rect roi, const GraphCutPar
       }
     }
   }
+  return ok_status();
 }
 
 // K of the original method: the mean over pixels of the k-th smallest data
@@ -370,7 +383,7 @@ std::int64_t GraphCutMatcher::energy() const {
 Result<std::int32_t> GraphCutMatcher::automatic_occlusion_k(const StereoInput& in, Rect roi,
                                                             const GraphCutParams& params) {
   PETRA_TRY(validate(in, roi, params, nullptr));
-  prepare(in, roi, params);
+  PETRA_TRY(prepare(in, roi, params));
   const std::int32_t k = automatic_k();
   if (k <= 0) {
     return Error::make(Errc::degenerate,
@@ -383,7 +396,7 @@ Result<std::int32_t> GraphCutMatcher::automatic_occlusion_k(const StereoInput& i
 Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
                                               const GraphCutParams& params, DisparityMap& out) {
   PETRA_TRY(validate(in, roi, params, &out));
-  prepare(in, roi, params);
+  PETRA_TRY(prepare(in, roi, params));
 
   GraphCutReport report;
   PETRA_TRY(choose_weights(params, report));

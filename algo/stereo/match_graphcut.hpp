@@ -108,9 +108,10 @@ struct GraphCutParams {
   std::int32_t lambda2 = kGraphCutAuto;      // >= 0; default lambda
   int edge_threshold = 8;                    // gray levels, 1..255
   int data_clip = 30;                        // gray levels, 1..90
-  // The right view's gray levels mapped to the left's statistics before the
-  // data term (algo/stereo/match_photometric); off by default like the DP's.
-  bool normalise_gray = false;
+  // The right view's gray levels mapped to the left's before the data term:
+  // the DP's map of step 0, measured on its edge pairs (match_dp_gray_map
+  // with dp_start's parameters; docs/graphcut.md).
+  bool normalise_gray = true;
   // The labelling the expansions start from (docs/graphcut.md, "Start").
   GraphCutStart start = GraphCutStart::dp;
   // Parameters of the DP start (its disparity range is this one's).
@@ -188,7 +189,9 @@ class GraphCutMatcher {
 
   Status validate(const StereoInput& in, Rect roi, const GraphCutParams& params,
                   const DisparityMap* out) const;
-  void prepare(const StereoInput& in, Rect roi, const GraphCutParams& params);
+  Status prepare(const StereoInput& in, Rect roi, const GraphCutParams& params);
+  Result<match::GrayMap> right_gray_map(const StereoInput& in, Rect roi,
+                                        const GraphCutParams& params);
   std::int32_t automatic_k() const;
   void block_matching_labels();
   // block_matching_labels()'s steps (match_graphcut_start.cpp).

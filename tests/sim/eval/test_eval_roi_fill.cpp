@@ -7,7 +7,7 @@
 // reads (the ROI and 48 px around it, in the right view shifted by the
 // truth's disparities), so the check build renders it in a fraction of the
 // whole pair's time; the trap is there as in the set's render
-// (docs/reconstruction.md).
+// (docs/reconstruction.md) on the DP's map with raw gray levels.
 #include <gtest/gtest.h>
 
 #include "algo/chain/pipeline.hpp"
@@ -37,13 +37,22 @@ test::SceneChainRun evaluate(const RoiFillScene& f, const PipelineParams& params
 TEST(EvalRoiFill, TwoFacesAreNotTakenForGround) {
   const RoiFillScene& f = roi_fill_scene();
   ASSERT_TRUE(f.products.truth.click.has_value());
-  // Without the normals' check the two faces pass as ground (the trap).
-  PipelineParams off;
+  // The trap springs on the map the DP makes with raw gray levels (the
+  // right camera's gain uncorrected, the flight default before the gray-level
+  // map): without the normals' check the two faces pass as ground.
+  PipelineParams raw;
+  raw.match.normalise_gray = false;
+  PipelineParams off = raw;
   off.reconstruction.ground_normals.min_share = 0.0;
   const test::SceneChainRun trap = evaluate(f, off);
   ASSERT_TRUE(trap.out.ok()) << trap.out.error().message;
   EXPECT_EQ(trap.out->result.segmentation, SegmentMethod::ground_plane);
-  // With it (the flight default) the rock is grown from the click.
+  // With the check the rock is grown from the click, on that map ...
+  const test::SceneChainRun checked = evaluate(f, raw);
+  ASSERT_TRUE(checked.out.ok()) << checked.out.error().message;
+  EXPECT_EQ(checked.out->result.segmentation, SegmentMethod::click_region);
+  test::expect_realistic_targets(checked.score);
+  // ... and with the flight default.
   const test::SceneChainRun o = evaluate(f, {});
   ASSERT_TRUE(o.out.ok()) << o.out.error().message;
   EXPECT_EQ(o.out->result.segmentation, SegmentMethod::click_region);
