@@ -82,7 +82,17 @@ GrayMap identity_gray_map() {
 }
 
 namespace {
-GrayMap map_of_stats(const GrayStats& l, const GrayStats& r);
+GrayMap map_of_stats(const GrayStats& l, const GrayStats& r) {
+  GrayMap m = identity_gray_map();
+  if (l.count == 0 || r.count == 0) return m;
+  // gain in 1/256: mad_L / mad_R within [1/4, 4]; a flat area keeps gain 1.
+  std::int64_t gain_q8 = 256;
+  if (l.mad_q8 > 0 && r.mad_q8 > 0)
+    gain_q8 = std::clamp<std::int64_t>(div_round(l.mad_q8 * 256, r.mad_q8), 256 / kMaxGrayGain,
+                                       256 * kMaxGrayGain);
+  // level(v) in 1/256: mean_L + (v - mean_R) gain.
+  return linear_gray_map(gain_q8, l.mean_q8 - div_round(r.mean_q8 * gain_q8, 256));
+}
 }  // namespace
 
 GrayMap right_to_left_gray_map(ConstGray8View left, Rect left_area, ConstGray8View right,
@@ -104,7 +114,8 @@ WindowSums window_sums(ConstGray8View img, int x, int y) {
   int v[n][n];
   for (int j = 0; j < n; ++j) {
     const std::uint8_t* r = img.row(std::clamp(y + j - kPairWindowRadius, 0, img.height() - 1));
-    for (int i = 0; i < n; ++i) v[j][i] = r[std::clamp(x + i - kPairWindowRadius, 0, img.width() - 1)];
+    for (int i = 0; i < n; ++i)
+      v[j][i] = r[std::clamp(x + i - kPairWindowRadius, 0, img.width() - 1)];
   }
   WindowSums w;
   int blocks[n - 1][n - 1];
@@ -180,20 +191,6 @@ GrayMap gray_map_from_pairs(const PairOffsetVotes& s) {
     return identity_gray_map();
   return linear_gray_map(s.gain_q8, offset_q8);
 }
-
-namespace {
-GrayMap map_of_stats(const GrayStats& l, const GrayStats& r) {
-  GrayMap m = identity_gray_map();
-  if (l.count == 0 || r.count == 0) return m;
-  // gain in 1/256: mad_L / mad_R within [1/4, 4]; a flat area keeps gain 1.
-  std::int64_t gain_q8 = 256;
-  if (l.mad_q8 > 0 && r.mad_q8 > 0)
-    gain_q8 = std::clamp<std::int64_t>(div_round(l.mad_q8 * 256, r.mad_q8), 256 / kMaxGrayGain,
-                                       256 * kMaxGrayGain);
-  // level(v) in 1/256: mean_L + (v - mean_R) gain.
-  return linear_gray_map(gain_q8, l.mean_q8 - div_round(r.mean_q8 * gain_q8, 256));
-}
-}  // namespace
 
 GrayMap gray_map_for_roi(ConstGray8View left, ConstGray8View right, Rect roi, int disp_min,
                          int disp_max) {

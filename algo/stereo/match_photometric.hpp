@@ -1,18 +1,20 @@
 // Photometric normalisation of the right view before matching: two cameras
 // differ in gain and offset (exposure, amplifier, lens transmission), and an
 // intensity cost compares gray values across them. The right view's gray
-// levels are mapped linearly so that the mean and the mean absolute
-// deviation of the right search area equal those of the left ROI:
-//   level(v) = mean_L + (v - mean_R) * mad_L / mad_R   (rounded, clamped 0..255)
-// Both statistics come from 256-bin histograms of 4x2 block means (robust to
-// a sub-pixel resampling of one view), integer arithmetic only.
-// The two areas see the same scene: the left ROI and the right area it
-// lands on at the middle of the disparity range (both cut to the columns
-// where that shift stays inside the image). Statistics of a wider right
-// area (the whole search band) describe other content and gave a wrong map
-// on small ROIs. Census (algo/stereo/match_cost) compares pixels within one view,
-// so it is unchanged by any increasing map; the map matters to the
-// intensity terms.
+// levels are mapped linearly, level(v) = gain v + offset, with the map
+// measured one of two ways:
+// - on correspondences (the matchers' default, algo/stereo/match_dp step 0):
+//   the windows of the DP's edge pairs, medians of the pairs' own gains and
+//   offsets (PairGainVotes, PairOffsetVotes below);
+// - on areas (the DP without its edge constraint): the mean and the mean
+//   absolute deviation of the right search area made equal to the left
+//   ROI's, from 256-bin histograms of 4x2 block means (robust to a
+//   sub-pixel resampling of one view), the left ROI against the right area it
+//   lands on at the middle of the disparity range. Those areas see other
+//   content wherever the disparity varies, which the pairs do not.
+// Integer arithmetic only. Census (algo/stereo/match_cost) compares pixels
+// within one view, so it is unchanged by any increasing map; the map matters
+// to the intensity terms.
 #pragma once
 
 #include <cstdint>

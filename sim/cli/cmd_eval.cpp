@@ -327,8 +327,8 @@ int run(const EvalOptions& o) {
   // The DP's gray-level map when the DP matched this pair (not a replayed map).
   const bool dp_matched = out->calibration.present && out->method == MatchMethod::dp;
   Status s = io::write_text_file(
-      dir + "planes.json", eval::format_planes_json(out->result, &out->calibration,
-                                                    dp_matched ? &out->match : nullptr));
+      dir + "planes.json",
+      eval::format_planes_json(out->result, &out->calibration, dp_matched ? &out->match : nullptr));
   if (s.ok()) s = eval::write_ply(dir + "cloud.ply", out->result, out->left_rectified, false);
   if (s.ok()) s = eval::write_ply(dir + "mesh.ply", out->result, out->left_rectified, true);
   if (s.ok()) s = io::write_png(dir + "disparity.png", eval::disparity_picture(out->disparity));

@@ -27,7 +27,7 @@ struct MiddleburyOptions {
   std::string scene;
   bool no_edges = false;
   bool normalise = true;  // the matcher's default
-  std::string perturb;  // "gain,offset,sigma[,seed[,vignetting]]"
+  std::string perturb;    // "gain,offset,sigma[,seed[,vignetting]]"
 };
 
 int run(const MiddleburyOptions& o) {

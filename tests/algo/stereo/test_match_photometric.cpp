@@ -102,8 +102,10 @@ std::vector<std::uint8_t> other_camera(const std::vector<std::uint8_t>& left, in
   std::vector<std::uint8_t> right(left.size());
   for (std::size_t i = 0; i < left.size(); ++i) {
     const int x = static_cast<int>(i % static_cast<std::size_t>(w));
-    const std::size_t src = i - static_cast<std::size_t>(x) + static_cast<std::size_t>(std::min(x + d, w - 1));
-    right[i] = static_cast<std::uint8_t>(std::clamp(std::lround(gain * left[src] + offset), 0L, 255L));
+    const std::size_t src =
+        i - static_cast<std::size_t>(x) + static_cast<std::size_t>(std::min(x + d, w - 1));
+    right[i] =
+        static_cast<std::uint8_t>(std::clamp(std::lround(gain * left[src] + offset), 0L, 255L));
   }
   return right;
 }
