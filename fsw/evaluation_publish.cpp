@@ -52,6 +52,8 @@ bool EvaluationService::publish() {
   r.calib_spread_px = out.calib_spread_px;
   r.calib_features = out.calib_features;
   r.calib_verdict = out.calib_verdict;
+  r.gray_gain = out.gray_gain;
+  r.gray_offset = out.gray_offset;
   w_.queue->push(r, t);
   push_planes(out, t);
   stage_products(out);

@@ -125,7 +125,12 @@
   F(u16, calib_features, 1, "", 0, 4096, "calibration check: matched features kept")              \
   F(u8, calib_verdict, 1, "enum", 0, 3,                                                           \
     "calibration check: 0 unknown, 1 ok, 2 drifted, 3 drifted and corrected (right view's rows "  \
-    "moved by the offset before matching)")
+    "moved by the offset before matching)")                                                       \
+  F(f32, gray_gain, 1, "1", 0.25, 4,                                                              \
+    "matcher's map of the right view's gray levels, level = gain v + offset: gain (1: the "       \
+    "cameras agree or the map was not measured)")                                                 \
+  F(f32, gray_offset, 1, "DN", -1024, 1024,                                                       \
+    "matcher's map of the right view's gray levels: offset (0: the cameras agree)")
 
 #define PETRA_GRIND_PLANE_FIELDS(F)                                                      \
   F(u32, eval_id, 1, "", 0, PETRA_U32_MAX, "evaluation it belongs to")                   \

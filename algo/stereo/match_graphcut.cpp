@@ -234,7 +234,8 @@ Result<match::GrayMap> GraphCutMatcher::right_gray_map(const StereoInput& in, Re
   return match_dp_gray_map(in, roi, dp, dp_budget(budget_), scratch);
 }
 
-Status GraphCutMatcher::prepare(const StereoInput& in, Rect roi, const GraphCutParams& params) {
+Status GraphCutMatcher::prepare(const StereoInput& in, Rect roi, const GraphCutParams& params,
+                                match::GrayMap* applied) {
   const ConstGray8View& left = in.left;
   const ConstGray8View& right = in.right;
   w_ = roi.w;
@@ -254,6 +255,7 @@ Status GraphCutMatcher::prepare(const StereoInput& in, Rect roi, const GraphCutP
   auto mapped = right_gray_map(in, roi, params);
   if (!mapped) return mapped.error();
   const match::GrayMap& to_left = *mapped;
+  if (applied != nullptr) *applied = to_left;
   for (int y = 0; y < h_; ++y) {
     const int gy = roi.y + y;
     for (int x = 0; x < w_; ++x) {
@@ -396,9 +398,12 @@ Result<std::int32_t> GraphCutMatcher::automatic_occlusion_k(const StereoInput& i
 Result<GraphCutReport> GraphCutMatcher::match(const StereoInput& in, Rect roi,
                                               const GraphCutParams& params, DisparityMap& out) {
   PETRA_TRY(validate(in, roi, params, &out));
-  PETRA_TRY(prepare(in, roi, params));
+  match::GrayMap applied;
+  PETRA_TRY(prepare(in, roi, params, &applied));
 
   GraphCutReport report;
+  report.gray_gain_q8 = applied.gain_q8;
+  report.gray_offset_q8 = applied.offset_q8;
   PETRA_TRY(choose_weights(params, report));
   auto started = start_labels(in, roi, params, report);
   if (!started) return started.error();

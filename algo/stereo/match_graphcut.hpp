@@ -159,6 +159,8 @@ struct GraphCutReport {
   long matched_pixels = 0;
   long occluded_pixels = 0;
   long shadow_pixels = 0;
+  int gray_gain_q8 = 256;  // the right view's gray-level map applied (1/256)
+  int gray_offset_q8 = 0;  // its level(0), 1/256 gray level
 };
 
 class GraphCutMatcher {
@@ -189,7 +191,8 @@ class GraphCutMatcher {
 
   Status validate(const StereoInput& in, Rect roi, const GraphCutParams& params,
                   const DisparityMap* out) const;
-  Status prepare(const StereoInput& in, Rect roi, const GraphCutParams& params);
+  Status prepare(const StereoInput& in, Rect roi, const GraphCutParams& params,
+                 match::GrayMap* applied = nullptr);
   Result<match::GrayMap> right_gray_map(const StereoInput& in, Rect roi,
                                         const GraphCutParams& params);
   std::int32_t automatic_k() const;

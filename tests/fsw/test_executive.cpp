@@ -34,6 +34,8 @@ fsw::EvalOutput two_executive_planes() {
   o.filtered_points = 21382;
   o.disparity_min = -21;
   o.disparity_max = 20;
+  o.gray_gain = 1.176f;
+  o.gray_offset = 7.0f;
   return o;
 }
 
@@ -74,6 +76,8 @@ TEST(Executive, SelectRoiAndEvaluateDownlinkThePipelinesPlanes) {
   EXPECT_EQ(results[0].planes_requested, 3);
   EXPECT_EQ(results[0].status, 1);  // fewer than c qualified
   EXPECT_EQ(results[0].dense_points, 23465u);
+  EXPECT_EQ(results[0].gray_gain, 1.176f);  // the matcher's gray-level map, as measured
+  EXPECT_EQ(results[0].gray_offset, 7.0f);
   EXPECT_EQ(results[0].step_us[static_cast<std::size_t>(fsw::Step::MATCH)], 40u);
   EXPECT_TRUE(h.has_event(static_cast<std::uint16_t>(EventId::FEWER_PLANES)));
 
