@@ -340,10 +340,12 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   out.calib_spread_px = static_cast<float>(p.calibration.spread_px);
   out.calib_features = static_cast<std::uint16_t>(p.calibration.features);
   out.calib_verdict = static_cast<std::uint8_t>(p.calibration.verdict);
+  // The gray-level map of the matcher that ran (1/256 gain, 1/256 level).
   const bool gc = p.method == MatchMethod::graph_cut;
-  out.gray_gain = static_cast<float>((gc ? p.graph_cut.gray_gain_q8 : p.match.gray_gain_q8) / 256.0);
-  out.gray_offset =
-      static_cast<float>((gc ? p.graph_cut.gray_offset_q8 : p.match.gray_offset_q8) / 256.0);
+  const int gain_q8 = gc ? p.graph_cut.gray_gain_q8 : p.match.gray_gain_q8;
+  const int offset_q8 = gc ? p.graph_cut.gray_offset_q8 : p.match.gray_offset_q8;
+  out.gray_gain = static_cast<float>(gain_q8 / 256.0);
+  out.gray_offset = static_cast<float>(offset_q8 / 256.0);
   out.dense_points = static_cast<std::uint32_t>(r.stats.dense_points);
   out.filtered_points = static_cast<std::uint32_t>(r.stats.filtered_points);
   out.disparity_min = static_cast<float>(r.stats.disparity_min_px);

@@ -229,8 +229,8 @@ TEST(Middlebury, DpMatcherIsInsensitiveToTheRightCamerasGainAndOffset) {
     int gain_q8 = 0;
     const double clean = dp_filled_nonocc(name, Perturbation{}, true);
     const double changed = dp_filled_nonocc(name, gain_offset, true, &gain_q8);
-    std::printf("%-7s filled nonocc: original %.2f, gain 0.82 offset 12: %.2f (map x %.3f)\n",
-                name, clean, changed, gain_q8 / 256.0);
+    std::printf("%-7s filled nonocc: original %.2f, gain 0.82 offset 12: %.2f (map x %.3f)\n", name,
+                clean, changed, gain_q8 / 256.0);
     EXPECT_LE(changed, clean + 1.0) << name;
     EXPECT_NEAR(gain_q8 / 256.0, 1.0 / 0.82, 0.03 / 0.82) << name;  // the map measured the gain
   }
