@@ -324,11 +324,14 @@ int run(const EvalOptions& o) {
   fs::create_directories(o.out, ec);
   if (ec) return fail("eval", ("cannot create " + o.out + ": " + ec.message()).c_str());
   const std::string dir = o.out + "/";
-  // The DP's gray-level map when the DP matched this pair (not a replayed map).
-  const bool dp_matched = out->calibration.present && out->method == MatchMethod::dp;
+  // The matcher's gray-level map when it matched this pair (not on a replayed map).
+  const bool gc = out->method == MatchMethod::graph_cut;
+  const eval::GrayMapQ8 gray{gc ? out->graph_cut.gray_gain_q8 : out->match.gray_gain_q8,
+                             gc ? out->graph_cut.gray_offset_q8 : out->match.gray_offset_q8};
   Status s = io::write_text_file(
       dir + "planes.json",
-      eval::format_planes_json(out->result, &out->calibration, dp_matched ? &out->match : nullptr));
+      eval::format_planes_json(out->result, &out->calibration,
+                               out->calibration.present ? &gray : nullptr));
   if (s.ok()) s = eval::write_ply(dir + "cloud.ply", out->result, out->left_rectified, false);
   if (s.ok()) s = eval::write_ply(dir + "mesh.ply", out->result, out->left_rectified, true);
   if (s.ok()) s = io::write_png(dir + "disparity.png", eval::disparity_picture(out->disparity));

@@ -38,7 +38,7 @@ void grind_fields(json::Writer& w, const GrindPlane& p, double diameter_mm) {
 }  // namespace
 
 std::string format_planes_json(const ReconstructionOutput& r, const CalibCheck* calibration,
-                               const MatchDpStats* match) {
+                               const GrayMapQ8* gray_map) {
   const double grinder_diameter_mm = r.planes.footprint_diameter_mm;
   std::vector<char> buf(4096 + 1536 * static_cast<std::size_t>(r.planes.count));
   json::Writer w(buf);
@@ -87,11 +87,11 @@ std::string format_planes_json(const ReconstructionOutput& r, const CalibCheck* 
     w.end_object();
     w.raw("\n");
   }
-  // The right view's gray levels as the DP matcher mapped them (optional field).
-  if (match != nullptr) {
+  // The right view's gray levels as the matcher mapped them (optional field).
+  if (gray_map != nullptr) {
     w.key("gray_map").begin_object();
-    w.key("gain").number(match->gray_gain_q8 / 256.0);
-    w.key("offset").number(match->gray_offset_q8 / 256.0);
+    w.key("gain").number(gray_map->gain_q8 / 256.0);
+    w.key("offset").number(gray_map->offset_q8 / 256.0);
     w.end_object();
     w.raw("\n");
   }

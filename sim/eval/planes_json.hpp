@@ -8,14 +8,19 @@
 
 #include "algo/camera/calib_check.hpp"
 #include "algo/chain/reconstruction.hpp"
-#include "algo/stereo/match_dp.hpp"
 
 namespace petra::eval {
 
+// The gray-level map a matcher applied to the right view (1/256 units).
+struct GrayMapQ8 {
+  int gain_q8 = 256;
+  int offset_q8 = 0;
+};
+
 // `calibration`: the pair's calibration check, written when present (optional field);
-// `match`: the DP matcher's statistics, whose gray-level map is written when given.
+// `gray_map`: the map the matcher applied (the DP's or the graph cut's), written when given.
 std::string format_planes_json(const ReconstructionOutput& result,
                                const CalibCheck* calibration = nullptr,
-                               const MatchDpStats* match = nullptr);
+                               const GrayMapQ8* gray_map = nullptr);
 
 }  // namespace petra::eval
