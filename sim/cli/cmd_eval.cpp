@@ -329,9 +329,8 @@ int run(const EvalOptions& o) {
   const eval::GrayMapQ8 gray{gc ? out->graph_cut.gray_gain_q8 : out->match.gray_gain_q8,
                              gc ? out->graph_cut.gray_offset_q8 : out->match.gray_offset_q8};
   Status s = io::write_text_file(
-      dir + "planes.json",
-      eval::format_planes_json(out->result, &out->calibration,
-                               out->calibration.present ? &gray : nullptr));
+      dir + "planes.json", eval::format_planes_json(out->result, &out->calibration,
+                                                    out->calibration.present ? &gray : nullptr));
   if (s.ok()) s = eval::write_ply(dir + "cloud.ply", out->result, out->left_rectified, false);
   if (s.ok()) s = eval::write_ply(dir + "mesh.ply", out->result, out->left_rectified, true);
   if (s.ok()) s = io::write_png(dir + "disparity.png", eval::disparity_picture(out->disparity));
