@@ -64,6 +64,24 @@ std::size_t clicked_point(const ReconstructionOutput& out, const ClickPx& click,
   return best;
 }
 
+// A region far smaller than the ROI's surface (a click in a shallow groove,
+// whose concave sides ring it): grown again with the concave limit doubled,
+// at most twice; the labels and `r` are the last growth's.
+Status grow_past_a_groove(const ClickRegionParams& params, std::size_t seed, Arena& arena,
+                          ReconstructionOutput& out, ClickRegionResult& r) {
+  const double enough = params.min_share * static_cast<double>(out.pixels.size());
+  ClickRegionParams loose = params;
+  for (int k = 0; k < 2 && static_cast<double>(r.points) < enough; ++k) {
+    loose.max_concave_step_deg *= 2;
+    auto again =
+        grow_click_region(out.xyz_mm, out.normals, out.mesh, seed, loose, out.point_class, arena);
+    if (!again) return again.error();
+    r = *again;
+    r.loosened = k + 1;
+  }
+  return {};
+}
+
 // From the click: "ground" is the plane of the points around the rock (its
 // RMS says how far from a plane); the counts from the labels.
 void fit_surroundings(ReconstructionOutput& out) {
@@ -104,6 +122,7 @@ Status segment_from_click(const ReconstructionRequest& request, const Reconstruc
   }
   if (seed == out.pixels.size()) return no_ground;  // segment_ground names the click's problem
   if (!r) return r.error();
+  PETRA_TRY(grow_past_a_groove(params.click_region, seed, arena, out, *r));
   out.segmentation = SegmentMethod::click_region;
   out.click_region = *r;
   out.ground = {};

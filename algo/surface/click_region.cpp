@@ -54,6 +54,8 @@ Status validate(const ClickRegionParams& p) {
     return Error::make(Errc::invalid_argument, "click region: max_concave_step_deg not in (0, 90)");
   if (!(p.max_normal_step_deg > 0.0 && p.max_normal_step_deg <= 180.0))
     return Error::make(Errc::invalid_argument, "click region: max_normal_step_deg not in (0, 180]");
+  if (!(p.min_share >= 0.0 && p.min_share < 1.0))
+    return Error::make(Errc::invalid_argument, "click region: min_share not in [0, 1)");
   if (p.min_points < 3)
     return Error::make(Errc::invalid_argument, "click region: min_points %zu < 3", p.min_points);
   return {};

@@ -33,12 +33,18 @@ struct ClickRegionParams {
   double max_concave_step_deg = 2.0;  // per mesh edge (normals smoothed over a window)
   double max_normal_step_deg = 20.0;  // per mesh edge
   std::size_t min_points = 200;       // a region smaller is not a rock one can grind
+  // The chain (algo/chain/reconstruction): a region holding less than this
+  // share of the ROI's points is grown again with the concave limit doubled,
+  // at most twice (a click in a shallow groove of the rock; the click path
+  // runs only where the rock fills the ROI or rocks are stacked).
+  double min_share = 0.05;
 };
 
 struct ClickRegionResult {
   std::size_t points = 0;           // in the region
   std::size_t stopped_concave = 0;  // edges refused as concave
   std::size_t stopped_fold = 0;     // edges refused for the normal step
+  int loosened = 0;                 // times the chain doubled the concave limit (min_share)
 };
 
 Status validate(const ClickRegionParams& p);

@@ -184,6 +184,11 @@ void print_summary(const EvalOptions& o, const PipelineOutput& out, double total
               gn.x(), gn.y(), gn.z(), r.ground.plane.d, r.ground.rms_mm, r.ground.ground_points);
   std::printf("  rock                   %zu points, %zu triangles\n", r.ground.rock_points,
               s.rock_triangles);
+  if (r.click_region.loosened > 0)
+    std::printf(
+        "  click region           grown again with the concave limit x %d: the first growth "
+        "held under %.0f %% of the ROI's points (a groove under the click)\n",
+        1 << r.click_region.loosened, 100 * PipelineParams{}.reconstruction.click_region.min_share);
   if (r.support_planes > 0)
     std::printf(
         "  support                %d plane(s) on the surface the rock stands on: %zu points "

@@ -118,6 +118,10 @@ TEST(ClickRegion, TooSmallAndBadInputAreNamed) {
   p.max_concave_step_deg = 0;
   g = grow(f, 0, p);
   EXPECT_EQ(g.result.code(), Errc::invalid_argument);
+  p = {};
+  p.min_share = 1.0;
+  g = grow(f, 0, p);
+  EXPECT_NE(std::string(g.result.error().message).find("min_share"), std::string::npos);
 }
 
 TEST(ClickRegion, NoHeap) {

@@ -167,9 +167,9 @@ PlaneCheck check_plane(const GrindPlane& g) {
   return c;
 }
 
-io::GrayImage changed_gain(const io::GrayImage& img) {
+io::GrayImage changed_gain(const io::GrayImage& img, unsigned noise_seed) {
   io::GrayImage out = img;
-  std::mt19937 rng(21);
+  std::mt19937 rng(noise_seed);
   std::normal_distribution<double> noise(0.0, 2.0);
   for (int y = 0; y < out.height; ++y)
     for (int x = 0; x < out.width; ++x) {
@@ -179,7 +179,8 @@ io::GrayImage changed_gain(const io::GrayImage& img) {
   return out;
 }
 
-void run_case(const RoiCase& c, Source source, bool surface_check) {
+// `noise_seed`: the draw of the right view's noise (Source::dp_gain).
+void run_case(const RoiCase& c, Source source, bool surface_check, unsigned noise_seed = 21) {
   const Data& d = data();
   PipelineParams params;
   const PipelineBudget b = test::eval_budget(d.left.width, d.left.height, 320, params);
@@ -196,7 +197,6 @@ void run_case(const RoiCase& c, Source source, bool surface_check) {
   const StepClock clock{};
   Result<PipelineOutput> out = Error::make(Errc::not_ready, "not run");
   std::vector<std::int16_t> given;
-  static const io::GrayImage gained = changed_gain(d.right);
   if (source == Source::truth) {
     auto box = p->rectifier().roi_to_rectified(StereoSide::left, c.roi);
     ASSERT_TRUE(box.ok());
@@ -204,11 +204,12 @@ void run_case(const RoiCase& c, Source source, bool surface_check) {
     const ConstDisparityMap map(ImageView<const std::int16_t>(given.data(), box->w, box->h), *box);
     out = p->run_with_disparity(d.left.view(), map, req, clock);
   } else {
-    out = p->run(d.left.view(), (source == Source::dp ? d.right : gained).view(), req, clock);
+    const io::GrayImage right = source == Source::dp ? d.right : changed_gain(d.right, noise_seed);
+    out = p->run(d.left.view(), right.view(), req, clock);
   }
   ASSERT_TRUE(out.ok()) << c.name << ": " << out.error().message;
   const ReconstructionOutput& r = out->result;
-  ASSERT_GE(r.planes.accepted, 1) << c.name;
+  ASSERT_GE(r.planes.accepted, 1) << c.name << ", noise seed " << noise_seed;
   // Rocks stacked in a box: no ground around these rocks.
   EXPECT_EQ(r.segmentation, SegmentMethod::click_region) << c.name;
   EXPECT_GT(r.click_region.points, 1000u) << c.name;
@@ -246,6 +247,14 @@ TEST_P(Rocks1, EveryRoiGivesPlanesFromTheClick) {
 
 TEST_P(Rocks1, DISABLED_EveryPlaneLiesOnTheRealSurface) {
   for (const RoiCase& c : kCases) run_case(c, GetParam(), true);
+}
+
+TEST(Rocks1Noise, EveryDrawOfTheNoiseGivesTheWhiteRockPlanes) {
+  if (!data().ok) GTEST_SKIP() << "no Rocks1 data at " << kRocks1Dir << " (run from the repo root)";
+  // The white rock's click lies in a shallow groove. With the noise of seed 1 its concave sides
+  // ringed the click (a region of 661 points, no plane) until a region under
+  // ClickRegionParams::min_share of the ROI was grown again with a looser concave limit.
+  for (unsigned seed = 1; seed <= 12; ++seed) run_case(kCases[0], Source::dp_gain, false, seed);
 }
 
 INSTANTIATE_TEST_SUITE_P(Sources, Rocks1,
