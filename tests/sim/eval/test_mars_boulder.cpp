@@ -9,9 +9,11 @@
 // points, and the planes are found again (without: plane 2 on the sand at (618, 637) px).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -29,18 +31,20 @@ const std::string kCalib = "tests/data/mars_boulder_calib.json";
 // The boulder in the left image (px), by eye: columns 365..595, rows 400..615.
 constexpr double kBoulderU0 = 365, kBoulderU1 = 595, kBoulderV0 = 400, kBoulderV1 = 615;
 
-TEST(MarsBoulder, EveryPlaneLiesOnTheBoulderWithTheNominalCalibration) {
-  if (!std::filesystem::exists(kMarsDir + "left.png"))
-    GTEST_SKIP() << "skipped: " << kMarsDir << " missing";
-  auto left = io::read_gray_image(kMarsDir + "left.png");
-  auto right = io::read_gray_image(kMarsDir + "right.png");
+struct MarsRun {
+  StereoRig rig;
+  Result<PipelineOutput> out = Error::make(Errc::not_ready, "not run");
+};
+
+// The pair through the chain with the operator's ROI and click; `right` may be changed.
+void run_mars(const io::GrayImage& left, const io::GrayImage& right, MarsRun& run) {
   auto text = io::read_text_file(kCalib);
-  ASSERT_TRUE(left.ok() && right.ok() && text.ok());
+  ASSERT_TRUE(text.ok());
   auto rig = parse_calib_json(*text);
   ASSERT_TRUE(rig.ok()) << rig.error().message;
-
+  run.rig = *rig;
   PipelineParams params;
-  const PipelineBudget b = test::eval_budget(left->width, left->height, 320, params);
+  const PipelineBudget b = test::eval_budget(left.width, left.height, 320, params);
   std::vector<std::byte> block(Pipeline::arena_bytes(b, params));
   Arena arena(block);
   auto p = Pipeline::create(*rig, b, params, arena);
@@ -51,23 +55,65 @@ TEST(MarsBoulder, EveryPlaneLiesOnTheBoulderWithTheNominalCalibration) {
   req.click_u = 470;
   req.click_v = 480;
   req.planes = 2;
-  auto out = p->run(left->view(), right->view(), req, StepClock{});
-  ASSERT_TRUE(out.ok()) << out.error().message;
+  run.out = p->run(left.view(), right.view(), req, StepClock{});
+}
 
-  EXPECT_EQ(out->calibration.verdict, CalibVerdict::ok);
-  EXPECT_LT(std::fabs(out->calibration.vertical_offset_px), 0.3);
-  const ReconstructionOutput& r = out->result;
+void expect_planes_on_the_boulder(const MarsRun& run, const char* what) {
+  const ReconstructionOutput& r = run.out->result;
+  for (int k = 0; k < r.planes.accepted; ++k) {
+    auto uv = project(run.rig.left, r.planes.planes[k].centroid_mm);
+    ASSERT_TRUE(uv.ok());
+    std::printf("mars-boulder%s plane %d: centroid at (%.0f, %.0f) px in the left image\n", what,
+                k + 1, uv->x(), uv->y());
+    EXPECT_TRUE(uv->x() > kBoulderU0 && uv->x() < kBoulderU1 && uv->y() > kBoulderV0 &&
+                uv->y() < kBoulderV1)
+        << "plane " << k + 1 << what << " is off the boulder";
+  }
+}
+
+TEST(MarsBoulder, EveryPlaneLiesOnTheBoulderWithTheNominalCalibration) {
+  if (!std::filesystem::exists(kMarsDir + "left.png"))
+    GTEST_SKIP() << "skipped: " << kMarsDir << " missing";
+  auto left = io::read_gray_image(kMarsDir + "left.png");
+  auto right = io::read_gray_image(kMarsDir + "right.png");
+  ASSERT_TRUE(left.ok() && right.ok());
+  MarsRun run;
+  run_mars(*left, *right, run);
+  ASSERT_TRUE(run.out.ok()) << run.out.error().message;
+  EXPECT_EQ(run.out->calibration.verdict, CalibVerdict::ok);
+  EXPECT_LT(std::fabs(run.out->calibration.vertical_offset_px), 0.3);
+  const ReconstructionOutput& r = run.out->result;
   EXPECT_EQ(r.segmentation, SegmentMethod::click_region);
   EXPECT_EQ(r.support_planes, 1);  // the sand in front
   ASSERT_EQ(r.planes.accepted, 2);
-  for (int k = 0; k < r.planes.accepted; ++k) {
-    auto uv = project(rig->left, r.planes.planes[k].centroid_mm);
-    ASSERT_TRUE(uv.ok());
-    std::printf("mars-boulder plane %d: centroid at (%.0f, %.0f) px in the left image\n", k + 1,
-                uv->x(), uv->y());
-    EXPECT_TRUE(uv->x() > kBoulderU0 && uv->x() < kBoulderU1 && uv->y() > kBoulderV0 &&
-                uv->y() < kBoulderV1)
-        << "plane " << k + 1 << " is off the boulder";
+  expect_planes_on_the_boulder(run, "");
+}
+
+// The right view with noise sigma 2 added (and a gain of 1.15 on every other
+// draw): how many planes are found varies with the draw (one on draw 7), and
+// with gain 1 the sand's support plane is missed on draws 4 and 8 (2026-12-07),
+// but every plane reported lies on the boulder.
+TEST(MarsBoulder, EveryPlaneLiesOnTheBoulderUnderEachDrawOfNoise) {
+  if (!std::filesystem::exists(kMarsDir + "left.png"))
+    GTEST_SKIP() << "skipped: " << kMarsDir << " missing";
+  auto left = io::read_gray_image(kMarsDir + "left.png");
+  auto right = io::read_gray_image(kMarsDir + "right.png");
+  ASSERT_TRUE(left.ok() && right.ok());
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    io::GrayImage changed = *right;
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0.0, 2.0);
+    const double gain = seed % 2 == 0 ? 1.15 : 1.0;
+    for (int y = 0; y < changed.height; ++y)
+      for (int x = 0; x < changed.width; ++x) {
+        const double g = gain * right->view()(x, y) + noise(rng);
+        changed.view()(x, y) = static_cast<std::uint8_t>(std::clamp(std::lround(g), 0L, 255L));
+      }
+    MarsRun run;
+    run_mars(*left, changed, run);
+    ASSERT_TRUE(run.out.ok()) << "draw " << seed << ": " << run.out.error().message;
+    EXPECT_GE(run.out->result.planes.accepted, 1) << "draw " << seed;
+    expect_planes_on_the_boulder(run, (", draw " + std::to_string(seed)).c_str());
   }
 }
 
