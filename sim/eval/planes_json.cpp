@@ -75,6 +75,14 @@ std::string format_planes_json(const ReconstructionOutput& r, const CalibCheck* 
   // How the rock was segmented (optional field): "ground_plane" or "click_region".
   w.key("segmentation").string(segment_method_name(r.segmentation));
   w.raw("\n");
+  // The region grown from the click (optional field, with "click_region").
+  if (r.segmentation == SegmentMethod::click_region) {
+    w.key("click_region").begin_object();
+    w.key("points").integer(static_cast<long long>(r.click_region.points));
+    w.key("loosened").integer(r.click_region.loosened);
+    w.end_object();
+    w.raw("\n");
+  }
   // The pair's row alignment (optional field; absent on a replayed disparity map).
   if (calibration != nullptr && calibration->present) {
     w.key("calibration").begin_object();
