@@ -54,6 +54,7 @@ bool EvaluationService::publish() {
   r.calib_verdict = out.calib_verdict;
   r.gray_gain = out.gray_gain;
   r.gray_offset = out.gray_offset;
+  r.click_loosened = out.click_loosened;
   w_.queue->push(r, t);
   push_planes(out, t);
   stage_products(out);

@@ -346,6 +346,7 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   const int offset_q8 = gc ? p.graph_cut.gray_offset_q8 : p.match.gray_offset_q8;
   out.gray_gain = static_cast<float>(gain_q8 / 256.0);
   out.gray_offset = static_cast<float>(offset_q8 / 256.0);
+  out.click_loosened = static_cast<std::uint8_t>(r.click_region.loosened);
   out.dense_points = static_cast<std::uint32_t>(r.stats.dense_points);
   out.filtered_points = static_cast<std::uint32_t>(r.stats.filtered_points);
   out.disparity_min = static_cast<float>(r.stats.disparity_min_px);

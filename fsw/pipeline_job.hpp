@@ -103,6 +103,7 @@ struct EvalOutput {
   std::uint8_t calib_verdict = 0;  // CalibVerdict: 0 unknown, 1 ok, 2 drifted, 3 corrected
   float gray_gain = 1;             // the matcher's gray-level map (docs/matching.md step 0)
   float gray_offset = 0;
+  std::uint8_t click_loosened = 0;  // ClickRegionResult::loosened (docs/reconstruction.md 5b)
   std::uint32_t dense_points = 0;
   std::uint32_t filtered_points = 0;
   float disparity_min = 0;

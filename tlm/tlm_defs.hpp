@@ -130,7 +130,10 @@
     "matcher's map of the right view's gray levels, level = gain v + offset: gain (1: the "       \
     "cameras agree or the map was not measured)")                                                 \
   F(f32, gray_offset, 1, "DN", -1024, 1024,                                                       \
-    "matcher's map of the right view's gray levels: offset (0: the cameras agree)")
+    "matcher's map of the right view's gray levels: offset (0: the cameras agree)")               \
+  F(u8, click_loosened, 1, "", 0, 2,                                                              \
+    "rock grown from the click: times its concave limit was doubled, the first growth holding "   \
+    "under 5 % of the ROI's points (a groove under the click; 0 otherwise)")
 
 #define PETRA_GRIND_PLANE_FIELDS(F)                                                      \
   F(u32, eval_id, 1, "", 0, PETRA_U32_MAX, "evaluation it belongs to")                   \

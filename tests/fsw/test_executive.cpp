@@ -36,6 +36,7 @@ fsw::EvalOutput two_executive_planes() {
   o.disparity_max = 20;
   o.gray_gain = 1.176f;
   o.gray_offset = 7.0f;
+  o.click_loosened = 1;
   return o;
 }
 
@@ -78,6 +79,7 @@ TEST(Executive, SelectRoiAndEvaluateDownlinkThePipelinesPlanes) {
   EXPECT_EQ(results[0].dense_points, 23465u);
   EXPECT_EQ(results[0].gray_gain, 1.176f);  // the matcher's gray-level map, as measured
   EXPECT_EQ(results[0].gray_offset, 7.0f);
+  EXPECT_EQ(results[0].click_loosened, 1);  // the click region grown past a groove
   EXPECT_EQ(results[0].step_us[static_cast<std::size_t>(fsw::Step::MATCH)], 40u);
   EXPECT_TRUE(h.has_event(static_cast<std::uint16_t>(EventId::FEWER_PLANES)));
 
