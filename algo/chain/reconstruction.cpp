@@ -72,7 +72,7 @@ Status grow_past_a_groove(const ClickRegionParams& params, std::size_t seed, Are
   const double enough = params.min_share * static_cast<double>(out.pixels.size());
   ClickRegionParams loose = params;
   for (int k = 0; k < 2 && static_cast<double>(r.points) < enough; ++k) {
-    loose.max_concave_step_deg *= 2;
+    loose.max_concave_step_deg = std::min(2 * loose.max_concave_step_deg, 89.0);  // valid < 90
     auto again =
         grow_click_region(out.xyz_mm, out.normals, out.mesh, seed, loose, out.point_class, arena);
     if (!again) return again.error();
