@@ -124,7 +124,7 @@ Status check_keys(const Document& doc, std::string_view camera_kind) {
       {"budget",
        {"image_width", "image_height", "arena_mb", "tlm_queue_packets", "worker_stack_kb",
         "cloud_points", "roi_width", "roi_height"}},
-      {"arm", {"can_interface", "mount", "heartbeat_timeout_ms"}},
+      {"arm", {"can_interface", "mount", "heartbeat_timeout_ms", "sdo_timeout_ms"}},
       {"gpio", {"chip", "trigger", "arm_power", "estop"}},
   };
   for (const Section& s : sections)
@@ -276,6 +276,7 @@ Status parse_arm(const Reader& r, FswConfig& c) {
   const std::uint32_t mount = doc.find(arm, "mount");
   if (mount != 0) PETRA_TRY(parse_arm_mount(doc, mount, c));
   PETRA_TRY(get_int(r, arm, "arm", "heartbeat_timeout_ms", 200, 60000, c.arm.heartbeat_timeout_ms));
+  PETRA_TRY(get_int(r, arm, "arm", "sdo_timeout_ms", 50, 10000, c.arm.sdo_timeout_ms));
   return {};
 }
 

@@ -41,6 +41,9 @@ struct ArmConfig {
   // "heartbeat_timeout_ms" (optional, 200..60000): heartbeat consumer time both
   // ways; absent (0) keeps the flight defaults (fsw/arm/arm_service.hpp).
   std::uint16_t heartbeat_timeout_ms = 0;
+  // "sdo_timeout_ms" (optional, 50..10000): the master's wait for each
+  // configuration answer; absent (0) keeps the flight default (200 ms).
+  std::uint16_t sdo_timeout_ms = 0;
 };
 
 // Where stereo pairs come from ("camera.kind"): a folder of PGM pairs, V4L2

@@ -120,6 +120,7 @@ bool start_arm(const petra::fsw::FswConfig& config, petra::fsw::FlightDevices& d
   }
   petra::fsw::arm::ArmServiceConfig arm_config;
   arm_config.heartbeat_timeout_ms = config.arm.heartbeat_timeout_ms;
+  if (config.arm.sdo_timeout_ms != 0) arm_config.timing.sdo_timeout_ms = config.arm.sdo_timeout_ms;
   arm_config.geometry = petra::fsw::arm_geometry(config);
   if (auto s = arm.init(arm_config, *can, clock); !s) {
     (void)std::fprintf(stderr, "petra-fsw: arm: %s\n", s.error().message);

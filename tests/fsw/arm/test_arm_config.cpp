@@ -33,6 +33,10 @@ TEST(ArmConfig, InterfaceAndMountAreRead) {
   c = parse(R"(,"arm":{"can_interface":"can0","heartbeat_timeout_ms":5000})");
   ASSERT_TRUE(c.ok()) << c.error().message;
   EXPECT_EQ(c->arm.heartbeat_timeout_ms, 5000);
+  EXPECT_EQ(c->arm.sdo_timeout_ms, 0);  // the flight default
+  c = parse(R"(,"arm":{"can_interface":"can0","sdo_timeout_ms":3000})");
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_EQ(c->arm.sdo_timeout_ms, 3000);
 }
 
 TEST(ArmConfig, ErrorsNameTheField) {
@@ -50,6 +54,8 @@ TEST(ArmConfig, ErrorsNameTheField) {
       {R"(,"arm":{"can_interface":"can0","heartbeat_timeout_ms":1e6})", "arm.heartbeat_timeout_ms"},
       {R"(,"arm":{"can_interface":"can0","heartbeat_timeout_ms":300.5})",
        "arm.heartbeat_timeout_ms"},
+      {R"(,"arm":{"can_interface":"can0","sdo_timeout_ms":10})", "arm.sdo_timeout_ms"},
+      {R"(,"arm":{"can_interface":"can0","sdo_timeout_ms":20000})", "arm.sdo_timeout_ms"},
   };
   for (const auto& c : cases) {
     auto r = parse(c.arm);

@@ -264,6 +264,36 @@ TEST(ArmService, AStalledHostIsToleratedWithinTheConfiguredHeartbeatTimeout) {
   EXPECT_FALSE(fsw::arm::validate_config(tolerant).ok());
 }
 
+// Both processes stalled while an SDO request was out, the master woke first
+// (the HIL and browser tests' shared host): at the flight default that is an
+// SDO timeout; with the configured wait the answer is taken and the arm boots.
+TEST(ArmService, AStallDuringConfigurationIsToleratedWithinTheConfiguredSdoTimeout) {
+  const auto stall_mid_configuration = [](ServiceRig& rig) {
+    rig.arm.power_up(rig.now);
+    const auto configuring = [&] {
+      return rig.arm.master().drive(0).state() == canopen::LinkState::configuring;
+    };
+    if (!rig.run_until(configuring, 1000)) return false;
+    rig.now += kServiceCycleMs;
+    rig.arm.step(rig.now);  // the next request goes out; the drives do not run
+    rig.now += 300;  // over the 200 ms SDO wait, under the heartbeat consumer times
+    rig.arm.step(rig.now);  // the master wakes first: no answer in the bus yet
+    rig.run_for(100);
+    return true;
+  };
+  auto flight = std::make_unique<ServiceRig>();
+  ASSERT_TRUE(stall_mid_configuration(*flight));
+  EXPECT_EQ(flight->arm.state(), ArmState::fault);
+  EXPECT_EQ(flight->arm.telemetry().fault, canopen::DriveFault::sdo_timeout);
+
+  fsw::arm::ArmServiceConfig tolerant;
+  tolerant.timing.sdo_timeout_ms = 3000;
+  auto rig = std::make_unique<ServiceRig>(tolerant);
+  ASSERT_TRUE(stall_mid_configuration(*rig));
+  ASSERT_TRUE(rig->run_until([&] { return rig->arm.state() == ArmState::holding; }, 3000));
+  EXPECT_EQ(rig->count(ArmEventKind::drive_fault), 0);
+}
+
 TEST(ArmService, ALostHeartbeatEndsInFaultWithAnEventAndResetRecovers) {
   auto rig = std::make_unique<ServiceRig>();
   ASSERT_TRUE(rig->ready());

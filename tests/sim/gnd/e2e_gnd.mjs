@@ -159,10 +159,12 @@ async function main() {
                    downlink: { host: '127.0.0.1', port: relay.address().port },
                    budget: { image_width: size.width, image_height: size.height, arena_mb: 512 },
                    camera: { kind: 'file', dir: 'pairs' },
-                   // Heartbeat consumer time both ways: 5 s instead of the flight's
-                   // 350/500 ms, so a host stalled by other work is not taken for a
-                   // lost drive (the flight default is tested with a simulated clock).
-                   arm: { can_interface: `udp:${canFsw}:${canDrives}`, mount, heartbeat_timeout_ms: 5000 } };
+                   // Heartbeat consumer time both ways 5 s instead of the flight's
+                   // 350/500 ms, and 3 s for each configuration answer instead of
+                   // 200 ms, so a host stalled by other work is not taken for a lost
+                   // drive (the flight defaults are tested with a simulated clock).
+                   arm: { can_interface: `udp:${canFsw}:${canDrives}`, mount,
+                          heartbeat_timeout_ms: 5000, sdo_timeout_ms: 3000 } };
   check(fs.existsSync(path.join(scene, 'calib.json')), 'the scene has its calib.json');
   config.calib = path.join(scene, 'calib.json');
   fs.writeFileSync(path.join(work, 'fsw.json'), JSON.stringify(config));

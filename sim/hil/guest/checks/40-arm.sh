@@ -133,7 +133,7 @@ cat > $A/fsw.json << EOF
  "budget": {"image_width": ${W:-1024}, "image_height": ${H:-768}},
  "camera": {"kind": "file", "dir": "pairs"},
  $CALIB_LINE
- "arm": {"can_interface": "vcan0", "heartbeat_timeout_ms": 2000},
+ "arm": {"can_interface": "vcan0", "heartbeat_timeout_ms": 2000, "sdo_timeout_ms": 2000},
  "gpio": {"chip": "petra-hil", "arm_power": "arm_power",
           "estop": {"line": "estop", "active_low": true}}}
 EOF
