@@ -47,7 +47,8 @@
     "arm drive {0} fault {1} (docs/arm.md), detail {2}: drives quick-stopped, SAFE")          \
   X(ARM_EMERGENCY, 27, WARNING, "arm drive {0} emergency, error code {1}")                    \
   X(ARM_CAN_BUS, 28, WARNING, "arm CAN bus {0}: 0 active, 1 warning, 2 passive, 3 off")       \
-  X(ARM_BAD_FRAME, 29, WARNING, "arm drive {0}: malformed CAN frame, COB-ID {1}, ignored")    \
+  X(ARM_BAD_FRAME, 29, WARNING,                                                               \
+    "arm drive {0}: malformed or unexpected CAN frame, COB-ID {1}, ignored")                  \
   X(ARM_STOPPED, 30, INFO, "arm quick stop: drives ramped down, holding")                     \
   X(ESTOP_ASSERTED, 31, ERROR, "e-stop input asserted: arm quick stop, SAFE")                 \
   X(CMD_REJECTS_UNREPORTED, 32, WARNING,                                                      \

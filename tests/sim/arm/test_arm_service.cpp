@@ -276,7 +276,7 @@ TEST(ArmService, AStallDuringConfigurationIsToleratedWithinTheConfiguredSdoTimeo
     if (!rig.run_until(configuring, 1000)) return false;
     rig.now += kServiceCycleMs;
     rig.arm.step(rig.now);  // the next request goes out; the drives do not run
-    rig.now += 300;  // over the 200 ms SDO wait, under the heartbeat consumer times
+    rig.now += 300;         // over the 200 ms SDO wait, under the heartbeat consumer times
     rig.arm.step(rig.now);  // the master wakes first: no answer in the bus yet
     rig.run_for(100);
     return true;
