@@ -141,7 +141,7 @@
   F(u8, plane_count, 1, "", 0, 8, "planes in this evaluation")                           \
   F(f64, normal, 3, "1", -1, 1, "unit normal, out of the rock, calibration world frame") \
   F(f64, centroid_mm, 3, "mm", -1e7, 1e7,                                                \
-    "where the grinder goes: the footprint disc's centre, on the plane")                 \
+    "where the grinder goes: the footprint disc's centre, on the surface")               \
   F(f64, area_mm2, 1, "mm2", 0, 1e12, "supporting area")                                 \
   F(f64, flatness_rms_mm, 1, "mm", 0, 1e6, "RMS distance of its points to the plane")    \
   F(u32, triangles, 1, "", 0, PETRA_U32_MAX, "mesh triangles supporting it")             \

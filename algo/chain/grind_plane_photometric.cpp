@@ -101,7 +101,12 @@ Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray
       for (std::size_t i = 0; i < cap; ++i) (*pix)[i] = (*pix)[i * n / cap];
       n = cap;
     }
-    auto initial = to_disparity_plane(rect, plane.normal, plane.centroid_mm);
+    // The face's plane under the grind point (which stands off it on a
+    // curved face): the refinement moves that plane, the point moves with it.
+    const Eigen::Vector3d on_face =
+        plane.centroid_mm -
+        plane.normal.dot(plane.centroid_mm - plane.face_centroid_mm) * plane.normal;
+    auto initial = to_disparity_plane(rect, plane.normal, on_face);
     if (!initial) continue;  // seen edge-on: nothing to refine
     auto fit = refine_plane_photometric(left, right, right_valid, pix->first(n), *initial, params);
     if (!fit) return fit.error();

@@ -2,8 +2,9 @@
 // after reconstruction: each plane's face pixels (the points labelled with
 // its rank, border left out), its 3-D plane turned into the rectified
 // disparity plane, refined on the gray levels of both images, and turned
-// back. The normal turns by the refinement's rotation; the centroid moves
-// along its viewing ray onto the refined plane. Area, flatness, triangle
+// back. The normal turns by the refinement's rotation; the centroid (the
+// grind point) moves as the face's plane under it does, keeping its standoff
+// from that plane (the disc's surface on a curved face). Area, flatness, triangle
 // count, verdicts and ranking stay those of the mesh.
 // Inputs:  rectified pair geometry and images (right valid in right_valid),
 //          the reconstruction output (pixels, vertex classes, planes).

@@ -9,9 +9,6 @@ namespace petra {
 
 namespace {
 
-// Discs within this share of the flattest are taken as equally flat (their
-// difference is the noise); the one nearest the face's centre wins.
-constexpr double kFlatTie = 0.10;
 constexpr int kSectors = 8;
 
 struct Local {
@@ -53,10 +50,11 @@ struct DiscSums {
   }
 };
 
-// z = zc + a dx + b dy by weighted least squares; rss over w.
+// z = zc + a dx + b dy by weighted least squares; rss over w. level_rms:
+// the offsets' RMS about their mean (about a plane parallel to the face's).
 struct DiscPlane {
   bool ok = false;
-  double a = 0, b = 0, zc = 0, rms = 0;
+  double a = 0, b = 0, zc = 0, rms = 0, level_rms = 0;
 };
 
 DiscPlane solve(const DiscSums& s) {
@@ -74,6 +72,7 @@ DiscPlane solve(const DiscSums& s) {
   const double rss = std::max(0.0, czz - p.a * cxz - p.b * cyz);
   // Offsets along n to distances across the disc's own plane.
   p.rms = std::sqrt(rss / (1.0 + p.a * p.a + p.b * p.b));
+  p.level_rms = std::sqrt(std::max(0.0, czz));
   p.ok = true;
   return p;
 }
@@ -208,12 +207,11 @@ DiscSums disc_sums(const Binned& b, double r, double cx, double cy) {
   return s;
 }
 
-// 3. Each disc: coverage and flatness (rms -1 where not covered, dist its
-// centre's distance from the face centre). Returns the flattest rms.
-double score_candidates(const Binned& b, double r, const Candidates& c, double min_coverage,
-                        double* rms, double* dist, Footprint& out) {
+// 3. Each disc: coverage, flatness about its own plane (rms, -1 where not
+// covered) and about a plane parallel to the face's (level).
+void score_candidates(const Binned& b, double r, const Candidates& c, double min_coverage,
+                      double* rms, double* level, Footprint& out) {
   const double disc_area = M_PI * r * r;
-  double flattest = 1e300;
   for (int j = 0; j < c.ncy; ++j)
     for (int i = 0; i < c.ncx; ++i) {
       const std::size_t k = static_cast<std::size_t>(j * c.ncx + i);
@@ -224,21 +222,22 @@ double score_candidates(const Binned& b, double r, const Candidates& c, double m
       ++out.candidates;
       if (!p.ok || !covers(s, disc_area, static_cast<double>(b.stride), min_coverage)) continue;
       rms[k] = p.rms;
-      dist[k] = std::hypot(cx, cy);
-      flattest = std::min(flattest, p.rms);
+      level[k] = p.level_rms;
     }
-  return flattest;
 }
 
-// 4. The flattest, or the most central of the equally flat; -1 if none.
-int flattest_candidate(const double* rms, const double* dist, int n, double flattest) {
-  int best = -1;
+// 4. Of the discs flat within the tolerance, the most level; none: the
+// flattest; -1 if no disc is covered.
+int flush_candidate(const double* rms, const double* level, int n, double max_rms) {
+  int flush = -1, flattest = -1;
   for (int k = 0; k < n; ++k) {
     const std::size_t u = static_cast<std::size_t>(k);
-    if (rms[u] < 0 || rms[u] > flattest * (1.0 + kFlatTie)) continue;
-    if (best < 0 || dist[u] < dist[static_cast<std::size_t>(best)]) best = k;
+    if (rms[u] < 0) continue;
+    if (flattest < 0 || rms[u] < rms[static_cast<std::size_t>(flattest)]) flattest = k;
+    if (rms[u] <= max_rms && (flush < 0 || level[u] < level[static_cast<std::size_t>(flush)]))
+      flush = k;
   }
-  return best;
+  return flush >= 0 ? flush : flattest;
 }
 
 // 5. The chosen disc, centred (cx, cy) in the face frame, on every sample.
@@ -287,6 +286,9 @@ Result<Footprint> find_footprint(std::span<const FaceSample> samples,
                        params.diameter_mm);
   if (!(params.min_coverage > 0.0 && params.min_coverage <= 1.0))
     return Error::make(Errc::invalid_argument, "footprint: min_coverage not in (0, 1]");
+  if (!(params.max_rms_mm >= 0.0 && params.max_rms_mm < 1000.0))
+    return Error::make(Errc::invalid_argument, "footprint: max_rms_mm %.3g not in [0, 1000)",
+                       params.max_rms_mm);
   if (!(std::abs(face_normal.norm() - 1.0) < 1e-6))
     return Error::make(Errc::invalid_argument, "footprint: the face normal is not a unit vector");
   const std::size_t m_all = samples.size();
@@ -299,9 +301,9 @@ Result<Footprint> find_footprint(std::span<const FaceSample> samples,
   Footprint out;
   Candidates c;
   if (!candidate_grid(b, r, c)) return out;  // no disc fits in the extent
-  double rms[kFootprintCandidates] = {}, dist[kFootprintCandidates] = {};
-  const double flattest = score_candidates(b, r, c, params.min_coverage, rms, dist, out);
-  const int best = flattest_candidate(rms, dist, c.ncx * c.ncy, flattest);
+  double rms[kFootprintCandidates] = {}, level[kFootprintCandidates] = {};
+  score_candidates(b, r, c, params.min_coverage, rms, level, out);
+  const int best = flush_candidate(rms, level, c.ncx * c.ncy, params.max_rms_mm);
   if (best < 0) return out;
   const double cx = c.x0 + (best % c.ncx) * c.h, cy = c.y0 + (best / c.ncx) * c.h;
   fit_chosen_disc(samples, fr, r, cx, cy, out);

@@ -13,9 +13,13 @@
 //      hole is not one the tool can sit on); a least-squares plane of the
 //      offsets along n (area-weighted) gives the disc's own plane, and the
 //      area-weighted RMS of the offsets about it is the disc's flatness;
-//   4. the best disc: the flattest covered one; of those within 10 % of the
-//      flattest, the one nearest the face's centre (away from its creases,
-//      where the matcher rounds the surface);
+//   4. the best disc: of the covered discs flat within the tolerance
+//      (max_rms_mm), the one whose samples lie closest to a plane parallel
+//      to the face's (least RMS of their offsets along the face normal):
+//      the grinder comes along the face's normal, so that is where it sits
+//      flush; on a curved face, where the surface is parallel to the face's
+//      plane. None within the tolerance: the flattest (the face is too
+//      rough, and the verdict says so);
 //   5. the best disc refitted on every sample in it (the search may thin a
 //      large face to kFootprintSamples samples) and its peak-to-valley.
 // Flatness is the RMS over the footprint, not the peak-to-valley: the
@@ -49,6 +53,7 @@ struct FaceSample {
 struct FootprintParams {
   double diameter_mm = 20.0;
   double min_coverage = 0.8;  // of the disc's area, by the samples in it
+  double max_rms_mm = 1.0;    // flatness tolerance: only discs within it are chosen for flushness
 };
 
 struct Footprint {

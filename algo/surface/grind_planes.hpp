@@ -42,11 +42,12 @@
 //      Classes whose planes agree within merge_angle_deg and whose centroids
 //      lie within merge_distance_mm of each other's plane are merged (one face
 //      split by the extra classes);
-//   5. where the grinder sits (algo/surface/grind_qualify): the best disc of the
-//      tool's diameter on the face's patch (algo/surface/grind_footprint), its own
-//      plane and flatness, and each plane's uncertainty from the stereo noise
-//      model (algo/surface/plane_uncertainty). The reported plane is the face's
-//      whole-patch plane through the disc's centre (with report_disc_plane,
+//   5. where the grinder sits (algo/surface/grind_qualify): the disc of the
+//      tool's diameter on the face's patch where it sits flush, coming along
+//      the face's normal (algo/surface/grind_footprint), its own plane and
+//      flatness, and each plane's uncertainty from the stereo noise model
+//      (algo/surface/plane_uncertainty). The reported plane is the face's
+//      whole-patch normal through the disc's centre on the surface (with report_disc_plane,
 //      the disc's own plane where it disagrees with the face's beyond the
 //      noise). Verdicts, in
 //      order: faces away (normal more than max_view_angle_deg from the
@@ -127,7 +128,7 @@ const char* verdict_key(PlaneVerdict v);
 
 struct GrindPlane {
   // Where the grinder goes: unit normal out of the rock, and the footprint
-  // disc's centre on the plane (the patch centroid when no disc fits).
+  // disc's centre on the surface (the patch centroid when no disc fits).
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   Eigen::Vector3d centroid_mm = Eigen::Vector3d::Zero();
   double area_mm2 = 0;  // whole patch

@@ -64,15 +64,17 @@ Status qualify_plane(std::span<const FaceSample> patch, std::size_t core,
   FootprintParams fp;
   fp.diameter_mm = params.grinder_diameter_mm;
   fp.min_coverage = params.min_footprint_coverage;
+  fp.max_rms_mm = params.max_footprint_rms_mm;
   Footprint f;  // a patch of fewer than 3 triangles holds no disc
   if (patch.size() >= 3) {
     auto found = find_footprint(patch, n, plane.centroid_mm, fp, arena);
     if (!found) return found.error();
     f = *found;
   }
-  // The face's plane at the disc's centre (or its centroid: no disc).
-  const Eigen::Vector3d at =
-      f.covered ? Eigen::Vector3d(f.centre_mm - (n.dot(f.centre_mm) + d) * n) : plane.centroid_mm;
+  // Where the grinder touches: the disc's centre on the surface (a curved
+  // face stands off its whole-patch plane there by millimetres), or the
+  // face's centroid when no disc fits.
+  const Eigen::Vector3d at = f.covered ? f.centre_mm : plane.centroid_mm;
   auto face = uncertainty(patch.first(std::min(core, patch.size())), n, at, camera, noise,
                           [](const FaceSample&) { return true; });
   plane.centroid_mm = at;

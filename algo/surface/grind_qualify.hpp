@@ -5,7 +5,8 @@
 //   2. the uncertainty of both planes (algo/surface/plane_uncertainty): each patch
 //      triangle stands for the pixels it covers, area / ((R / f)^2 / cos),
 //      measured along its viewing ray with the stereo depth noise;
-//   3. the reported plane: the face's plane through the disc's centre; the
+//   3. the reported plane: the face's normal through the disc's centre on
+//      the surface (the disc's own plane there); the
 //      disc's plane agrees with it when their normals are within
 //      agree_sigmas of their combined normal sigma and the disc's centre
 //      within agree_sigmas of their combined offset sigma; with

@@ -87,10 +87,12 @@ TEST(GrindFootprint, FlatCornerOfARoughFaceIsFound) {
   EXPECT_LE(r->candidates, static_cast<int>(kFootprintCandidates));
 }
 
-TEST(GrindFootprint, CurvedFaceGivesTheTangentPlaneAtItsCentre) {
+TEST(GrindFootprint, CurvedFaceGivesTheDiscWhereItIsParallelToTheFacePlane) {
   // A spherical cap, radius of curvature 300 mm, apex at (4, -3) in the face
-  // frame: every disc is as flat as another, so the most central one wins,
-  // and its plane is the sphere's tangent plane there.
+  // frame: every disc is as flat as another about its own plane, and the
+  // one at the apex lies level with the face's plane: the grinder, coming
+  // along the face's normal, sits flush there. Its plane is the sphere's
+  // tangent plane at its centre.
   const double R = 300;
   auto height = [&](double x, double y) {
     const double rho2 = (x - 4) * (x - 4) + (y + 3) * (y + 3);
@@ -107,9 +109,44 @@ TEST(GrindFootprint, CurvedFaceGivesTheTangentPlaneAtItsCentre) {
   const Eigen::Vector3d surface = f.at(x, y, height(x, y));
   const Eigen::Vector3d tangent_n = (centre_of_sphere - surface).normalized();
   EXPECT_LT(test::angle_deg(r->normal, tangent_n), 0.15);
-  EXPECT_LT(std::hypot(x, y), 4.0);  // the most central of the equally flat
+  // The candidates lie 5 mm apart: the nearest to the apex is within 3.6 mm.
+  EXPECT_LT(std::hypot(x - 4, y + 3), 3.6);
+  EXPECT_LT(test::angle_deg(r->normal, f.n), 0.7);
+  // Its centre on the surface (on the disc's own plane: over a 10 mm radius
+  // the cap's mean lies r^2 / 4R = 0.08 mm above the point), not on the face's.
+  EXPECT_NEAR(q.dot(f.n), height(x, y) + 100.0 / (4 * R), 0.01);
   // RMS of a paraboloid over a disc about its best plane: r^2 / (2 R sqrt 12).
   EXPECT_NEAR(r->rms_mm, 100.0 / (2 * R * std::sqrt(12.0)), 0.01);
+}
+
+TEST(GrindFootprint, ALevelDiscWithinTheToleranceWinsOverAFlatterTiltedOne) {
+  // 60 x 40 mm: the half x < 0 a perfectly flat plane tilted 6 deg from the
+  // face's, the half x >= 0 level with 0.2 mm of relief. The tilted half is
+  // the flatter about its own plane, but a tool coming along the face's
+  // normal sits flush on the level half; when the level half is rougher
+  // than the tolerance, the flattest disc is the one (the face too rough).
+  const double tilt = std::tan(6.0 * M_PI / 180.0);
+  const auto face = [&](double amplitude) {
+    return make_relief_face(60, 40, [=](double x, double y) {
+      return x < 0 ? tilt * x : amplitude * std::sin(2.3 * x) * std::cos(1.9 * y);
+    });
+  };
+  const auto side = [](const FaceMesh& f, const Footprint& fp) {
+    return (fp.centre_mm - f.o).dot(f.e1);
+  };
+  const FaceMesh level = face(0.4);  // RMS 0.2 mm
+  auto r = run_footprint(level, 20);
+  ASSERT_TRUE(r.ok());
+  ASSERT_TRUE(r->covered);
+  EXPECT_GE(side(level, *r), 10 - 2.6);
+  EXPECT_LT(r->rms_mm, 1.0);
+  EXPECT_LT(test::angle_deg(r->normal, level.n), 1.0);
+  const FaceMesh rough = face(3.0);  // RMS 1.5 mm, over the 1 mm tolerance
+  r = run_footprint(rough, 20);
+  ASSERT_TRUE(r.ok());
+  ASSERT_TRUE(r->covered);
+  EXPECT_LE(side(rough, *r), -10 + 2.6);
+  EXPECT_LT(r->rms_mm, 0.01);
 }
 
 TEST(GrindFootprint, FaceSmallerThanTheToolIsNotCovered) {

@@ -293,9 +293,10 @@ TEST(GrindPlanes, PatchOverTwoFacesIsRefused) {
   EXPECT_STREQ(verdict_key(PlaneVerdict::two_faces), "two_faces");
 }
 
-// On the bent face the disc's own plane differs from the face's by far more
-// than the noise: it is the bent surface's own plane under the disc, and
-// with report_disc_plane it is the plane reported.
+// On the bent face the disc's own plane differs from the face's beyond the
+// noise (the disc sits where the face is most nearly level with its whole
+// plane, still 0.9 deg off it): it is the bent surface's own plane under the
+// disc, and with report_disc_plane it is the plane reported.
 TEST(GrindPlanes, FootprintOnABentFaceIsItsLocalPlane) {
   const RockMesh& m = bent_mesh();
   const std::vector<Eigen::Vector3d>& normals = bent_normals();
@@ -313,7 +314,7 @@ TEST(GrindPlanes, FootprintOnABentFaceIsItsLocalPlane) {
   ASSERT_TRUE(p.footprint_local);
   EXPECT_FALSE(p.footprint_agrees);
   EXPECT_LT(test::angle_deg(p.normal, p.footprint_normal), 1e-9);
-  EXPECT_GT(test::angle_deg(p.normal, p.face_normal), 2.0);
+  EXPECT_GT(test::angle_deg(p.normal, p.face_normal), 0.5);
   // The bent cloud's face-1 points under the disc (radius 10 mm about the
   // centroid, across the normal), fitted by total least squares.
   std::vector<Eigen::Vector3d> under;
@@ -331,7 +332,7 @@ TEST(GrindPlanes, FootprintOnABentFaceIsItsLocalPlane) {
             1.0);
   EXPECT_LT(std::abs(fit->plane.distance(p.centroid_mm)), 0.3);
   EXPECT_LT(p.footprint_rms_mm, 1.0);
-  // By default the face's plane is reported, through the same disc's centre.
+  // By default the face's normal is reported, through the same disc's centre.
   auto d = run_grind_planes(m, 3, GrindParams{}, labels, normals);
   ASSERT_TRUE(d.ok());
   bool found = false;
@@ -342,7 +343,7 @@ TEST(GrindPlanes, FootprintOnABentFaceIsItsLocalPlane) {
     EXPECT_FALSE(q.footprint_local);
     EXPECT_LT(test::angle_deg(q.normal, q.face_normal), 1e-9);
     EXPECT_LT(test::angle_deg(q.footprint_normal, p.footprint_normal), 1e-9);
-    EXPECT_NEAR(q.normal.dot(q.centroid_mm - q.face_centroid_mm), 0.0, 1e-9);
+    EXPECT_LT((q.centroid_mm - p.centroid_mm).norm(), 1e-9);
   }
   EXPECT_TRUE(found);
 }

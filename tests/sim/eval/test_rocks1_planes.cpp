@@ -17,6 +17,7 @@
 // rest is the faces' curvature under the reported whole-face plane.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -179,8 +180,10 @@ io::GrayImage changed_gain(const io::GrayImage& img, unsigned noise_seed) {
   return out;
 }
 
-// `noise_seed`: the draw of the right view's noise (Source::dp_gain).
-void run_case(const RoiCase& c, Source source, bool surface_check, unsigned noise_seed = 21) {
+// `noise_seed`: the draw of the right view's noise (Source::dp_gain);
+// `planes_checked`: how many of the ranked planes the surface check covers.
+void run_case(const RoiCase& c, Source source, bool surface_check, unsigned noise_seed = 21,
+              int planes_checked = kMaxClasses) {
   const Data& d = data();
   PipelineParams params;
   const PipelineBudget b = test::eval_budget(d.left.width, d.left.height, 320, params);
@@ -214,7 +217,7 @@ void run_case(const RoiCase& c, Source source, bool surface_check, unsigned nois
   EXPECT_EQ(r.segmentation, SegmentMethod::click_region) << c.name;
   EXPECT_GT(r.click_region.points, 1000u) << c.name;
   if (!surface_check) return;
-  for (int k = 0; k < r.planes.accepted; ++k) {
+  for (int k = 0; k < std::min(r.planes.accepted, planes_checked); ++k) {
     const GrindPlane& g = r.planes.planes[k];
     const PlaneCheck pc = check_plane(g);
     std::printf(
@@ -249,12 +252,31 @@ TEST_P(Rocks1, DISABLED_EveryPlaneLiesOnTheRealSurface) {
   for (const RoiCase& c : kCases) run_case(c, GetParam(), true);
 }
 
+// On the exact map each ROI's first plane meets the surface target: the
+// grinder's disc sits where the curved face is level with the face's plane,
+// and the grind point lies on the surface (before: 8.42, 4.80 and 4.70 deg
+// off, the disc at the face's most central flat spot; docs/reconstruction.md).
+TEST(Rocks1Truth, EachRoisFirstPlaneLiesOnTheRealSurface) {
+  if (!data().ok) GTEST_SKIP() << "no Rocks1 data at " << kRocks1Dir << " (run from the repo root)";
+  for (const RoiCase& c : kCases) run_case(c, Source::truth, true, 21, 1);
+}
+
 TEST(Rocks1Noise, EveryDrawOfTheNoiseGivesTheWhiteRockPlanes) {
   if (!data().ok) GTEST_SKIP() << "no Rocks1 data at " << kRocks1Dir << " (run from the repo root)";
   // The white rock's click lies in a shallow groove. With the noise of seed 1 its concave sides
   // ringed the click (a region of 661 points, no plane) until a region under
   // ClickRegionParams::min_share of the ROI was grown again with a looser concave limit.
   for (unsigned seed = 1; seed <= 12; ++seed) run_case(kCases[0], Source::dp_gain, false, seed);
+}
+
+// The target under the changed right view, over twelve draws of its noise
+// (not met: the spread is in docs/performance.md).
+TEST(Rocks1Noise, DISABLED_EveryPlaneOfEveryDrawLiesOnTheRealSurface) {
+  if (!data().ok) GTEST_SKIP() << "no Rocks1 data at " << kRocks1Dir << " (run from the repo root)";
+  for (unsigned seed : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 9u, 10u, 11u, 21u}) {
+    std::printf("noise draw %u\n", seed);
+    for (const RoiCase& c : kCases) run_case(c, Source::dp_gain, true, seed);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Sources, Rocks1,
