@@ -16,6 +16,7 @@ constexpr double kHiddenStepMm = 4;
 constexpr double kCentreStepMm = 2;  // disc centres tried on this grid
 constexpr double kDiscStepMm = 2;    // surface samples inside a disc
 constexpr double kFitStepMm = 2;     // surface samples of a rough facet's fit
+constexpr double kReachStepMm = 4;   // disc centres tried for the arm's reach
 
 // In-plane frame of a face: e1, e2 with e1 x e2 = n.
 struct PlaneFrame {
@@ -206,9 +207,48 @@ FacetFit fit_facet(VisibleFacet& f, const std::vector<Eigen::Vector3d>& pts) {
   return fit;
 }
 
+std::optional<Eigen::Vector3d> reachable_grindable_disc(const Scene& s, int r,
+                                                        const VisibleFacet& f) {
+  const ConvexRock& rock = rock_at(s, r);
+  const RockFace& rf = rock.faces[static_cast<std::size_t>(f.face)];
+  const Polygon3 poly = exposed_polygon(rf);
+  if (poly.size() < 3) return std::nullopt;
+  const PlaneFrame fr = frame_of(poly, rf.plane.normal);
+  std::vector<Eigen::Vector2d> p2;
+  Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
+  for (const auto& p : poly) {
+    p2.push_back(fr.to2(p));
+    lo = lo.cwiseMin(p2.back());
+    hi = hi.cwiseMax(p2.back());
+  }
+  const double radius = 0.5 * grinder_diameter_mm();
+  const auto offsets = disc_offsets(radius);
+  const FaceRelief& relief = relief_at(s, r);
+  for (double u = lo.x(); u <= hi.x(); u += kReachStepMm)
+    for (double v = lo.y(); v <= hi.y(); v += kReachStepMm) {
+      if (inner_distance(p2, {u, v}) < radius) continue;
+      const Eigen::Vector3d centre = fr.to3({u, v});
+      if (facet_reach(s, centre, f.normal) != arm::ArmReason::ok) continue;
+      const double rms =
+          relief.active ? disc_rms(relief, f.face, rf.plane, fr, {u, v}, offsets) : 0.0;
+      if (rms <= max_footprint_rms_mm()) return centre;
+    }
+  return std::nullopt;
+}
+
 void judge_rock(const Scene& s, int r, RockTruth& t) {
   t.judged.clear();
-  for (const auto& f : t.facets) t.judged.push_back(judge_facet(s, r, f));
+  for (const auto& f : t.facets) {
+    FacetJudgement j = judge_facet(s, r, f);
+    if (j.grindable && !j.reachable) {
+      j.reach_disc_centre = reachable_grindable_disc(s, r, f);
+      if (j.reach_disc_centre) {
+        j.reachable = true;
+        j.reach = arm::ArmReason::ok;
+      }
+    }
+    t.judged.push_back(j);
+  }
   std::vector<Eigen::Vector3d> pts;
   for (const auto& face : rock_at(s, r).faces)
     for (const auto& p : exposed_polygon(face)) pts.push_back(p);

@@ -9,7 +9,9 @@
 // plane plus the same relief. A disc beyond the tolerance is "too_curved"
 // when the relief's bulge alone would be, else "too_rough". Reachable: algo/arm plan_approach from
 // the stowed pose with the flight standoff (ApproachRequest{}), on the facet's centroid and outward
-// normal in the world frame of calib.json.
+// normal in the world frame of calib.json; in a rock's truth (judge_rock), a grindable facet the
+// arm cannot reach at its centroid is reachable when it reaches the centre of one of its discs
+// within the flatness tolerance (the grinder works a disc, not the centroid).
 #pragma once
 
 #include <optional>
@@ -28,6 +30,9 @@ struct FacetJudgement {
   double disc_rms_mm = -1;        // flattest footprint disc's RMS (-1: not measured)
   bool reachable = false;
   arm::ArmReason reach = arm::ArmReason::ok;
+  // Set when the centroid is out of reach but this grindable disc's centre
+  // (local frame, on the face's plane) is not: judge_rock's disc search.
+  std::optional<Eigen::Vector3d> reach_disc_centre;
 };
 
 // The flight defaults the truth is judged by (one definition each: GrindParams{}).
@@ -76,7 +81,14 @@ struct RockTruth {
 // rough), judged, height and size; roi and click are the caller's
 // (scene_truth.cpp, as for rock 0).
 RockTruth further_rock_truth(const Scene& scene, int r);
-// Judges every facet and sets height and size (rock r's facets given).
+// Judges every facet (a grindable facet out of reach at its centroid is
+// reachable at a grindable disc the arm reaches, reach_disc_centre) and sets
+// height and size (rock r's facets given).
 void judge_rock(const Scene& scene, int r, RockTruth& truth);
+
+// The centre (local frame) of a disc of the facet within the flatness
+// tolerance that the arm reaches along the facet's normal; none: nullopt.
+std::optional<Eigen::Vector3d> reachable_grindable_disc(const Scene& scene, int r,
+                                                        const VisibleFacet& f);
 
 }  // namespace petra::sim

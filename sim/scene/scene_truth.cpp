@@ -186,6 +186,10 @@ void write_rock(json::Writer& w, const Scene& s, const RockTruth& r, int id) {
     w.key("disc_rms_mm").number(j.disc_rms_mm);
     w.key("reachable").boolean(j.reachable);
     w.key("reach_reason").string(arm::arm_reason_name(j.reach));
+    if (j.reach_disc_centre) {  // out of reach at the centroid, not at this grindable disc
+      w.key("reach_disc_mm");
+      write_vec3(w, to_world(s, *j.reach_disc_centre));
+    }
     w.end_object();
   }
   w.end_array();
