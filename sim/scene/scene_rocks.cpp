@@ -90,6 +90,27 @@ double bulge_rms_mm(double curvature_per_mm, double radius) {
   return disc_rms(bulge, 0, plane, frame_of(unit, plane.normal), {0, 0}, disc_offsets(radius));
 }
 
+// A face's exposed polygon in its own plane's frame, with its 2-D extent:
+// where disc centres are tried.
+struct FacePolygon2 {
+  PlaneFrame fr;
+  std::vector<Eigen::Vector2d> p2;
+  Eigen::Vector2d lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+};
+
+// False when the exposed polygon is degenerate.
+bool face_polygon2(const RockFace& rf, FacePolygon2& out) {
+  const Polygon3 poly = exposed_polygon(rf);
+  if (poly.size() < 3) return false;
+  out.fr = frame_of(poly, rf.plane.normal);
+  for (const auto& p : poly) {
+    out.p2.push_back(out.fr.to2(p));
+    out.lo = out.lo.cwiseMin(out.p2.back());
+    out.hi = out.hi.cwiseMax(out.p2.back());
+  }
+  return true;
+}
+
 }  // namespace
 
 double grinder_diameter_mm() {
@@ -105,24 +126,16 @@ double flight_standoff_mm() {
 double flattest_disc_rms_mm(const ConvexRock& rock, const FaceRelief& relief, int face,
                             double diameter_mm, double stop_rms_mm) {
   const RockFace& rf = rock.faces[static_cast<std::size_t>(face)];
-  const Polygon3 poly = exposed_polygon(rf);
-  if (poly.size() < 3) return -1;
-  const PlaneFrame fr = frame_of(poly, rf.plane.normal);
-  std::vector<Eigen::Vector2d> p2;
-  Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
-  for (const auto& p : poly) {
-    p2.push_back(fr.to2(p));
-    lo = lo.cwiseMin(p2.back());
-    hi = hi.cwiseMax(p2.back());
-  }
+  FacePolygon2 g;
+  if (!face_polygon2(rf, g)) return -1;
   const double radius = 0.5 * diameter_mm;
   const auto offsets = disc_offsets(radius);
   double best = -1;
-  for (double u = lo.x(); u <= hi.x(); u += kCentreStepMm)
-    for (double v = lo.y(); v <= hi.y(); v += kCentreStepMm) {
-      if (inner_distance(p2, {u, v}) < radius) continue;
+  for (double u = g.lo.x(); u <= g.hi.x(); u += kCentreStepMm)
+    for (double v = g.lo.y(); v <= g.hi.y(); v += kCentreStepMm) {
+      if (inner_distance(g.p2, {u, v}) < radius) continue;
       const double rms =
-          relief.active ? disc_rms(relief, face, rf.plane, fr, {u, v}, offsets) : 0.0;
+          relief.active ? disc_rms(relief, face, rf.plane, g.fr, {u, v}, offsets) : 0.0;
       if (best < 0 || rms < best) best = rms;
       if (best <= stop_rms_mm) return best;
     }
@@ -209,28 +222,19 @@ FacetFit fit_facet(VisibleFacet& f, const std::vector<Eigen::Vector3d>& pts) {
 
 std::optional<Eigen::Vector3d> reachable_grindable_disc(const Scene& s, int r,
                                                         const VisibleFacet& f) {
-  const ConvexRock& rock = rock_at(s, r);
-  const RockFace& rf = rock.faces[static_cast<std::size_t>(f.face)];
-  const Polygon3 poly = exposed_polygon(rf);
-  if (poly.size() < 3) return std::nullopt;
-  const PlaneFrame fr = frame_of(poly, rf.plane.normal);
-  std::vector<Eigen::Vector2d> p2;
-  Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
-  for (const auto& p : poly) {
-    p2.push_back(fr.to2(p));
-    lo = lo.cwiseMin(p2.back());
-    hi = hi.cwiseMax(p2.back());
-  }
+  const RockFace& rf = rock_at(s, r).faces[static_cast<std::size_t>(f.face)];
+  FacePolygon2 g;
+  if (!face_polygon2(rf, g)) return std::nullopt;
   const double radius = 0.5 * grinder_diameter_mm();
   const auto offsets = disc_offsets(radius);
   const FaceRelief& relief = relief_at(s, r);
-  for (double u = lo.x(); u <= hi.x(); u += kReachStepMm)
-    for (double v = lo.y(); v <= hi.y(); v += kReachStepMm) {
-      if (inner_distance(p2, {u, v}) < radius) continue;
-      const Eigen::Vector3d centre = fr.to3({u, v});
+  for (double u = g.lo.x(); u <= g.hi.x(); u += kReachStepMm)
+    for (double v = g.lo.y(); v <= g.hi.y(); v += kReachStepMm) {
+      if (inner_distance(g.p2, {u, v}) < radius) continue;
+      const Eigen::Vector3d centre = g.fr.to3({u, v});
       if (facet_reach(s, centre, f.normal) != arm::ArmReason::ok) continue;
       const double rms =
-          relief.active ? disc_rms(relief, f.face, rf.plane, fr, {u, v}, offsets) : 0.0;
+          relief.active ? disc_rms(relief, f.face, rf.plane, g.fr, {u, v}, offsets) : 0.0;
       if (rms <= max_footprint_rms_mm()) return centre;
     }
   return std::nullopt;
