@@ -249,7 +249,7 @@ void Executive::on_evaluate(const cmd::Command& c) {
   if (a.acquire == 0 && !has_frame_) return fail(fc_of(c), c.counter, Reason::NO_FRAME);
   std::uint32_t acquire_us = 0;
   if (!enter_evaluate(c, a.acquire != 0, acquire_us)) return;
-  if (!evaluation_.start(EvalFrame{frame_seq_, left_, right_, acquire_us})) {
+  if (!evaluation_.start(EvalFrame{frame_seq_, left_, right_, acquire_us}, arm_pose())) {
     modes_.request(Mode::IDLE, 0);
     return fail(fc_of(c), c.counter, Reason::PIPELINE_ERROR);
   }

@@ -53,7 +53,8 @@ class EvaluationPort {
   // is acquired; Reason::NONE when it can.
   virtual Reason refusal() const = 0;
   // An error: the run did not start (refused, or the worker is busy).
-  virtual Status start(const EvalFrame& frame) = 0;
+  // arm_pose: the arm's now, from which the run judges its reach.
+  virtual Status start(const EvalFrame& frame, const ::petra::arm::JointVector& arm_pose) = 0;
   virtual EvalProgress poll() = 0;  // every cycle
   // Cancels the run awaited (EVAL_ABORTED); its late result is dropped.
   virtual void abort() = 0;

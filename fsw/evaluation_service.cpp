@@ -54,12 +54,13 @@ EvalRequest EvaluationService::request_for(const EvalFrame& frame) {
   return r;
 }
 
-Status EvaluationService::start(const EvalFrame& frame) {
+Status EvaluationService::start(const EvalFrame& frame, const ::petra::arm::JointVector& arm_pose) {
   if (refusal() != Reason::NONE)
     return Error::make(Errc::not_ready, "evaluation: no selection or no pipeline");
   ++eval_id_;  // used up even when the worker refuses: ids stay unique
   acquire_us_ = frame.acquire_us;
-  const EvalRequest r = request_for(frame);
+  EvalRequest r = request_for(frame);
+  r.arm_pose = arm_pose;
   // Stamped before the worker can start: the total then always covers its steps.
   started_ns_ = w_.clock->monotonic_ns();
   PETRA_TRY(runner_.start(r));

@@ -55,7 +55,7 @@ class EvaluationService final : public EvaluationPort {
 
   void select(const PipelineRequest& selection) override { selection_ = selection; }
   Reason refusal() const override;
-  Status start(const EvalFrame& frame) override;
+  Status start(const EvalFrame& frame, const ::petra::arm::JointVector& arm_pose) override;
   EvalProgress poll() override;
   void abort() override;
   EvalStatus status() const override;

@@ -234,6 +234,7 @@ int FlightPipelineJob::describe_memory(char* buf, std::size_t size) const {
 Status FlightPipelineJob::init(const JobBudget& budget, const StereoRig* rig, Arena& arena) {
   rig_ = rig;
   arena_ = &arena;
+  arm_geometry_ = budget.arm_geometry;
   max_cloud_points_ = budget.max_cloud_points;
   ready_ = false;
   proposer_fits_ = false;
@@ -259,8 +260,7 @@ Status FlightPipelineJob::init(const JobBudget& budget, const StereoRig* rig, Ar
   pipeline_ = *p;
   ready_ = true;
   if (!fits) return {};  // PROPOSE fails capacity_exceeded; can_propose() says so
-  auto q = Proposer::create(pipeline_, pb, budget.arm_geometry,
-                            ::petra::arm::default_joint_limits(), arena);
+  auto q = Proposer::create(pipeline_, pb, arm_geometry_, arm_limits_, arena);
   if (!q) return q.error();
   proposer_ = *q;
   proposer_fits_ = true;
@@ -308,7 +308,10 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   if (!ready_) return Error::make(Errc::not_ready, "the pipeline was not built at init");
   const Settings wanted{request.shadow_fraction, request.disp_min_px, request.disp_max_px};
   if (!(wanted == settings_)) PETRA_TRY(configure(wanted));
-  auto result = pipeline_.run(request.left, request.right, request.selection, clock);
+  const ArmReach reach(arm_geometry_, arm_limits_, request.arm_pose, ::petra::arm::kDefaultStandoffMm);
+  PipelineRequest selection = request.selection;
+  selection.reach = &reach;
+  auto result = pipeline_.run(request.left, request.right, selection, clock);
   if (!result) {
     out.failed_step = tracker.current;
     return result.error();

@@ -27,6 +27,10 @@
 // same parameters in force), with the ROI limits (its ROIs pass SELECT_ROI's
 // check) and the arm geometry of the budget. So switching between EVALUATE
 // and PROPOSE rebuilds nothing (one run at a time, as the executive's are).
+// Both judge the arm's reach alike (algo/propose/arm_reach: the budget's arm
+// geometry, the joint limits, the request's arm pose, the default standoff):
+// each face's footprint is a disc the arm reaches where it has one, so a
+// proposal sent back as SELECT_ROI gives its planes again.
 // Memory: arena_bytes(budget) = the tables + the larger of the pipeline's
 // largest run + the products and the whole-pair detection; nothing else, no
 // heap.
@@ -101,6 +105,8 @@ class FlightPipelineJob final : public PipelineJob {
   std::uint32_t table_builds_ = 0;
   Proposer proposer_;
   bool proposer_fits_ = false;  // the arena holds it: built at init
+  ::petra::arm::ArmGeometry arm_geometry_;  // the budget's: EVALUATE's reach
+  ::petra::arm::JointLimits arm_limits_ = ::petra::arm::default_joint_limits();
 };
 
 }  // namespace petra::fsw

@@ -81,10 +81,11 @@ struct EvalRequest {
   int disp_max_px = 0;
   double shadow_fraction = 0;
   double min_plane_area_mm2 = 0;
-  // PROPOSE only: the operator's request (region empty: the whole image) and
-  // the arm's pose now (measured joints, or stowed when no arm reports them).
+  // PROPOSE only: the operator's request (region empty: the whole image).
   ProposalRequest proposal;
-  ::petra::arm::JointVector arm_pose = ::petra::arm::JointVector::Zero();
+  // The arm's pose now (measured joints, or stowed when no arm reports
+  // them): both kinds judge the arm's reach from it.
+  ::petra::arm::JointVector arm_pose = ::petra::arm::stow_pose();
 };
 
 struct EvalOutput {

@@ -179,6 +179,19 @@ Status Pipeline::prepare(ConstGray8View left, const PipelineRequest& req,
   return {};
 }
 
+namespace {
+
+// The back half's share of the operator's request.
+ReconstructionRequest reconstruction_request(const PipelineRequest& req, const PipelineOutput& out) {
+  ReconstructionRequest r;
+  r.planes = req.planes;
+  r.click = out.click_rectified;
+  r.reach = req.reach;
+  return r;
+}
+
+}  // namespace
+
 Result<PipelineOutput> Pipeline::run_with_disparity(ConstGray8View left,
                                                     ConstDisparityMap disparity,
                                                     const PipelineRequest& req,
@@ -205,9 +218,7 @@ Result<PipelineOutput> Pipeline::run_with_disparity(ConstGray8View left,
     PETRA_TRY(rectifier_.rectify(StereoSide::left, left, rl, roi));
   }
   out.disparity = disparity;
-  ReconstructionRequest rr_req;
-  rr_req.planes = req.planes;
-  rr_req.click = out.click_rectified;
+  const ReconstructionRequest rr_req = reconstruction_request(req, out);
   auto r = reconstruct(rectifier_.rig(), rectifier_.geometry(), disparity, rr_req,
                        params_.reconstruction, recon_budget(budget_), arena, clock, out.timings);
   if (!r) return r.error();
@@ -414,9 +425,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
   out.disparity = *disp;
 
   // Disparity to ranked planes.
-  ReconstructionRequest rr_req;
-  rr_req.planes = req.planes;
-  rr_req.click = out.click_rectified;
+  const ReconstructionRequest rr_req = reconstruction_request(req, out);
   auto r = reconstruct(rectifier_.rig(), rectifier_.geometry(), *disp, rr_req,
                        params_.reconstruction, recon_budget(budget_), arena, clock, out.timings);
   if (!r) return r.error();

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "algo/core/image_view.hpp"
+#include "algo/surface/grind_footprint.hpp"
 
 namespace petra {
 
@@ -18,6 +19,10 @@ struct PipelineRequest {
   int click_v = 0;  // px
   int planes = 2;   // c
   MatchMethod method = MatchMethod::dp;
+  // The arm's reach from its pose now (algo/propose/arm_reach), the
+  // caller's for the run: each face's footprint is a disc the tool reaches
+  // where the face has one. None: the most level disc, reached or not.
+  const DiscReach* reach = nullptr;
 };
 
 }  // namespace petra

@@ -376,7 +376,8 @@ Status grind_rock_triangles(const StereoRig& rig, const RectifiedPair& rect,
     nr += r ? 1 : 0;
   }
   out.stats.rock_triangles = nr;
-  auto g = grind_planes_on_mesh(rig, rect, out, request.planes, params, arena, plane_of);
+  auto g = grind_planes_on_mesh(rig, rect, out, request.planes, params, arena, plane_of,
+                                request.reach);
   if (!g) return g.error();
   out.planes = *g;
   return ok_status();
@@ -458,7 +459,8 @@ std::size_t grind_planes_on_mesh_bytes(std::size_t triangles) {
 Result<GrindResult> grind_planes_on_mesh(const StereoRig& rig, const RectifiedPair& rect,
                                          const ReconstructionOutput& out, int c,
                                          const ReconstructionParams& params, Arena& arena,
-                                         std::span<std::uint8_t> triangle_plane) {
+                                         std::span<std::uint8_t> triangle_plane,
+                                         const DiscReach* reach) {
   const std::size_t nt = out.mesh.size();
   if (triangle_plane.size() != nt)
     return Error::make(Errc::invalid_argument,
@@ -481,7 +483,8 @@ Result<GrindResult> grind_planes_on_mesh(const StereoRig& rig, const RectifiedPa
   auto g = find_grind_planes(
       out.xyz_mm, subset->first(nr), camera_centre_world(rig.left), c, params.grind, arena,
       triangle_plane.first(nr), out.normals,
-      RigGeometry{rect.left.f_px, rect.baseline_mm, static_cast<double>(params.filter.window)});
+      RigGeometry{rect.left.f_px, rect.baseline_mm, static_cast<double>(params.filter.window)},
+      reach);
   if (!g) return g.error();
   spread_to_mesh(origin->first(nr), triangle_plane);
   return *g;

@@ -66,6 +66,7 @@ const char* segment_method_name(SegmentMethod m);
 struct ReconstructionRequest {
   int planes = 2;  // c, from the operator
   ClickPx click;   // rectified left pixel, optional
+  const DiscReach* reach = nullptr;  // the arm's, when known (find_grind_planes)
 };
 
 // Per-vertex class for products (cloud/mesh colouring).
@@ -121,9 +122,11 @@ Result<ReconstructionOutput> reconstruct(const StereoRig& rig, const RectifiedPa
 // plane explains (algo/propose/further_planes). Scratch from the arena:
 // grind_planes_on_mesh_bytes(out.mesh.size()), released on return.
 std::size_t grind_planes_on_mesh_bytes(std::size_t triangles);
+// reach: the arm's, or none (find_grind_planes).
 Result<GrindResult> grind_planes_on_mesh(const StereoRig& rig, const RectifiedPair& rect,
                                          const ReconstructionOutput& out, int c,
                                          const ReconstructionParams& params, Arena& arena,
-                                         std::span<std::uint8_t> triangle_plane);
+                                         std::span<std::uint8_t> triangle_plane,
+                                         const DiscReach* reach);
 
 }  // namespace petra

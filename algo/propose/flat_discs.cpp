@@ -218,11 +218,20 @@ void grow_face(Free& f, const ReconstructionOutput& r, int k, const PlaneFitT<do
   }
 }
 
+// What the chain's checks of a face need besides the face.
+struct Qualifier {
+  const Eigen::Vector3d& camera;
+  const GrindParams& g;
+  DepthNoise noise;
+  const DiscReach* reach;
+};
+
 // Step 5: face k grown over the mesh, its plane from its triangles, then
 // the chain's checks.
-Status qualify_face(Free& f, const ReconstructionOutput& r, int k, const Eigen::Vector3d& camera,
-                    const GrindParams& g, const DepthNoise& noise, double max_rms_mm, Arena& arena,
-                    GrindPlane& plane) {
+Status qualify_face(Free& f, const ReconstructionOutput& r, int k, const Qualifier& qf,
+                    double max_rms_mm, Arena& arena, GrindPlane& plane) {
+  const Eigen::Vector3d& camera = qf.camera;
+  const GrindParams& g = qf.g;
   std::size_t n = 0;
   double area = 0;
   plane = GrindPlane{};
@@ -237,7 +246,7 @@ Status qualify_face(Free& f, const ReconstructionOutput& r, int k, const Eigen::
   plane.rms_mm = fit->rms;
   plane.triangles = n;
   plane.view_angle_deg = plane_view_angle_deg(plane.normal, plane.centroid_mm, camera);
-  Status q = qualify_plane(f.face_tris.first(n), n, camera, g, noise, arena, plane);
+  Status q = qualify_plane(f.face_tris.first(n), n, camera, g, qf.noise, arena, plane, qf.reach);
   // A face the clustering did not see must be flatter than the tolerance (section 5).
   if (q.ok() && plane.verdict == PlaneVerdict::accepted && plane.footprint_rms_mm > max_rms_mm)
     plane.verdict = PlaneVerdict::too_rough;
@@ -272,7 +281,7 @@ Result<GrindResult> flat_discs(const StereoRig& rig, const RectifiedPair& rect,
                                const ReconstructionParams& params, const ReconstructionOutput& r,
                                const RockOnMap& rock, const bool (&explained)[kMaxClasses],
                                std::span<const GrindPlane> kept, const FlatDiscParams& discs,
-                               Arena& arena) {
+                               const DiscReach* reach, Arena& arena) {
   PETRA_TRY(validate(discs));
   if (r.mesh_class.size() != r.mesh.size())
     return Error::make(Errc::invalid_argument, "flat discs: %zu mesh classes, %zu triangles",
@@ -293,7 +302,8 @@ Result<GrindResult> flat_discs(const StereoRig& rig, const RectifiedPair& rect,
   for (int k = 0; k < count; ++k)
     if (faces[k].discs >= discs.min_discs)
       PETRA_TRY(
-          qualify_face(*f, r, k, camera, g, noise, discs.max_footprint_rms_mm, arena, planes[n++]));
+          qualify_face(*f, r, k, {camera, g, noise, reach}, discs.max_footprint_rms_mm, arena,
+                       planes[n++]));
   for (int pass = 0; pass < 2; ++pass) {  // accepted by area, then the others
     for (int k = 0; k < n && out.count < kMaxClasses; ++k) {
       int best = -1;

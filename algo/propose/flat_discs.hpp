@@ -61,11 +61,12 @@ std::size_t flat_discs_bytes(std::size_t triangles, int max_seeds);
 // them) on the free triangles of the run `r` (made with rig, rect and
 // params) on the rock, leaving out the chain's planes marked in
 // `explained` (by rank); a flat disc on a `kept` plane (the chain's merge
-// rule) starts no face. None when no disc is flat.
+// rule) starts no face. None when no disc is flat. reach: the arm's
+// (find_grind_planes).
 Result<GrindResult> flat_discs(const StereoRig& rig, const RectifiedPair& rect,
                                const ReconstructionParams& params, const ReconstructionOutput& r,
                                const RockOnMap& rock, const bool (&explained)[kMaxClasses],
                                std::span<const GrindPlane> kept, const FlatDiscParams& discs,
-                               Arena& arena);
+                               const DiscReach* reach, Arena& arena);
 
 }  // namespace petra

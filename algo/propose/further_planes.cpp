@@ -37,7 +37,8 @@ void planes_mostly_on(const ReconstructionOutput& r, const RockOnMap& rock,
 Result<GrindResult> further_planes(const StereoRig& rig, const RectifiedPair& rect,
                                    const ReconstructionParams& params,
                                    const ReconstructionOutput& r, const RockOnMap& rock,
-                                   const bool (&explained)[kMaxClasses], int c, Arena& arena) {
+                                   const bool (&explained)[kMaxClasses], int c,
+                                   const DiscReach* reach, Arena& arena) {
   const std::size_t nt = r.mesh.size();
   if (r.mesh_class.size() != nt)
     return Error::make(Errc::invalid_argument, "further planes: %zu mesh classes, %zu triangles",
@@ -54,7 +55,7 @@ Result<GrindResult> further_planes(const StereoRig& rig, const RectifiedPair& re
     left += (*taken)[i];
   }
   if (left < 3 * static_cast<std::size_t>(c)) return GrindResult{};  // too few for c: none
-  return grind_planes_on_mesh(rig, rect, r, c, params, arena, *taken);
+  return grind_planes_on_mesh(rig, rect, r, c, params, arena, *taken, reach);
 }
 
 bool same_face(const GrindPlane& a, const GrindPlane& b, const GrindParams& p) {

@@ -48,11 +48,12 @@ void planes_mostly_on(const ReconstructionOutput& r, const RockOnMap& rock,
 // `r` (made with rig, rect and params) for the rock, leaving out the
 // triangles of the chain's planes marked in `explained` (by rank). Its
 // planes ranked as the chain ranks them; none (count 0) when fewer than 3c
-// triangles are left.
+// triangles are left. reach: the arm's (find_grind_planes).
 Result<GrindResult> further_planes(const StereoRig& rig, const RectifiedPair& rect,
                                    const ReconstructionParams& params,
                                    const ReconstructionOutput& r, const RockOnMap& rock,
-                                   const bool (&explained)[kMaxClasses], int c, Arena& arena);
+                                   const bool (&explained)[kMaxClasses], int c,
+                                   const DiscReach* reach, Arena& arena);
 
 // Whether two reported planes are one face by the chain's merge rule
 // (same_plane on their normals and centroids).

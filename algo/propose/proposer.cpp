@@ -227,14 +227,6 @@ void planes_on_other_rocks(const ReconstructionOutput& r, const RockOnMap& rock,
   for (int k = 0; k < kMaxClasses; ++k) neighbour[k] = other[k] > own[k];
 }
 
-arm::ArmReason Proposer::reach(const GrindPlane& plane, const arm::JointVector& current) const {
-  arm::ApproachRequest a;
-  a.centroid_mm = plane.centroid_mm;
-  a.normal = plane.normal;
-  a.standoff_mm = params_.standoff_mm;
-  return arm::plan_approach(geometry_, limits_, a, current).refusal.reason;
-}
-
 // The proposal's planes (3 at most), from this rock's candidates in order:
 // the chain's accepted planes, its surplus ones (qualified, past the run's
 // c = 3, which a neighbour's planes in the ROI also take), then the further
@@ -242,7 +234,7 @@ arm::ArmReason Proposer::reach(const GrindPlane& plane, const arm::JointVector& 
 // earlier one; the reachable ones first, each group in that order, then the
 // rock's refused planes that say why. A neighbour's planes are left to its
 // own run.
-Status Proposer::own_planes(int index, const PipelineOutput& out, const arm::JointVector& current,
+Status Proposer::own_planes(int index, const PipelineOutput& out, const ArmReach& reach,
                             RockProposal& proposal) {
   const GrindResult& g = out.result.planes;
   const GrindParams& gp = pipeline_->params().reconstruction.grind;
@@ -269,7 +261,7 @@ Status Proposer::own_planes(int index, const PipelineOutput& out, const arm::Joi
   if (params_.further_planes_c > 0) {
     const Rectifier& rect = pipeline_->rectifier();
     auto f = further_planes(rect.rig(), rect.geometry(), pipeline_->params().reconstruction,
-                            out.result, rock, taken, params_.further_planes_c, *arena_);
+                            out.result, rock, taken, params_.further_planes_c, &reach, *arena_);
     if (!f && f.code() != Errc::degenerate) return f.error();
     for (int k = 0; f && k < f->accepted; ++k) c.add(f->planes[k], gp);  // degenerate: none
   }
@@ -278,13 +270,13 @@ Status Proposer::own_planes(int index, const PipelineOutput& out, const arm::Joi
     auto d = flat_discs(rect.rig(), rect.geometry(), pipeline_->params().reconstruction, out.result,
                         rock, taken,
                         std::span<const GrindPlane>(c.planes, static_cast<std::size_t>(c.count)),
-                        params_.discs, *arena_);
+                        params_.discs, &reach, *arena_);
     if (!d) return d.error();
     for (int k = 0; k < d->accepted; ++k) c.add(d->planes[k], gp);
   }
   c.keep_flat(chain_accepted, gp);
   arm::ArmReason why[PlaneCandidates::kMaxCandidates];
-  for (int k = 0; k < c.count; ++k) why[k] = reach(c.planes[k], current);
+  for (int k = 0; k < c.count; ++k) why[k] = reach.why(c.planes[k].centroid_mm, c.planes[k].normal);
   int n = 0;
   for (int pass = 0; pass < 2; ++pass)  // reachable first, then the others
     for (int k = 0; k < c.count && n < kMaxProposalPlanes; ++k)
@@ -295,7 +287,7 @@ Status Proposer::own_planes(int index, const PipelineOutput& out, const arm::Joi
   for (int k = 0; k < g.count && n < kMaxProposalPlanes; ++k) {
     const PlaneVerdict v = g.planes[k].verdict;
     if (!neighbour[k] && v != PlaneVerdict::accepted && v != PlaneVerdict::surplus) {
-      proposal.reach[n] = reach(g.planes[k], current);
+      proposal.reach[n] = reach.why(g.planes[k].centroid_mm, g.planes[k].normal);
       proposal.planes[n++] = g.planes[k];
     }
   }
@@ -322,7 +314,9 @@ Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
                           const StepClock& clock, const ConstDisparityMap* given,
                           RockProposal& out) {
   const RockCandidate& rock = detection_.rocks[index];
-  const PipelineRequest q = chain_request(rock);
+  const ArmReach reach(geometry_, limits_, current, params_.standoff_mm);
+  PipelineRequest q = chain_request(rock);
+  q.reach = &reach;  // as SELECT_ROI's run: the footprints the arm reaches
   out = RockProposal{};
   out.rock = rock;
   out.rock.roi = q.roi;  // what SELECT_ROI sends back
@@ -334,7 +328,7 @@ Status Proposer::evaluate(ConstGray8View left, ConstGray8View right, int index,
     out.chain_error = r.error();
     return {};
   }
-  PETRA_TRY(own_planes(index, *r, current, out));
+  PETRA_TRY(own_planes(index, *r, reach, out));
   const GrindResult& g = r->result.planes;
   const GrindPlane* best = nullptr;
   bool reachable = false, grindable_any = false;

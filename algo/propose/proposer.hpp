@@ -50,6 +50,7 @@
 #include "algo/core/arena.hpp"
 #include "algo/core/result.hpp"
 #include "algo/core/step_clock.hpp"
+#include "algo/propose/arm_reach.hpp"
 #include "algo/propose/flat_discs.hpp"
 #include "algo/propose/further_planes.hpp"
 #include "algo/propose/proposals.hpp"
@@ -155,9 +156,8 @@ class Proposer {
   Result<PipelineOutput> run_chain(ConstGray8View left, ConstGray8View right,
                                    const PipelineRequest& q, const StepClock& clock,
                                    const ConstDisparityMap* given);
-  Status own_planes(int index, const PipelineOutput& out, const arm::JointVector& current,
+  Status own_planes(int index, const PipelineOutput& out, const ArmReach& reach,
                     RockProposal& proposal);
-  arm::ArmReason reach(const GrindPlane& plane, const arm::JointVector& current) const;
   void rank(const ProposalRequest& request, int evaluated);
 
   Pipeline* pipeline_ = nullptr;  // the caller's

@@ -208,9 +208,16 @@ DiscSums disc_sums(const Binned& b, double r, double cx, double cy) {
 }
 
 // 3. Each disc: coverage, flatness about its own plane (rms, -1 where not
-// covered) and about a plane parallel to the face's (level).
+// covered) and about a plane parallel to the face's (level), and its own
+// plane's offset at its centre (zc).
+struct DiscScores {
+  double rms[kFootprintCandidates] = {};
+  double level[kFootprintCandidates] = {};
+  double zc[kFootprintCandidates] = {};
+};
+
 void score_candidates(const Binned& b, double r, const Candidates& c, double min_coverage,
-                      double* rms, double* level, Footprint& out) {
+                      DiscScores& d, Footprint& out) {
   const double disc_area = M_PI * r * r;
   for (int j = 0; j < c.ncy; ++j)
     for (int i = 0; i < c.ncx; ++i) {
@@ -218,26 +225,56 @@ void score_candidates(const Binned& b, double r, const Candidates& c, double min
       const double cx = c.x0 + i * c.h, cy = c.y0 + j * c.h;
       const DiscSums s = disc_sums(b, r, cx, cy);
       const DiscPlane p = solve(s);
-      rms[k] = -1;
+      d.rms[k] = -1;
       ++out.candidates;
       if (!p.ok || !covers(s, disc_area, static_cast<double>(b.stride), min_coverage)) continue;
-      rms[k] = p.rms;
-      level[k] = p.level_rms;
+      d.rms[k] = p.rms;
+      d.level[k] = p.level_rms;
+      d.zc[k] = p.zc;
     }
 }
 
 // 4. Of the discs flat within the tolerance, the most level; none: the
 // flattest; -1 if no disc is covered.
-int flush_candidate(const double* rms, const double* level, int n, double max_rms) {
+int flush_candidate(const DiscScores& d, int n, double max_rms) {
   int flush = -1, flattest = -1;
   for (int k = 0; k < n; ++k) {
     const std::size_t u = static_cast<std::size_t>(k);
-    if (rms[u] < 0) continue;
-    if (flattest < 0 || rms[u] < rms[static_cast<std::size_t>(flattest)]) flattest = k;
-    if (rms[u] <= max_rms && (flush < 0 || level[u] < level[static_cast<std::size_t>(flush)]))
+    if (d.rms[u] < 0) continue;
+    if (flattest < 0 || d.rms[u] < d.rms[static_cast<std::size_t>(flattest)]) flattest = k;
+    if (d.rms[u] <= max_rms &&
+        (flush < 0 || d.level[u] < d.level[static_cast<std::size_t>(flush)]))
       flush = k;
   }
   return flush >= 0 ? flush : flattest;
+}
+
+// 4, with a reach: the flat discs from the most level on, until one is
+// reached (its centre on its own plane, the tool along the face's normal);
+// -1 when none is. Each disc is asked once: one plan per disc at most.
+int reached_candidate(const DiscScores& d, const Candidates& c, const Frame& fr,
+                      double max_rms, const DiscReach& reach, Footprint& out) {
+  const int n = c.ncx * c.ncy;
+  std::int16_t order[kFootprintCandidates];
+  int m = 0;
+  for (int k = 0; k < n; ++k) {
+    const std::size_t u = static_cast<std::size_t>(k);
+    if (d.rms[u] >= 0 && d.rms[u] <= max_rms) order[m++] = static_cast<std::int16_t>(k);
+  }
+  std::sort(order, order + m, [&](std::int16_t a, std::int16_t b) {
+    const double la = d.level[static_cast<std::size_t>(a)];
+    const double lb = d.level[static_cast<std::size_t>(b)];
+    return la < lb || (la == lb && a < b);
+  });
+  for (int i = 0; i < m; ++i) {
+    const int k = order[i];
+    const double cx = c.x0 + (k % c.ncx) * c.h, cy = c.y0 + (k / c.ncx) * c.h;
+    const Eigen::Vector3d centre =
+        fr.o + cx * fr.e1 + cy * fr.e2 + d.zc[static_cast<std::size_t>(k)] * fr.n;
+    ++out.reach_checks;
+    if (reach.reaches(centre, fr.n)) return k;
+  }
+  return -1;
 }
 
 // 5. The chosen disc, centred (cx, cy) in the face frame, on every sample.
@@ -301,9 +338,12 @@ Result<Footprint> find_footprint(std::span<const FaceSample> samples,
   Footprint out;
   Candidates c;
   if (!candidate_grid(b, r, c)) return out;  // no disc fits in the extent
-  double rms[kFootprintCandidates] = {}, level[kFootprintCandidates] = {};
-  score_candidates(b, r, c, params.min_coverage, rms, level, out);
-  const int best = flush_candidate(rms, level, c.ncx * c.ncy, params.max_rms_mm);
+  DiscScores d;
+  score_candidates(b, r, c, params.min_coverage, d, out);
+  int best = -1;
+  if (params.reach != nullptr) best = reached_candidate(d, c, fr, params.max_rms_mm, *params.reach, out);
+  out.reached = best >= 0;
+  if (best < 0) best = flush_candidate(d, c.ncx * c.ncy, params.max_rms_mm);
   if (best < 0) return out;
   const double cx = c.x0 + (best % c.ncx) * c.h, cy = c.y0 + (best / c.ncx) * c.h;
   fit_chosen_disc(samples, fr, r, cx, cy, out);

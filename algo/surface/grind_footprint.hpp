@@ -18,8 +18,13 @@
 //      to the face's (least RMS of their offsets along the face normal):
 //      the grinder comes along the face's normal, so that is where it sits
 //      flush; on a curved face, where the surface is parallel to the face's
-//      plane. None within the tolerance: the flattest (the face is too
-//      rough, and the verdict says so);
+//      plane. With a reach (the arm's, from the caller), the most level of
+//      those the tool reaches along the face's normal: a flush disc out of
+//      the arm's reach is no place to grind when another flat one is in it;
+//      none reached, the most level all the same (the caller's own reach
+//      check then says the plane is out of reach). None within the
+//      tolerance: the flattest (the face is too rough, and the verdict says
+//      so);
 //   5. the best disc refitted on every sample in it (the search may thin a
 //      large face to kFootprintSamples samples) and its peak-to-valley.
 // Flatness is the RMS over the footprint, not the peak-to-valley: the
@@ -50,10 +55,25 @@ struct FaceSample {
   double area = 0;    // mm^2
 };
 
+// Whether the tool reaches a disc: its centre on the surface, the tool coming
+// along `normal` (unit, out of the rock). The arm's plan implements it
+// (algo/propose/arm_reach); the footprint only asks.
+class DiscReach {
+ public:
+  virtual bool reaches(const Eigen::Vector3d& centre_mm, const Eigen::Vector3d& normal) const = 0;
+
+ protected:
+  DiscReach() = default;
+  DiscReach(const DiscReach&) = default;
+  DiscReach& operator=(const DiscReach&) = default;
+  ~DiscReach() = default;
+};
+
 struct FootprintParams {
   double diameter_mm = 20.0;
   double min_coverage = 0.8;  // of the disc's area, by the samples in it
   double max_rms_mm = 1.0;    // flatness tolerance: only discs within it are chosen for flushness
+  const DiscReach* reach = nullptr;  // the caller's; none: every disc is reachable
 };
 
 struct Footprint {
@@ -65,6 +85,8 @@ struct Footprint {
   double coverage = 0;                                  // sample area / disc area
   std::size_t samples = 0;                              // in the disc
   int candidates = 0;                                   // discs tried
+  int reach_checks = 0;  // discs asked of the reach (0 without one)
+  bool reached = false;  // the chosen disc is one the reach reaches (false without one)
 };
 
 std::size_t footprint_scratch_bytes(std::size_t samples);

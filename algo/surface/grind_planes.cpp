@@ -476,7 +476,8 @@ struct ClassFitter {
   std::span<std::uint8_t> triangle_plane;
   DepthNoise noise;
   double cos_inlier = 0, cos_grow = 0;
-  bool use_core = false;  // the final fit uses the patch's core only
+  const DiscReach* reach = nullptr;  // the footprint's (find_grind_planes)
+  bool use_core = false;             // the final fit uses the patch's core only
   Status failure{};
 
   // Vertex j % 3 of patch triangle j / 3.
@@ -627,7 +628,8 @@ struct ClassFitter {
         s.face[faces++] = FaceSample{s.centroid[i], s.area[i]};
         if (pass == 0) ++core_faces;
       }
-    Status q = qualify_plane(s.face.first(faces), core_faces, camera, params, noise, arena, plane);
+    Status q = qualify_plane(s.face.first(faces), core_faces, camera, params, noise, arena, plane,
+                             reach);
     if (!q.ok()) {
       plane.verdict = PlaneVerdict::no_support;
       if (q.code() != Errc::degenerate) failure = q;  // a budget or a bad parameter: fail
@@ -826,7 +828,7 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
                                       const GrindParams& params, Arena& arena,
                                       std::span<std::uint8_t> triangle_plane,
                                       std::span<const Eigen::Vector3d> point_normals,
-                                      const RigGeometry& rig) {
+                                      const RigGeometry& rig, const DiscReach* reach) {
   PETRA_TRY(validate(params));
   PETRA_TRY(check_mesh(xyz, tris, c, triangle_plane, point_normals));
   const std::size_t n = tris.size();
@@ -856,7 +858,8 @@ Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz,
       triangle_plane,
       DepthNoise{rig.focal_px, rig.baseline_mm, params.sigma_disparity_px, rig.correlation_px},
       std::cos(params.inlier_angle_deg * M_PI / 180.0),
-      std::cos(params.grow_angle_deg * M_PI / 180.0)};
+      std::cos(params.grow_angle_deg * M_PI / 180.0),
+      reach};
   for (int k = 0; k < ac->c; ++k) {
     alive[k] = members[k] > 0;
     if (alive[k]) fitter.fit_class(k, candidates[k]);

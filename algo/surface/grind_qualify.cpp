@@ -56,7 +56,8 @@ PlaneVerdict verdict_of(const GrindPlane& p, const Footprint& f, const GrindPara
 
 Status qualify_plane(std::span<const FaceSample> patch, std::size_t core,
                      const Eigen::Vector3d& camera, const GrindParams& params,
-                     const DepthNoise& noise, Arena& arena, GrindPlane& plane) {
+                     const DepthNoise& noise, Arena& arena, GrindPlane& plane,
+                     const DiscReach* reach) {
   plane.face_normal = plane.normal;
   plane.face_centroid_mm = plane.centroid_mm;
   const Eigen::Vector3d n = plane.normal;
@@ -65,6 +66,7 @@ Status qualify_plane(std::span<const FaceSample> patch, std::size_t core,
   fp.diameter_mm = params.grinder_diameter_mm;
   fp.min_coverage = params.min_footprint_coverage;
   fp.max_rms_mm = params.max_footprint_rms_mm;
+  fp.reach = reach;
   Footprint f;  // a patch of fewer than 3 triangles holds no disc
   if (patch.size() >= 3) {
     auto found = find_footprint(patch, n, plane.centroid_mm, fp, arena);

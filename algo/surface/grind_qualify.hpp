@@ -33,6 +33,7 @@ namespace petra {
 
 Status qualify_plane(std::span<const FaceSample> patch, std::size_t core,
                      const Eigen::Vector3d& camera_mm, const GrindParams& params,
-                     const DepthNoise& noise, Arena& scratch, GrindPlane& plane);
+                     const DepthNoise& noise, Arena& scratch, GrindPlane& plane,
+                     const DiscReach* reach = nullptr);
 
 }  // namespace petra

@@ -19,6 +19,7 @@
 
 #include "algo/camera/calib_json.hpp"
 #include "algo/chain/pipeline.hpp"
+#include "algo/propose/arm_reach.hpp"
 #include "sim/cli/commands.hpp"
 #include "sim/eval/eval_images.hpp"
 #include "sim/eval/planes_json.hpp"
@@ -34,7 +35,7 @@ namespace petra::cli {
 namespace {
 
 struct EvalOptions {
-  std::string calib, left, right, roi, click, method = "dp", out, disparity;
+  std::string calib, left, right, roi, click, method = "dp", out, disparity, arm = "stowed";
   int planes = 0;
   std::size_t points = 0;  // 0: one per ROI pixel
   double shadow_fraction = PipelineParams{}.shadow_fraction;
@@ -244,6 +245,13 @@ int run(const EvalOptions& o) {
     return fail("eval", ("--planes " + std::to_string(o.planes) + ": c must be 1.." +
                          std::to_string(kMaxClasses))
                             .c_str());
+  if (o.arm != "stowed" && o.arm != "none")
+    return fail("eval", ("--arm " + o.arm + ": expected stowed or none").c_str());
+  // As EVALUATE on board with the rover's arm stowed: footprints the arm reaches.
+  const arm::JointLimits limits = arm::default_joint_limits();
+  const arm::ArmGeometry arm_geometry = arm::rover_arm_geometry();
+  const ArmReach reach(arm_geometry, limits, arm::stow_pose(), arm::kDefaultStandoffMm);
+  if (o.arm == "stowed") req.reach = &reach;
   auto roi = io::parse_roi(o.roi);
   if (!roi) return fail("eval", roi.error().message);
   req.roi = *roi;
@@ -370,6 +378,9 @@ void add_eval(CLI::App& app, Outcome& outcome) {
   cmd->add_option("--points", o.points,
                   "3-D points budget (default: one per ROI pixel; petra-fsw's: its boot line); "
                   "more valid disparities are taken on a pixel stride");
+  cmd->add_option("--arm", o.arm,
+                  "stowed (default: footprints the rover's arm reaches from its stowed pose, as "
+                  "EVALUATE on board) or none (the most level footprint, reached or not)");
   cmd->add_option("--out", o.out, "output directory")->required();
   cmd->callback([&outcome] {
     try {

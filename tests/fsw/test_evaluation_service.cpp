@@ -137,7 +137,7 @@ class ServiceRig {
 TEST(EvaluationService, RefusesToStartWithoutASelection) {
   ServiceRig rig;
   EXPECT_EQ(rig.service.refusal(), Reason::NO_ROI);
-  EXPECT_FALSE(rig.service.start(rig.frame()).ok());
+  EXPECT_FALSE(rig.service.start(rig.frame(), ::petra::arm::stow_pose()).ok());
   EXPECT_EQ(rig.service.poll(), fsw::EvalProgress::IDLE);
   EXPECT_FALSE(rig.service.status().running);
   EXPECT_EQ(rig.job.runs.load(), 0);
@@ -147,7 +147,7 @@ TEST(EvaluationService, RefusesToStartWithoutAPipeline) {
   ServiceRig rig(false);
   rig.service.select(fsw::selection_from(roi_args(8, 4, 32, 24, 2)));
   EXPECT_EQ(rig.service.refusal(), Reason::NO_PIPELINE);
-  EXPECT_FALSE(rig.service.start(rig.frame()).ok());
+  EXPECT_FALSE(rig.service.start(rig.frame(), ::petra::arm::stow_pose()).ok());
 }
 
 // The selection reaches the job as SELECT_ROI built it, with MATCH_METHOD as its method;
@@ -162,7 +162,7 @@ TEST(EvaluationService, StartsPollsAndPublishesTheResult) {
   a.click_v_px = 10;
   rig.service.select(fsw::selection_from(a));
   EXPECT_EQ(rig.service.refusal(), Reason::NONE);
-  ASSERT_TRUE(rig.service.start(rig.frame(1234)).ok());
+  ASSERT_TRUE(rig.service.start(rig.frame(1234), ::petra::arm::stow_pose()).ok());
   EXPECT_EQ(rig.settle(), fsw::EvalProgress::COMPLETED);
   EXPECT_EQ(rig.service.poll(), fsw::EvalProgress::IDLE);  // once
 
@@ -197,10 +197,10 @@ TEST(EvaluationService, RefusesASecondStartWhileBusyAndDropsAnAbortedResult) {
   rig.job.script = two_service_planes();
   rig.job.hold.store(true);
   rig.service.select(fsw::selection_from(roi_args(8, 4, 32, 24, 2)));
-  ASSERT_TRUE(rig.service.start(rig.frame()).ok());
+  ASSERT_TRUE(rig.service.start(rig.frame(), ::petra::arm::stow_pose()).ok());
   EXPECT_EQ(rig.service.poll(), fsw::EvalProgress::RUNNING);
   EXPECT_TRUE(rig.service.status().running);
-  EXPECT_FALSE(rig.service.start(rig.frame()).ok());  // the worker is busy
+  EXPECT_FALSE(rig.service.start(rig.frame(), ::petra::arm::stow_pose()).ok());  // the worker is busy
 
   rig.service.abort();
   EXPECT_EQ(rig.events(EventId::EVAL_ABORTED), 1u);
@@ -215,7 +215,7 @@ TEST(EvaluationService, AFailedRunIsPublishedAsFailedWithItsStep) {
   ServiceRig rig;
   rig.job.fail = true;
   rig.service.select(fsw::selection_from(roi_args(8, 4, 32, 24, 2)));
-  ASSERT_TRUE(rig.service.start(rig.frame()).ok());
+  ASSERT_TRUE(rig.service.start(rig.frame(), ::petra::arm::stow_pose()).ok());
   EXPECT_EQ(rig.settle(), fsw::EvalProgress::FAILED);
   EXPECT_EQ(rig.events(EventId::EVAL_FAILED), 1u);
   const auto results = rig.drain<tlm::EvalResult>();

@@ -41,7 +41,7 @@ TEST(FlatDiscs, FindTheFacesTheKeptPlanesLeaveByTheToolsDisc) {
   Result<GrindResult> f = Error::make(Errc::not_ready, "not run");
   {
     const test::HeapScope heap;
-    f = flat_discs(rig, pair, params, *r, on_rock, explained, {&first, 1}, discs, arena);
+    f = flat_discs(rig, pair, params, *r, on_rock, explained, {&first, 1}, discs, nullptr, arena);
     EXPECT_EQ(heap.allocations(), 0u);
   }
   ASSERT_TRUE(f.ok()) << f.error().message;
@@ -58,7 +58,7 @@ TEST(FlatDiscs, FindTheFacesTheKeptPlanesLeaveByTheToolsDisc) {
   }
   // Another rock's cells: nothing of this rock is taken.
   const RockOnMap elsewhere{map, 1, 4096, 2};
-  auto none = flat_discs(rig, pair, params, *r, elsewhere, explained, {}, discs, arena);
+  auto none = flat_discs(rig, pair, params, *r, elsewhere, explained, {}, discs, nullptr, arena);
   ASSERT_TRUE(none.ok()) << none.error().message;
   EXPECT_EQ(none->count, 0);
 }

@@ -39,7 +39,7 @@ TEST(FurtherPlanes, FindTheFacesTheChainsPlanesLeaveOnTheRocksOwnCells) {
   Result<GrindResult> f = Error::make(Errc::not_ready, "not run");
   {
     const test::HeapScope heap;
-    f = further_planes(rig, pair, params, *r, on_rock, explained, 2, arena);
+    f = further_planes(rig, pair, params, *r, on_rock, explained, 2, nullptr, arena);
     EXPECT_EQ(heap.allocations(), 0u);
   }
   ASSERT_TRUE(f.ok()) << f.error().message;
@@ -53,7 +53,7 @@ TEST(FurtherPlanes, FindTheFacesTheChainsPlanesLeaveOnTheRocksOwnCells) {
   }
   // Another rock's cells: nothing of this rock is taken.
   const RockOnMap elsewhere{map, 1, 4096, 2};
-  auto none = further_planes(rig, pair, params, *r, elsewhere, explained, 2, arena);
+  auto none = further_planes(rig, pair, params, *r, elsewhere, explained, 2, nullptr, arena);
   ASSERT_TRUE(none.ok()) << none.error().message;
   EXPECT_EQ(none->count, 0);
 }

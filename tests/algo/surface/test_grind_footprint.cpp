@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "tests/support/angles.hpp"
@@ -43,11 +44,13 @@ FaceMesh make_relief_face(double w, double h, const std::function<double(double,
   return f;
 }
 
-Result<Footprint> run_footprint(const FaceMesh& f, double diameter) {
+Result<Footprint> run_footprint(const FaceMesh& f, double diameter,
+                                const DiscReach* reach = nullptr) {
   std::vector<std::byte> block(footprint_scratch_bytes(f.samples.size()));
   Arena arena(block);
   FootprintParams p;
   p.diameter_mm = diameter;
+  p.reach = reach;
   auto r = find_footprint(f.samples, f.n, f.o, p, arena);
   EXPECT_EQ(arena.used(), 0u);
   return r;
@@ -147,6 +150,102 @@ TEST(GrindFootprint, ALevelDiscWithinTheToleranceWinsOverAFlatterTiltedOne) {
   ASSERT_TRUE(r->covered);
   EXPECT_LE(side(rough, *r), -10 + 2.6);
   EXPECT_LT(r->rms_mm, 0.01);
+}
+
+// A reach the test draws: the discs whose centre (in the face frame) passes
+// `inside`, asked along the face's normal; counts what it is asked.
+class DrawnReach final : public DiscReach {
+ public:
+  DrawnReach(const FaceMesh& f, std::function<bool(double, double)> inside)
+      : f_(f), inside_(std::move(inside)) {}
+  bool reaches(const Eigen::Vector3d& centre_mm, const Eigen::Vector3d& normal) const override {
+    ++asked;
+    if (test::angle_deg(normal, f_.n) > 1e-6) ++off_normal;
+    const Eigen::Vector3d q = centre_mm - f_.o;
+    return inside_(q.dot(f_.e1), q.dot(f_.e2));
+  }
+  mutable int asked = 0;
+  mutable int off_normal = 0;
+
+ private:
+  const FaceMesh& f_;
+  std::function<bool(double, double)> inside_;
+};
+
+TEST(GrindFootprint, AReachMovesTheDiscToTheMostLevelOneTheArmReaches) {
+  // The cap of CurvedFaceGivesTheDiscWhereItIsParallelToTheFacePlane: the
+  // most level disc is at the apex (4, -3). An arm that reaches only x > 12
+  // gets the most level disc there: the nearest to the apex beyond the wall.
+  const double R = 300;
+  auto height = [&](double x, double y) {
+    const double rho2 = (x - 4) * (x - 4) + (y + 3) * (y + 3);
+    return R - std::sqrt(R * R - rho2);
+  };
+  const FaceMesh f = make_relief_face(50, 50, height);
+  const auto at = [&](const Footprint& fp) {
+    const Eigen::Vector3d q = fp.centre_mm - f.o;
+    return std::pair{q.dot(f.e1), q.dot(f.e2)};
+  };
+  auto free = run_footprint(f, 20);
+  ASSERT_TRUE(free.ok() && free->covered);
+  EXPECT_EQ(free->reach_checks, 0);
+  EXPECT_FALSE(free->reached);
+
+  const DrawnReach wall(f, [](double x, double) { return x > 12; });
+  auto r = run_footprint(f, 20, &wall);
+  ASSERT_TRUE(r.ok() && r->covered);
+  EXPECT_TRUE(r->reached);
+  EXPECT_EQ(wall.off_normal, 0) << "the tool comes along the face's normal";
+  EXPECT_EQ(r->reach_checks, wall.asked);
+  const auto [x, y] = at(*r);
+  EXPECT_GT(x, 12);
+  // Candidates lie 5 mm apart: the first beyond the wall is within 5 mm of
+  // it, near the apex's row (within half the grid's diagonal, as the free
+  // disc is of the apex).
+  EXPECT_LT(x, 12 + 5.01);
+  EXPECT_LT(std::abs(y + 3), 3.6);
+  EXPECT_GT(r->reach_checks, 1);
+  // Its centre on the surface there, as the free disc's is at the apex.
+  EXPECT_NEAR((r->centre_mm - f.o).dot(f.n), height(x, y) + 100.0 / (4 * R), 0.01);
+
+  // The most level disc reached: one question, the same disc as without a reach.
+  const DrawnReach everywhere(f, [](double, double) { return true; });
+  r = run_footprint(f, 20, &everywhere);
+  ASSERT_TRUE(r.ok() && r->covered);
+  EXPECT_EQ(everywhere.asked, 1);
+  EXPECT_TRUE(r->reached);
+  EXPECT_LT((r->centre_mm - free->centre_mm).norm(), 1e-9);
+
+  // None reached: every flat disc asked once, then the most level all the same.
+  const DrawnReach nowhere(f, [](double, double) { return false; });
+  r = run_footprint(f, 20, &nowhere);
+  ASSERT_TRUE(r.ok() && r->covered);
+  EXPECT_FALSE(r->reached);
+  EXPECT_EQ(nowhere.asked, r->reach_checks);
+  EXPECT_GT(nowhere.asked, 1);
+  EXPECT_LE(nowhere.asked, r->candidates);
+  EXPECT_LT((r->centre_mm - free->centre_mm).norm(), 1e-9);
+}
+
+TEST(GrindFootprint, AReachIsNotAskedOfDiscsRougherThanTheTolerance) {
+  // The level half of ALevelDiscWithinTheToleranceWinsOverAFlatterTiltedOne
+  // rougher than the tolerance: the flat discs are the tilted half's, and an
+  // arm that reaches only the level half is never asked of it.
+  const double tilt = std::tan(6.0 * M_PI / 180.0);
+  const FaceMesh f = make_relief_face(60, 40, [=](double x, double y) {
+    return x < 0 ? tilt * x : 3.0 * std::sin(2.3 * x) * std::cos(1.9 * y);
+  });
+  int level_half_asked = 0;
+  const DrawnReach level_half(f, [&](double x, double) {  // 3/4 of a disc there is rough
+    level_half_asked += x > 5 ? 1 : 0;
+    return x > 5;
+  });
+  auto r = run_footprint(f, 20, &level_half);
+  ASSERT_TRUE(r.ok() && r->covered);
+  EXPECT_FALSE(r->reached);
+  EXPECT_GT(level_half.asked, 0);
+  EXPECT_EQ(level_half_asked, 0) << "a disc over the tolerance is no place to grind";
+  EXPECT_LT(r->rms_mm, 0.01);  // the flattest, as without a reach
 }
 
 TEST(GrindFootprint, FaceSmallerThanTheToolIsNotCovered) {

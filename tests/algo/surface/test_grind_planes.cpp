@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "algo/mesh/mesh_lift.hpp"
@@ -100,12 +101,13 @@ bool on_face(const test::Rock& rock, int f, const Eigen::Vector3d& x, double tol
 Result<GrindResult> run_grind_planes(const RockMesh& m, int c, const GrindParams& params,
                                      std::vector<std::uint8_t>& labels,
                                      const std::vector<Eigen::Vector3d>& normals = {},
-                                     const RigGeometry& rig = {}) {
+                                     const RigGeometry& rig = {},
+                                     const DiscReach* reach = nullptr) {
   std::vector<std::byte> block(grind_planes_scratch_bytes(m.tris.size()));
   Arena arena(block);
   labels.assign(m.tris.size(), 0);
   return find_grind_planes(m.cloud.xyz, m.tris, kPlanesView.centre(), c, params, arena, labels,
-                           normals, rig);
+                           normals, rig, reach);
 }
 
 // Smoothed point normals as the pipeline gives them (algo/mesh/surface_normals
@@ -419,6 +421,50 @@ TEST(GrindPlanes, FootprintAndUncertaintyOnEveryPlane) {
     // along the ray at 0.8 m, more than the mesh's 0.3 mm).
     EXPECT_GT(c->planes[k].offset_sigma_mm, p.offset_sigma_mm);
     EXPECT_LT(c->planes[k].normal_sigma_deg, 2.0);
+  }
+}
+
+// An arm that reaches no point within `keep_off_mm` of the given ones.
+class ReachAwayFrom final : public DiscReach {
+ public:
+  ReachAwayFrom(std::vector<Eigen::Vector3d> points, double keep_off_mm)
+      : points_(std::move(points)), keep_off_mm_(keep_off_mm) {}
+  bool reaches(const Eigen::Vector3d& centre_mm, const Eigen::Vector3d&) const override {
+    for (const Eigen::Vector3d& p : points_)
+      if ((centre_mm - p).norm() < keep_off_mm_) return false;
+    return true;
+  }
+
+ private:
+  std::vector<Eigen::Vector3d> points_;
+  double keep_off_mm_;
+};
+
+TEST(GrindPlanes, TheArmsReachMovesEachGrindPointToADiscItReaches) {
+  // The ridge rock's three faces, first without a reach; then with an arm
+  // that reaches nothing within 8 mm of those grind points: each face keeps
+  // its plane and verdict, its grind point moves to a disc the arm reaches,
+  // still on the face.
+  const RockMesh& m = rock_mesh(0.0);
+  const test::Rock rock = test::ridge_rock();
+  std::vector<std::uint8_t> labels;
+  auto free = run_grind_planes(m, 3, GrindParams{}, labels);
+  ASSERT_TRUE(free.ok()) << free.error().message;
+  ASSERT_EQ(free->accepted, 3);
+  std::vector<Eigen::Vector3d> points;
+  for (int k = 0; k < 3; ++k) points.push_back(free->planes[k].centroid_mm);
+  const ReachAwayFrom arm(points, 8.0);
+  auto reached = run_grind_planes(m, 3, GrindParams{}, labels, {}, {}, &arm);
+  ASSERT_TRUE(reached.ok()) << reached.error().message;
+  ASSERT_EQ(reached->accepted, 3);
+  for (int k = 0; k < 3; ++k) {
+    const GrindPlane& p = reached->planes[k];
+    const GrindPlane& q = free->planes[k];
+    EXPECT_EQ(p.verdict, PlaneVerdict::accepted);
+    EXPECT_LT(test::angle_deg(p.normal, q.normal), 1e-9) << "plane " << k;
+    EXPECT_TRUE(arm.reaches(p.centroid_mm, p.normal)) << "plane " << k;
+    EXPECT_GE((p.centroid_mm - q.centroid_mm).norm(), 8.0) << "plane " << k;
+    EXPECT_TRUE(on_face(rock, face_of(rock, p), p.centroid_mm, 0.01)) << "plane " << k;
   }
 }
 

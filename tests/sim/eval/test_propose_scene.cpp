@@ -128,7 +128,7 @@ TEST(ProposeScene, EveryGrindableReachableFaceIsOfferedAndNothingElse) {
       << "the best plane's centroid is off its facet";
 
   // Sent back as SELECT_ROI (its roi, click and planes_c) to the chain with
-  // the same budget: the chain's planes again, bit for bit; the proposal's
+  // the same budget and the arm's reach: the chain's planes again, bit for bit; the proposal's
   // first plane is one the chain accepts (the rock's surplus planes the
   // proposal offers are listed there as surplus; its further planes,
   // algo/propose/further_planes, are not among them).
@@ -139,7 +139,12 @@ TEST(ProposeScene, EveryGrindableReachableFaceIsOfferedAndNothingElse) {
   Arena arena(block);
   auto chain = Pipeline::create(f.rig, budget->pipeline, PipelineParams{}, arena);
   ASSERT_TRUE(chain.ok()) << chain.error().message;
+  // As on board: the arm's reach from the pose the proposer was given.
+  const arm::ArmGeometry geometry = arm::rover_arm_geometry();
+  const arm::JointLimits limits = arm::default_joint_limits();
+  const ArmReach reach(geometry, limits, arm::stow_pose(), arm::kDefaultStandoffMm);
   PipelineRequest select;
+  select.reach = &reach;
   select.roi = best.rock.roi;
   select.has_click = true;
   select.click_u = best.rock.click_u;
