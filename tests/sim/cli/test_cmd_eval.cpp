@@ -110,6 +110,7 @@ TEST(CmdEval, ProductsOnASceneAndReasonsForBadArguments) {
       {base + " --planes 9", "--planes 9"},
       {base + " --planes 0", "--planes 0"},
       {base + " --planes 2 --method sgm", "--method sgm"},
+      {base + " --planes 2 --arm folded", "--arm folded: expected stowed or none"},
       {base + " --planes 2 --disparity " + s + "/nothing.pfm", "nothing.pfm"},
       {base + " --planes 2 --disparity " + s + "/left.png", "left.png"},
       {base + " --planes 2 --click 1,1", "outside the ROI"},
