@@ -74,6 +74,7 @@ tlm::GrindPlane plane_packet(const GrindPlane& g, double footprint_diameter_mm) 
   p.offset_sigma_mm = static_cast<float>(g.offset_sigma_mm);
   p.footprint_rms_mm = static_cast<float>(g.footprint_rms_mm);
   p.footprint_diameter_mm = static_cast<float>(footprint_diameter_mm);
+  p.footprint_reach = static_cast<std::uint8_t>(g.footprint_reach);
   return p;
 }
 

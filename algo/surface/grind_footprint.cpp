@@ -251,7 +251,8 @@ int flush_candidate(const DiscScores& d, int n, double max_rms) {
 
 // 4, with a reach: the flat discs from the most level on, until one is
 // reached (its centre on its own plane, the tool along the face's normal);
-// -1 when none is. Each disc is asked once: one plan per disc at most.
+// -1 when none is (out.reach says which). Each disc is asked once: one plan
+// per disc at most.
 int reached_candidate(const DiscScores& d, const Candidates& c, const Frame& fr,
                       double max_rms, const DiscReach& reach, Footprint& out) {
   const int n = c.ncx * c.ncy;
@@ -272,8 +273,12 @@ int reached_candidate(const DiscScores& d, const Candidates& c, const Frame& fr,
     const Eigen::Vector3d centre =
         fr.o + cx * fr.e1 + cy * fr.e2 + d.zc[static_cast<std::size_t>(k)] * fr.n;
     ++out.reach_checks;
-    if (reach.reaches(centre, fr.n)) return k;
+    if (reach.reaches(centre, fr.n)) {
+      out.reach = i == 0 ? FootprintReach::most_level : FootprintReach::moved;
+      return k;
+    }
   }
+  if (m > 0) out.reach = FootprintReach::none_reached;
   return -1;
 }
 
@@ -307,6 +312,20 @@ void fit_chosen_disc(std::span<const FaceSample> samples, const Frame& fr, doubl
 }
 
 }  // namespace
+
+const char* footprint_reach_key(FootprintReach r) {
+  switch (r) {
+    case FootprintReach::most_level:
+      return "most_level";
+    case FootprintReach::moved:
+      return "moved";
+    case FootprintReach::none_reached:
+      return "none_reached";
+    case FootprintReach::not_asked:
+      break;
+  }
+  return "";
+}
 
 std::size_t footprint_scratch_bytes(std::size_t samples) {
   const std::size_t m = std::min(samples, kFootprintSamples);
@@ -342,7 +361,6 @@ Result<Footprint> find_footprint(std::span<const FaceSample> samples,
   score_candidates(b, r, c, params.min_coverage, d, out);
   int best = -1;
   if (params.reach != nullptr) best = reached_candidate(d, c, fr, params.max_rms_mm, *params.reach, out);
-  out.reached = best >= 0;
   if (best < 0) best = flush_candidate(d, c.ncx * c.ncy, params.max_rms_mm);
   if (best < 0) return out;
   const double cx = c.x0 + (best % c.ncx) * c.h, cy = c.y0 + (best / c.ncx) * c.h;

@@ -39,6 +39,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 
 #include "algo/core/arena.hpp"
@@ -69,6 +70,16 @@ class DiscReach {
   ~DiscReach() = default;
 };
 
+// Where a reach left the footprint's disc (what the operator is told).
+enum class FootprintReach : std::uint8_t {
+  not_asked = 0,     // no reach given, or no disc within the flatness tolerance
+  most_level = 1,    // the most level flat disc, which the arm reaches
+  moved = 2,         // the most level flat disc is out of reach: the most level one reached
+  none_reached = 3,  // the arm reaches no flat disc: the most level all the same
+};
+// "most_level", "moved", "none_reached" (planes.json); "" for not_asked.
+const char* footprint_reach_key(FootprintReach r);
+
 struct FootprintParams {
   double diameter_mm = 20.0;
   double min_coverage = 0.8;  // of the disc's area, by the samples in it
@@ -86,7 +97,7 @@ struct Footprint {
   std::size_t samples = 0;                              // in the disc
   int candidates = 0;                                   // discs tried
   int reach_checks = 0;  // discs asked of the reach (0 without one)
-  bool reached = false;  // the chosen disc is one the reach reaches (false without one)
+  FootprintReach reach = FootprintReach::not_asked;
 };
 
 std::size_t footprint_scratch_bytes(std::size_t samples);

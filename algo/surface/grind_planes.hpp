@@ -147,6 +147,8 @@ struct GrindPlane {
   Eigen::Vector3d footprint_normal = Eigen::Vector3d::UnitZ();  // the disc's own plane
   bool footprint_agrees = false;  // the disc's plane is the face's within agree_sigmas
   bool footprint_local = false;   // the reported plane is the disc's own (report_disc_plane)
+  // Where the arm's reach left the disc (not_asked: the run knew no arm).
+  FootprintReach footprint_reach = FootprintReach::not_asked;
   // 1-sigma of the reported plane (algo/surface/plane_uncertainty).
   double normal_sigma_deg = 0;
   double offset_sigma_mm = 0;

@@ -80,6 +80,7 @@ Status qualify_plane(std::span<const FaceSample> patch, std::size_t core,
   auto face = uncertainty(patch.first(std::min(core, patch.size())), n, at, camera, noise,
                           [](const FaceSample&) { return true; });
   plane.centroid_mm = at;
+  plane.footprint_reach = f.reach;
   // Too few or collinear points for a figure: as uncertain as can be.
   plane.normal_sigma_deg = face ? face->normal_sigma_deg : kUnknownSigmaDeg;
   plane.offset_sigma_mm = face ? face->offset_sigma_mm : kUnknownSigmaMm;

@@ -26,6 +26,8 @@ void grind_fields(json::Writer& w, const GrindPlane& p, double diameter_mm) {
   sim::write_vec3(w, p.footprint_normal);
   w.key("agrees").boolean(p.footprint_agrees);
   w.key("plane").string(p.footprint_local ? "footprint" : "face");
+  if (p.footprint_reach != FootprintReach::not_asked)
+    w.key("reach").string(footprint_reach_key(p.footprint_reach));
   w.end_object();
   w.key("face").begin_object();
   w.key("normal");

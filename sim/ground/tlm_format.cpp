@@ -174,17 +174,21 @@ std::string format_line(const tlm::TmPacket& p, std::uint32_t missing_before) {
         } else if constexpr (std::is_same_v<B, tlm::ProposalPlanes>) {
           o << format_proposal_planes(b);
         } else if constexpr (std::is_same_v<B, tlm::GrindPlane>) {
-          char buf[384];
+          static constexpr const char* kReach[] = {
+              "", "", "; grind point moved: the most level flat disc is out of the arm's reach",
+              "; the arm reaches no flat disc"};
+          char buf[448];
           std::snprintf(
               buf, sizeof(buf),
               "eval %u rank %u/%u normal (%.4f, %.4f, %.4f) centroid (%.2f, %.2f, %.2f) mm "
               "area %.1f mm2 flatness %.3f mm, %u triangles; footprint %.0f mm RMS %.3f mm "
-              "(%s plane), sigma %.2f deg %.2f mm",
+              "(%s plane), sigma %.2f deg %.2f mm%s",
               b.eval_id, b.rank, b.plane_count, b.normal[0], b.normal[1], b.normal[2],
               b.centroid_mm[0], b.centroid_mm[1], b.centroid_mm[2], b.area_mm2, b.flatness_rms_mm,
               b.triangles, static_cast<double>(b.footprint_diameter_mm),
               static_cast<double>(b.footprint_rms_mm), b.plane_source == 1 ? "disc's" : "face's",
-              static_cast<double>(b.normal_sigma_deg), static_cast<double>(b.offset_sigma_mm));
+              static_cast<double>(b.normal_sigma_deg), static_cast<double>(b.offset_sigma_mm),
+              kReach[b.footprint_reach < 4 ? b.footprint_reach : 0]);
           o << buf;
         } else {
           bool first = true;

@@ -23,6 +23,7 @@ TEST(Telemetry, EveryPacketRoundTripsWithHeaderTimeAndCrc) {
   g.offset_sigma_mm = 0.125f;
   g.footprint_rms_mm = 0.5f;
   g.footprint_diameter_mm = 20.0f;
+  g.footprint_reach = 2;
   std::vector<std::uint8_t> buf(kMaxTmBytes);
   const std::size_t n =
       encode_tm(g, 42, wire::SeqFlags::unsegmented, TmTime{1700000000, 250000}, buf);
@@ -43,6 +44,7 @@ TEST(Telemetry, EveryPacketRoundTripsWithHeaderTimeAndCrc) {
   EXPECT_EQ(d.offset_sigma_mm, 0.125f);
   EXPECT_EQ(d.footprint_rms_mm, 0.5f);
   EXPECT_EQ(d.footprint_diameter_mm, 20.0f);
+  EXPECT_EQ(d.footprint_reach, 2);
 }
 
 TEST(Telemetry, DecoderRefusesCorruptionNamingTheCheck) {

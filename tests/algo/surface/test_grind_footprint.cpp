@@ -189,12 +189,12 @@ TEST(GrindFootprint, AReachMovesTheDiscToTheMostLevelOneTheArmReaches) {
   auto free = run_footprint(f, 20);
   ASSERT_TRUE(free.ok() && free->covered);
   EXPECT_EQ(free->reach_checks, 0);
-  EXPECT_FALSE(free->reached);
+  EXPECT_EQ(free->reach, FootprintReach::not_asked);
 
   const DrawnReach wall(f, [](double x, double) { return x > 12; });
   auto r = run_footprint(f, 20, &wall);
   ASSERT_TRUE(r.ok() && r->covered);
-  EXPECT_TRUE(r->reached);
+  EXPECT_EQ(r->reach, FootprintReach::moved);
   EXPECT_EQ(wall.off_normal, 0) << "the tool comes along the face's normal";
   EXPECT_EQ(r->reach_checks, wall.asked);
   const auto [x, y] = at(*r);
@@ -213,14 +213,14 @@ TEST(GrindFootprint, AReachMovesTheDiscToTheMostLevelOneTheArmReaches) {
   r = run_footprint(f, 20, &everywhere);
   ASSERT_TRUE(r.ok() && r->covered);
   EXPECT_EQ(everywhere.asked, 1);
-  EXPECT_TRUE(r->reached);
+  EXPECT_EQ(r->reach, FootprintReach::most_level);
   EXPECT_LT((r->centre_mm - free->centre_mm).norm(), 1e-9);
 
   // None reached: every flat disc asked once, then the most level all the same.
   const DrawnReach nowhere(f, [](double, double) { return false; });
   r = run_footprint(f, 20, &nowhere);
   ASSERT_TRUE(r.ok() && r->covered);
-  EXPECT_FALSE(r->reached);
+  EXPECT_EQ(r->reach, FootprintReach::none_reached);
   EXPECT_EQ(nowhere.asked, r->reach_checks);
   EXPECT_GT(nowhere.asked, 1);
   EXPECT_LE(nowhere.asked, r->candidates);
@@ -242,7 +242,7 @@ TEST(GrindFootprint, AReachIsNotAskedOfDiscsRougherThanTheTolerance) {
   });
   auto r = run_footprint(f, 20, &level_half);
   ASSERT_TRUE(r.ok() && r->covered);
-  EXPECT_FALSE(r->reached);
+  EXPECT_EQ(r->reach, FootprintReach::none_reached);
   EXPECT_GT(level_half.asked, 0);
   EXPECT_EQ(level_half_asked, 0) << "a disc over the tolerance is no place to grind";
   EXPECT_LT(r->rms_mm, 0.01);  // the flattest, as without a reach

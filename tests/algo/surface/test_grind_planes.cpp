@@ -463,6 +463,8 @@ TEST(GrindPlanes, TheArmsReachMovesEachGrindPointToADiscItReaches) {
     EXPECT_EQ(p.verdict, PlaneVerdict::accepted);
     EXPECT_LT(test::angle_deg(p.normal, q.normal), 1e-9) << "plane " << k;
     EXPECT_TRUE(arm.reaches(p.centroid_mm, p.normal)) << "plane " << k;
+    EXPECT_EQ(p.footprint_reach, FootprintReach::moved) << "plane " << k;
+    EXPECT_EQ(q.footprint_reach, FootprintReach::not_asked) << "plane " << k;
     EXPECT_GE((p.centroid_mm - q.centroid_mm).norm(), 8.0) << "plane " << k;
     EXPECT_TRUE(on_face(rock, face_of(rock, p), p.centroid_mm, 0.01)) << "plane " << k;
   }

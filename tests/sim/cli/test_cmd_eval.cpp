@@ -84,14 +84,25 @@ TEST(CmdEval, ProductsOnASceneAndReasonsForBadArguments) {
   ASSERT_TRUE(planes.ok()) << planes.error().message;
   EXPECT_EQ(static_cast<int>(planes->planes.size()), truth.planes);
   EXPECT_TRUE(io::read_rgb_image((dir / "out" / "overlay.png").string()).ok());
+  // The rover's arm, stowed, asked of every plane's footprint (--arm stowed, the default).
+  const std::string listed = text->substr(0, text->find("\"ground\""));
+  std::size_t asked = 0;
+  for (std::size_t at = listed.find("\"reach\":\""); at != std::string::npos;
+       at = listed.find("\"reach\":\"", at + 1))
+    ++asked;
+  EXPECT_EQ(asked, planes->planes.size()) << listed;
 
   // The truth disparity replayed through the back half (--method gc is run on
   // the scene set by toolchain/eval-scenes.sh and in test_eval_pipeline).
+  // With --arm none, no reach is asked.
   EvalOutcome given = run_eval(base + " --planes " + std::to_string(truth.planes) +
-                                   " --disparity " + s + "/disparity_truth.pfm",
+                                   " --disparity " + s + "/disparity_truth.pfm --arm none",
                                dir);
   ASSERT_EQ(given.status, 0) << given.err;
   EXPECT_NE(given.out.find("given map"), std::string::npos) << given.out;
+  auto given_text = io::read_text_file((dir / "out" / "planes.json").string());
+  ASSERT_TRUE(given_text.ok());
+  EXPECT_EQ(given_text->find("\"reach\""), std::string::npos);
 
   // Each refusal: exit 1, one line on stderr naming the problem.
   // Degenerate ROIs (the issue's "bad input"): ground only below the rock,
