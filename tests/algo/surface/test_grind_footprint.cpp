@@ -90,17 +90,21 @@ TEST(GrindFootprint, FlatCornerOfARoughFaceIsFound) {
   EXPECT_LE(r->candidates, static_cast<int>(kFootprintCandidates));
 }
 
+// A spherical cap of radius kCapRadiusMm, its apex at (4, -3) in the face frame.
+constexpr double kCapRadiusMm = 300;
+double cap_height(double x, double y) {
+  const double rho2 = (x - 4) * (x - 4) + (y + 3) * (y + 3);
+  return kCapRadiusMm - std::sqrt(kCapRadiusMm * kCapRadiusMm - rho2);
+}
+
 TEST(GrindFootprint, CurvedFaceGivesTheDiscWhereItIsParallelToTheFacePlane) {
   // A spherical cap, radius of curvature 300 mm, apex at (4, -3) in the face
   // frame: every disc is as flat as another about its own plane, and the
   // one at the apex lies level with the face's plane: the grinder, coming
   // along the face's normal, sits flush there. Its plane is the sphere's
   // tangent plane at its centre.
-  const double R = 300;
-  auto height = [&](double x, double y) {
-    const double rho2 = (x - 4) * (x - 4) + (y + 3) * (y + 3);
-    return R - std::sqrt(R * R - rho2);
-  };
+  const double R = kCapRadiusMm;
+  const auto height = cap_height;
   const FaceMesh f = make_relief_face(50, 50, height);
   auto r = run_footprint(f, 20);
   ASSERT_TRUE(r.ok());
@@ -176,11 +180,8 @@ TEST(GrindFootprint, AReachMovesTheDiscToTheMostLevelOneTheArmReaches) {
   // The cap of CurvedFaceGivesTheDiscWhereItIsParallelToTheFacePlane: the
   // most level disc is at the apex (4, -3). An arm that reaches only x > 12
   // gets the most level disc there: the nearest to the apex beyond the wall.
-  const double R = 300;
-  auto height = [&](double x, double y) {
-    const double rho2 = (x - 4) * (x - 4) + (y + 3) * (y + 3);
-    return R - std::sqrt(R * R - rho2);
-  };
+  const double R = kCapRadiusMm;
+  const auto height = cap_height;
   const FaceMesh f = make_relief_face(50, 50, height);
   const auto at = [&](const Footprint& fp) {
     const Eigen::Vector3d q = fp.centre_mm - f.o;
