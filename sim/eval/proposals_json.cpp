@@ -17,6 +17,11 @@ void plane(json::Writer& w, const GrindPlane& p, arm::ArmReason reach) {
   // As planes.json: centroid_mm is the face's area centroid.
   w.key("centroid_mm");
   sim::write_vec3(w, p.face_centroid_mm);
+  // Where ARM_GOTO_PROPOSAL_PLANE takes the grinder, and why there.
+  w.key("grind_point_mm");
+  sim::write_vec3(w, p.centroid_mm);
+  if (p.footprint_reach != FootprintReach::not_asked)
+    w.key("footprint_reach").string(footprint_reach_key(p.footprint_reach));
   w.key("area_mm2").number(p.area_mm2);
   w.key("rms_mm").number(p.rms_mm);
   w.key("verdict").string(verdict_key(p.verdict));

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "algo/camera/calib_json.hpp"
@@ -103,8 +104,25 @@ TEST(ProposeScene, EveryGrindableReachableFaceIsOfferedAndNothingElse) {
   ASSERT_TRUE(list.ok()) << list.error().message;
   const ProposalList& l = **list;
   ASSERT_GE(l.count, 1) << l.empty_reason;
-  auto file = sim::parse_proposals_json(eval::format_proposals_json(l));
+  const std::string json = eval::format_proposals_json(l);
+  auto file = sim::parse_proposals_json(json);
   ASSERT_TRUE(file.ok()) << file.error().message;
+  // Each offered plane says where the grinder goes and where the arm's reach left its disc.
+  int planes = 0, offered = 0;
+  for (int i = 0; i < l.count; ++i)
+    for (int k = 0; k < l.items[i].plane_count; ++k) {
+      ++planes;
+      const GrindPlane& p = l.items[i].planes[k];
+      if (p.verdict != PlaneVerdict::accepted || l.items[i].reach[k] != arm::ArmReason::ok) continue;
+      ++offered;
+      EXPECT_NE(p.footprint_reach, FootprintReach::not_asked) << "rank " << i + 1 << " plane " << k;
+    }
+  EXPECT_GE(offered, 1);
+  std::size_t points = 0;
+  for (std::size_t at = json.find("\"grind_point_mm\""); at != std::string::npos;
+       at = json.find("\"grind_point_mm\"", at + 1))
+    ++points;
+  EXPECT_EQ(points, static_cast<std::size_t>(planes));
   auto score = sim::score_proposals(f.truth, *file, std::nullopt);
   ASSERT_TRUE(score.ok()) << score.error().message;
   EXPECT_GE(score->targets, 2);
