@@ -309,7 +309,8 @@ Status FlightPipelineJob::run(const EvalRequest& request, Arena& arena,
   if (!ready_) return Error::make(Errc::not_ready, "the pipeline was not built at init");
   const Settings wanted{request.shadow_fraction, request.disp_min_px, request.disp_max_px};
   if (!(wanted == settings_)) PETRA_TRY(configure(wanted));
-  const ArmReach reach(arm_geometry_, arm_limits_, request.arm_pose, ::petra::arm::kDefaultStandoffMm);
+  const ArmReach reach(arm_geometry_, arm_limits_, request.arm_pose,
+                       ::petra::arm::kDefaultStandoffMm);
   PipelineRequest selection = request.selection;
   selection.reach = &reach;
   auto result = pipeline_.run(request.left, request.right, selection, clock);

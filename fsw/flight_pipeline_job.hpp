@@ -104,7 +104,7 @@ class FlightPipelineJob final : public PipelineJob {
   bool ready_ = false;
   std::uint32_t table_builds_ = 0;
   Proposer proposer_;
-  bool proposer_fits_ = false;  // the arena holds it: built at init
+  bool proposer_fits_ = false;              // the arena holds it: built at init
   ::petra::arm::ArmGeometry arm_geometry_;  // the budget's: EVALUATE's reach
   ::petra::arm::JointLimits arm_limits_ = ::petra::arm::default_joint_limits();
 };

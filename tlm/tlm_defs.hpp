@@ -152,9 +152,9 @@
   F(f32, normal_sigma_deg, 1, "deg", 0, 180, "normal 1-sigma (RMS angle), noise model")  \
   F(f32, offset_sigma_mm, 1, "mm", 0, 1e6, "offset 1-sigma along the normal")            \
   F(f32, footprint_rms_mm, 1, "mm", 0, 1e6, "flatness (RMS) over the footprint disc")    \
-  F(f32, footprint_diameter_mm, 1, "mm", 0, 1000, "grinder footprint it was judged for")    \
-  F(u8, footprint_reach, 1, "enum", 0, 3,                                                  \
-    "0 no arm asked, 1 the most level flat disc (reached), 2 moved: the most level is "    \
+  F(f32, footprint_diameter_mm, 1, "mm", 0, 1000, "grinder footprint it was judged for") \
+  F(u8, footprint_reach, 1, "enum", 0, 3,                                                \
+    "0 no arm asked, 1 the most level flat disc (reached), 2 moved: the most level is "  \
     "out of the arm's reach, this is the most level it reaches, 3 no flat disc reached")
 
 #define PETRA_GROUND_PLANE_FIELDS(F)                                        \

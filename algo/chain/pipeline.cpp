@@ -182,7 +182,8 @@ Status Pipeline::prepare(ConstGray8View left, const PipelineRequest& req,
 namespace {
 
 // The back half's share of the operator's request.
-ReconstructionRequest reconstruction_request(const PipelineRequest& req, const PipelineOutput& out) {
+ReconstructionRequest reconstruction_request(const PipelineRequest& req,
+                                             const PipelineOutput& out) {
   ReconstructionRequest r;
   r.planes = req.planes;
   r.click = out.click_rectified;

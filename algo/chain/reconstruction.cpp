@@ -376,8 +376,8 @@ Status grind_rock_triangles(const StereoRig& rig, const RectifiedPair& rect,
     nr += r ? 1 : 0;
   }
   out.stats.rock_triangles = nr;
-  auto g = grind_planes_on_mesh(rig, rect, out, request.planes, params, arena, plane_of,
-                                request.reach);
+  auto g =
+      grind_planes_on_mesh(rig, rect, out, request.planes, params, arena, plane_of, request.reach);
   if (!g) return g.error();
   out.planes = *g;
   return ok_status();

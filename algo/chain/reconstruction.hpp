@@ -64,8 +64,8 @@ enum class SegmentMethod : std::uint8_t {
 const char* segment_method_name(SegmentMethod m);
 
 struct ReconstructionRequest {
-  int planes = 2;  // c, from the operator
-  ClickPx click;   // rectified left pixel, optional
+  int planes = 2;                    // c, from the operator
+  ClickPx click;                     // rectified left pixel, optional
   const DiscReach* reach = nullptr;  // the arm's, when known (find_grind_planes)
 };
 

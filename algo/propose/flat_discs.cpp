@@ -301,9 +301,8 @@ Result<GrindResult> flat_discs(const StereoRig& rig, const RectifiedPair& rect,
   int n = 0;
   for (int k = 0; k < count; ++k)
     if (faces[k].discs >= discs.min_discs)
-      PETRA_TRY(
-          qualify_face(*f, r, k, {camera, g, noise, reach}, discs.max_footprint_rms_mm, arena,
-                       planes[n++]));
+      PETRA_TRY(qualify_face(*f, r, k, {camera, g, noise, reach}, discs.max_footprint_rms_mm, arena,
+                             planes[n++]));
   for (int pass = 0; pass < 2; ++pass) {  // accepted by area, then the others
     for (int k = 0; k < n && out.count < kMaxClasses; ++k) {
       int best = -1;

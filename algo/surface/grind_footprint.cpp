@@ -242,8 +242,7 @@ int flush_candidate(const DiscScores& d, int n, double max_rms) {
     const std::size_t u = static_cast<std::size_t>(k);
     if (d.rms[u] < 0) continue;
     if (flattest < 0 || d.rms[u] < d.rms[static_cast<std::size_t>(flattest)]) flattest = k;
-    if (d.rms[u] <= max_rms &&
-        (flush < 0 || d.level[u] < d.level[static_cast<std::size_t>(flush)]))
+    if (d.rms[u] <= max_rms && (flush < 0 || d.level[u] < d.level[static_cast<std::size_t>(flush)]))
       flush = k;
   }
   return flush >= 0 ? flush : flattest;
@@ -253,8 +252,8 @@ int flush_candidate(const DiscScores& d, int n, double max_rms) {
 // reached (its centre on its own plane, the tool along the face's normal);
 // -1 when none is (out.reach says which). Each disc is asked once: one plan
 // per disc at most.
-int reached_candidate(const DiscScores& d, const Candidates& c, const Frame& fr,
-                      double max_rms, const DiscReach& reach, Footprint& out) {
+int reached_candidate(const DiscScores& d, const Candidates& c, const Frame& fr, double max_rms,
+                      const DiscReach& reach, Footprint& out) {
   const int n = c.ncx * c.ncy;
   std::int16_t order[kFootprintCandidates];
   int m = 0;
@@ -360,7 +359,8 @@ Result<Footprint> find_footprint(std::span<const FaceSample> samples,
   DiscScores d;
   score_candidates(b, r, c, params.min_coverage, d, out);
   int best = -1;
-  if (params.reach != nullptr) best = reached_candidate(d, c, fr, params.max_rms_mm, *params.reach, out);
+  if (params.reach != nullptr)
+    best = reached_candidate(d, c, fr, params.max_rms_mm, *params.reach, out);
   if (best < 0) best = flush_candidate(d, c.ncx * c.ncy, params.max_rms_mm);
   if (best < 0) return out;
   const double cx = c.x0 + (best % c.ncx) * c.h, cy = c.y0 + (best / c.ncx) * c.h;

@@ -628,8 +628,8 @@ struct ClassFitter {
         s.face[faces++] = FaceSample{s.centroid[i], s.area[i]};
         if (pass == 0) ++core_faces;
       }
-    Status q = qualify_plane(s.face.first(faces), core_faces, camera, params, noise, arena, plane,
-                             reach);
+    Status q =
+        qualify_plane(s.face.first(faces), core_faces, camera, params, noise, arena, plane, reach);
     if (!q.ok()) {
       plane.verdict = PlaneVerdict::no_support;
       if (q.code() != Errc::degenerate) failure = q;  // a budget or a bad parameter: fail

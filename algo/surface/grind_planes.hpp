@@ -200,13 +200,10 @@ double plane_view_angle_deg(const Eigen::Vector3d& normal, const Eigen::Vector3d
 // other by its own AB x AC normal. Empty: AB x AC everywhere (the paper).
 // reach: the arm's, when the caller knows it: each face's footprint disc is
 // then one the tool reaches where the face has one (algo/surface/grind_footprint).
-Result<GrindResult> find_grind_planes(std::span<const Eigen::Vector3d> xyz_mm,
-                                      std::span<const MeshTriangle> rock_triangles,
-                                      const Eigen::Vector3d& camera_centre_mm, int c,
-                                      const GrindParams& params, Arena& scratch,
-                                      std::span<std::uint8_t> triangle_plane,
-                                      std::span<const Eigen::Vector3d> point_normals = {},
-                                      const RigGeometry& rig = {},
-                                      const DiscReach* reach = nullptr);
+Result<GrindResult> find_grind_planes(
+    std::span<const Eigen::Vector3d> xyz_mm, std::span<const MeshTriangle> rock_triangles,
+    const Eigen::Vector3d& camera_centre_mm, int c, const GrindParams& params, Arena& scratch,
+    std::span<std::uint8_t> triangle_plane, std::span<const Eigen::Vector3d> point_normals = {},
+    const RigGeometry& rig = {}, const DiscReach* reach = nullptr);
 
 }  // namespace petra

@@ -200,7 +200,8 @@ TEST(EvaluationService, RefusesASecondStartWhileBusyAndDropsAnAbortedResult) {
   ASSERT_TRUE(rig.service.start(rig.frame(), ::petra::arm::stow_pose()).ok());
   EXPECT_EQ(rig.service.poll(), fsw::EvalProgress::RUNNING);
   EXPECT_TRUE(rig.service.status().running);
-  EXPECT_FALSE(rig.service.start(rig.frame(), ::petra::arm::stow_pose()).ok());  // the worker is busy
+  EXPECT_FALSE(
+      rig.service.start(rig.frame(), ::petra::arm::stow_pose()).ok());  // the worker is busy
 
   rig.service.abort();
   EXPECT_EQ(rig.events(EventId::EVAL_ABORTED), 1u);

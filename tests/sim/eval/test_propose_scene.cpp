@@ -113,7 +113,8 @@ TEST(ProposeScene, EveryGrindableReachableFaceIsOfferedAndNothingElse) {
     for (int k = 0; k < l.items[i].plane_count; ++k) {
       ++planes;
       const GrindPlane& p = l.items[i].planes[k];
-      if (p.verdict != PlaneVerdict::accepted || l.items[i].reach[k] != arm::ArmReason::ok) continue;
+      if (p.verdict != PlaneVerdict::accepted || l.items[i].reach[k] != arm::ArmReason::ok)
+        continue;
       ++offered;
       EXPECT_NE(p.footprint_reach, FootprintReach::not_asked) << "rank " << i + 1 << " plane " << k;
     }
