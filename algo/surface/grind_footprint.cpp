@@ -271,7 +271,6 @@ int reached_candidate(const DiscScores& d, const Candidates& c, const Frame& fr,
     const double cx = c.x0 + (k % c.ncx) * c.h, cy = c.y0 + (k / c.ncx) * c.h;
     const Eigen::Vector3d centre =
         fr.o + cx * fr.e1 + cy * fr.e2 + d.zc[static_cast<std::size_t>(k)] * fr.n;
-    ++out.reach_checks;
     if (reach.reaches(centre, fr.n)) {
       out.reach = i == 0 ? FootprintReach::most_level : FootprintReach::moved;
       return k;

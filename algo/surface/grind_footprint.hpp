@@ -96,7 +96,6 @@ struct Footprint {
   double coverage = 0;                                  // sample area / disc area
   std::size_t samples = 0;                              // in the disc
   int candidates = 0;                                   // discs tried
-  int reach_checks = 0;                                 // discs asked of the reach (0 without one)
   FootprintReach reach = FootprintReach::not_asked;
 };
 

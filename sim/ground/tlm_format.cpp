@@ -1,6 +1,7 @@
 #include "sim/ground/tlm_format.hpp"
 
 #include <cstdio>
+#include <iterator>
 #include <sstream>
 #include <string_view>
 #include <type_traits>
@@ -188,7 +189,7 @@ std::string format_line(const tlm::TmPacket& p, std::uint32_t missing_before) {
               b.triangles, static_cast<double>(b.footprint_diameter_mm),
               static_cast<double>(b.footprint_rms_mm), b.plane_source == 1 ? "disc's" : "face's",
               static_cast<double>(b.normal_sigma_deg), static_cast<double>(b.offset_sigma_mm),
-              kReach[b.footprint_reach < 4 ? b.footprint_reach : 0]);
+              kReach[b.footprint_reach < std::size(kReach) ? b.footprint_reach : 0]);
           o << buf;
         } else {
           bool first = true;
