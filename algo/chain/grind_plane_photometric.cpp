@@ -64,7 +64,8 @@ std::size_t grind_photometric_scratch_bytes(int roi_width, int roi_height) {
 Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray8View left,
                                             ConstGray8View right, Rect right_valid,
                                             const PhotometricPlaneParams& params,
-                                            ReconstructionOutput& out, Arena& arena) {
+                                            ReconstructionOutput& out, Arena& arena,
+                                            std::span<PlaneMove> moves) {
   PETRA_TRY(validate(params));
   if (!params.enabled || out.planes.count == 0) return 0;
   const Rect roi = out.filtered.roi;
@@ -123,6 +124,8 @@ Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray
     auto after =
         rectified_point(rect, initial->u0, initial->v0, fit->plane.at(initial->u0, initial->v0));
     if (!before || !after) continue;
+    if (static_cast<std::size_t>(k) < moves.size())
+      moves[static_cast<std::size_t>(k)] = PlaneMove{true, plane.normal, *before, *after};
     plane.normal = (turn * plane.normal).normalized();
     plane.face_normal = plane.normal;  // the face's plane is the one refined
     plane.centroid_mm += *after - *before;

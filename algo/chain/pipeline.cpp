@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "algo/mesh/delaunay.hpp"
+
 namespace petra {
 
 namespace {
@@ -84,7 +86,9 @@ PipelineMemory Pipeline::memory(const PipelineBudget& b, const PipelineParams& p
   m.match_graph_cut =
       b.graph_cut ? graph_cut_bands_bytes(graph_cut_budget(b), b.graph_cut_bands) : 0;
   m.reconstruction = reconstruction_arena_bytes(recon_budget(b));
-  m.refinement = grind_photometric_scratch_bytes(b.max_roi_width, b.max_roi_height);
+  m.refinement =
+      std::max(grind_photometric_scratch_bytes(b.max_roi_width, b.max_roi_height),
+               footprint_again_scratch_bytes(delaunay_max_triangles(recon_budget(b).max_points)));
   m.calib_check = calib_check_scratch_bytes(p.calib_check);
   m.slack = kSlack;
   return m;
@@ -362,16 +366,23 @@ Result<DisparityMap> match_step(const RectifiedViews& pair, const ShadowMask& ri
   return disp;
 }
 
-// Photometric refinement of the accepted planes on the rectified pair.
+// Photometric refinement of the accepted planes on the rectified pair; with
+// the arm's reach, the discs it left chosen again on the refined planes.
 Status refinement_step(const RectifiedPair& geometry, const RectifiedViews& pair,
-                       Rect right_rectified, const PipelineParams& params, Arena& arena,
-                       const StepClock& clock, PipelineOutput& out) {
+                       Rect right_rectified, const PipelineParams& params, const DiscReach* reach,
+                       Arena& arena, const StepClock& clock, PipelineOutput& out) {
   PETRA_TRY(checkpoint(clock, PipelineStep::plane_refinement));
   StepTimer timer(clock, out.timings, PipelineStep::plane_refinement);
+  PlaneMove moves[kMaxClasses];
   auto n = refine_grind_planes_photometric(geometry, pair.left, pair.right, right_rectified,
-                                           params.photometric, out.result, arena);
+                                           params.photometric, out.result, arena, moves);
   if (!n) return n.error();
   out.planes_refined = *n;
+  if (reach == nullptr) return {};
+  auto again =
+      footprints_after_refinement(moves, params.reconstruction.grind, *reach, out.result, arena);
+  if (!again) return again.error();
+  out.footprints_again = *again;
   return {};
 }
 
@@ -431,8 +442,8 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
                        params_.reconstruction, recon_budget(budget_), arena, clock, out.timings);
   if (!r) return r.error();
   out.result = *r;
-  PETRA_TRY(
-      refinement_step(rectifier_.geometry(), *pair, right_rectified, params_, arena, clock, out));
+  PETRA_TRY(refinement_step(rectifier_.geometry(), *pair, right_rectified, params_, req.reach,
+                            arena, clock, out));
   return out;
 }
 

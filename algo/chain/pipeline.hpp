@@ -22,6 +22,7 @@
 #include "algo/camera/camera_model.hpp"
 #include "algo/camera/rectify.hpp"
 #include "algo/chain/grind_plane_photometric.hpp"
+#include "algo/chain/grind_plane_reach.hpp"
 #include "algo/chain/pipeline_request.hpp"
 #include "algo/chain/reconstruction.hpp"
 #include "algo/core/arena.hpp"
@@ -88,6 +89,7 @@ struct PipelineOutput {
   GraphCutReport graph_cut;              // method graph_cut
   long subpixel_refined = 0;             // graph-cut pixels given a sub-pixel value
   int planes_refined = 0;                // accepted grind planes refined photometrically
+  int footprints_again = 0;  // planes whose disc the arm left on refinement, chosen again
   StepTimings timings;
 };
 
@@ -103,8 +105,9 @@ struct PipelineMemory {
   std::size_t match_dp = 0;         // step: DP matcher scratch
   std::size_t match_graph_cut = 0;  // step: graph-cut state (0 unless budget.graph_cut)
   std::size_t reconstruction = 0;   // step: cloud, mesh, segmentation, planes
-  std::size_t refinement = 0;       // step (after reconstruction, which stays): photometric
-  std::size_t slack = 0;            // alignment padding
+  std::size_t refinement =
+      0;                  // step (after reconstruction, which stays): photometric, then discs again
+  std::size_t slack = 0;  // alignment padding
   std::size_t largest_step() const;
   std::size_t run() const;  // kept + largest step + slack
   std::size_t total() const { return tables + run(); }

@@ -197,6 +197,11 @@ void print_summary(const EvalOptions& o, const PipelineOutput& out, double total
         r.support_planes, r.support_points);
   std::printf("  grind planes found     %d of %d   (%d of them refined on the gray levels)\n",
               r.planes.accepted, o.planes, out.planes_refined);
+  if (out.footprints_again > 0)
+    std::printf(
+        "  footprints again       %d plane(s): the arm no longer reached the disc along the "
+        "refined normal; the flat discs asked again\n",
+        out.footprints_again);
   for (int k = 0; k < r.planes.accepted; ++k) {
     const GrindPlane& p = r.planes.planes[k];
     std::printf(
