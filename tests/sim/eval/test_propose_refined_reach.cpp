@@ -39,9 +39,9 @@ const fs::path& multi_set_scene_05() {
   return dir;
 }
 
-std::string text_of(const fs::path& p) {
-  auto t = io::read_text_file(p.string());
-  EXPECT_TRUE(t.ok()) << p;
+std::string scene_05_text(const char* name) {
+  auto t = io::read_text_file((multi_set_scene_05() / name).string());
+  EXPECT_TRUE(t.ok()) << name;
   return t.ok() ? *t : std::string("{}");
 }
 
@@ -50,8 +50,8 @@ TEST(ProposeRefinedReach, EveryDiscListedAsReachedIsReachedAlongTheReportedNorma
   ASSERT_FALSE(dir.empty()) << "scene_05 of the multi-rock set could not be rendered";
   auto left = io::read_gray_image((dir / "left.png").string());
   auto right = io::read_gray_image((dir / "right.png").string());
-  auto truth = sim::parse_truth_json(text_of(dir / "truth.json"));
-  auto rig = parse_calib_json(text_of(dir / "calib.json"));
+  auto truth = sim::parse_truth_json(scene_05_text("truth.json"));
+  auto rig = parse_calib_json(scene_05_text("calib.json"));
   ASSERT_TRUE(left.ok() && right.ok() && truth.ok() && rig.ok());
 
   auto budget = eval::ground_proposer_budget(*rig, PipelineParams{});
