@@ -2,7 +2,10 @@
 // (Pipeline::run), as petra-fsw runs it: DP matcher, the flight parameters
 // (FlightPipelineJob::pipeline_params of the parameter table's defaults) and
 // the flight budget for a 512 x 384 ROI (FlightPipelineJob::sizing: the
-// rectified bound of any such ROI, one 3-D point per 2 x 2 of it). Issue 21's
+// rectified bound of any such ROI, one 3-D point per 2 x 2 of it) and, as
+// EVALUATE gives it, the arm's reach from the stowed pose (each face's
+// footprint disc among those the arm reaches; PETRA_BENCH_NO_REACH=1: none,
+// the chain as it was timed before 2026-12-07). Issue 21's
 // target: <= 100 ms CPU on one core. Per-step CPU times (the pipeline's step
 // clock) are counters in ms.
 //   BM_Chain_RealScene   realistic simulated scene (`petra sim scene --real
@@ -26,6 +29,7 @@
 
 #include "algo/camera/calib_json.hpp"
 #include "algo/chain/pipeline.hpp"
+#include "algo/propose/arm_reach.hpp"
 #include "fsw/flight_pipeline_job.hpp"
 #include "sim/io/image_io.hpp"
 #include "sim/score/truth_file.hpp"
@@ -120,12 +124,17 @@ void run_chain(benchmark::State& state, const Case& c) {
   std::vector<std::byte> block(Pipeline::arena_bytes(budget, params));
   Arena arena(block);
   auto pipeline = must(Pipeline::create(c.rig, budget, params, arena), "Pipeline::create");
+  const ArmReach reach(arm::rover_arm_geometry(), arm::default_joint_limits(), arm::stow_pose(),
+                       arm::kDefaultStandoffMm);
+  PipelineRequest request = c.request;
+  const char* no_reach = std::getenv("PETRA_BENCH_NO_REACH");
+  request.reach = no_reach != nullptr && no_reach[0] == '1' ? nullptr : &reach;
   const StepClock clock{thread_cpu_ns, nullptr};
   double step_ns[StepTimings::kCapacity] = {};
   StepTimings last;
   PipelineOutput out;
   for (auto _ : state) {
-    auto r = pipeline.run(c.left.view(), c.right.view(), c.request, clock);
+    auto r = pipeline.run(c.left.view(), c.right.view(), request, clock);
     if (!r) {
       state.SkipWithError(r.error().message);
       return;
@@ -142,6 +151,7 @@ void run_chain(benchmark::State& state, const Case& c) {
   state.counters["stride"] = out.result.stats.point_stride;
   state.counters["budget_points"] = static_cast<double>(points_of(budget));
   state.counters["disp"] = out.range.max_px - out.range.min_px + 1;
+  state.counters["reach"] = request.reach != nullptr ? 1 : 0;
   double total = 0;
   for (std::size_t i = 0; i < last.count; ++i) {
     state.counters[std::string(last.steps[i].name) + "_ms"] = step_ns[i] / 1e6 / n;
