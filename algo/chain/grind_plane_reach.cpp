@@ -32,8 +32,8 @@ Eigen::Vector3d moved_with_plane(const Eigen::Vector3d& c, const PlaneMove& move
 
 // Plane k's disc chosen again with its refined normal; true when it was.
 Result<bool> choose_again(const PlaneMove& move, std::uint8_t cls, const GrindParams& grind,
-                          const DiscReach& reach, const ReconstructionOutput& out, Arena& arena,
-                          GrindPlane& plane) {
+                          const DiscReach& reach, const Eigen::Vector3d& camera,
+                          const ReconstructionOutput& out, Arena& arena, GrindPlane& plane) {
   ArenaScope scope(arena);
   auto samples = arena.allocate<FaceSample>(out.mesh.size(), "footprint again samples");
   if (!samples) return samples.error();
@@ -54,6 +54,7 @@ Result<bool> choose_again(const PlaneMove& move, std::uint8_t cls, const GrindPa
   plane.footprint_pv_mm = f->peak_to_valley_mm;
   plane.footprint_coverage = f->coverage;
   plane.footprint_normal = f->normal;
+  plane.view_angle_deg = plane_view_angle_deg(plane.normal, plane.centroid_mm, camera);
   return true;
 }
 
@@ -65,8 +66,8 @@ std::size_t footprint_again_scratch_bytes(std::size_t triangles) {
 }
 
 Result<int> footprints_after_refinement(std::span<const PlaneMove> moves, const GrindParams& grind,
-                                        const DiscReach& reach, ReconstructionOutput& out,
-                                        Arena& arena) {
+                                        const DiscReach& reach, const Eigen::Vector3d& camera_mm,
+                                        ReconstructionOutput& out, Arena& arena) {
   int again = 0;
   const int n = std::min(out.planes.count, static_cast<int>(moves.size()));
   for (int k = 0; k < n; ++k) {
@@ -79,7 +80,7 @@ Result<int> footprints_after_refinement(std::span<const PlaneMove> moves, const 
     if (!moves[k].refined || !listed_reached || reach.reaches(plane.centroid_mm, plane.normal))
       continue;
     auto chosen = choose_again(moves[k], static_cast<std::uint8_t>(kVertexPlane0 + k), grind, reach,
-                               out, arena, plane);
+                               camera_mm, out, arena, plane);
     if (!chosen) return chosen.error();
     again += *chosen ? 1 : 0;
   }

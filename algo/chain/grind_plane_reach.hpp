@@ -31,10 +31,11 @@ namespace petra {
 
 std::size_t footprint_again_scratch_bytes(std::size_t triangles);
 
-// moves[k]: plane k's move (out.planes.count of them). Returns how many
-// planes got their disc chosen again.
+// moves[k]: plane k's move (out.planes.count of them); camera_mm: the left
+// camera's centre (a moved grind point's view angle). Returns how many
+// planes had their flat discs asked again.
 Result<int> footprints_after_refinement(std::span<const PlaneMove> moves, const GrindParams& grind,
-                                        const DiscReach& reach, ReconstructionOutput& out,
-                                        Arena& arena);
+                                        const DiscReach& reach, const Eigen::Vector3d& camera_mm,
+                                        ReconstructionOutput& out, Arena& arena);
 
 }  // namespace petra

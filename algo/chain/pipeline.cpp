@@ -370,7 +370,8 @@ Result<DisparityMap> match_step(const RectifiedViews& pair, const ShadowMask& ri
 // the arm's reach, the discs it left chosen again on the refined planes.
 Status refinement_step(const RectifiedPair& geometry, const RectifiedViews& pair,
                        Rect right_rectified, const PipelineParams& params, const DiscReach* reach,
-                       Arena& arena, const StepClock& clock, PipelineOutput& out) {
+                       const Eigen::Vector3d& camera, Arena& arena, const StepClock& clock,
+                       PipelineOutput& out) {
   PETRA_TRY(checkpoint(clock, PipelineStep::plane_refinement));
   StepTimer timer(clock, out.timings, PipelineStep::plane_refinement);
   PlaneMove moves[kMaxClasses];
@@ -379,8 +380,8 @@ Status refinement_step(const RectifiedPair& geometry, const RectifiedViews& pair
   if (!n) return n.error();
   out.planes_refined = *n;
   if (reach == nullptr) return {};
-  auto again =
-      footprints_after_refinement(moves, params.reconstruction.grind, *reach, out.result, arena);
+  auto again = footprints_after_refinement(moves, params.reconstruction.grind, *reach, camera,
+                                           out.result, arena);
   if (!again) return again.error();
   out.footprints_again = *again;
   return {};
@@ -443,7 +444,7 @@ Result<PipelineOutput> Pipeline::run(ConstGray8View left, ConstGray8View right,
   if (!r) return r.error();
   out.result = *r;
   PETRA_TRY(refinement_step(rectifier_.geometry(), *pair, right_rectified, params_, req.reach,
-                            arena, clock, out));
+                            camera_centre_world(rectifier_.rig().left), arena, clock, out));
   return out;
 }
 

@@ -57,6 +57,8 @@ class BeyondX final : public DiscReach {
   double x_min_;
 };
 
+const Eigen::Vector3d kCamera(0.0, 0.0, 1000.0);  // above the face's centre
+
 const PlaneMove kStill{true, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero(),
                        Eigen::Vector3d::Zero()};
 
@@ -65,7 +67,7 @@ Result<int> run(FlatFace& f, const PlaneMove& move, const DiscReach& reach) {
   Arena arena(block);
   const PlaneMove moves[1] = {move};
   test::HeapScope scope;
-  auto r = footprints_after_refinement(moves, GrindParams{}, reach, f.out, arena);
+  auto r = footprints_after_refinement(moves, GrindParams{}, reach, kCamera, f.out, arena);
   EXPECT_EQ(scope.allocations(), 0u);
   EXPECT_LE(arena.high_water(), footprint_again_scratch_bytes(f.mesh.size()));
   return r;
@@ -86,6 +88,13 @@ TEST(FootprintsAfterRefinement, ADiscTheArmNoLongerReachesIsChosenAgainWhereItDo
   EXPECT_NEAR(p.footprint_rms_mm, 0.0, 1e-9);
   EXPECT_NEAR(p.footprint_coverage, 1.0, 0.15);
   EXPECT_EQ(p.verdict, PlaneVerdict::accepted) << "the verdict stays the grind step's";
+  // Seen from the camera above the face's centre, the moved point is seen aslant.
+  EXPECT_NEAR(
+      p.view_angle_deg,
+      std::atan2(std::hypot(p.centroid_mm.x(), p.centroid_mm.y()), 1000.0 - p.centroid_mm.z()) *
+          180.0 / M_PI,
+      1e-9);
+  EXPECT_GT(p.view_angle_deg, 0.6);
 }
 
 TEST(FootprintsAfterRefinement, ADiscStillReachedOrAPlaneNotRefinedIsLeftAlone) {
@@ -162,7 +171,7 @@ TEST(FootprintsAfterRefinement, AShortArenaIsAnError) {
   Arena arena(block);
   const PlaneMove moves[1] = {kStill};
   const BeyondX reach(12.0);
-  auto r = footprints_after_refinement(moves, GrindParams{}, reach, f.out, arena);
+  auto r = footprints_after_refinement(moves, GrindParams{}, reach, kCamera, f.out, arena);
   EXPECT_FALSE(r.ok());
 }
 
