@@ -10,7 +10,7 @@
 //          the reconstruction output (pixels, vertex classes, planes).
 // Output:  out.planes refined in place (accepted and rejected); how many of
 //          the accepted planes were refined; per plane how its plane moved
-//          (moves, when given: at least out.planes.count).
+//          (into moves; planes past its size are not recorded).
 // Memory:  arena scratch of ROI area x (1 + sizeof(PixelPos)) + 8 x ROI height
 //          bytes (grind_photometric_scratch_bytes), released.
 #pragma once
@@ -39,6 +39,6 @@ Result<int> refine_grind_planes_photometric(const RectifiedPair& rect, ConstGray
                                             ConstGray8View right, Rect right_valid,
                                             const PhotometricPlaneParams& params,
                                             ReconstructionOutput& out, Arena& arena,
-                                            std::span<PlaneMove> moves = {});
+                                            std::span<PlaneMove> moves);
 
 }  // namespace petra

@@ -11,14 +11,8 @@ namespace {
 std::size_t face_samples(const ReconstructionOutput& out, std::uint8_t cls,
                          std::span<FaceSample> samples) {
   std::size_t m = 0;
-  for (std::size_t i = 0; i < out.mesh.size() && m < samples.size(); ++i) {
-    if (out.mesh_class[i] != cls) continue;
-    const MeshTriangle& t = out.mesh[i];
-    const Eigen::Vector3d& a = out.xyz_mm[static_cast<std::size_t>(t.v[0])];
-    const Eigen::Vector3d& b = out.xyz_mm[static_cast<std::size_t>(t.v[1])];
-    const Eigen::Vector3d& c = out.xyz_mm[static_cast<std::size_t>(t.v[2])];
-    samples[m++] = FaceSample{(a + b + c) / 3.0, 0.5 * (b - a).cross(c - a).norm()};
-  }
+  for (std::size_t i = 0; i < out.mesh.size() && m < samples.size(); ++i)
+    if (out.mesh_class[i] == cls) samples[m++] = triangle_sample(out.xyz_mm, out.mesh[i]);
   return m;
 }
 

@@ -8,7 +8,7 @@
 // disc chosen again over its face's triangles
 // (mesh_class kVertexPlane0 + rank) by the same rules (algo/surface/
 // grind_footprint: flatness, coverage, the most level disc the arm reaches)
-// with the refined normal. The new disc's centre keeps its standoff from the
+// with the refined normal. The chosen disc's centre keeps its standoff from the
 // face's plane as the refinement moved that plane, as the grind point does.
 // The plane's 1-sigma, verdict and area stay the grind step's. A plane the
 // arm reached at no flat disc along the mesh's normal stays none_reached

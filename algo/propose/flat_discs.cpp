@@ -168,16 +168,14 @@ Result<Free> take_free(const ReconstructionOutput& r, const RockOnMap& rock,
     f.slot[i] = -1;
     const bool rockish = cls == kVertexRock || (k >= 0 && k < kMaxClasses);
     if (!rockish || !rock.holds(r, r.mesh[i])) continue;
-    const Eigen::Vector3d& a = r.xyz_mm[static_cast<std::size_t>(r.mesh[i].v[0])];
-    const Eigen::Vector3d& b = r.xyz_mm[static_cast<std::size_t>(r.mesh[i].v[1])];
-    const Eigen::Vector3d& c = r.xyz_mm[static_cast<std::size_t>(r.mesh[i].v[2])];
-    const Eigen::Vector3d centre = (a + b + c) / 3.0;
+    const FaceSample sample = triangle_sample(r.xyz_mm, r.mesh[i]);
+    const Eigen::Vector3d& centre = sample.p;
     if (cls != kVertexRock && k >= 0 && k < kMaxClasses &&
         explained[k]) {  // on a kept plane's patch: explained when on its plane
       const GrindPlane& q = r.planes.planes[k];
       if (std::abs(q.normal.dot(centre - q.centroid_mm)) <= band_mm) continue;
     }
-    f.tri[f.m] = FaceSample{centre, 0.5 * (b - a).cross(c - a).norm()};
+    f.tri[f.m] = sample;
     f.face[f.m] = kNoFace;
     f.mesh_of[f.m] = static_cast<std::int32_t>(i);
     f.slot[i] = static_cast<std::int32_t>(f.m++);

@@ -325,6 +325,13 @@ const char* footprint_reach_key(FootprintReach r) {
   return "";
 }
 
+FaceSample triangle_sample(std::span<const Eigen::Vector3d> xyz_mm, const MeshTriangle& t) {
+  const Eigen::Vector3d& a = xyz_mm[static_cast<std::size_t>(t.v[0])];
+  const Eigen::Vector3d& b = xyz_mm[static_cast<std::size_t>(t.v[1])];
+  const Eigen::Vector3d& c = xyz_mm[static_cast<std::size_t>(t.v[2])];
+  return FaceSample{(a + b + c) / 3.0, 0.5 * (b - a).cross(c - a).norm()};
+}
+
 std::size_t footprint_scratch_bytes(std::size_t samples) {
   const std::size_t m = std::min(samples, kFootprintSamples);
   return m * sizeof(Local) + alignof(Local) + m * sizeof(std::int32_t) +

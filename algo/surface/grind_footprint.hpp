@@ -44,6 +44,7 @@
 
 #include "algo/core/arena.hpp"
 #include "algo/core/result.hpp"
+#include "algo/mesh/delaunay.hpp"
 
 namespace petra {
 
@@ -98,6 +99,9 @@ struct Footprint {
   int candidates = 0;                                   // discs tried
   FootprintReach reach = FootprintReach::not_asked;
 };
+
+// A mesh triangle (vertex indices into xyz_mm) as a sample: centroid, area.
+FaceSample triangle_sample(std::span<const Eigen::Vector3d> xyz_mm, const MeshTriangle& t);
 
 std::size_t footprint_scratch_bytes(std::size_t samples);
 
