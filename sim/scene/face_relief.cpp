@@ -49,16 +49,33 @@ bool clip_to_rock(const ConvexRock& rock, const Eigen::Vector3d& o, const Eigen:
   return true;
 }
 
+// s_i(x) given the rock's roughness at x (`rough`: the unscaled fractal,
+// the same for every face, so a field point evaluates it once).
+double depth_given_rough(const FaceRelief& r, int face, const HalfSpace& plane,
+                         const Eigen::Vector3d& x, double rough) {
+  const Eigen::Vector3d off = x - r.bulge_centre[static_cast<std::size_t>(face)];
+  const Eigen::Vector3d in_plane = off - plane.normal * plane.normal.dot(off);
+  double depth = 0.5 * r.curvature_per_mm * in_plane.squaredNorm();
+  if (r.rough_scale > 0) depth += std::max(0.0, r.rough_floor + r.rough_scale * rough);
+  return depth;
+}
+
 // max_i (n_i.x - d_i + s_i(x)) over the faces that can reach x; <= 0 inside.
 double rough_field(const ConvexRock& rock, const FaceRelief& r, const Eigen::Vector3d& x,
                    int& face) {
   double best = -INFINITY;
   face = -1;
+  double rough = 0;
+  bool rough_known = r.rough_scale <= 0;
   for (std::size_t i = 0; i < rock.faces.size(); ++i) {
     const HalfSpace& h = rock.faces[i].plane;
     const double plane = h.normal.dot(x) - h.offset_mm;
     if (plane + r.max_depth_mm < best) continue;  // cannot beat the best
-    const double v = plane + face_depth(r, static_cast<int>(i), h, x);
+    if (!rough_known) {
+      rough = fractal(r.perm, x);
+      rough_known = true;
+    }
+    const double v = plane + depth_given_rough(r, static_cast<int>(i), h, x, rough);
     if (v > best) {
       best = v;
       face = static_cast<int>(i);
@@ -126,11 +143,7 @@ FaceRelief make_face_relief(const World& world, std::uint64_t seed, const Convex
 }
 
 double face_depth(const FaceRelief& r, int face, const HalfSpace& plane, const Eigen::Vector3d& x) {
-  const Eigen::Vector3d off = x - r.bulge_centre[static_cast<std::size_t>(face)];
-  const Eigen::Vector3d in_plane = off - plane.normal * plane.normal.dot(off);
-  double depth = 0.5 * r.curvature_per_mm * in_plane.squaredNorm();
-  if (r.rough_scale > 0) depth += std::max(0.0, r.rough_floor + r.rough_scale * fractal(r.perm, x));
-  return depth;
+  return depth_given_rough(r, face, plane, x, r.rough_scale > 0 ? fractal(r.perm, x) : 0.0);
 }
 
 RockEntry ray_enter_rough_rock(const ConvexRock& rock, const FaceRelief& r,

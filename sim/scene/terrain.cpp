@@ -32,41 +32,55 @@ double raw_fractal(const Permutation& perm, double x, double y) {
   return sum;
 }
 
-// Catmull-Rom weights and their derivatives at fraction f.
-void catmull_rom(double f, double w[4], double dw[4]) {
+// Catmull-Rom weights at fraction f.
+void catmull_rom(double f, double w[4]) {
   const double f2 = f * f, f3 = f2 * f;
   w[0] = 0.5 * (-f3 + 2 * f2 - f);
   w[1] = 0.5 * (3 * f3 - 5 * f2 + 2);
   w[2] = 0.5 * (-3 * f3 + 4 * f2 + f);
   w[3] = 0.5 * (f3 - f2);
+}
+
+// Their derivatives.
+void catmull_rom_slopes(double f, double dw[4]) {
+  const double f2 = f * f;
   dw[0] = 0.5 * (-3 * f2 + 4 * f - 1);
   dw[1] = 0.5 * (9 * f2 - 10 * f);
   dw[2] = 0.5 * (-9 * f2 + 8 * f + 1);
   dw[3] = 0.5 * (3 * f2 - 2 * f);
 }
 
+// The relief's height at (x, y) and, with kSlope, its gradient into *g (the
+// ray march asks the height alone, most of the scene's time).
+template <bool kSlope>
 double fractal_height(const Terrain& t, double x, double y, Eigen::Vector2d* g) {
   const double gx = (x - t.centre.x() + kHalfExtentMm) / t.step_mm;
   const double gy = (y - t.centre.y() + kHalfExtentMm) / t.step_mm;
   const int i = static_cast<int>(std::floor(gx)), j = static_cast<int>(std::floor(gy));
-  if (g) g->setZero();
+  if constexpr (kSlope) g->setZero();
   if (i < 1 || j < 1 || i + 2 >= t.n || j + 2 >= t.n) return 0.0;  // faded out there
-  double wx[4], dwx[4], wy[4], dwy[4];
-  catmull_rom(gx - i, wx, dwx);
-  catmull_rom(gy - j, wy, dwy);
+  double wx[4], wy[4], dwx[4], dwy[4];
+  catmull_rom(gx - i, wx);
+  catmull_rom(gy - j, wy);
+  if constexpr (kSlope) {
+    catmull_rom_slopes(gx - i, dwx);
+    catmull_rom_slopes(gy - j, dwy);
+  }
   double h = 0, hx = 0, hy = 0;
   for (int b = 0; b < 4; ++b) {
     const float* row = &t.grid[static_cast<std::size_t>(j - 1 + b) * t.n + (i - 1)];
     double r = 0, rx = 0;
     for (int a = 0; a < 4; ++a) {
       r += wx[a] * double(row[a]);
-      rx += dwx[a] * double(row[a]);
+      if constexpr (kSlope) rx += dwx[a] * double(row[a]);
     }
     h += wy[b] * r;
-    hx += wy[b] * rx;
-    hy += dwy[b] * r;
+    if constexpr (kSlope) {
+      hx += wy[b] * rx;
+      hy += dwy[b] * r;
+    }
   }
-  if (g) *g = Eigen::Vector2d(hx, hy) / t.step_mm;
+  if constexpr (kSlope) *g = Eigen::Vector2d(hx, hy) / t.step_mm;
   return h;
 }
 
@@ -93,17 +107,22 @@ bool cell_pebble(const Terrain& t, double cx, double cy, Pebble* p) {
   return true;
 }
 
-// The pebble of the cell holding (x, y), if any: height and gradient.
-double pebble_height(const Terrain& t, double x, double y, Eigen::Vector2d* g) {
-  if (g) g->setZero();
-  Pebble p;
-  if (!cell_pebble(t, std::floor(x / kPebbleCellMm), std::floor(y / kPebbleCellMm), &p)) return 0.0;
+// Pebble p's height at (x, y) and, unless null, its gradient into *g.
+double bump_height(const Pebble& p, double x, double y, Eigen::Vector2d* g) {
   const double dx = x - p.x, dy = y - p.y;
   const double q = (dx * dx + dy * dy) / (p.radius * p.radius);
   if (q >= 1.0) return 0.0;
   const double s = 1.0 - q;
   if (g) *g = Eigen::Vector2d(dx, dy) * (-4.0 * p.height * s / (p.radius * p.radius));
   return p.height * s * s;
+}
+
+// The pebble of the cell holding (x, y), if any: height and gradient.
+double pebble_height(const Terrain& t, double x, double y, Eigen::Vector2d* g) {
+  if (g) g->setZero();
+  Pebble p;
+  if (!cell_pebble(t, std::floor(x / kPebbleCellMm), std::floor(y / kPebbleCellMm), &p)) return 0.0;
+  return bump_height(p, x, y, g);
 }
 
 // Distance along a ray with horizontal direction d from (x, y) to the edge of its pebble cell.
@@ -184,7 +203,7 @@ double terrain_height(const Terrain& t, double x, double y, Eigen::Vector2d* gra
     return 0.0;
   }
   Eigen::Vector2d gf, gp;
-  const double h = fractal_height(t, x, y, &gf) + pebble_height(t, x, y, &gp);
+  const double h = fractal_height<true>(t, x, y, &gf) + pebble_height(t, x, y, &gp);
   if (gradient) *gradient = gf + gp;
   return h;
 }
@@ -237,6 +256,9 @@ bool ray_hits_terrain(const Terrain& t, const Eigen::Vector3d& o, const Eigen::V
   }
   const double rate_f = t.fractal_slope * horiz - dir.z();  // fastest approach to the relief
   const double rate = (t.fractal_slope + peb_slope) * horiz - dir.z();
+  double cell_x = NAN, cell_y = NAN;  // the pebble cell last looked up
+  bool has = false;
+  Pebble pebble;
   for (int it = 0; it < 2000 && at <= t_max; ++it) {
     bool plane_hit = false;
     if (flat_shortcut(t, o, dir, at, plane_hit)) {
@@ -246,7 +268,7 @@ bool ray_hits_terrain(const Terrain& t, const Eigen::Vector3d& o, const Eigen::V
     }
     const Eigen::Vector3d p = o + at * dir;
     if (p.z() > z_top + 1e-9 && dir.z() >= 0) return false;
-    const double gap_f = p.z() - fractal_height(t, p.x(), p.y(), nullptr);
+    const double gap_f = p.z() - fractal_height<false>(t, p.x(), p.y(), nullptr);
     if (gap_f - peb_max > 0.05) {
       if (rate_f <= 0) return false;  // rising faster than any slope
       at += (gap_f - peb_max) / rate_f;
@@ -254,9 +276,13 @@ bool ray_hits_terrain(const Terrain& t, const Eigen::Vector3d& o, const Eigen::V
     }
     // A cell without a pebble (or a ray outside its pebble's disc) sees the
     // relief alone until it leaves the cell: step by the relief's slope.
-    const bool has = cell_pebble(t, std::floor(p.x() / kPebbleCellMm),
-                                 std::floor(p.y() / kPebbleCellMm), nullptr);
-    const double gap = gap_f - (has ? pebble_height(t, p.x(), p.y(), nullptr) : 0.0);
+    const double cx = std::floor(p.x() / kPebbleCellMm), cy = std::floor(p.y() / kPebbleCellMm);
+    if (cx != cell_x || cy != cell_y) {  // the march takes many steps within one cell
+      cell_x = cx;
+      cell_y = cy;
+      has = cell_pebble(t, cx, cy, &pebble);
+    }
+    const double gap = gap_f - (has ? bump_height(pebble, p.x(), p.y(), nullptr) : 0.0);
     if (gap < 1e-3) {
       t_hit = at;
       return at <= t_max;

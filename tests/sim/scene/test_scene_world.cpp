@@ -116,8 +116,8 @@ class RealScene : public ::testing::Test {
  protected:
   void SetUp() override {
 #if defined(__SANITIZE_ADDRESS__)
-    // One realistic render is ~25 s of CPU optimised and over 300 s under ASan (ctest's limit);
-    // these run in the release build (ctest --preset release -R RealScene).
+    // One realistic render is ~10 s of CPU optimised and ~60 s under ASan, once per test
+    // process (five here); these run in the release build (ctest --preset release -R RealScene).
     GTEST_SKIP() << "a realistic render exceeds the test time limit under ASan; run in release";
 #endif
   }
