@@ -10,9 +10,9 @@ namespace petra::sim {
 
 namespace {
 
-constexpr double kHalfExtentMm = 960;  // grid half side
+constexpr double kHalfExtentMm = 960;                // grid half side
 constexpr double kFadeInMm = 700, kFadeOutMm = 900;  // relief fades out between these radii
-constexpr int kOctaves = 6;                        // wavelengths 256 .. 8 mm
+constexpr int kOctaves = 6;                          // wavelengths 256 .. 8 mm
 constexpr double kLargestMm = 256, kPersistence = 0.55;
 constexpr std::uint64_t kStreamTerrain = 21;
 
@@ -25,7 +25,8 @@ double raw_fractal(const Permutation& perm, double x, double y) {
   double sum = 0, amp = 1, lambda = kLargestMm;
   for (int k = 0; k < kOctaves; ++k) {
     // A different plane of the solid noise per octave decorrelates them.
-    sum += amp * gradient_noise({x / lambda + 17.3 * k, y / lambda + 31.7 * k, 0.5 + 7.1 * k}, perm);
+    sum +=
+        amp * gradient_noise({x / lambda + 17.3 * k, y / lambda + 31.7 * k, 0.5 + 7.1 * k}, perm);
     amp *= kPersistence;
     lambda *= 0.5;
   }
@@ -88,22 +89,21 @@ struct Pebble {
   double x = 0, y = 0, radius = 0, height = 0;
 };
 
-// The pebble of cell (cx, cy), if it has one (`p` may be null: presence only).
-bool cell_pebble(const Terrain& t, double cx, double cy, Pebble* p) {
+// The pebble of cell (cx, cy) into p, if the cell has one.
+bool cell_pebble(const Terrain& t, double cx, double cy, Pebble& p) {
   if (t.pebble_chance <= 0) return false;
   const auto ix = static_cast<std::uint64_t>(static_cast<std::int64_t>(cx));
   const auto iy = static_cast<std::uint64_t>(static_cast<std::int64_t>(cy));
   std::uint64_t state = t.pebble_key ^ mix64(ix * 0x9E3779B97F4A7C15ull + iy);
   auto u = [&state] { return static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53; };
   if (u() >= t.pebble_chance) return false;
-  if (!p) return true;
   const double a = 2.0 + 5.0 * u();  // radius 2..7 mm
-  p->radius = a;
-  p->x = cx * kPebbleCellMm + a + u() * (kPebbleCellMm - 2 * a);
-  p->y = cy * kPebbleCellMm + a + u() * (kPebbleCellMm - 2 * a);
-  const double r2 = std::pow(p->x - t.centre.x(), 2) + std::pow(p->y - t.centre.y(), 2);
+  p.radius = a;
+  p.x = cx * kPebbleCellMm + a + u() * (kPebbleCellMm - 2 * a);
+  p.y = cy * kPebbleCellMm + a + u() * (kPebbleCellMm - 2 * a);
+  const double r2 = std::pow(p.x - t.centre.x(), 2) + std::pow(p.y - t.centre.y(), 2);
   const double fade = r2 < kFadeInMm * kFadeInMm ? 1.0 : fade_weight(std::sqrt(r2));
-  p->height = a * (0.35 + 0.25 * u()) * fade;
+  p.height = a * (0.35 + 0.25 * u()) * fade;
   return true;
 }
 
@@ -121,7 +121,7 @@ double bump_height(const Pebble& p, double x, double y, Eigen::Vector2d* g) {
 double pebble_height(const Terrain& t, double x, double y, Eigen::Vector2d* g) {
   if (g) g->setZero();
   Pebble p;
-  if (!cell_pebble(t, std::floor(x / kPebbleCellMm), std::floor(y / kPebbleCellMm), &p)) return 0.0;
+  if (!cell_pebble(t, std::floor(x / kPebbleCellMm), std::floor(y / kPebbleCellMm), p)) return 0.0;
   return bump_height(p, x, y, g);
 }
 
@@ -165,8 +165,7 @@ Terrain make_terrain(const World& world, std::uint64_t seed, const Eigen::Vector
         }
       }
     const double mean = sum / static_cast<double>(count);
-    const double sd =
-        std::sqrt(std::max(sum2 / static_cast<double>(count) - mean * mean, 1e-12));
+    const double sd = std::sqrt(std::max(sum2 / static_cast<double>(count) - mean * mean, 1e-12));
     // Zero mean and the chosen RMS inside the full-relief disc.
     const double scale = world.relief_rms_mm / sd;
     for (int j = 0; j < t.n; ++j)
@@ -181,7 +180,8 @@ Terrain make_terrain(const World& world, std::uint64_t seed, const Eigen::Vector
         const std::size_t k = static_cast<std::size_t>(j) * t.n + i;
         lo = std::min(lo, double(t.grid[k]));
         hi = std::max(hi, double(t.grid[k]));
-        slope = std::max(slope, std::hypot(double(t.grid[k + 1] - t.grid[k]), double(t.grid[k + t.n] - t.grid[k])) /
+        slope = std::max(slope, std::hypot(double(t.grid[k + 1] - t.grid[k]),
+                                           double(t.grid[k + t.n] - t.grid[k])) /
                                     t.step_mm);
       }
     // Catmull-Rom overshoots the nodes a little: widen the bounds.
@@ -192,8 +192,7 @@ Terrain make_terrain(const World& world, std::uint64_t seed, const Eigen::Vector
   }
   // Pebbles 2..7 mm in radius cover a disc of pi E[a^2] = pi 335/15 mm^2.
   const double mean_area = M_PI * 335.0 / 15.0;
-  t.pebble_chance =
-      std::min(1.0, world.pebble_cover * kPebbleCellMm * kPebbleCellMm / mean_area);
+  t.pebble_chance = std::min(1.0, world.pebble_cover * kPebbleCellMm * kPebbleCellMm / mean_area);
   return t;
 }
 
@@ -280,7 +279,7 @@ bool ray_hits_terrain(const Terrain& t, const Eigen::Vector3d& o, const Eigen::V
     if (cx != cell_x || cy != cell_y) {  // the march takes many steps within one cell
       cell_x = cx;
       cell_y = cy;
-      has = cell_pebble(t, cx, cy, &pebble);
+      has = cell_pebble(t, cx, cy, pebble);
     }
     const double gap = gap_f - (has ? bump_height(pebble, p.x(), p.y(), nullptr) : 0.0);
     if (gap < 1e-3) {

@@ -41,7 +41,9 @@ void render_each_time(benchmark::State& state, const SceneOptions& o) {
   for (auto _ : state) benchmark::DoNotOptimize(render_scene(o).ok());
 }
 
-void BM_RenderScene(benchmark::State& state) { render_each_time(state, entry(state.range(0))); }
+void BM_RenderScene(benchmark::State& state) {
+  render_each_time(state, entry(state.range(0)));
+}
 
 // The realistic world (rough terrain and faces: the ray marches dominate).
 void BM_RenderRealScene(benchmark::State& state) {

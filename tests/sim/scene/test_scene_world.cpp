@@ -138,7 +138,8 @@ void check_real_calibration_residual(const SceneProducts& p) {
   const Scene& s = p.scene;
   EXPECT_NEAR(s.calib_residual_px, 0.3, 1e-3);
   // Measured again over other points of the scene.
-  const double again = reprojection_rms_px(s.calib_rig, s.true_rig_world, visible_world_points(s, 7));
+  const double again =
+      reprojection_rms_px(s.calib_rig, s.true_rig_world, visible_world_points(s, 7));
   EXPECT_NEAR(again, 0.3, 0.05);
   EXPECT_NE(s.calib_rig.right.cx_px, s.true_rig_world.right.cx_px);
   EXPECT_GT(p.truth.vertical_rms_px, 0.0);
@@ -188,9 +189,10 @@ void check_real_stones_and_rough_faces(const SceneProducts& p) {
     const Eigen::Vector3d base_n =
         s.rock.faces[static_cast<std::size_t>(p.truth.facets[static_cast<std::size_t>(i)].face)]
             .plane.normal;
-    EXPECT_LT(std::acos(std::min(1.0, base_n.dot(p.truth.facets[static_cast<std::size_t>(i)].normal))) *
-                  180 / M_PI,
-              1.0);
+    EXPECT_LT(
+        std::acos(std::min(1.0, base_n.dot(p.truth.facets[static_cast<std::size_t>(i)].normal))) *
+            180 / M_PI,
+        1.0);
   }
 }
 
@@ -207,7 +209,8 @@ void check_real_disparity_truth(const SceneProducts& p) {
       if (!std::isfinite(d)) continue;
       const float dv = p.rectified.vertical.view()(u, v);
       auto ol = rectified_to_original(s.calib_rig.left, pair.left, {double(u), double(v)});
-      auto orr = rectified_to_original(s.calib_rig.right, pair.right, {u - double(d), v + double(dv)});
+      auto orr =
+          rectified_to_original(s.calib_rig.right, pair.right, {u - double(d), v + double(dv)});
       ASSERT_TRUE(ol.ok() && orr.ok());
       const CameraRays rl(s.rig.left);
       const SceneHit hit = trace(s, rl.origin(), rl.direction(ol->x(), ol->y()));
@@ -286,12 +289,15 @@ TEST(SceneWorld, GainOffsetAndVignettingAreApplied) {
   auto c = make_scene(vig);
   ASSERT_TRUE(c.ok());
   const Rect corner{0, 0, 40, 30};
-  const RenderedView ca = render_view(*a, Eye::left, corner), cc = render_view(*c, Eye::left, corner);
+  const RenderedView ca = render_view(*a, Eye::left, corner),
+                     cc = render_view(*c, Eye::left, corner);
   const TsaiCamera& cam = a->rig.left;
-  const double dx = std::max(cam.cx_px, 1023 - cam.cx_px), dy = std::max(cam.cy_px, 767 - cam.cy_px);
+  const double dx = std::max(cam.cx_px, 1023 - cam.cx_px),
+               dy = std::max(cam.cy_px, 767 - cam.cy_px);
   for (int y = 0; y < 30; ++y)
     for (int x = 0; x < 40; ++x) {
-      const double r2 = (std::pow(x - cam.cx_px, 2) + std::pow(y - cam.cy_px, 2)) / (dx * dx + dy * dy);
+      const double r2 =
+          (std::pow(x - cam.cx_px, 2) + std::pow(y - cam.cy_px, 2)) / (dx * dx + dy * dy);
       ASSERT_NEAR(cc.image.view()(x, y), ca.image.view()(x, y) * (1 - 0.3 * r2), 1.0);
     }
 }
