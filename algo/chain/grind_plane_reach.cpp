@@ -9,10 +9,10 @@ namespace {
 
 // The face's triangles (mesh class `cls`) as footprint samples.
 std::size_t face_samples(const ReconstructionOutput& out, std::uint8_t cls,
-                         std::span<FaceSample> samples) {
+                         const Eigen::Vector3d& camera, std::span<FaceSample> samples) {
   std::size_t m = 0;
   for (std::size_t i = 0; i < out.mesh.size() && m < samples.size(); ++i)
-    if (out.mesh_class[i] == cls) samples[m++] = triangle_sample(out.xyz_mm, out.mesh[i]);
+    if (out.mesh_class[i] == cls) samples[m++] = triangle_sample(out.xyz_mm, out.mesh[i], camera);
   return m;
 }
 
@@ -31,7 +31,7 @@ Result<bool> choose_again(const PlaneMove& move, std::uint8_t cls, const GrindPa
   ArenaScope scope(arena);
   auto samples = arena.allocate<FaceSample>(out.mesh.size(), "footprint again samples");
   if (!samples) return samples.error();
-  const std::size_t m = face_samples(out, cls, *samples);
+  const std::size_t m = face_samples(out, cls, camera, *samples);
   if (m < 3) return false;
   FootprintParams fp;
   fp.diameter_mm = grind.grinder_diameter_mm;

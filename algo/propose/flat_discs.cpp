@@ -146,7 +146,7 @@ int find_faces(Free& f, std::span<const GrindPlane> kept, const GrindParams& g,
 
 Result<Free> take_free(const ReconstructionOutput& r, const RockOnMap& rock,
                        const bool (&explained)[kMaxClasses], double band_mm, int max_seeds,
-                       Arena& arena) {
+                       const Eigen::Vector3d& camera, Arena& arena) {
   const std::size_t nt = r.mesh.size();
   auto tri = arena.allocate<FaceSample>(nt, "flat discs' triangles");
   if (!tri) return tri.error();
@@ -168,7 +168,7 @@ Result<Free> take_free(const ReconstructionOutput& r, const RockOnMap& rock,
     f.slot[i] = -1;
     const bool rockish = cls == kVertexRock || (k >= 0 && k < kMaxClasses);
     if (!rockish || !rock.holds(r, r.mesh[i])) continue;
-    const FaceSample sample = triangle_sample(r.xyz_mm, r.mesh[i]);
+    const FaceSample sample = triangle_sample(r.xyz_mm, r.mesh[i], camera);
     const Eigen::Vector3d& centre = sample.p;
     if (cls != kVertexRock && k >= 0 && k < kMaxClasses &&
         explained[k]) {  // on a kept plane's patch: explained when on its plane
@@ -285,10 +285,10 @@ Result<GrindResult> flat_discs(const StereoRig& rig, const RectifiedPair& rect,
     return Error::make(Errc::invalid_argument, "flat discs: %zu mesh classes, %zu triangles",
                        r.mesh_class.size(), r.mesh.size());
   ArenaScope scope(arena);
-  auto f = take_free(r, rock, explained, discs.explained_band_mm, discs.max_seeds, arena);
+  const Eigen::Vector3d camera = camera_centre_world(rig.left);
+  auto f = take_free(r, rock, explained, discs.explained_band_mm, discs.max_seeds, camera, arena);
   if (!f) return f.error();
   const GrindParams& g = params.grind;
-  const Eigen::Vector3d camera = camera_centre_world(rig.left);
   Face faces[kMaxFaces];
   const int count = find_faces(*f, kept, g, discs, camera, faces);
   const DepthNoise noise{rect.left.f_px, rect.baseline_mm, g.sigma_disparity_px,

@@ -325,11 +325,17 @@ const char* footprint_reach_key(FootprintReach r) {
   return "";
 }
 
-FaceSample triangle_sample(std::span<const Eigen::Vector3d> xyz_mm, const MeshTriangle& t) {
+FaceSample triangle_sample(std::span<const Eigen::Vector3d> xyz_mm, const MeshTriangle& t,
+                           const Eigen::Vector3d& camera_mm) {
   const Eigen::Vector3d& a = xyz_mm[static_cast<std::size_t>(t.v[0])];
   const Eigen::Vector3d& b = xyz_mm[static_cast<std::size_t>(t.v[1])];
   const Eigen::Vector3d& c = xyz_mm[static_cast<std::size_t>(t.v[2])];
-  return FaceSample{(a + b + c) / 3.0, 0.5 * (b - a).cross(c - a).norm()};
+  const Eigen::Vector3d p = (a + b + c) / 3.0;
+  const Eigen::Vector3d cross = (b - a).cross(c - a);
+  const Eigen::Vector3d ray = camera_mm - p;
+  const double range = ray.norm();
+  const double seen = range > 0 ? 0.5 * std::abs(cross.dot(ray)) / range : 0.0;
+  return FaceSample{p, static_cast<float>(0.5 * cross.norm()), static_cast<float>(seen)};
 }
 
 std::size_t footprint_scratch_bytes(std::size_t samples) {

@@ -52,10 +52,16 @@ inline constexpr std::size_t kFootprintCandidates = 256;
 inline constexpr std::size_t kFootprintCells = 4096;
 inline constexpr std::size_t kFootprintSamples = 8192;
 
+// 32 bytes: the areas in float (7 digits for areas of 0.01..100 mm^2), so
+// that the samples of every triangle take no more than a point and a double.
 struct FaceSample {
   Eigen::Vector3d p;  // world mm (a triangle's centroid)
-  double area = 0;    // mm^2
+  float area = 0;     // mm^2
+  // mm^2 across the left camera's ray: the triangle's area times |cos| of its
+  // own normal to the ray, what its pixels cover at its range; 0 when not known.
+  float seen = 0;
 };
+static_assert(sizeof(FaceSample) == 32, "a face sample per mesh triangle: keep it small");
 
 // Whether the tool reaches a disc: its centre on the surface, the tool coming
 // along `normal` (unit, out of the rock). The arm's plan implements it
@@ -100,8 +106,10 @@ struct Footprint {
   FootprintReach reach = FootprintReach::not_asked;
 };
 
-// A mesh triangle (vertex indices into xyz_mm) as a sample: centroid, area.
-FaceSample triangle_sample(std::span<const Eigen::Vector3d> xyz_mm, const MeshTriangle& t);
+// A mesh triangle (vertex indices into xyz_mm) as a sample: centroid, area
+// and the area it shows the camera (centre camera_mm, world mm).
+FaceSample triangle_sample(std::span<const Eigen::Vector3d> xyz_mm, const MeshTriangle& t,
+                           const Eigen::Vector3d& camera_mm);
 
 std::size_t footprint_scratch_bytes(std::size_t samples);
 

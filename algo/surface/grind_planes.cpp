@@ -625,7 +625,7 @@ struct ClassFitter {
       for (std::size_t j = 0; j < pm; ++j) {
         const std::size_t i = tri_of(j);
         if (s.support[i] != 1 || triangle_plane[i] != k || in_fit(i) != (pass == 0)) continue;
-        s.face[faces++] = FaceSample{s.centroid[i], s.area[i]};
+        s.face[faces++] = triangle_sample(xyz, tris[i], camera);
         if (pass == 0) ++core_faces;
       }
     Status q =

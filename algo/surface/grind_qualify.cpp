@@ -18,17 +18,20 @@ double angle_between_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI;
 }
 
-// Independent measurements a triangle stands for: the pixels it covers.
-// Unknown rig: a pixel-grid Delaunay mesh has two triangles per pixel.
+// Independent measurements a triangle stands for: the pixels it covers,
+// its area across the ray (seen) over a pixel's there; without a seen area,
+// its own area taken to lie on the face. Unknown rig: a pixel-grid Delaunay
+// mesh has two triangles per pixel.
 double pixels_of(const FaceSample& s, const Eigen::Vector3d& n, const Eigen::Vector3d& camera,
                  const DepthNoise& noise) {
   if (!noise.known()) return 0.5;
   const Eigen::Vector3d ray = s.p - camera;
   const double r = ray.norm();
   if (!(r > 0)) return 0;
+  const double pixel_across = (r / noise.focal_px) * (r / noise.focal_px);
+  if (s.seen > 0) return s.seen / pixel_across;
   const double cos = std::max(std::abs(n.dot(ray)) / r, kMinCos);
-  const double pixel = (r / noise.focal_px) * (r / noise.focal_px) / cos;
-  return s.area / pixel;
+  return s.area / (pixel_across / cos);
 }
 
 // Uncertainty of the plane (n, through c) from the samples `use` accepts.

@@ -3,7 +3,8 @@
 //   1. the footprint: the best disc of the tool's diameter on the patch
 //      (algo/surface/grind_footprint) and its own plane;
 //   2. the uncertainty of both planes (algo/surface/plane_uncertainty): each patch
-//      triangle stands for the pixels it covers, area / ((R / f)^2 / cos),
+//      triangle stands for the pixels it covers, its area across the viewing
+//      ray over (R / f)^2 (FaceSample::seen; without it area / ((R / f)^2 / cos)),
 //      measured along its viewing ray with the stereo depth noise;
 //   3. the reported plane: the face's normal through the disc's centre on
 //      the surface (the disc's own plane there); the

@@ -38,8 +38,8 @@ FaceMesh make_relief_face(double w, double h, const std::function<double(double,
     for (double x = -w / 2; x < w / 2 - 1e-9; x += s) {
       if (keep && !keep(x + s / 2, y + s / 2)) continue;
       const Eigen::Vector3d a = p(x, y), b = p(x + s, y), c = p(x + s, y + s), d = p(x, y + s);
-      f.samples.push_back({(a + b + c) / 3, 0.5 * (b - a).cross(c - a).norm()});
-      f.samples.push_back({(a + c + d) / 3, 0.5 * (c - a).cross(d - a).norm()});
+      f.samples.push_back({(a + b + c) / 3, static_cast<float>(0.5 * (b - a).cross(c - a).norm())});
+      f.samples.push_back({(a + c + d) / 3, static_cast<float>(0.5 * (c - a).cross(d - a).norm())});
     }
   return f;
 }

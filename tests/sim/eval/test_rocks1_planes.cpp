@@ -252,13 +252,16 @@ TEST_P(Rocks1, DISABLED_EveryPlaneLiesOnTheRealSurface) {
   for (const RoiCase& c : kCases) run_case(c, GetParam(), true);
 }
 
-// On the exact map each ROI's first plane meets the surface target: the
+// On the exact map every plane of every ROI meets the surface target: the
 // grinder's disc sits where the curved face is level with the face's plane,
 // and the grind point lies on the surface (before: 8.42, 4.80 and 4.70 deg
-// off, the disc at the face's most central flat spot; docs/reconstruction.md).
-TEST(Rocks1Truth, EachRoisFirstPlaneLiesOnTheRealSurface) {
+// off, the disc at the face's most central flat spot); the grey rock's
+// underside, seen almost edge-on (85.9 deg off), is refused as too
+// uncertain since its triangles count the pixels they cover
+// (docs/reconstruction.md).
+TEST(Rocks1Truth, EveryPlaneLiesOnTheRealSurface) {
   if (!data().ok) GTEST_SKIP() << "no Rocks1 data at " << kRocks1Dir << " (run from the repo root)";
-  for (const RoiCase& c : kCases) run_case(c, Source::truth, true, 21, 1);
+  for (const RoiCase& c : kCases) run_case(c, Source::truth, true);
 }
 
 TEST(Rocks1Noise, EveryDrawOfTheNoiseGivesTheWhiteRockPlanes) {
