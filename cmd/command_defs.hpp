@@ -62,7 +62,7 @@
 #define PETRA_ARM_GOTO_PROPOSAL_PLANE_FIELDS(F)                                                 \
   F(u32, proposal_id, 1, "", 1, PETRA_CMD_U32_MAX, "the PROPOSALS packet's proposal_id")        \
   F(u8, rank, 1, "", 1, 8, "proposal by rank in that list (1 = best)")                          \
-  F(u8, plane, 1, "", 1, 3, "its plane by PROPOSAL_PLANES' order (1 = first); must be offered") \
+  F(u8, plane, 1, "", 1, 4, "its plane by PROPOSAL_PLANES' order (1 = first); must be offered") \
   F(f32, standoff_mm, 1, "mm", 0, 300, "approach waypoint distance along the plane normal")
 
 #define PETRA_SET_MODE_FIELDS(F) \

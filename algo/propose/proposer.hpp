@@ -15,8 +15,8 @@
 //   standoff arm::kDefaultStandoffMm; reachable planes first)
 //   -> the score's terms and weighted total
 //   -> ranking (offered proposals first, then by total) and truncation.
-// c: the chain is run once per rock with c = kMaxProposalPlanes (3, the most
-// faces a proposal carries); the planes it accepts (qualified, not surplus:
+// c: the chain is run once per rock with c = kProposalPlanesC (3; a proposal
+// carries up to kMaxProposalPlanes = 4 faces); the planes it accepts (qualified, not surplus:
 // grind_planes ranks by area and keeps at most c) come first. The run's c
 // counts a neighbour's planes in the ROI too, and its clustering into
 // cluster_count(3) classes merges a rounded rock's smaller flat facets into a
@@ -58,8 +58,11 @@
 
 namespace petra {
 
-// c the proposer asks of the chain for every rock (see above).
-inline constexpr int kProposalPlanesC = kMaxProposalPlanes;
+// c the proposer asks of the chain for every rock (see above). Asking for 4,
+// the slots' count, gave the same recall and more wrong planes (docs/log.md,
+// session 26).
+inline constexpr int kProposalPlanesC = 3;
+static_assert(kProposalPlanesC <= kMaxProposalPlanes, "the chain's accepted planes fit the slots");
 
 struct ProposerBudget {
   PipelineBudget pipeline;  // the chain's (its max ROI is in rectified px)

@@ -348,7 +348,8 @@ TEST(ExecutivePropose, ProposalPlanesFollowTheListWithEveryCarriedPlane) {
   EXPECT_EQ(q.plane_count[0], 3);
   EXPECT_EQ(q.plane_count[1], 1);
   EXPECT_EQ(q.plane_count[2], 0);
-  // Slot 3 i + k: rank i + 1's plane k + 1.
+  // Slot P i + k: rank i + 1's plane k + 1 (P plane slots per proposal).
+  constexpr std::size_t kRank2 = PETRA_MAX_PROPOSAL_PLANES;
   EXPECT_EQ(q.offered[0], 0);  // out of reach
   EXPECT_EQ(q.reach[0], static_cast<std::uint8_t>(arm::ArmReason::beyond_reach));
   EXPECT_EQ(q.offered[1], 1);
@@ -356,10 +357,11 @@ TEST(ExecutivePropose, ProposalPlanesFollowTheListWithEveryCarriedPlane) {
   EXPECT_FLOAT_EQ(q.normal[3 * 2 + 0], -0.6f);
   EXPECT_FLOAT_EQ(q.centroid_mm[3 * 2 + 2], 70.25f);
   EXPECT_FLOAT_EQ(q.area_mm2[2], 1500.0f);
-  EXPECT_EQ(q.offered[3], 0);
-  EXPECT_EQ(q.verdict[3], static_cast<std::uint8_t>(PlaneVerdict::too_rough));
-  EXPECT_FLOAT_EQ(q.centroid_mm[3 * 3 + 2], 3.0f);
-  EXPECT_EQ(q.area_mm2[4], 0.0f);  // rank 2 carries one plane
+  EXPECT_EQ(q.area_mm2[3], 0.0f);  // rank 1 carries three planes
+  EXPECT_EQ(q.offered[kRank2], 0);
+  EXPECT_EQ(q.verdict[kRank2], static_cast<std::uint8_t>(PlaneVerdict::too_rough));
+  EXPECT_FLOAT_EQ(q.centroid_mm[3 * kRank2 + 2], 3.0f);
+  EXPECT_EQ(q.area_mm2[kRank2 + 1], 0.0f);  // rank 2 carries one plane
   // PROPOSALS still shows rank 1's best offered plane, the second.
   EXPECT_FLOAT_EQ(p.normal[0], 0.6f);
 }

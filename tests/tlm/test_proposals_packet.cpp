@@ -90,12 +90,14 @@ TEST(ProposalsPacket, FitsWithinTheLargestPacketAndChecksItsRanges) {
   EXPECT_STREQ(Proposals::fields()[static_cast<std::size_t>(bad)].name, "score_total");
 }
 
-TEST(ProposalsPacket, ProposalPlanesFitWithinTheLargestPacket) {
-  // 953 payload bytes (11 + 24 planes x 39 + 8 plane counts): within PRODUCT's.
-  EXPECT_EQ(ProposalPlanes::wire_bytes(), 953u);
-  EXPECT_LE(ProposalPlanes::wire_bytes(), Product::wire_bytes());
+TEST(ProposalsPacket, ProposalPlanesFitOneDatagram) {
+  // 1265 payload bytes (9 + 32 planes x 39 + 8 plane counts), the largest
+  // packet: with its headers within one 1500-byte Ethernet frame's UDP payload.
+  EXPECT_EQ(ProposalPlanes::wire_bytes(), 1265u);
+  EXPECT_EQ(kMaxTmBytes, 1281u);
+  EXPECT_LE(kMaxTmBytes, 1472u);
   ProposalPlanes p;
-  p.plane_count[5] = 4;  // a proposal carries at most 3 planes
+  p.plane_count[5] = 5;  // a proposal carries at most 4 planes
   const int bad = p.out_of_range();
   ASSERT_GE(bad, 0);
   EXPECT_STREQ(ProposalPlanes::fields()[static_cast<std::size_t>(bad)].name, "plane_count");

@@ -51,9 +51,10 @@ export class ProposalsPanel {
     const p = this.planes;
     if (!p || !this.list || p.proposal_id !== this.list.proposal_id) return '';
     const shown = slot(this.list.normal, i, 3).join();
+    const perRank = p.offered.length / p.plane_count.length;  // plane slots per proposal
     const more = [];
     for (let j = 0; j < p.plane_count[i]; ++j) {
-      const k = 3 * i + j;
+      const k = perRank * i + j;
       const n = slot(p.normal, k, 3);
       if (p.offered[k] === 1 && n.join() !== shown) more.push(`plane ${j + 1}: n (${n.map((a) => fmt(a, 3)).join(', ')})`);
     }

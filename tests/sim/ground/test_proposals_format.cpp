@@ -59,11 +59,11 @@ TEST(ProposalsFormat, ListsEveryCarriedPlaneByRankAndPlane) {
   p.frame = 9;
   p.count = 2;
   p.plane_count = {2, 1};
-  p.offered = {0, 1, 0, 1};  // rank 1 plane 2, rank 2 plane 1
+  constexpr std::size_t kRank2 = PETRA_MAX_PROPOSAL_PLANES;  // slot of rank 2's plane 1
+  p.offered[1] = 1, p.offered[kRank2] = 1;                   // rank 1 plane 2, rank 2 plane 1
   p.normal[3 * 1 + 0] = 0.6f, p.normal[3 * 1 + 2] = 0.8f;
-  p.centroid_mm[3 * 3 + 1] = 250.5f;
-  p.verdict = {0, 0, 0, 0};
-  p.reach = {2, 0, 0, 0};
+  p.centroid_mm[3 * kRank2 + 1] = 250.5f;
+  p.reach[0] = 2;
   tlm::TmPacket packet;
   packet.header.primary.apid = static_cast<std::uint16_t>(tlm::Apid::PROPOSAL_PLANES);
   packet.body = p;
