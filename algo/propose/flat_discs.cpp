@@ -53,7 +53,7 @@ Result<PlaneFitT<double>> fit_listed(const Free& f, std::size_t count, In&& in) 
       },
       [&](std::size_t j) {
         const FaceSample& s = f.tri[static_cast<std::size_t>(f.near[j])];
-        return in(s) ? s.area : 0.0;
+        return in(s) ? static_cast<double>(s.area) : 0.0;
       });
 }
 
@@ -87,7 +87,7 @@ bool flat_disc(Free& f, std::size_t s, const GrindParams& g, const FlatDiscParam
   for (std::size_t j = 0; j < n; ++j) {
     const FaceSample& t = f.tri[static_cast<std::size_t>(f.near[j])];
     if (!in_disc(t)) continue;
-    covered += t.area;
+    covered += static_cast<double>(t.area);
     f.near[k++] = f.near[j];
   }
   if (covered < g.min_footprint_coverage * std::numbers::pi * r * r) return false;
@@ -188,10 +188,10 @@ Result<PlaneFitT<double>> face_fit(Free& f, int k, std::size_t& n, double& area)
   n = 0;
   area = 0;
   for (std::size_t i = 0; i < f.m; ++i)
-    if (f.face[i] == k) f.face_tris[n++] = f.tri[i], area += f.tri[i].area;
+    if (f.face[i] == k) f.face_tris[n++] = f.tri[i], area += static_cast<double>(f.tri[i].area);
   return fit_plane_wtls_by<double>(
       n, [&](std::size_t j) -> const Eigen::Vector3d& { return f.face_tris[j].p; },
-      [&](std::size_t j) { return f.face_tris[j].area; });
+      [&](std::size_t j) { return static_cast<double>(f.face_tris[j].area); });
 }
 
 // Face k grown over the mesh's edges: free neighbours within band_mm of its

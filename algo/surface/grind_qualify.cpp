@@ -29,9 +29,9 @@ double pixels_of(const FaceSample& s, const Eigen::Vector3d& n, const Eigen::Vec
   const double r = ray.norm();
   if (!(r > 0)) return 0;
   const double pixel_across = (r / noise.focal_px) * (r / noise.focal_px);
-  if (s.seen > 0) return s.seen / pixel_across;
+  if (s.seen > 0) return static_cast<double>(s.seen) / pixel_across;
   const double cos = std::max(std::abs(n.dot(ray)) / r, kMinCos);
-  return s.area / (pixel_across / cos);
+  return static_cast<double>(s.area) / (pixel_across / cos);
 }
 
 // Uncertainty of the plane (n, through c) from the samples `use` accepts.

@@ -77,9 +77,9 @@ TEST(GrindQualify, ATrianglesSeenAreaIsThePixelsItCovers) {
   double own = 0, seen = 0;
   for (const FaceSample& s : f.samples) {
     const double pixel = (s.p - f.camera).squaredNorm() / (kFocalPx * kFocalPx);
-    EXPECT_NEAR(s.seen / pixel, 0.5, 0.02);  // half a pixel cell each
-    own += s.area;
-    seen += s.seen;
+    EXPECT_NEAR(static_cast<double>(s.seen) / pixel, 0.5, 0.02);  // half a pixel cell each
+    own += static_cast<double>(s.area);
+    seen += static_cast<double>(s.seen);
   }
   EXPECT_NEAR(own / seen, 1.0, 0.02);  // the treads face the camera
 }
