@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
 
 #include "algo/propose/proposals.hpp"
 #include "cmd/commands.hpp"
@@ -22,6 +23,15 @@ enum class ProposalEmpty : std::uint8_t {
 
 static_assert(PETRA_MAX_PROPOSAL_PLANES == kMaxProposalPlanes,
               "PROPOSAL_PLANES holds every plane a proposal carries");
+
+// ARM_GOTO_PROPOSAL_PLANE's `plane` field ranges over exactly those slots.
+constexpr double command_plane_max() {
+  for (const wire::FieldDesc& f : cmd::ArmGotoProposalPlaneArgs::fields())
+    if (std::string_view(f.name) == "plane") return f.max;
+  return 0;
+}
+static_assert(command_plane_max() == kMaxProposalPlanes,
+              "ARM_GOTO_PROPOSAL_PLANE names any plane a proposal carries");
 
 // Whether the proposal's plane k (0-based) is offered: carried, verdict
 // grindable and reach ok.

@@ -244,7 +244,7 @@
 // PROPOSAL_PLANES: follows each PROPOSALS packet of a finished run (same
 // proposal_id): every plane each proposal carries on board, not only the one
 // PROPOSALS shows, as parallel arrays of PETRA_MAX_PROPOSALS x
-// PETRA_MAX_PROPOSAL_PLANES slots (slot 4 i + j = plane j + 1 of rank i + 1;
+// PETRA_MAX_PROPOSAL_PLANES = P slots (slot P i + j = plane j + 1 of rank i + 1;
 // slots from plane_count on are 0). ARM_GOTO_PROPOSAL_PLANE takes any offered one.
 #define PETRA_MAX_PROPOSAL_PLANES 4
 #define PETRA_PROPOSAL_PLANE_SLOTS (PETRA_MAX_PROPOSALS * PETRA_MAX_PROPOSAL_PLANES)

@@ -69,8 +69,8 @@ std::string slot_line(const tlm::Proposals& p, std::size_t i) {
          plane_text(p, i) + " (" + std::to_string(p.plane_count[i]) + " planes)";
 }
 
-// Plane slot k of PROPOSAL_PLANES: rank k / PETRA_MAX_PROPOSAL_PLANES + 1, plane k %
-// PETRA_MAX_PROPOSAL_PLANES + 1.
+// Plane slot k of PROPOSAL_PLANES: rank k / P + 1, plane k % P + 1
+// (P = PETRA_MAX_PROPOSAL_PLANES).
 std::string plane_line(const tlm::ProposalPlanes& p, std::size_t k) {
   return "  #" + std::to_string(k / PETRA_MAX_PROPOSAL_PLANES + 1) + "." +
          std::to_string(k % PETRA_MAX_PROPOSAL_PLANES + 1) + " " +
