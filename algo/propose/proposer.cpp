@@ -196,13 +196,14 @@ PipelineRequest Proposer::chain_request(const RockCandidate& rock) const {
   return q;
 }
 
-void PlaneCandidates::add(const GrindPlane& p, const GrindParams& grind) {
-  if (count >= kMaxCandidates) return;
+bool PlaneCandidates::add(const GrindPlane& p, const GrindParams& grind) {
+  if (count >= kMaxCandidates) return false;
   for (int k = 0; k < count; ++k)
-    if (same_face(planes[k], p, grind)) return;
+    if (same_face(planes[k], p, grind)) return false;
   planes[count] = p;
   if (p.verdict == PlaneVerdict::surplus) planes[count].verdict = PlaneVerdict::accepted;
   ++count;
+  return true;
 }
 
 void PlaneCandidates::keep_flat(int first, const GrindParams& grind) {
@@ -231,9 +232,11 @@ void planes_on_other_rocks(const ReconstructionOutput& r, const RockOnMap& rock,
 // the chain's accepted planes, its surplus ones (qualified, past the run's
 // c = 3, which a neighbour's planes in the ROI also take), then the further
 // pass's accepted planes (further_planes), each not of the same face as an
-// earlier one; the reachable ones first, each group in that order, then the
-// rock's refused planes that say why. A neighbour's planes are left to its
-// own run.
+// earlier one; a surplus plane not kept (the same face as an earlier one, or
+// a patch rougher than the footprint's tolerance, which keep_flat would
+// drop) leaves its triangles to the further pass. The reachable ones first,
+// each group in that order, then the rock's refused planes that say why. A neighbour's planes are
+// left to its own run.
 Status Proposer::own_planes(int index, const PipelineOutput& out, const ArmReach& reach,
                             RockProposal& proposal) {
   const GrindResult& g = out.result.planes;
@@ -254,9 +257,9 @@ Status Proposer::own_planes(int index, const PipelineOutput& out, const ArmReach
   bool on_rock[kMaxClasses] = {};
   planes_mostly_on(out.result, rock, on_rock);
   for (int k = 0; k < g.count; ++k)
-    if (on_rock[k] && g.planes[k].verdict == PlaneVerdict::surplus) {
-      c.add(g.planes[k], gp);
-      taken[k] = !neighbour[k];
+    if (on_rock[k] && g.planes[k].verdict == PlaneVerdict::surplus &&
+        g.planes[k].rms_mm <= gp.max_footprint_rms_mm) {
+      taken[k] = c.add(g.planes[k], gp) && !neighbour[k];
     }
   if (params_.further_planes_c > 0) {
     const Rectifier& rect = pipeline_->rectifier();

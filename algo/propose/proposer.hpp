@@ -111,7 +111,7 @@ struct PlaneCandidates {
   static constexpr int kMaxCandidates = 3 * kMaxClasses;
   GrindPlane planes[kMaxCandidates];
   int count = 0;
-  void add(const GrindPlane& p, const GrindParams& grind);  // skipped when its face is in
+  bool add(const GrindPlane& p, const GrindParams& grind);  // false: skipped, its face is in
   // Drops the planes from `first` on whose whole patch is rougher than the
   // footprint's tolerance (a patch across a crease: two faces in one plane).
   void keep_flat(int first, const GrindParams& grind);
