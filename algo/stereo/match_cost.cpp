@@ -9,7 +9,8 @@
 namespace petra::match {
 
 static_assert(kRawPad > kRawMax, "padding lanes are selected by a maximum");
-static_assert(kRawPad * (2 * kBoxRadiusX + 1) * kWindowRows < 32768, "box sums compare as int16");
+static_assert(kRawPad * (2 * kBoxRadiusX + 1) * kWindowRows + kMaxSlantPenalty < 32768,
+              "box sums, with the slanted window's penalty, compare as int16");
 
 namespace {
 
@@ -200,10 +201,76 @@ PETRA_VECTOR_CLONES void box_and_shift_row(const std::uint16_t* colsum, int n, i
   }
 }
 
+// The slanted window's column sums: window row j (top to bottom) read at lane
+// k + kSlantLaneOffset[j]. Inner lanes (every row's lane in range) in one
+// vectorised loop; the few edge lanes reach past the column and read kRawPad.
+template <int kLanes>
+PETRA_VECTOR_CLONES void slanted_column_sums(const std::uint8_t* const* rows, int wc,
+                                             int stride_arg, std::uint16_t* colsum) {
+  const int stride = kLanes > 0 ? kLanes : stride_arg;
+  constexpr int kReach = kSlantLaneOffset[kWindowRows - 1];
+  static_assert(-kSlantLaneOffset[0] == kReach, "the offsets are symmetric");
+  for (int i = 0; i < wc; ++i) {
+    const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(i) * stride;
+    std::uint16_t* __restrict out = colsum + at;
+    const std::uint8_t* r[kWindowRows];
+    for (int j = 0; j < kWindowRows; ++j) r[j] = rows[j] + at + kSlantLaneOffset[j];
+    static_assert(kWindowRows == 9, "the sum below names the window's nine rows");
+    const std::uint8_t* __restrict r0 = r[0], * __restrict r1 = r[1], * __restrict r2 = r[2], * __restrict r3 = r[3], * __restrict r4 = r[4], * __restrict r5 = r[5], * __restrict r6 = r[6], * __restrict r7 = r[7], * __restrict r8 = r[8];
+    for (int k = kReach; k < stride - kReach; ++k)
+      out[k] = static_cast<std::uint16_t>(r0[k] + r1[k] + r2[k] + r3[k] + r4[k] + r5[k] + r6[k] +
+                                          r7[k] + r8[k]);
+    for (int e = 0; e < 2 * kReach; ++e) {
+      const int k = e < kReach ? e : stride - 2 * kReach + e;
+      unsigned sum = 0;
+      for (int j = 0; j < kWindowRows; ++j) {
+        const int kk = k + kSlantLaneOffset[j];
+        sum += (kk >= 0 && kk < stride) ? rows[j][at + kk] : unsigned{kRawPad};
+      }
+      out[k] = static_cast<std::uint16_t>(sum);
+    }
+  }
+}
+
+template <int kLanes>
+PETRA_VECTOR_CLONES int poorly_matched(const std::uint16_t* agg, int n, int stride_arg,
+                                       int only_above, std::uint8_t* poor) {
+  const int stride = kLanes > 0 ? kLanes : stride_arg;
+  int count = 0;
+  for (int i = 0; i < n; ++i) {
+    const std::int16_t* __restrict a =
+        reinterpret_cast<const std::int16_t*>(agg) + static_cast<std::ptrdiff_t>(i) * stride;
+    int best = a[0];  // a plain minimum: the compiler reduces it in vector lanes
+    for (int k = 1; k < stride; ++k) best = a[k] < best ? a[k] : best;
+    poor[i] = best > only_above;
+    count += poor[i];
+  }
+  return count;
+}
+
+template <int kLanes>
+PETRA_VECTOR_CLONES void keep_cheaper(std::uint16_t* agg, const std::uint16_t* other, int n,
+                                      int stride_arg, int penalty, const std::uint8_t* where) {
+  const int stride = kLanes > 0 ? kLanes : stride_arg;
+  const std::int16_t pen = static_cast<std::int16_t>(penalty);
+  for (int i = 0; i < n; ++i) {
+    if (!where[i]) continue;
+    std::int16_t* __restrict a =
+        reinterpret_cast<std::int16_t*>(agg) + static_cast<std::ptrdiff_t>(i) * stride;
+    const std::int16_t* __restrict o =
+        reinterpret_cast<const std::int16_t*>(other) + static_cast<std::ptrdiff_t>(i) * stride;
+    for (int k = 0; k < stride; ++k) a[k] = lane_min16(a[k], static_cast<std::int16_t>(o[k] + pen));
+  }
+}
+
 #define PETRA_INSTANTIATE(n)                                                                   \
   template void raw_cost_row<n>(const RawRowInputs&, int, std::uint8_t*, std::uint16_t*, int); \
   template void box_and_shift_row<n>(const std::uint16_t*, int, int, std::uint16_t*,           \
-                                     std::uint16_t*);
+                                     std::uint16_t*);                                          \
+  template void slanted_column_sums<n>(const std::uint8_t* const*, int, int, std::uint16_t*);  \
+  template int poorly_matched<n>(const std::uint16_t*, int, int, int, std::uint8_t*);          \
+  template void keep_cheaper<n>(std::uint16_t*, const std::uint16_t*, int, int, int,           \
+                                const std::uint8_t*);
 PETRA_MATCH_LANE_COUNTS(PETRA_INSTANTIATE)
 #undef PETRA_INSTANTIATE
 

@@ -7,6 +7,13 @@
 // in flat regions. The aggregated cost is the raw cost summed over a 5x9
 // (x by y) box, then the minimum over 5 horizontal box positions ("shiftable
 // window"), which keeps foreground objects from spreading into the background.
+// A second, slanted box (its rows sheared along the disparity by half a pixel
+// per row, kSlantLaneOffset) fits a surface whose disparity grows down the
+// image, as a face turned up towards the sky does: the upright box spans
+// 4 px of disparity there, and the face's costs blur into runs and jumps.
+// Where the upright box matches a pixel poorly at every disparity (its rows
+// disagree, as on such a face), each disparity keeps the cheaper of the two,
+// the slanted one charged a penalty so that a level surface keeps the upright.
 // All integer; the caller owns every buffer.
 #pragma once
 
@@ -26,6 +33,10 @@ inline constexpr int kBoxRadiusX = 2;
 inline constexpr int kBoxRadiusY = 4;
 inline constexpr int kShiftRadiusX = 2;
 inline constexpr int kWindowRows = 2 * kBoxRadiusY + 1;
+// The slanted box: window row j (top to bottom) matched at the centre's
+// disparity + round(0.5 (j - 4)) px (half away from zero).
+inline constexpr int kSlantLaneOffset[kWindowRows] = {-2, -2, -1, -1, 0, 1, 1, 2, 2};
+inline constexpr int kMaxSlantPenalty = 1000;
 // Columns of raw cost needed on each side of a row segment.
 inline constexpr int kMarginX = kBoxRadiusX + kShiftRadiusX;
 inline constexpr int kAggregatedMax = kRawMax * (2 * kBoxRadiusX + 1) * kWindowRows;  // 1080
@@ -75,5 +86,21 @@ void raw_cost_row(const RawRowInputs& in, int k_count, std::uint8_t* raw, std::u
 template <int kLanes>
 void box_and_shift_row(const std::uint16_t* colsum, int n, int stride, std::uint16_t* hs,
                        std::uint16_t* agg);
+
+// The slanted box's column sums from the window's raw cost rows (rows[j]:
+// window row j, top to bottom, laid out as raw_cost_row's), wc columns.
+template <int kLanes>
+void slanted_column_sums(const std::uint8_t* const* rows, int wc, int stride,
+                         std::uint16_t* colsum);
+
+// poor[i] = 1 where column i's cheapest agg exceeds only_above (the box
+// matches that pixel poorly at every disparity), else 0; returns how many.
+template <int kLanes>
+int poorly_matched(const std::uint16_t* agg, int n, int stride, int only_above, std::uint8_t* poor);
+
+// agg = min(agg, other + penalty) in the columns i < n where where[i] != 0.
+template <int kLanes>
+void keep_cheaper(std::uint16_t* agg, const std::uint16_t* other, int n, int stride, int penalty,
+                  const std::uint8_t* where);
 
 }  // namespace petra::match

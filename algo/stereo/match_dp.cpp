@@ -55,9 +55,10 @@ struct Layout {
   std::size_t rows() const {
     const std::size_t cells = z(wc) * z(dp);
     std::size_t b = 0;
-    b += kWindowRows * cells;  // raw ring
-    b += 2 * cells;            // column sums
-    b += 2 * 5 * z(dp);        // box sums (a ring of five columns)
+    b += kWindowRows * cells;                  // raw ring
+    b += 2 * cells;                            // column sums
+    b += 2 * cells + 2 * z(w) * z(dp) + z(w);  // the slanted box's sums, cost, pixels
+    b += 2 * 5 * z(dp);                        // box sums (a ring of five columns)
     // Per row in flight (two): cost, path costs S, backward path costs,
     // bounds, jump penalties.
     b += 2 * (2 * z(w) * z(dp) + 2 * 2 * z(w) * z(match::path_row_stride(dp)) + 3 * 2 * z(w));
@@ -67,7 +68,7 @@ struct Layout {
     b += sizeof(match::EdgePair) * z(w);                    // pairs
     b += 2 * median3x3_scratch(w) + 2 * z(w);               // median rows, shadow row, reasons
     b += z(w + d) + 5 * 4 * z(w);                           // right shadow row, select_row
-    b += 40 * kArenaSlackPerAllocation;                     // one per allocation below, with room
+    b += 44 * kArenaSlackPerAllocation;                     // one per allocation below, with room
     return b + match::edge_row_scratch_bytes(w, band);
   }
   std::size_t total() const { return edge_maps() + std::max(canny(), rows()); }
@@ -153,6 +154,12 @@ Status validate_inputs(const StereoInput& in, Rect roi, const MatchDpParams& p,
   if (p.edge_tolerance_px < 0 || p.lr_tolerance_px < 0 || p.max_mean_cost <= 0)
     return Error::make(Errc::invalid_argument,
                        "match_dp: tolerances must be >= 0 and the cost ceiling > 0");
+  if (p.slant_penalty < 0 || p.slant_penalty > match::kMaxSlantPenalty)
+    return Error::make(Errc::invalid_argument, "match_dp: slant_penalty %d not in 0..%d",
+                       p.slant_penalty, match::kMaxSlantPenalty);
+  if (p.slant_min_mean_cost < 0 || p.slant_min_mean_cost > match::kRawMax)
+    return Error::make(Errc::invalid_argument, "match_dp: slant_min_mean_cost %d not in 0..%d",
+                       p.slant_min_mean_cost, match::kRawMax);
   return ok_status();
 }
 
@@ -470,8 +477,8 @@ struct RowBuffers {
 // The row buffers of one call, taken from the arena once.
 struct MatchBuffers {
   std::span<std::uint8_t> ring, census_rows, skip, reasons, cli, clo, gl, cri, cro, gr, ov, t1, t2,
-      neutral, rshade;
-  std::span<std::uint16_t> colsum, hs;
+      neutral, rshade, slant_poor;
+  std::span<std::uint16_t> colsum, hs, slant_colsum, slant_agg;
   std::span<std::int16_t> rmin, rk, med, wk, wbest, wsecond;
   std::span<std::int32_t> right_keys, gathered;
   std::span<match::EdgePair> pairs;
@@ -486,6 +493,9 @@ Status take_buffers(Arena& arena, const Layout& L, int path_stride, MatchBuffers
   PETRA_TRY(take(arena, kWindowRows * cells, "raw cost ring", b.ring));
   PETRA_TRY(take(arena, cells, "column sums", b.colsum));
   PETRA_TRY(take(arena, 5 * static_cast<std::size_t>(Dp), "box sums", b.hs));
+  PETRA_TRY(take(arena, cells, "slanted column sums", b.slant_colsum));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w) * Dp, "slanted cost", b.slant_agg));
+  PETRA_TRY(take(arena, static_cast<std::size_t>(w), "poorly matched pixels", b.slant_poor));
   for (RowBuffers& r : b.rows) {
     PETRA_TRY(take(arena, static_cast<std::size_t>(w) * Dp, "aggregated cost", r.agg));
     PETRA_TRY(take(arena, static_cast<std::size_t>(w) * path_stride, "path costs", r.S));
@@ -797,6 +807,39 @@ Status edge_bounds(const MatchContext& c, MatchBuffers& b, Arena& arena, MatchDp
   return ok_status();
 }
 
+// The slanted box over the window of row t (window row j, rows t - 4 .. t + 4,
+// sits in ring slot (t + j) mod 9), kept where cheaper than the upright one
+// at the pixels the upright box matches poorly (match_cost). Only the runs of
+// such pixels are summed: pixel i's boxes read sum columns i .. i + 8, so
+// runs closer than that share their columns and are taken as one.
+template <int kLanes>
+void slanted_box(const MatchContext& c, MatchBuffers& b, int t, RowBuffers& rb) {
+  const int w = c.w, Dp = c.Dp;
+  std::uint8_t* poor = b.slant_poor.data();
+  if (match::poorly_matched<kLanes>(rb.agg.data(), w, Dp, c.p.slant_min_mean_cost * kWindowPixels,
+                                    poor) == 0)
+    return;
+  constexpr int kReadWidth = 2 * match::kMarginX;  // sum columns past a pixel's own
+  for (int a = 0; a < w;) {
+    if (!poor[a]) {
+      ++a;
+      continue;
+    }
+    int e = a + 1;  // end of the run, gaps of up to kReadWidth pixels bridged
+    for (int i = e; i < w && i < e + kReadWidth; ++i)
+      if (poor[i]) e = i + 1;
+    const std::uint8_t* rows[kWindowRows];
+    const std::size_t at = static_cast<std::size_t>(a) * Dp;
+    for (int j = 0; j < kWindowRows; ++j)
+      rows[j] = b.ring.data() + static_cast<std::size_t>((t + j) % kWindowRows) * c.cells + at;
+    match::slanted_column_sums<kLanes>(rows, e - a + kReadWidth, Dp, b.slant_colsum.data() + at);
+    match::box_and_shift_row<kLanes>(b.slant_colsum.data() + at, e - a, Dp, b.hs.data(),
+                                     b.slant_agg.data() + at);
+    a = e;
+  }
+  match::keep_cheaper<kLanes>(rb.agg.data(), b.slant_agg.data(), w, Dp, c.p.slant_penalty, poor);
+}
+
 // Steps 1-3 for row t: its window of raw costs, aggregated and bounded,
 // and its jump penalties, ready for the DP.
 template <int kLanes>
@@ -808,6 +851,7 @@ Status prepare_row(const MatchContext& c, MatchBuffers& b, Arena& arena, MatchDp
     raw_row<kLanes>(c, b, y + match::kBoxRadiusY, slot);  // replaces the row leaving the window
   }
   match::box_and_shift_row<kLanes>(b.colsum.data(), c.w, c.Dp, b.hs.data(), rb.agg.data());
+  if (c.p.slanted_window) slanted_box<kLanes>(c, b, t, rb);
   PETRA_TRY(edge_bounds<kLanes>(c, b, arena, st, t, rb));
 
   // Step 3: scanline DP over the aggregated cost.

@@ -11,7 +11,9 @@
 //      points, +- edge_tolerance_px), by a scanline DP (algo/stereo/scanline_dp) over
 //      a census + intensity cost aggregated on a 5x9 shiftable window
 //      (algo/stereo/match_cost). The DP has a small penalty P1 for one-pixel steps and
-//      a larger one P2 for jumps, lowered at intensity edges.
+//      a larger one P2 for jumps, lowered at intensity edges. Beside the
+//      upright 5x9 box, a slanted one (rows sheared by half a pixel of
+//      disparity per row, for faces turned up to the sky) where it is cheaper.
 //   4. Wrong matches are removed: left-right consistency (the right view's
 //      winner along the same path costs), uniqueness, a ceiling on the mean
 //      matching cost (the dense counterpart of a correlation floor), the right
@@ -38,6 +40,7 @@
 //   or the row buffers:
 //     raw cost window (9 rows)   9 wc Dp
 //     column sums, box sums      2 wc Dp + 10 Dp            (box sums: a ring of 5)
+//     slanted box: sums, cost    2 wc Dp + 2 w Dp + w
 //     two rows in flight: cost, path costs S and backward, bounds, penalties
 //                                2 (2 w Dp + 4 w (Dp + 16) + 6 w)   (S: D rounded
 //                                up to 16 lanes, at most Dp)
@@ -46,8 +49,8 @@
 //     row vectors                about 14 (wc + Dp) + 50 w  (checks: 20 w)
 //     each buffer starts on a 64-byte line (64 bytes of slack each)
 // Flight budget (320 x 320 px, 128 disparities): 1 841 243 bytes (1.76 MiB),
-// the peak being Canny of the right search area (the row buffers: 1.32 MB);
-// 160 x 160 px with 42 disparities: 422 221 bytes. docs/matching.md has the
+// the peak being Canny of the right search area (the row buffers: 1.41 MB);
+// 160 x 160 px with 42 disparities: 448 451 bytes. docs/matching.md has the
 // table. Lane kernels also have x86-64-v3 and -v4 copies chosen at load
 // (algo/stereo/vector_clones.hpp); outputs are the same bit for bit.
 #pragma once
@@ -80,8 +83,15 @@ struct MatchDpParams {
   int edge_zncc_floor_pct = 80;  // correlation floor of an edge pair
   int edge_uniqueness_pct = 10;  // anchor: margin of the dense winner
   int edge_tolerance_px = 1;     // edge localisation slack of the bounds
-  int p1 = 100;                  // DP penalty of a one-pixel step (cost units)
-  int p2 = 900;                  // DP penalty of a jump, before edge lowering
+  // The slanted box beside the upright one (algo/stereo/match_cost): consulted
+  // at a pixel whose upright best mean raw cost (0..24) exceeds
+  // slant_min_mean_cost, and charged slant_penalty (aggregated units,
+  // 0..1000) where it wins.
+  bool slanted_window = true;
+  int slant_min_mean_cost = 4;
+  int slant_penalty = 60;
+  int p1 = 100;  // DP penalty of a one-pixel step (cost units)
+  int p2 = 900;  // DP penalty of a jump, before edge lowering
   int lr_tolerance_px = 1;
   int uniqueness_pct = 5;
   int max_mean_cost = 10;  // ceiling of the mean raw cost (0..24) in the window

@@ -80,4 +80,27 @@ inline StereoScene make_scene(int w, int h, double d_bg, double d_fg = 0, int bx
   return s;
 }
 
+// A surface whose disparity grows down the image by per_row px per row (a
+// face turned up towards the sky): d(y) = d_top + per_row y, no occlusion.
+inline StereoScene make_tilted_scene(int w, int h, double d_top, double per_row,
+                                     std::uint32_t seed = 1) {
+  StereoScene s;
+  s.w = w;
+  s.h = h;
+  s.left.resize(static_cast<std::size_t>(w) * h);
+  s.right.resize(s.left.size());
+  s.truth.resize(s.left.size());
+  const ValueNoise tex(w + 300, h, seed);
+  const int off = 150;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * w + x;
+      const double d = d_top + per_row * y;
+      s.left[i] = static_cast<std::uint8_t>(std::lround(tex.at(x + off, y)));
+      s.right[i] = static_cast<std::uint8_t>(std::lround(tex.at(x + d + off, y)));
+      s.truth[i] = static_cast<float>(d);
+    }
+  return s;
+}
+
 }  // namespace petra::test

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -13,6 +14,7 @@ namespace petra {
 namespace {
 
 using petra::test::make_scene;
+using petra::test::make_tilted_scene;
 using petra::test::StereoScene;
 
 // Caller-side memory of one matcher, sized at "init" for a budget.
@@ -86,6 +88,28 @@ TEST(MatchDp, RecoversAConstantIntegerDisparity) {
   EXPECT_LT(a.mean_abs, 0.1);
   EXPECT_EQ(out.roi, (Rect{30, 10, 120, 80}));
   EXPECT_GT(st->anchors, 100);
+}
+
+// A face turned up to the sky: its disparity grows by half a pixel per row, so
+// the upright 5x9 box spans 4 px of disparity; the slanted box follows it.
+TEST(MatchDp, SlantedBoxFollowsAFaceTurnedUp) {
+  const StereoScene s = make_tilted_scene(200, 120, 8.0, 0.5);
+  DpMatcherUnderTest m({160, 100, 80});
+  const Rect roi{20, 10, 160, 100};
+  MatchDpParams p = range(0, 79);
+  Accuracy with[2];
+  for (bool slanted : {false, true}) {
+    p.slanted_window = slanted;
+    DisparityMap out;
+    ASSERT_TRUE(m.run(s, roi, p, out).ok());
+    with[slanted] = accuracy(s, out);
+    std::printf("slanted box %s: coverage %.3f, within 1 px %.3f, mean |error| %.3f px\n",
+                slanted ? "on " : "off", with[slanted].coverage, with[slanted].within_1px,
+                with[slanted].mean_abs);
+  }
+  EXPECT_LT(with[true].mean_abs, 0.5 * with[false].mean_abs);
+  EXPECT_GT(with[true].within_1px, 0.95);
+  EXPECT_GT(with[true].coverage, 2 * with[false].coverage);
 }
 
 TEST(MatchDp, RefinesASubPixelDisparity) {
@@ -208,6 +232,12 @@ TEST(MatchDp, EveryBadInputIsAnErrorNamingTheProblem) {
   MatchDpParams bad = range(0, 20);
   bad.p2 = 10000;
   expect(m.run(s, {0, 0, 50, 50}, bad, out), Errc::invalid_argument, "P2");
+  bad = range(0, 20);
+  bad.slant_penalty = -1;
+  expect(m.run(s, {0, 0, 50, 50}, bad, out), Errc::invalid_argument, "slant_penalty -1");
+  bad = range(0, 20);
+  bad.slant_min_mean_cost = 25;
+  expect(m.run(s, {0, 0, 50, 50}, bad, out), Errc::invalid_argument, "slant_min_mean_cost 25");
   // Mismatched image sizes.
   const StereoScene other = make_scene(150, 100, 7.0);
   StereoInput in{s.lv(), other.rv()};
