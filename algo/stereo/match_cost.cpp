@@ -213,13 +213,21 @@ PETRA_VECTOR_CLONES void slanted_column_sums(const std::uint8_t* const* rows, in
   for (int i = 0; i < wc; ++i) {
     const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(i) * stride;
     std::uint16_t* __restrict out = colsum + at;
-    const std::uint8_t* r[kWindowRows];
-    for (int j = 0; j < kWindowRows; ++j) r[j] = rows[j] + at + kSlantLaneOffset[j];
     static_assert(kWindowRows == 9, "the sum below names the window's nine rows");
-    const std::uint8_t* __restrict r0 = r[0], * __restrict r1 = r[1], * __restrict r2 = r[2], * __restrict r3 = r[3], * __restrict r4 = r[4], * __restrict r5 = r[5], * __restrict r6 = r[6], * __restrict r7 = r[7], * __restrict r8 = r[8];
+    const std::uint8_t* __restrict r0 = rows[0] + at;
+    const std::uint8_t* __restrict r1 = rows[1] + at;
+    const std::uint8_t* __restrict r2 = rows[2] + at;
+    const std::uint8_t* __restrict r3 = rows[3] + at;
+    const std::uint8_t* __restrict r4 = rows[4] + at;
+    const std::uint8_t* __restrict r5 = rows[5] + at;
+    const std::uint8_t* __restrict r6 = rows[6] + at;
+    const std::uint8_t* __restrict r7 = rows[7] + at;
+    const std::uint8_t* __restrict r8 = rows[8] + at;
+    constexpr const int* o = kSlantLaneOffset;
     for (int k = kReach; k < stride - kReach; ++k)
-      out[k] = static_cast<std::uint16_t>(r0[k] + r1[k] + r2[k] + r3[k] + r4[k] + r5[k] + r6[k] +
-                                          r7[k] + r8[k]);
+      out[k] = static_cast<std::uint16_t>(r0[k + o[0]] + r1[k + o[1]] + r2[k + o[2]] +
+                                          r3[k + o[3]] + r4[k + o[4]] + r5[k + o[5]] +
+                                          r6[k + o[6]] + r7[k + o[7]] + r8[k + o[8]]);
     for (int e = 0; e < 2 * kReach; ++e) {
       const int k = e < kReach ? e : stride - 2 * kReach + e;
       unsigned sum = 0;

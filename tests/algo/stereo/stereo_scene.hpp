@@ -47,16 +47,22 @@ struct StereoScene {
   float d(int x, int y) const { return truth[static_cast<std::size_t>(y) * w + x]; }
 };
 
-// Background at disparity d_bg; optional box [bx, bx+bw) x [by, by+bh) (in
-// the left view) at d_fg.
-inline StereoScene make_scene(int w, int h, double d_bg, double d_fg = 0, int bx = 0, int by = 0,
-                              int bw = 0, int bh = 0, std::uint32_t seed = 1) {
+// A scene of w x h pixels, its images and truth to be filled.
+inline StereoScene sized_scene(int w, int h) {
   StereoScene s;
   s.w = w;
   s.h = h;
   s.left.resize(static_cast<std::size_t>(w) * h);
   s.right.resize(s.left.size());
   s.truth.resize(s.left.size());
+  return s;
+}
+
+// Background at disparity d_bg; optional box [bx, bx+bw) x [by, by+bh) (in
+// the left view) at d_fg.
+inline StereoScene make_scene(int w, int h, double d_bg, double d_fg = 0, int bx = 0, int by = 0,
+                              int bw = 0, int bh = 0, std::uint32_t seed = 1) {
+  StereoScene s = sized_scene(w, h);
   const ValueNoise bg(w + 300, h, seed), fg(w + 300, h, seed + 7);
   const int off = 150;  // texture coordinates stay positive for negative disparities
   auto in_box = [&](double xl, int y) {
@@ -84,12 +90,7 @@ inline StereoScene make_scene(int w, int h, double d_bg, double d_fg = 0, int bx
 // face turned up towards the sky): d(y) = d_top + per_row y, no occlusion.
 inline StereoScene make_tilted_scene(int w, int h, double d_top, double per_row,
                                      std::uint32_t seed = 1) {
-  StereoScene s;
-  s.w = w;
-  s.h = h;
-  s.left.resize(static_cast<std::size_t>(w) * h);
-  s.right.resize(s.left.size());
-  s.truth.resize(s.left.size());
+  StereoScene s = sized_scene(w, h);
   const ValueNoise tex(w + 300, h, seed);
   const int off = 150;
   for (int y = 0; y < h; ++y)
