@@ -93,6 +93,9 @@ Result<Eigen::Vector3d> JsonFile::vec3(std::uint32_t i, const std::string& path)
   return v;
 }
 
+// Within this of 1, a vector's norm is a unit vector's as rounded to doubles.
+constexpr double kUnitAsWritten = 1e-14;
+
 Result<Eigen::Vector3d> JsonFile::unit_vec3(std::uint32_t i, const std::string& path) const {
   auto v = vec3(i, path);
   if (!v) return v.error();
@@ -102,6 +105,9 @@ Result<Eigen::Vector3d> JsonFile::unit_vec3(std::uint32_t i, const std::string& 
     std::snprintf(what, sizeof what, "length %.6g, expected a unit vector", n);
     return error(path, what);
   }
+  // A unit vector written with 17 digits reads back as itself; dividing it by
+  // its norm (1 within rounding) would move its last bits.
+  if (std::abs(n - 1.0) <= kUnitAsWritten) return *v;
   return Eigen::Vector3d(*v / n);
 }
 

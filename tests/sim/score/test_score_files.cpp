@@ -57,6 +57,23 @@ TEST(ScoreFiles, ReadsThePlanesContract) {
   EXPECT_TRUE(empty->planes.empty());
 }
 
+// A unit normal as written (17 digits, as telemetry's f64 reaches planes.json)
+// reads back bit for bit; one off unit by more than rounding is normalised.
+TEST(ScoreFiles, AUnitNormalReadsBackAsWritten) {
+  const Eigen::Vector3d written(-0.022021780540577705, -0.23032458491230268, 0.9728646497672726);
+  auto p = parse_planes_json(
+      R"({"planes":[{"normal":[-0.022021780540577705,-0.23032458491230268,0.9728646497672726],)"
+      R"("centroid_mm":[1,1,5],"area_mm2":3.5,"rms_mm":0.2,"triangles":12}]})");
+  ASSERT_TRUE(p.ok()) << p.error().message;
+  EXPECT_EQ(p->planes[0].normal, written);
+  EXPECT_NE(Eigen::Vector3d(written / written.norm()), written);  // what dividing did
+  auto q = parse_planes_json(
+      R"({"planes":[{"normal":[0,0.6,0.8004],"centroid_mm":[1,1,5],"area_mm2":3.5,)"
+      R"("rms_mm":0.2,"triangles":12}]})");
+  ASSERT_TRUE(q.ok()) << q.error().message;
+  EXPECT_NEAR(q->planes[0].normal.norm(), 1.0, 1e-15);
+}
+
 TEST(ScoreFiles, MalformedTruthNamesTheProblem) {
   const std::string t = kTruth;
   const std::pair<std::string, std::string> cases[] = {
