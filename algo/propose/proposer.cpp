@@ -206,10 +206,14 @@ bool PlaneCandidates::add(const GrindPlane& p, const GrindParams& grind) {
   return true;
 }
 
+bool PlaneCandidates::flat(const GrindPlane& p, const GrindParams& grind) {
+  return p.rms_mm <= grind.max_footprint_rms_mm;
+}
+
 void PlaneCandidates::keep_flat(int first, const GrindParams& grind) {
   int n = first;
   for (int k = first; k < count; ++k)
-    if (planes[k].rms_mm <= grind.max_footprint_rms_mm) planes[n++] = planes[k];
+    if (flat(planes[k], grind)) planes[n++] = planes[k];
   count = n;
 }
 
@@ -228,15 +232,15 @@ void planes_on_other_rocks(const ReconstructionOutput& r, const RockOnMap& rock,
   for (int k = 0; k < kMaxClasses; ++k) neighbour[k] = other[k] > own[k];
 }
 
-// The proposal's planes (3 at most), from this rock's candidates in order:
-// the chain's accepted planes, its surplus ones (qualified, past the run's
-// c = 3, which a neighbour's planes in the ROI also take), then the further
-// pass's accepted planes (further_planes), each not of the same face as an
-// earlier one; a surplus plane not kept (the same face as an earlier one, or
-// a patch rougher than the footprint's tolerance, which keep_flat would
-// drop) leaves its triangles to the further pass. The reachable ones first,
-// each group in that order, then the rock's refused planes that say why. A neighbour's planes are
-// left to its own run.
+// The proposal's planes (kMaxProposalPlanes at most), from this rock's
+// candidates in order: the chain's accepted planes, its surplus ones
+// (qualified, past the run's c = 3, which a neighbour's planes in the ROI
+// also take), then the further pass's accepted planes (further_planes), each
+// not of the same face as an earlier one; a surplus plane not kept (the same
+// face as an earlier one, or a patch rougher than the footprint's tolerance,
+// which keep_flat would drop) leaves its triangles to the further pass. The
+// reachable ones first, each group in that order, then the rock's refused
+// planes that say why. A neighbour's planes are left to its own run.
 Status Proposer::own_planes(int index, const PipelineOutput& out, const ArmReach& reach,
                             RockProposal& proposal) {
   const GrindResult& g = out.result.planes;
@@ -258,7 +262,7 @@ Status Proposer::own_planes(int index, const PipelineOutput& out, const ArmReach
   planes_mostly_on(out.result, rock, on_rock);
   for (int k = 0; k < g.count; ++k)
     if (on_rock[k] && g.planes[k].verdict == PlaneVerdict::surplus &&
-        g.planes[k].rms_mm <= gp.max_footprint_rms_mm) {
+        PlaneCandidates::flat(g.planes[k], gp)) {
       taken[k] = c.add(g.planes[k], gp) && !neighbour[k];
     }
   if (params_.further_planes_c > 0) {

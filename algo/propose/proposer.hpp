@@ -112,8 +112,10 @@ struct PlaneCandidates {
   GrindPlane planes[kMaxCandidates];
   int count = 0;
   bool add(const GrindPlane& p, const GrindParams& grind);  // false: skipped, its face is in
-  // Drops the planes from `first` on whose whole patch is rougher than the
-  // footprint's tolerance (a patch across a crease: two faces in one plane).
+  // Whether a plane's whole patch is within the footprint's tolerance (a
+  // patch across a crease, two faces in one plane, is not).
+  static bool flat(const GrindPlane& p, const GrindParams& grind);
+  // Drops the planes from `first` on that are not flat.
   void keep_flat(int first, const GrindParams& grind);
 };
 
